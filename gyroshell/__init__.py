@@ -1,0 +1,30 @@
+"""gyroshell: dynamics of a circumferentially moving magnetic tape.
+
+The tape on a guide or head is a thin cylindrical shell transported at speed V (Müftü &
+Benson's model): D ∇⁴w + (ρV² − T) w_xx + k w + 2ρV w_xt + ρ w_tt = P, simply supported at
+x = 0, L_x and free along y = 0, L_y. Finite differences give M a + G v + K w = F.
+
+Layers: parameters → grid and operators → engines (static, Newmark, eigen) → studies.
+All quantities are SI.
+"""
+
+from __future__ import annotations
+
+from .divergence import Divergence, divergence, divergence_speed
+from .errors import ConvergenceError, ParameterError, SupercriticalError
+from .grid import Grid
+from .loads import Harmonic, Ramp, gaussian_load, pressure_load, step
+from .model import TapeModel
+from .operators import bending_foundation, gyroscopic, mass, membrane, stiffness
+from .parameters import TapeParameters, bending_rigidity, shell_stiffness
+from .static import StaticSolution, solve_static
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "ConvergenceError", "Divergence", "Grid", "Harmonic", "ParameterError", "Ramp",
+    "StaticSolution", "SupercriticalError", "TapeModel", "TapeParameters",
+    "bending_foundation", "bending_rigidity", "divergence", "divergence_speed",
+    "gaussian_load", "gyroscopic", "mass", "membrane", "pressure_load", "shell_stiffness",
+    "solve_static", "step", "stiffness",
+]

@@ -1,0 +1,60 @@
+"""Command-line interface: a thin layer over the public API.
+
+``main(argv)`` builds one sub-command per module listed in :data:`SUBCOMMANDS`; each module
+has ``register(subparsers, common)`` which adds its parser and sets ``func``. User errors
+(bad parameters, supercritical requests, unwritable outputs) print one line on stderr and
+exit with code 2; numerical failures exit with code 1; no tracebacks for either.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+from ..errors import ConvergenceError, ParameterError
+from .common import ArgumentParser, UserError, common_parser
+
+#: Sub-command modules (gyroshell.cli.<name>), in help order.
+SUBCOMMANDS: tuple[str, ...] = ("static", "transient", "eigen", "reproduce")
+
+
+def build_parser() -> ArgumentParser:
+    parser = ArgumentParser(
+        prog="gyroshell",
+        description="Dynamics of a moving magnetic tape modelled as a gyroscopic cylindrical "
+                    "shell (SI units throughout).")
+    from .. import __version__
+    parser.add_argument("--version", action="version", version=f"gyroshell {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
+                                parser_class=ArgumentParser)
+    common = common_parser()
+    for name in SUBCOMMANDS:
+        try:
+            module = importlib.import_module(f"{__name__}.{name}")
+        except ModuleNotFoundError as exc:
+            if exc.name == f"{__name__}.{name}":
+                continue  # sub-command not built yet
+            raise
+        module.register(sub, common)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the CLI; returns the exit code (0 ok, 1 numerical failure, 2 user error)."""
+    parser = build_parser()
+    try:
+        args = parser.parse_args(argv)
+        return int(args.func(args) or 0)
+    except UserError as exc:
+        return _fail(str(exc), 2)
+    except (ParameterError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+        return _fail(str(exc), 2)
+    except ConvergenceError as exc:
+        return _fail(f"numerical failure: {exc}", 1)
+    except KeyboardInterrupt:
+        return _fail("interrupted", 130)
+
+
+def _fail(message: str, code: int) -> int:
+    print(f"gyroshell: error: {message}", file=sys.stderr)
+    return code

@@ -1,0 +1,91 @@
+"""Options shared by every sub-command, and the parser that fails in one line."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+from ..parameters import EDGE_CHOICES, TapeParameters
+
+
+class UserError(Exception):
+    """A command-line mistake: reported in one line, exit code 2."""
+
+
+class ArgumentParser(argparse.ArgumentParser):
+    """argparse, but a usage error is one line on stderr and exit code 2."""
+
+    def error(self, message: str):  # noqa: D401 - argparse API
+        print(f"{self.prog}: error: {message}", file=sys.stderr)
+        raise SystemExit(2)
+
+
+def real(text: str) -> float:
+    """A finite real number."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be finite, got {text!r}")
+    return value
+
+
+def positive_int(text: str) -> int:
+    """An integer >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
+    return value
+
+
+#: (flag, TapeParameters field, help) for the physical overrides.
+_OVERRIDES = (
+    ("--youngs-modulus", "youngs_modulus", "Young's modulus E, Pa (default 4e9)"),
+    ("--poisson", "poisson", "Poisson's ratio, in (-1, 0.5) (default 0.3)"),
+    ("--thickness", "thickness", "shell thickness c, m (default 20e-6)"),
+    ("--radius", "radius", "wrap radius R, m (default 20e-3)"),
+    ("--density", "density", "areal density rho, kg/m^2 (default 0.014)"),
+    ("--tension", "tension", "tension per unit width T, N/m (default 90)"),
+    ("--width", "width", "tape width L_y, m (default 6.35e-3)"),
+    ("--bending-rigidity", "bending_rigidity",
+     "override D, N*m (default E c^3 / (12 (1 - nu^2)))"),
+    ("--foundation-stiffness", "foundation_stiffness",
+     "override the shell stiffness k, N/m^3 (default E c / (R^2 (1 - nu^2)))"),
+    ("--load", "load", "peak pressure P_0 of the Gaussian load (Eq. 17), Pa (default 200)"),
+)
+
+
+def common_parser() -> argparse.ArgumentParser:
+    """Parent parser with the options every sub-command shares."""
+    p = argparse.ArgumentParser(add_help=False)
+    g = p.add_argument_group("tape model (SI units; defaults: the paper's Table 1)")
+    g.add_argument("--length-ratio", type=real, default=4.0,
+                   help="L_x / L_y, > 0 (default 4; the paper also uses 19)")
+    g.add_argument("--edges", choices=EDGE_CHOICES, default="free",
+                   help="lateral edges y = 0, L_y (default free; ends are simply supported)")
+    g.add_argument("--spacing", type=real, default=1.549e-4,
+                   help="grid spacing, m (default 1.549e-4: 41 intervals across)")
+    g.add_argument("--velocity", type=real, default=0.0,
+                   help="tape transport speed V, m/s (default 0)")
+    for flag, _field, text in _OVERRIDES:
+        g.add_argument(flag, type=real, default=None, help=text)
+    return p
+
+
+def parameters_from_args(args: argparse.Namespace) -> TapeParameters:
+    """TapeParameters from the common options (validated; raises ParameterError)."""
+    kwargs = {field: getattr(args, field) for _flag, field, _text in _OVERRIDES
+              if getattr(args, field) is not None}
+    return TapeParameters(length_ratio=args.length_ratio, edges=args.edges,
+                          spacing=args.spacing, **kwargs)
+
+
+def print_json(obj: dict) -> None:
+    """One JSON object on stdout."""
+    print(json.dumps(obj, indent=None, sort_keys=False))

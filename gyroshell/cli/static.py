@@ -1,0 +1,48 @@
+"""``gyroshell static``: the static deflection under the Gaussian load."""
+
+from __future__ import annotations
+
+import argparse
+
+from .common import parameters_from_args, print_json
+
+
+def register(sub, common: argparse.ArgumentParser) -> None:
+    p = sub.add_parser(
+        "static", parents=[common], help="static deflection K(V) w = F under the load",
+        description="Static deflection of the tape under the Gaussian load of Eq. 17 at speed "
+                    "V (below the critical speed). Prints the load-point and maximum "
+                    "deflections, m.")
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..model import TapeModel
+    from ..parameters import check_velocity
+    from ..static import solve_static
+
+    params = parameters_from_args(args)
+    velocity = check_velocity(args.velocity)
+    model = TapeModel(params)
+    sol = solve_static(model, velocity)
+    g = model.grid
+    out = {
+        "load_point_deflection": sol.load_point_deflection,
+        "max_deflection": sol.max_deflection,
+        "velocity": velocity,
+        "load_centroid": list(params.load_centroid),
+        "nx": g.nx, "ny": g.ny, "spacing_x": g.hx, "spacing_y": g.hy,
+        "unknowns": g.size,
+        "edges": g.edges,
+        "bending_rigidity": params.D, "foundation_stiffness": params.k,
+    }
+    if args.json:
+        print_json(out)
+    else:
+        print(f"grid: {g.nx} x {g.ny} intervals, spacing {g.hx:.6g} m x {g.hy:.6g} m, "
+              f"{g.size} unknowns, {g.edges} edges")
+        print(f"velocity:              {velocity:g} m/s")
+        print(f"load-point deflection: {sol.load_point_deflection:.6e} m")
+        print(f"maximum deflection:    {sol.max_deflection:.6e} m")
+    return 0

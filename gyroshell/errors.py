@@ -1,0 +1,34 @@
+"""Exception types: user error apart from numerical failure.
+
+``ParameterError`` is a ``ValueError``: the caller asked for something outside the model's
+domain (a negative thickness, a spacing too coarse, a speed above critical for a static
+solve). ``ConvergenceError`` is a ``RuntimeError``: the numerics failed (an eigen-solver that
+did not converge, a time march that blew up).
+"""
+
+from __future__ import annotations
+
+
+class ParameterError(ValueError):
+    """A parameter is outside its allowed range; the message names it and the range."""
+
+
+class SupercriticalError(ParameterError):
+    """The tape speed is at or above the critical (divergence) speed.
+
+    Attributes
+    ----------
+    velocity : float
+        The requested tape speed, m/s.
+    critical_speed : float
+        The divergence speed of the discrete model, m/s.
+    """
+
+    def __init__(self, message: str, *, velocity: float, critical_speed: float) -> None:
+        super().__init__(message)
+        self.velocity = velocity
+        self.critical_speed = critical_speed
+
+
+class ConvergenceError(RuntimeError):
+    """A numerical method failed to converge or a solution blew up."""

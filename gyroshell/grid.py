@@ -1,0 +1,186 @@
+"""Uniform finite-difference grid on the tape and the vector ↔ field mapping.
+
+Nodes are (x_i, y_j) = (i h_x, j h_y), i = 0..n_x, j = 0..n_y. The ends x = 0 and x = L_x
+are simply supported (w = 0), so their nodes carry no unknown; with simply supported lateral
+edges the nodes at y = 0 and y = L_y carry none either. Unknowns are numbered with j fastest,
+which keeps every operator banded with a half-bandwidth of about 2 (n_y + 1).
+
+Callers never touch that numbering: use :meth:`Grid.to_field` and :meth:`Grid.from_field`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from .errors import ParameterError
+from .parameters import EDGE_CHOICES, MIN_INTERVALS_ACROSS, TapeParameters
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A uniform grid of ``nx`` × ``ny`` intervals on [0, length] × [0, width].
+
+    Parameters
+    ----------
+    length, width : float
+        L_x and L_y, m.
+    nx, ny : int
+        Number of intervals along x and across y (``ny`` >= 8).
+    edges : {"free", "simply-supported"}
+        Condition on the lateral edges y = 0, L_y.
+    """
+
+    length: float
+    width: float
+    nx: int
+    ny: int
+    edges: str = "free"
+
+    def __post_init__(self) -> None:
+        if self.ny < MIN_INTERVALS_ACROSS:
+            raise ParameterError(f"ny must be >= {MIN_INTERVALS_ACROSS}, got {self.ny}")
+        if self.nx < 2:
+            raise ParameterError(f"nx must be >= 2, got {self.nx}")
+        if self.edges not in EDGE_CHOICES:
+            raise ParameterError(f"edges must be one of {', '.join(EDGE_CHOICES)}")
+
+    @classmethod
+    def from_parameters(cls, params: TapeParameters) -> Grid:
+        """The grid nearest to ``params.spacing``: whole numbers of intervals per side."""
+        nx = max(2, round(params.length / params.spacing))
+        ny = round(params.width / params.spacing)
+        return cls(params.length, params.width, nx, ny, params.edges)
+
+    def refined(self, factor: int = 2) -> Grid:
+        """The same tape with ``factor`` times as many intervals each way."""
+        return Grid(self.length, self.width, self.nx * factor, self.ny * factor, self.edges)
+
+    # ----- geometry -------------------------------------------------------------------
+    @property
+    def hx(self) -> float:
+        """Spacing along x actually used, m."""
+        return self.length / self.nx
+
+    @property
+    def hy(self) -> float:
+        """Spacing across y actually used, m."""
+        return self.width / self.ny
+
+    @cached_property
+    def x(self) -> np.ndarray:
+        """Node abscissae x_i, m, shape (nx + 1,)."""
+        return np.linspace(0.0, self.length, self.nx + 1)
+
+    @cached_property
+    def y(self) -> np.ndarray:
+        """Node ordinates y_j, m, shape (ny + 1,)."""
+        return np.linspace(0.0, self.width, self.ny + 1)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """Shape of a nodal field, (nx + 1, ny + 1); axis 0 is x."""
+        return (self.nx + 1, self.ny + 1)
+
+    @cached_property
+    def X(self) -> np.ndarray:
+        """x of every node, shape :attr:`shape`."""
+        return np.broadcast_to(self.x[:, None], self.shape)
+
+    @cached_property
+    def Y(self) -> np.ndarray:
+        """y of every node, shape :attr:`shape`."""
+        return np.broadcast_to(self.y[None, :], self.shape)
+
+    # ----- unknowns ---------------------------------------------------------------------
+    @property
+    def free_edges(self) -> bool:
+        return self.edges == "free"
+
+    @property
+    def x_unknowns(self) -> slice:
+        """Node indices i that carry unknowns (the interior, 1..nx−1)."""
+        return slice(1, self.nx)
+
+    @property
+    def y_unknowns(self) -> slice:
+        """Node indices j that carry unknowns (0..ny with free edges, else 1..ny−1)."""
+        return slice(0, self.ny + 1) if self.free_edges else slice(1, self.ny)
+
+    @property
+    def n_lines(self) -> int:
+        """Number of unknown x-lines, nx − 1."""
+        return self.nx - 1
+
+    @property
+    def n_across(self) -> int:
+        """Unknowns per x-line: ny + 1 (free) or ny − 1 (simply supported)."""
+        return self.ny + 1 if self.free_edges else self.ny - 1
+
+    @property
+    def size(self) -> int:
+        """Number of unknowns n."""
+        return self.n_lines * self.n_across
+
+    @cached_property
+    def y_weights(self) -> np.ndarray:
+        """Trapezoid weights (m) across the width for the unknown nodes of one x-line."""
+        w = np.full(self.n_across, self.hy)
+        if self.free_edges:
+            w[0] = w[-1] = 0.5 * self.hy
+        return w
+
+    @cached_property
+    def areas(self) -> np.ndarray:
+        """Control area of every unknown node, m² (trapezoid rule), shape (n,)."""
+        return np.tile(self.hx * self.y_weights, self.n_lines)
+
+    def to_field(self, vector: np.ndarray) -> np.ndarray:
+        """Nodal field (shape :attr:`shape`, zeros on supported lines) from an unknown vector.
+
+        ``vector`` may carry trailing axes (e.g. several modes): shape (n, ...) gives
+        (nx + 1, ny + 1, ...). Complex vectors give complex fields.
+        """
+        vector = np.asarray(vector)
+        if vector.shape[0] != self.size:
+            raise ParameterError(f"vector must have length {self.size}, got {vector.shape[0]}")
+        field = np.zeros(self.shape + vector.shape[1:], dtype=vector.dtype)
+        field[self.x_unknowns, self.y_unknowns] = vector.reshape(
+            (self.n_lines, self.n_across) + vector.shape[1:]
+        )
+        return field
+
+    def from_field(self, field: np.ndarray) -> np.ndarray:
+        """Unknown vector from a nodal field (values on supported lines are ignored)."""
+        field = np.asarray(field)
+        if field.shape[:2] != self.shape:
+            raise ParameterError(f"field must have shape {self.shape}, got {field.shape[:2]}")
+        sub = field[self.x_unknowns, self.y_unknowns]
+        return sub.reshape((self.size,) + field.shape[2:]).copy()
+
+    def sample(self, function) -> np.ndarray:
+        """Unknown vector of ``function(X, Y)`` evaluated at the unknown nodes."""
+        return self.from_field(np.asarray(function(self.X, self.Y), dtype=float)
+                               * np.ones(self.shape))
+
+    def interpolation_row(self, x0: float, y0: float) -> np.ndarray:
+        """Weights r with r @ w = w(x0, y0), bilinear in the cell holding (x0, y0).
+
+        Second-order accurate, like the scheme; a point on a node gets that node's value.
+        """
+        if not (0.0 <= x0 <= self.length and 0.0 <= y0 <= self.width):
+            raise ParameterError(
+                f"point ({x0:g}, {y0:g}) m must lie on the tape "
+                f"[0, {self.length:g}] x [0, {self.width:g}] m"
+            )
+        field = np.zeros(self.shape)
+        sx, sy = x0 / self.hx, y0 / self.hy
+        i, j = min(int(sx), self.nx - 1), min(int(sy), self.ny - 1)
+        fx, fy = sx - i, sy - j
+        field[i, j] = (1 - fx) * (1 - fy)
+        field[i + 1, j] = fx * (1 - fy)
+        field[i, j + 1] = (1 - fx) * fy
+        field[i + 1, j + 1] = fx * fy
+        return self.from_field(field)
