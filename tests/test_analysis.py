@@ -1,0 +1,36 @@
+"""Signal-analysis helpers on signals whose answer is known."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from gyroshell.analysis import (
+    dominant_period,
+    dominant_wavelength,
+    first_departure,
+    front_position,
+)
+
+
+def test_dominant_period_of_a_decaying_mixture_with_drift():
+    t = np.arange(2000) * 2e-6
+    w = (1.0 + 0.3 * np.exp(-t / 3e-3) * np.cos(2 * np.pi * t / 50e-6)
+         + 0.1 * np.cos(2 * np.pi * t / 23e-6) + 0.5 * t / t[-1])
+    assert dominant_period(t, w) == pytest.approx(50e-6, rel=2e-3)
+
+
+def test_dominant_wavelength():
+    x = np.linspace(0, 0.1, 800)
+    assert dominant_wavelength(x, np.sin(2 * np.pi * x / 2.1e-3)) == pytest.approx(2.1e-3,
+                                                                                   rel=1e-3)
+
+
+def test_front_position_and_departure():
+    x = np.linspace(-1, 1, 201)
+    w = np.where(np.abs(x) < 0.295, 1.0, 0.0)
+    assert front_position(x, w, 0.0, 0.5, +1) == pytest.approx(0.29)
+    assert front_position(x, w, 0.0, 0.5, -1) == pytest.approx(-0.29)
+    t = np.linspace(0, 1, 101)
+    assert first_departure(t, np.where(t > 0.42, 1.1, 1.0), np.ones_like(t), 0.05) == \
+        pytest.approx(0.43)
