@@ -1,0 +1,172 @@
+"""What a transient run keeps: the load-point history, snapshots, centre lines, and files.
+
+The time marcher (:mod:`gyroshell.newmark`) fills these; studies and plots read them. Full
+fields are kept only at the steps asked for, so a run of thousands of steps on the
+L_x/L_y = 19 grid holds one float per step unless told otherwise.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .errors import ParameterError
+from .grid import Grid
+from .io import atomic_path
+
+
+def steps_at(times, dt: float, steps: int, t0: float = 0.0, *, name: str) -> np.ndarray:
+    """Step indices n (time t0 + n dt) nearest to ``times`` (s); sorted, unique.
+
+    Raises
+    ------
+    ParameterError
+        If a time is not finite or lies outside [t0, t0 + steps dt] (by more than dt/2).
+    """
+    t = np.atleast_1d(np.asarray(times, dtype=float))
+    if t.ndim != 1 or not np.all(np.isfinite(t)):
+        raise ParameterError(f"{name} must be a list of finite times, s")
+    n = np.rint((t - t0) / dt)
+    if np.any(n < 0) or np.any(n > steps):
+        raise ParameterError(f"{name} must lie in [{t0:g}, {t0 + steps * dt:g}] s "
+                             f"(the run's {steps} steps of {dt:g} s)")
+    return np.unique(n.astype(np.int64))
+
+
+def every(interval: int, steps: int, *, name: str) -> np.ndarray:
+    """Step indices 0, N, 2N, ... <= steps."""
+    if isinstance(interval, bool) or int(interval) != interval or interval < 1:
+        raise ParameterError(f"{name} must be an integer >= 1, got {interval!r}")
+    return np.arange(0, steps + 1, int(interval), dtype=np.int64)
+
+
+def centerline_weights(grid: Grid) -> tuple[int, float]:
+    """(j, f): the centre line y = L_y/2 is (1 − f) column j + f column j + 1 of a field."""
+    s = 0.5 * grid.width / grid.hy
+    j = min(int(s), grid.ny - 1)
+    return j, s - j
+
+
+@dataclass(frozen=True)
+class Snapshots:
+    """Full fields and centre lines y = L_y/2 at chosen times.
+
+    Attributes
+    ----------
+    x, y : numpy.ndarray
+        Node coordinates, m, shapes (nx + 1,) and (ny + 1,).
+    times : numpy.ndarray
+        Times of the full fields, s, shape (k,).
+    fields : numpy.ndarray
+        w on all nodes, m, shape (k, nx + 1, ny + 1); axis 1 is x.
+    centerline_times : numpy.ndarray
+        Times of the centre lines, s, shape (c,).
+    centerlines : numpy.ndarray
+        w(x, L_y/2), m, shape (c, nx + 1) (linear interpolation across y if needed).
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    times: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    fields: np.ndarray | None = None
+    centerline_times: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    centerlines: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        put = object.__setattr__
+        nx1, ny1 = len(self.x), len(self.y)
+        if self.fields is None:
+            put(self, "fields", np.zeros((0, nx1, ny1)))
+        if self.centerlines is None:
+            put(self, "centerlines", np.zeros((0, nx1)))
+        if self.fields.shape != (len(self.times), nx1, ny1):
+            raise ParameterError(f"fields must have shape ({len(self.times)}, {nx1}, {ny1})")
+        if self.centerlines.shape != (len(self.centerline_times), nx1):
+            raise ParameterError(f"centerlines must have shape "
+                                 f"({len(self.centerline_times)}, {nx1})")
+
+    def __len__(self) -> int:
+        return len(self.times)
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write an .npz (x, y, times, fields, centerline_times, centerlines); whole or not."""
+        with atomic_path(path) as tmp, open(tmp, "wb") as fh:
+            np.savez(fh, x=self.x, y=self.y, times=self.times, fields=self.fields,
+                     centerline_times=self.centerline_times, centerlines=self.centerlines)
+        return Path(path)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Snapshots:
+        """Read what :meth:`save` wrote."""
+        with np.load(path) as data:
+            return cls(**{k: data[k] for k in ("x", "y", "times", "fields",
+                                                "centerline_times", "centerlines")})
+
+
+@dataclass(frozen=True)
+class TransientResult:
+    """One time march of M a + G v + K w = f(t) F.
+
+    Attributes
+    ----------
+    times : numpy.ndarray
+        t_n = t0 + n Δt, s, shape (steps + 1,), including the initial instant.
+    load_point : numpy.ndarray
+        Load-point displacement w(x_0, y_0, t_n), m, shape (steps + 1,).
+    snapshots : Snapshots
+        Full fields and centre lines at the requested times (empty if none asked).
+    w, v, a : numpy.ndarray
+        Final displacement (m), velocity (m/s) and acceleration (m/s²) of the unknowns:
+        pass ``w0=w, v0=v, t0=times[-1]`` to continue the run.
+    energy : numpy.ndarray or None
+        E_n = ½vᵀMv + ½wᵀKw − f(t_n) Fᵀw, J, if recorded.
+    velocity, dt, beta, gamma : float
+        Tape speed V (m/s), time step Δt (s) and Newmark's β, γ.
+    info : dict
+        Run statistics: back-end, factor_time, solve_time, loop_time (s), steps, unknowns.
+    """
+
+    times: np.ndarray
+    load_point: np.ndarray
+    snapshots: Snapshots
+    w: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+    velocity: float
+    dt: float
+    beta: float
+    gamma: float
+    energy: np.ndarray | None = None
+    info: dict = field(default_factory=dict)
+
+    @property
+    def steps(self) -> int:
+        return len(self.times) - 1
+
+    def to_frame(self):
+        """pandas DataFrame with columns ``t`` (s) and ``w`` (m) (+ ``energy``, J)."""
+        import pandas as pd
+
+        data = {"t": self.times, "w": self.load_point}
+        if self.energy is not None:
+            data["energy"] = self.energy
+        return pd.DataFrame(data)
+
+    def to_csv(self, path: str | os.PathLike[str]) -> Path:
+        """Write the load-point history as CSV (``t``, ``w``), whole or not at all."""
+        frame = self.to_frame()[["t", "w"]]
+        with atomic_path(path) as tmp:
+            frame.to_csv(tmp, index=False, float_format="%.17g")
+        return Path(path)
+
+    def save_snapshots(self, path: str | os.PathLike[str]) -> Path:
+        """Write the snapshots (fields, centre lines, coordinates) as .npz."""
+        return self.snapshots.save(path)
+
+    @staticmethod
+    def load_snapshots(path: str | os.PathLike[str]) -> Snapshots:
+        """Read snapshots written by :meth:`save_snapshots`."""
+        return Snapshots.load(path)
