@@ -50,6 +50,62 @@ def centerline_weights(grid: Grid) -> tuple[int, float]:
     return j, s - j
 
 
+class Recorder:
+    """Keeps full fields and centre lines at chosen steps of one run (preallocated).
+
+    Parameters
+    ----------
+    grid : Grid
+    steps : int
+        Steps of the run (instants 0..steps).
+    dt, t0 : float
+        Time step and initial time, s.
+    snapshot_times, snapshot_every, centerline_times
+        As in :meth:`gyroshell.newmark.Newmark.march`.
+    """
+
+    def __init__(self, grid: Grid, steps: int, dt: float, t0: float = 0.0, *,
+                 snapshot_times=None, snapshot_every: int | None = None,
+                 centerline_times=None) -> None:
+        snap = np.zeros(0, dtype=np.int64)
+        if snapshot_times is not None:
+            snap = steps_at(snapshot_times, dt, steps, t0, name="snapshot_times")
+        if snapshot_every is not None:
+            snap = np.union1d(snap, every(snapshot_every, steps, name="snapshot_every"))
+        line = np.zeros(0, dtype=np.int64)
+        if centerline_times is not None:
+            line = steps_at(centerline_times, dt, steps, t0, name="centerline_times")
+        self.grid, self._snap, self._line = grid, snap, line
+        self._j, self._f = centerline_weights(grid)
+        self._fields = np.empty((len(snap), *grid.shape))
+        self._lines = np.empty((len(line), grid.nx + 1))
+        self._k_snap = self._k_line = 0
+        #: wanted[n] is non-zero at the steps where something is kept.
+        self.wanted = np.zeros(steps + 1, dtype=np.int8)
+        self.wanted[snap] |= 1
+        self.wanted[line] |= 2
+
+    def record(self, n: int, w: np.ndarray) -> None:
+        """Keep what step n asks for, from the unknown vector w (m)."""
+        flags = self.wanted[n]
+        if not flags:
+            return
+        field_n = self.grid.to_field(w)
+        if flags & 1:
+            self._fields[self._k_snap] = field_n
+            self._k_snap += 1
+        if flags & 2:
+            self._lines[self._k_line] = ((1.0 - self._f) * field_n[:, self._j]
+                                         + self._f * field_n[:, self._j + 1])
+            self._k_line += 1
+
+    def snapshots(self, times: np.ndarray) -> Snapshots:
+        """The kept fields and lines, given the run's instants ``times`` (s)."""
+        g = self.grid
+        return Snapshots(g.x.copy(), g.y.copy(), times[self._snap], self._fields,
+                         times[self._line], self._lines)
+
+
 @dataclass(frozen=True)
 class Snapshots:
     """Full fields and centre lines y = L_y/2 at chosen times.
