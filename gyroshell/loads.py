@@ -37,15 +37,17 @@ def _cell_integrals(nodes: np.ndarray, h: float, centre: float, alpha: float,
     return 0.5 * math.sqrt(math.pi / alpha) * (erf(s * (b - centre)) - erf(s * (a - centre)))
 
 
-def gaussian_load(grid: Grid, params: TapeParameters) -> np.ndarray:
+def gaussian_load(grid: Grid, params: TapeParameters, *, exponent: float | None = None
+                  ) -> np.ndarray:
     """Nodal forces (N) of P = P_0 exp(−α(x−x_0)²) exp(−α(y−y_0)²) (Eq. 17).
 
     Each node receives the exact integral of the pressure over its control cell (erf), so
     the total force equals ∫∫ P dA on the tape however coarse the grid: the load spans only
     a few spacings on the Table 1 grid, where point sampling would misstate it. If
     ``params.wrap_pressure`` is set, the uniform belt-wrap pressure −T/R is added.
+    ``exponent`` overrides α (1/m²), e.g. to put the same load on a wider reference tape.
     """
-    alpha = gaussian_exponent(params.width)
+    alpha = gaussian_exponent(params.width) if exponent is None else float(exponent)
     x0, y0 = params.load_centroid
     fx = _cell_integrals(grid.x[grid.x_unknowns], grid.hx, x0, alpha, 0.0, grid.length)
     fy = _cell_integrals(grid.y[grid.y_unknowns], grid.hy, y0, alpha, 0.0, grid.width)

@@ -13,6 +13,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from . import operators
+from .errors import ParameterError
 from .grid import Grid
 from .loads import gaussian_load
 from .parameters import TapeParameters, check_velocity
@@ -27,11 +28,20 @@ class TapeModel:
         Physical and numerical parameters (SI).
     grid : Grid, optional
         Override the grid derived from ``params.spacing`` (e.g. for refinement studies).
+    load : numpy.ndarray, optional
+        Override the nodal load vector F, N (default: the Gaussian of Eq. 17).
     """
 
-    def __init__(self, params: TapeParameters | None = None, grid: Grid | None = None) -> None:
+    def __init__(self, params: TapeParameters | None = None, grid: Grid | None = None,
+                 load: np.ndarray | None = None) -> None:
         self.params = TapeParameters() if params is None else params
         self.grid = Grid.from_parameters(self.params) if grid is None else grid
+        if load is not None:
+            load = np.asarray(load, dtype=float)
+            if load.shape != (self.grid.size,) or not np.all(np.isfinite(load)):
+                raise ParameterError(
+                    f"load must be a finite vector of length {self.grid.size} (N)")
+            self.__dict__["load"] = load
 
     def __repr__(self) -> str:
         g = self.grid
