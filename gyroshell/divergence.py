@@ -40,14 +40,87 @@ class Divergence:
     mode: np.ndarray
 
 
-def divergence(model: TapeModel, *, tol: float = 1e-12) -> Divergence:
+def beam_mu_estimate(model: TapeModel) -> float:
+    """min over m of D a_m² + k / a_m², N/m: μ of the width-uniform (beam) modes.
+
+    a_m² = (4/h²) sin²(α_m h/2) is the discrete −∂²/∂x² eigenvalue of sin(α_m x), α_m = mπ/L_x.
+    Exact for ν = 0 and free edges; otherwise a close estimate of μ_min.
+    """
+    g, p = model.grid, model.params
+    alpha = np.arange(1, g.nx) * np.pi / g.length
+    a2 = (2.0 / g.hx * np.sin(alpha * g.hx / 2)) ** 2
+    return float(np.min(p.D * a2 + p.k / a2))
+
+
+def _factor_inertia(matrix) -> tuple[spla.SuperLU, int | None]:
+    """SuperLU with diagonal pivots; the number of negative pivots (None if it pivoted)."""
+    lu = spla.splu(matrix.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                   options={"SymmetricMode": True})
+    if not np.array_equal(lu.perm_r, lu.perm_c):
+        return lu, None
+    return lu, int(np.count_nonzero(lu.U.diagonal() <= 0.0))
+
+
+def _safe_shift(model: TapeModel, *, tries: int = 8) -> tuple[float, spla.SuperLU | None]:
+    """A shift τ < μ_min close to it, proved by inertia, and the factorization of A − τB.
+
+    Near the bottom of a one-parameter band μ ≈ μ_min + c (α − α*)², the number of
+    eigenvalues below τ grows like √(τ − μ_min): the squared inertia counts at two shifts
+    are nearly linear in τ and extrapolate to μ_min. Each guess is checked (no negative
+    pivot); if the counts are not informative the shift is halved, down to τ = 0.
+    """
+    A, B = model.A, model.B
+    points: list[tuple[float, int]] = []
+    tau = beam_mu_estimate(model)
+    for _ in range(tries):
+        lu, negative = _factor_inertia(A - tau * B)
+        if negative is None:
+            break
+        if negative == 0:
+            return tau, lu
+        points.append((tau, negative))
+        if len(points) == 1:
+            tau = tau * 1.01  # a second count above, for the slope
+            continue
+        (t1, c1), (t2, c2) = sorted(points)[:2]
+        if c2 > c1:
+            guess = t1 - c1**2 * (t2 - t1) / (c2**2 - c1**2)
+            tau = guess - 0.1 * (t1 - guess)
+        else:
+            tau = 0.5 * t1
+        if tau <= 0:
+            break
+    return 0.0, None
+
+
+def divergence(model: TapeModel, *, tol: float = 1e-12, shift: float | None = None
+               ) -> Divergence:
     """Divergence speed and buckling mode of the discrete model, by one ``eigsh`` call.
 
-    Shift-invert about μ = 0 through one sparse factorization of A.
+    Shift-invert about a shift τ just below μ_min, through one sparse factorization of
+    A − τB. The μ cluster (every wavenumber near (k/D)^¼ buckles at nearly the same μ) is
+    nearly flat seen from τ = 0 but well spread seen from τ ≈ μ_min. τ is extrapolated from
+    inertia counts of A − τB (see :func:`_safe_shift`), starting at the beam estimate
+    :func:`beam_mu_estimate`; a factorization with no negative pivot proves τ < μ_min, so
+    the eigenvalue nearest τ is μ_min.
+
+    Parameters
+    ----------
+    tol : float
+        ARPACK relative tolerance.
+    shift : float, optional
+        τ, N/m, to use instead (must be below μ_min); 0 reproduces plain shift-invert.
     """
+    A, B = model.A, model.B
+    tau, lu = _safe_shift(model) if shift is None else (float(shift), None)
+    if lu is None:
+        lu = spla.splu((A - tau * B).tocsc(), permc_spec="MMD_AT_PLUS_A",
+                       diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+    opinv = spla.LinearOperator(A.shape, matvec=lu.solve, dtype=float)
+    v0 = np.random.default_rng(12345).standard_normal(A.shape[0])
     try:
-        vals, vecs = spla.eigsh(model.A.tocsc(), k=1, M=model.B.tocsc(), sigma=0.0,
-                                which="LM", tol=tol)
+        vals, vecs = spla.eigsh(A, k=1, M=B, sigma=tau, which="LM", tol=tol, OPinv=opinv,
+                                v0=v0)
     except spla.ArpackNoConvergence as exc:  # pragma: no cover - ARPACK failure path
         raise ConvergenceError(f"divergence eigenvalue did not converge: {exc}") from None
     mu = float(vals[0])
