@@ -28,3 +28,11 @@ __all__ = [
     "gaussian_load", "gyroscopic", "mass", "membrane", "pressure_load", "shell_stiffness",
     "solve_static", "step", "stiffness",
 ]
+
+# Time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends.
+from .factorization import available_backends, factorize  # noqa: E402
+from .newmark import Newmark, NewmarkStabilityWarning, march  # noqa: E402
+from .transient_result import Snapshots, TransientResult  # noqa: E402
+
+__all__ += ["Newmark", "NewmarkStabilityWarning", "Snapshots", "TransientResult",
+            "available_backends", "factorize", "march"]

@@ -78,6 +78,10 @@ class Newmark:
         Newmark parameters (β > 0). Outside 2β ≥ γ ≥ ½ a NewmarkStabilityWarning is issued.
     backend : str
         Sparse LU back-end (see :func:`gyroshell.factorization.factorize`).
+    blas_threads : int or None
+        BLAS threads while factoring and marching (needs the optional threadpoolctl; None
+        leaves them alone). One is fastest here: the substitutions call BLAS on small
+        supernodal blocks, where OpenBLAS's spinning worker threads only compete for cores.
 
     Notes
     -----
@@ -87,7 +91,8 @@ class Newmark:
     """
 
     def __init__(self, model: TapeModel, velocity: float = 0.0, *, dt: float,
-                 beta: float = 0.25, gamma: float = 0.5, backend: str = "auto") -> None:
+                 beta: float = 0.25, gamma: float = 0.5, backend: str = "auto",
+                 blas_threads: int | None = 1) -> None:
         self.model = model
         self.velocity = check_velocity(velocity)
         self.dt = _check_real("dt", dt, positive=True)
@@ -102,11 +107,14 @@ class Newmark:
         self.G = model.G(self.velocity).tocsr()
         self.G.sort_indices()
         self.m = np.ascontiguousarray(model.mass_diagonal, dtype=float)
+        self.blas_threads = blas_threads
         dt, b, g = self.dt, self.beta, self.gamma
         K_eq = (model.M + (g * dt) * self.G + (b * dt * dt) * self.K).tocsc()
-        self.factor = factorize(K_eq, backend)
+        with _blas_limit(blas_threads):
+            self.factor = factorize(K_eq, backend)
         self.info = {"backend": self.factor.name, "factor_time": self.factor.factor_time,
-                     "unknowns": model.size, "factorizations": 1}
+                     "unknowns": model.size, "factorizations": 1,
+                     "blas_threads": blas_threads}
 
     def __repr__(self) -> str:
         return (f"Newmark(V={self.velocity:g} m/s, dt={self.dt:g} s, beta={self.beta:g}, "
@@ -145,8 +153,7 @@ class Newmark:
               snapshot_every: int | None = None,
               centerline_times: Sequence[float] | None = None,
               record_energy: bool = False, progress: bool | None = None,
-              blowup_factor: float = BLOWUP_FACTOR, blas_threads: int | None = 1
-              ) -> TransientResult:
+              blowup_factor: float = BLOWUP_FACTOR) -> TransientResult:
         """March ``steps`` steps from (w⁰, v⁰) at t0 under F(t) = profile(t) · model.load.
 
         Parameters
@@ -173,10 +180,6 @@ class Newmark:
         blowup_factor : float
             Stop with ConvergenceError once max |w| exceeds this many times its scale
             max(max|w⁰|, max|F| / max diag K, Δt steps max|v⁰|), m.
-        blas_threads : int or None
-            BLAS threads during the march (needs the optional threadpoolctl; None leaves
-            them alone). One is fastest: the substitutions call BLAS on tiny blocks, and
-            on 2 cores OpenBLAS's spinning threads made a step 2-7x slower.
 
         Returns
         -------
@@ -204,7 +207,7 @@ class Newmark:
         bar = _progress_bar(steps, progress)
         start = time.perf_counter()
         try:
-            with _blas_limit(blas_threads):
+            with _blas_limit(self.blas_threads):
                 w, v, a, solve_time = self._loop(steps, t0, w, v, a, profile, recorder,
                                                  history, energy, bound, bar)
         finally:
@@ -317,15 +320,16 @@ def _progress_bar(steps: int, progress: bool | None):
 
 def march(model: TapeModel, velocity: float = 0.0, *, dt: float, steps: int,
           beta: float = 0.25, gamma: float = 0.5, backend: str = "auto",
-          **options) -> TransientResult:
+          blas_threads: int | None = 1, **options) -> TransientResult:
     """Transient response of the tape: one call that factors and marches.
 
-    ``march(model, V, dt=..., steps=..., beta=..., gamma=..., backend=..., **options)`` is
-    ``Newmark(model, V, dt=dt, beta=beta, gamma=gamma, backend=backend).march(steps,
-    **options)``; keep the :class:`Newmark` object instead to reuse its factorization across
-    runs with the same (V, Δt, β, γ). See :meth:`Newmark.march` for ``options`` (profile,
-    w0, v0, t0, snapshot_times, snapshot_every, centerline_times, record_energy, progress).
+    ``march(model, V, dt=..., steps=..., beta=..., gamma=..., backend=..., blas_threads=...,
+    **options)`` is ``Newmark(model, V, dt=dt, beta=beta, gamma=gamma, backend=backend,
+    blas_threads=blas_threads).march(steps, **options)``; keep the :class:`Newmark` object
+    instead to reuse its factorization across runs with the same (V, Δt, β, γ). See
+    :meth:`Newmark.march` for ``options`` (profile, w0, v0, t0, snapshot_times,
+    snapshot_every, centerline_times, record_energy, progress, blowup_factor).
     """
     steps = check_steps(steps)
-    return Newmark(model, velocity, dt=dt, beta=beta, gamma=gamma,
-                   backend=backend).march(steps, **options)
+    return Newmark(model, velocity, dt=dt, beta=beta, gamma=gamma, backend=backend,
+                   blas_threads=blas_threads).march(steps, **options)

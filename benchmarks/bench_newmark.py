@@ -1,0 +1,106 @@
+"""Benchmark of the Newmark marcher: factor, whole-run and per-step times, and the floor.
+
+The floor of the method is one forward/back substitution per step with the factor of
+K_eq; the per-step time divided by a bare substitution (same factor, same vector length)
+says how much the predictors, right-hand side, correctors and recorders add. Target: <= 1.3.
+
+Cases: the paper's run (L_x/L_y = 4 on the Table 1 grid, 250 steps of 2 µs, "about 20
+minutes" on its workstation) and L_x/L_y = 19, 500 steps. Every installed LU back-end is
+timed; all figures are medians of repeated runs. Usage::
+
+    PYTHONPATH=. python benchmarks/bench_newmark.py [--repeats 5] [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import time
+from contextlib import nullcontext
+
+import numpy as np
+
+from gyroshell import TapeModel, TapeParameters
+from gyroshell.factorization import available_backends
+from gyroshell.newmark import Newmark
+
+VELOCITY = 50.0  # m/s
+DT = 2e-6  # s, Table 1
+
+
+def median_time(fn, repeats: int) -> float:
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def blas_one_thread():
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:
+        return nullcontext()
+    return threadpool_limits(limits=1, user_api="blas")
+
+
+def bench_backend(model: TapeModel, steps: int, backend: str, repeats: int) -> dict:
+    """Medians for one back-end: factor, whole run, per step, bare solve, their ratio."""
+    whole, per_step, factor = [], [], []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        stepper = Newmark(model, VELOCITY, dt=DT, backend=backend)
+        result = stepper.march(steps, progress=False)
+        whole.append(time.perf_counter() - start)
+        per_step.append(result.info["step_time"])
+        factor.append(result.info["factor_time"])
+    rhs = np.random.default_rng(0).standard_normal(model.size)
+    with blas_one_thread():  # the conditions of the step loop
+        bare = median_time(lambda: stepper.factor.solve(rhs), max(20, 5 * repeats))
+    step = statistics.median(per_step)
+    return {"backend": backend, "factor": statistics.median(factor),
+            "whole": statistics.median(whole), "step": step, "bare": bare,
+            "ratio": step / bare}
+
+
+def bench_blas_threads(model: TapeModel, steps: int, repeats: int) -> tuple[float, float]:
+    """Per-step time (s) with BLAS left alone and held to one thread (default back-end)."""
+    out = []
+    for threads in (None, 1):
+        stepper = Newmark(model, VELOCITY, dt=DT, blas_threads=threads)
+        out.append(statistics.median(stepper.march(steps, progress=False).info["step_time"]
+                                     for _ in range(repeats)))
+    return out[0], out[1]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5, help="runs per figure (median)")
+    parser.add_argument("--quick", action="store_true", help="fewer steps, for a smoke test")
+    args = parser.parse_args()
+    cases = [(4.0, 250), (19.0, 500)]
+    if args.quick:
+        cases = [(4.0, 25), (19.0, 25)]
+    print(f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores; "
+          f"V = {VELOCITY:g} m/s, dt = {DT:g} s, beta = 1/4, gamma = 1/2, "
+          f"medians of {args.repeats} runs; back-ends: {', '.join(available_backends())}")
+    for ratio, steps in cases:
+        model = TapeModel(TapeParameters(length_ratio=ratio))
+        g = model.grid
+        print(f"\nL_x/L_y = {ratio:g}: {g.nx} x {g.ny} intervals, {g.size} unknowns, "
+              f"{steps} steps")
+        print(f"  {'back-end':9s} {'factor s':>9s} {'whole run s':>12s} {'per step ms':>12s} "
+              f"{'bare solve ms':>14s} {'step/solve':>11s}")
+        for backend in available_backends():
+            r = bench_backend(model, steps, backend, args.repeats)
+            print(f"  {r['backend']:9s} {r['factor']:9.3f} {r['whole']:12.3f} "
+                  f"{1e3 * r['step']:12.3f} {1e3 * r['bare']:14.3f} {r['ratio']:11.2f}")
+        free, one = bench_blas_threads(model, steps, max(3, args.repeats // 2))
+        print(f"  BLAS threads (default back-end): as found {1e3 * free:.3f} ms/step, "
+              f"held to one {1e3 * one:.3f} ms/step ({free / one:.2f}x)")
+
+
+if __name__ == "__main__":
+    main()
