@@ -155,3 +155,16 @@ def test_one_factorization_serves_many_runs_and_runs_continue(small):
     np.testing.assert_allclose(rest.times, whole.times[60:], rtol=1e-14)
     np.testing.assert_allclose(rest.load_point, whole.load_point[60:], rtol=1e-10,
                                atol=1e-12 * np.abs(whole.load_point).max())
+
+
+# ----- the paper's grid ----------------------------------------------------------------
+@pytest.mark.slow
+def test_energy_and_steady_state_on_the_table_1_grid():
+    """L_x/L_y = 4, 164 x 41 intervals: 3000 trapezoidal steps conserve E; β = 1 settles."""
+    model = TapeModel(TapeParameters(length_ratio=4))
+    result = march(model, SPEED, dt=2e-6, steps=3000, record_energy=True)
+    scale = static_energy_scale(model, SPEED)
+    assert np.abs(result.energy - result.energy[0]).max() < 1e-10 * scale
+    damped = march(model, SPEED, dt=1e-4, steps=50, beta=1.0, gamma=1.5)
+    static = solve_static(model, SPEED)
+    assert np.abs(damped.w - static.w).max() < 1e-10 * np.abs(static.w).max()
