@@ -1,0 +1,53 @@
+"""Reproductions of the seed paper's results: Figs. 2–6, the critical-speed table, the
+period-against-velocity study and the paper's other observations, measured.
+
+Each study is a module with ``run(out, settings) -> list[Path]`` that computes (tables to
+CSV) and then plots (PNG) into the folder ``out``. ``studies/*.py`` are runnable scripts over
+the same functions, and ``gyroshell reproduce NAME --out DIR`` runs them from the CLI.
+"""
+
+from __future__ import annotations
+
+import importlib
+import time
+from collections.abc import Iterable
+from pathlib import Path
+
+from ..errors import ParameterError
+from ._common import Settings
+
+#: Study names in the order ``all`` runs them.
+STUDIES: tuple[str, ...] = ("critical", "fig2", "fig3", "fig4", "fig5", "fig6", "period",
+                            "observations")
+
+
+def run_study(name: str, out: str | Path, settings: Settings | None = None) -> list[Path]:
+    """Run one study into the folder ``out`` (created if missing); returns written files."""
+    if name not in STUDIES:
+        raise ParameterError(f"study must be one of {', '.join(STUDIES)}, all; got {name!r}")
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    module = importlib.import_module(f"{__name__}.{name}")
+    return module.run(out, settings or Settings())
+
+
+def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None = None,
+                *, log=print) -> dict[str, list[Path]]:
+    """Run several studies (``"all"`` expands to every one); logs each one's time."""
+    names = list(names)
+    expanded = list(STUDIES) if "all" in names else names
+    for name in expanded:
+        if name not in STUDIES:
+            raise ParameterError(f"study must be one of {', '.join(STUDIES)}, all; "
+                                 f"got {name!r}")
+    written: dict[str, list[Path]] = {}
+    for name in expanded:
+        start = time.perf_counter()
+        written[name] = run_study(name, out, settings)
+        if log is not None:
+            files = ", ".join(p.name for p in written[name])
+            log(f"{name}: {time.perf_counter() - start:.1f} s -> {files}")
+    return written
+
+
+__all__ = ["STUDIES", "Settings", "run_studies", "run_study"]

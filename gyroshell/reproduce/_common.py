@@ -1,0 +1,90 @@
+"""Shared pieces of the studies: settings (full or quick), atomic CSV/PNG/Markdown output."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+from ..io import write_atomic
+from ..parameters import TapeParameters
+
+#: Time step of the paper's runs (Table 1's "2x10^6 s" is 2e-6 s), s.
+PAPER_DT = 2.0e-6
+#: Intervals across the width in quick mode (the paper's grid has 41).
+QUICK_INTERVALS = 12
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How a study runs.
+
+    Parameters
+    ----------
+    quick : bool
+        Coarse grid (12 intervals across instead of 41) and short records: the same code
+        path in seconds, for tests and previews. Numbers are then not the paper's.
+    progress : bool or None
+        Progress bars on long runs; None: only when stderr is a terminal.
+    """
+
+    quick: bool = False
+    progress: bool | None = None
+
+    def params(self, **changes: object) -> TapeParameters:
+        """Table 1 parameters with ``changes``; coarse spacing in quick mode."""
+        p = TapeParameters(**changes)
+        if self.quick:
+            p = p.replace(spacing=p.width / QUICK_INTERVALS)
+        return p
+
+    def pick(self, full, quick):
+        """``quick`` in quick mode, else ``full``."""
+        return quick if self.quick else full
+
+
+def save_csv(frame: pd.DataFrame, path: Path) -> Path:
+    """Write ``frame`` as CSV (no index), whole or not at all."""
+    return write_atomic(path, lambda tmp: frame.to_csv(tmp, index=False))
+
+
+def markdown_table(frame: pd.DataFrame, floatfmt: str = ".4g") -> str:
+    """A GitHub Markdown table of ``frame`` (no extra dependency)."""
+    def cell(v) -> str:
+        if isinstance(v, float):
+            return "" if v != v else format(v, floatfmt)
+        return str(v)
+
+    lines = ["| " + " | ".join(map(str, frame.columns)) + " |",
+             "|" + "|".join("---" for _ in frame.columns) + "|"]
+    lines += ["| " + " | ".join(cell(v) for v in row) + " |"
+              for row in frame.itertuples(index=False)]
+    return "\n".join(lines) + "\n"
+
+
+def save_markdown(frame: pd.DataFrame, path: Path, title: str = "") -> Path:
+    text = (f"{title}\n\n" if title else "") + markdown_table(frame)
+    return write_atomic(path, lambda tmp: tmp.write_text(text))
+
+
+def save_figure(fig, path: Path, dpi: int = 110) -> Path:
+    """Save a matplotlib figure as PNG, whole or not at all, and close it."""
+    import matplotlib.pyplot as plt
+
+    try:
+        write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=dpi, format="png",
+                                                   bbox_inches="tight"))
+    finally:
+        plt.close(fig)
+    return path
+
+
+def pyplot():
+    """matplotlib.pyplot with a non-interactive backend (imported only when plotting)."""
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt

@@ -1,0 +1,66 @@
+"""Figs. 5–6: wave action on the centre line y = L_y/2 of the long tape, L_x/L_y = 19.
+
+The centre-line displacement after the step load, at a series of times, stacked as a
+waterfall (each curve offset by its time). The tape moves from left to right.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..model import TapeModel
+from ..newmark import march
+from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+
+#: Centre-line times, s: every 32 µs up to 800 µs (the paper labels a panel 736 µs).
+TIMES = tuple(k * 32e-6 for k in range(26))
+
+
+def compute(settings: Settings, velocity: float) -> pd.DataFrame:
+    """Long table t (s), x (m), w (m) of the centre line."""
+    model = TapeModel(settings.params(length_ratio=19))
+    steps = int(round(TIMES[-1] / PAPER_DT))
+    res = march(model, velocity, dt=PAPER_DT, steps=steps, centerline_times=TIMES,
+                progress=settings.progress)
+    s = res.snapshots
+    return pd.concat([pd.DataFrame({"t": t, "x": s.x, "w": line})
+                      for t, line in zip(s.centerline_times, s.centerlines)],
+                     ignore_index=True)
+
+
+def plot(table: pd.DataFrame, velocity: float, title: str, path: Path,
+         x0: float | None = None) -> Path:
+    plt = pyplot()
+    times = np.array(sorted(table["t"].unique()))
+    wmax = table["w"].abs().max()
+    gap = 0.55 * wmax
+    fig, ax = plt.subplots(figsize=(9, 10))
+    for k, t in enumerate(times):
+        line = table[table["t"] == t]
+        ax.plot(line["x"] * 1e3, line["w"] + k * gap, color="k", lw=0.7)
+        ax.text(line["x"].max() * 1e3 * 1.01, k * gap, f"{t * 1e6:.0f}", fontsize=7,
+                va="center")
+    if x0 is not None:
+        ax.axvline(x0 * 1e3, color="C3", lw=0.6, ls=":", label="load point")
+        ax.legend(loc="upper left", fontsize=8)
+    ax.set_xlabel("x (mm)   (tape moves left → right)")
+    ax.set_ylabel(f"w + offset (each curve raised {gap * 1e9:.3g} nm per 32 µs)")
+    ax.set_yticks([])
+    ax.text(1.0, 1.0, "t (µs)", transform=ax.transAxes, fontsize=8, ha="left", va="bottom")
+    ax.set_title(f"{title}: centre-line (y = L_y/2) wave action, V = {velocity:g} m/s, "
+                 "L_x/L_y = 19", fontsize=11)
+    for side in ("top", "right", "left"):
+        ax.spines[side].set_visible(False)
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
+def run_figure(out: Path, settings: Settings, name: str, velocity: float) -> list[Path]:
+    table = compute(settings, velocity)
+    x0 = settings.params(length_ratio=19).load_centroid[0]
+    return [save_csv(table, out / f"{name}_centerline.csv"),
+            plot(table, velocity, name.replace("fig", "Fig. "), out / f"{name}_waterfall.png",
+                 x0=x0)]

@@ -1,0 +1,74 @@
+"""Fig. 2: transient load-point displacement for V = 0, 50, 90, 100 m/s, L_x/L_y = 19.
+
+A step load (Eq. 17) is applied at t = 0 to the tape at rest in its wrapped equilibrium.
+Displacements are shown nondimensionally as w k / P_0: the deflection as a fraction of the
+Winkler value P_0 / k of a uniformly loaded foundation (9.10e-7 m for Table 1). The dots are
+the steady states from the static solver, cross-checked by a strongly damped Newmark run
+(β = 1, γ = 3/2, large Δt), as the paper did.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..model import TapeModel
+from ..newmark import march
+from ..static import solve_static
+from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+
+VELOCITIES = (0.0, 50.0, 90.0, 100.0)
+#: Damped run to the steady state: Δt (s) and steps.
+DAMPED_DT, DAMPED_STEPS = 1.0e-2, 100
+
+
+def compute(settings: Settings) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Load-point histories (long format) and steady states for each speed."""
+    model = TapeModel(settings.params(length_ratio=19))
+    scale = model.params.k / model.params.load
+    steps = settings.pick(1000, 200)
+    histories, steady = [], []
+    for v in VELOCITIES:
+        res = march(model, v, dt=PAPER_DT, steps=steps, progress=settings.progress)
+        histories.append(pd.DataFrame({"velocity": v, "t": res.times, "w": res.load_point,
+                                       "w_nondim": res.load_point * scale}))
+        w_static = solve_static(model, v).load_point_deflection
+        damped = march(model, v, dt=DAMPED_DT, steps=DAMPED_STEPS, beta=1.0, gamma=1.5,
+                       progress=False)
+        steady.append(dict(velocity=v, w_static=w_static, w_damped=damped.load_point[-1],
+                           rel_difference=abs(damped.load_point[-1] / w_static - 1),
+                           w_static_nondim=w_static * scale,
+                           w_mean_transient=float(np.mean(res.load_point))))
+    return pd.concat(histories, ignore_index=True), pd.DataFrame(steady)
+
+
+def plot(history: pd.DataFrame, steady: pd.DataFrame, path: Path) -> Path:
+    plt = pyplot()
+    speeds = list(steady["velocity"])
+    fig, axes = plt.subplots(len(speeds), 1, figsize=(8, 8.5), sharex=True)
+    for ax, v in zip(axes, speeds):
+        h = history[history["velocity"] == v]
+        s = steady[steady["velocity"] == v].iloc[0]
+        t_us = h["t"].to_numpy() * 1e6
+        ax.plot(t_us, h["w_nondim"], lw=0.9, color="C0", label="transient (Newmark, β=1/4)")
+        ax.axhline(s["w_static_nondim"], color="C3", lw=0.8, ls="--")
+        ax.plot([t_us[-1]], [s["w_static_nondim"]], "o", color="C3", ms=7,
+                label="steady state (static solver)", clip_on=False)
+        ax.set_ylabel("w k / P₀")
+        ax.text(0.01, 0.9, f"V = {v:g} m/s", transform=ax.transAxes, va="top",
+                fontweight="bold")
+        ax.grid(alpha=0.3)
+    axes[0].legend(loc="lower right", fontsize=8)
+    axes[-1].set_xlabel("time t (µs)")
+    fig.suptitle("Fig. 2: load-point displacement after a step load, L_x/L_y = 19", y=0.995)
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
+def run(out: Path, settings: Settings) -> list[Path]:
+    history, steady = compute(settings)
+    return [save_csv(history, out / "fig2_load_point.csv"),
+            save_csv(steady, out / "fig2_steady_state.csv"),
+            plot(history, steady, out / "fig2_load_point.png")]
