@@ -4,13 +4,22 @@ Newmark's method factors K_eq = M + γΔt G + βΔt² K once and then does one f
 substitution per step, so the substitution speed is what matters. K_eq is real, square and
 non-symmetric (G is skew), banded with a half-bandwidth of about 2 (n_y + 1).
 
-Measured on this project's matrices (Table 1 grid, L_x/L_y = 4 and 19, 2-core machine;
-``benchmarks/bench_newmark.py``): SuperLU with the minimum-degree ordering on Aᵀ + A has
-the least fill and the fastest substitution; UMFPACK (scikit-umfpack, iterative refinement
-off) ties it but needs the SuiteSparse C library to build; PARDISO (pypardiso, MKL) factors
-fastest at L_x/L_y = 19 but substitutes about 2x slower; LAPACK's banded LU (dgbtrf/dgbtrs)
-needs no extra package and is within 1.2-1.9x. So "auto" is SuperLU, which ships with scipy
-and always works; the others are opt-in by name where installed.
+Measured on K_eq of the Table 1 grid at L_x/L_y = 19 (n = 32,676; medians on this 2-core
+machine, ``benchmarks/bench_newmark.py`` and a separate survey of back-ends):
+
+* SuperLU, minimum degree on Aᵀ + A: the least fill (3.6 M) and a ~3.3 ms substitution;
+  scipy's default COLAMD fills 30 % more and substitutes 1.35x slower.
+* UMFPACK (scikit-umfpack) with iterative refinement off ties SuperLU; with its default
+  two refinement steps it is 3-4x slower. It needs the SuiteSparse C library to build, so it
+  is not a clean PyPI install.
+* PARDISO (MKL, through pypardiso) on one thread ties SuperLU; on two threads it
+  substitutes 1.7x faster on an idle machine but 10-40x slower when the two cores are
+  shared, and pulls in ~0.7 GB of MKL libraries.
+* LAPACK banded LU (dgbtrf/dgbtrs through scipy) factors fastest but stores the full band
+  (2.3x SuperLU's fill) and substitutes 1.1-1.7x slower.
+
+So "auto" is SuperLU: the fastest reliable one, shipped with scipy, always available. The
+others are opt-in by name where installed, and the tests check that all agree.
 """
 
 from __future__ import annotations
