@@ -18,6 +18,7 @@ import os
 import statistics
 import time
 from contextlib import nullcontext
+from functools import partial
 
 import numpy as np
 
@@ -47,8 +48,15 @@ def blas_one_thread():
 
 
 def bench_backend(model: TapeModel, steps: int, backend: str, repeats: int) -> dict:
-    """Medians for one back-end: factor, whole run, per step, bare solve, their ratio."""
-    whole, per_step, factor = [], [], []
+    """Medians for one back-end: factor, whole run, per step, bare solve, their ratio.
+
+    The whole run is construction (assembly + factor) plus the march. The per-step time is
+    the march's loop time / steps; after each march a burst of bare substitutions with the
+    same factor is timed under the same conditions (one BLAS thread), so that a change in
+    the machine's load shifts both alike.
+    """
+    rhs = np.random.default_rng(0).standard_normal(model.size)
+    whole, per_step, factor, bare = [], [], [], []
     for _ in range(repeats):
         start = time.perf_counter()
         stepper = Newmark(model, VELOCITY, dt=DT, backend=backend)
@@ -56,13 +64,12 @@ def bench_backend(model: TapeModel, steps: int, backend: str, repeats: int) -> d
         whole.append(time.perf_counter() - start)
         per_step.append(result.info["step_time"])
         factor.append(result.info["factor_time"])
-    rhs = np.random.default_rng(0).standard_normal(model.size)
-    with blas_one_thread():  # the conditions of the step loop
-        bare = median_time(lambda: stepper.factor.solve(rhs), max(20, 5 * repeats))
-    step = statistics.median(per_step)
+        with blas_one_thread():
+            bare.append(median_time(partial(stepper.factor.solve, rhs), 21))
+    step, solve = statistics.median(per_step), statistics.median(bare)
     return {"backend": backend, "factor": statistics.median(factor),
-            "whole": statistics.median(whole), "step": step, "bare": bare,
-            "ratio": step / bare}
+            "whole": statistics.median(whole), "step": step, "bare": solve,
+            "ratio": step / solve}
 
 
 def bench_blas_threads(model: TapeModel, steps: int, repeats: int) -> tuple[float, float]:
