@@ -360,16 +360,26 @@ def _solve_real(model, velocity, count, lu, K, G, md, estimate, info, *, definit
         sel = order[:count]
         lams = 1j * lam.imag[sel]
         return _finish(model, velocity, lams, phi[:, sel], info, False)
-    # supercritical: one representative per symmetric group (λ, −λ̄, λ̄, −λ): Re >= 0, Im >= 0
-    cand = [j for j in range(len(lam)) if lam[j].real >= -1e-9 * abs(lam[j])
-            and lam[j].imag >= -1e-9 * abs(lam[j])]
-    cand.sort(key=lambda j: abs(lam[j]))
-    sel = np.array(cand[:count], dtype=int)
-    lams = lam[sel].copy()
-    lams = np.where(np.abs(lams.real) < 1e-9 * np.abs(lams), 1j * lams.imag, lams)
-    lams = np.where(np.abs(lams.imag) < 1e-9 * np.abs(lams), lams.real + 0j, lams)
+    # supercritical: one representative per group (λ, −λ, λ̄, −λ̄), Re >= 0 and Im >= 0,
+    # taken from a found member with Re λ >= 0 (conjugated if Im λ < 0)
+    reps = np.abs(lam.real) + 1j * np.abs(lam.imag)
+    tiny = 1e-9 * np.abs(lam)
+    order = np.argsort(np.abs(reps), kind="stable")
+    chosen: list[int] = []
+    for j in order:
+        if lam[j].real < -tiny[j]:
+            continue
+        if all(abs(reps[j] - reps[i]) > 1e-8 * abs(reps[j]) for i in chosen):
+            chosen.append(int(j))
+    sel = np.array(chosen[:count], dtype=int)
+    lams = reps[sel]
+    lams = np.where(lams.real < 1e-9 * np.abs(lams), 1j * lams.imag, lams)
+    lams = np.where(lams.imag < 1e-9 * np.abs(lams), lams.real + 0j, lams)
+    phi = phi[:, sel].astype(complex)
+    flip = lam[sel].imag < 0
+    phi[:, flip] = np.conj(phi[:, flip])
     info["growing"] = int(np.count_nonzero(lams.real > 0))
-    return _finish(model, velocity, lams, phi[:, sel], info, True)
+    return _finish(model, velocity, lams, phi, info, True)
 
 
 def _solve_complex(model, velocity, count, K, G, md, omega_s, info, *, auto, tol, ncv,
