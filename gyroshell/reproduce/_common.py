@@ -49,7 +49,7 @@ def save_csv(frame: pd.DataFrame, path: Path) -> Path:
     return write_atomic(path, lambda tmp: frame.to_csv(tmp, index=False))
 
 
-def markdown_table(frame: pd.DataFrame, floatfmt: str = ".4g") -> str:
+def markdown_table(frame: pd.DataFrame, floatfmt: str = ".6g") -> str:
     """A GitHub Markdown table of ``frame`` (no extra dependency)."""
     def cell(v) -> str:
         if isinstance(v, float):
