@@ -37,7 +37,8 @@ PAPER_SPEED = 100.0
 def _evaluate(model: TapeModel, velocity: float, count: int, options: dict
               ) -> tuple[float, np.ndarray]:
     """f(V) (see :func:`critical_function`) and the eigenvector of the eigenvalue it uses."""
-    result = modes(model, velocity, count, sigma=0, **options)
+    options = {"sigma": 0, **options}
+    result = modes(model, velocity, count, **options)
     lam = result.eigenvalues
     if not result.supercritical:
         return float(result.omega[0] ** 2), result.vectors[:, 0]
@@ -47,12 +48,13 @@ def _evaluate(model: TapeModel, velocity: float, count: int, options: dict
     return float(-abs(lam[0]) ** 2), result.vectors[:, 0]
 
 
-def critical_function(model: TapeModel, velocity: float, *, count: int = 2,
+def critical_function(model: TapeModel, velocity: float, *, count: int = 1,
                       **options) -> float:
     """f(V), 1/s²: ω₁² below the critical speed, −γ² above (γ the largest growth rate).
 
-    The ``count`` eigenvalue pairs nearest zero come from shift-invert about σ = 0 (one
-    factorization of K(V)); ``options`` go to :func:`gyroshell.eigen.modes`. Near the root the
+    The ``count`` eigenvalue pairs nearest zero come from :func:`gyroshell.eigen.modes` with
+    shift-invert about σ = 0 (one factorization of K(V); near critical the small eigenvalue
+    is well separated, so this is fast); ``options`` go to ``modes``. Near the root the
     eigenvalue nearest zero is the one crossing, so f = −λ₀² there, smooth in V. Farther
     above, an oscillating pair can be nearer zero than the divergent one; f then uses the
     growing eigenvalue if found, else −|λ₀|² (still negative: K(V) is indefinite).
@@ -142,7 +144,7 @@ def _extrapolate_zero(points: list[tuple[float, float]]) -> float:
 
 
 def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
-                         xtol: float = 1e-9, count: int = 2, max_evaluations: int = 30,
+                         xtol: float = 1e-9, count: int = 1, max_evaluations: int = 30,
                          **options) -> tuple[float, dict]:
     """(a) The speed where the lowest frequency reaches zero, m/s, and diagnostics.
 

@@ -1,0 +1,183 @@
+"""Frequencies against tape speed, with mode tracking, as a DataFrame and a plot.
+
+At each speed the lowest ``count`` modes are computed (:func:`gyroshell.eigen.modes`) and
+matched to the previous speed's by mode-shape correlation
+
+    C_ij = |φ_iᴴ M ψ_j| / (‖φ_i‖_M ‖ψ_j‖_M),
+
+with the assignment that maximizes the total correlation (Hungarian algorithm). A branch
+therefore keeps its label when frequencies cross or veer, instead of following the sorted
+order. A mode that leaves the lowest-``count`` window is replaced by the newcomer with a low
+correlation; the ``correlation`` column says how sure each match is.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+
+import numpy as np
+import pandas as pd
+from scipy.optimize import linear_sum_assignment
+from tqdm import tqdm
+
+from .eigen import Modes, modes
+from .errors import ParameterError
+from .model import TapeModel
+from .parameters import check_velocity
+
+#: Columns of the sweep DataFrame (long format, one row per speed and branch).
+COLUMNS = ("velocity", "branch", "rank", "omega", "frequency", "period", "growth_rate",
+           "residual", "correlation", "supercritical")
+
+
+def parse_velocities(text: str) -> list[float]:
+    """Speeds from ``"start:stop:step"`` (stop included) or ``"v1,v2,..."``, m/s."""
+    text = text.strip()
+    try:
+        if ":" in text:
+            parts = [float(t) for t in text.split(":")]
+            if len(parts) != 3:
+                raise ValueError
+            start, stop, step = parts
+            if not step > 0 or stop < start:
+                raise ParameterError(
+                    f"velocities {text!r}: need step > 0 and stop >= start (m/s)")
+            n = int(math.floor((stop - start) / step + 1e-9)) + 1
+            return [start + i * step for i in range(n)]
+        return [float(t) for t in text.split(",") if t.strip()]
+    except ValueError:
+        raise ParameterError(
+            f"velocities must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
+        ) from None
+
+
+def check_velocities(velocities: Iterable[float]) -> list[float]:
+    """Validated speeds: at least one, each finite and >= 0 m/s."""
+    out = [check_velocity(v) for v in velocities]
+    if not out:
+        raise ParameterError("velocities must contain at least one speed (m/s)")
+    return out
+
+
+def correlation(md: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Mass-weighted mode-shape correlation matrix |aᴴ M b| / (‖a‖_M ‖b‖_M), in [0, 1]."""
+    na = np.sqrt(np.einsum("ij,i,ij->j", a.conj(), md, a).real)
+    nb = np.sqrt(np.einsum("ij,i,ij->j", b.conj(), md, b).real)
+    return np.abs(a.conj().T @ (md[:, None] * b)) / np.outer(na, nb)
+
+
+def track(md: np.ndarray, previous: np.ndarray, current: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray]:
+    """Match ``current`` modes to ``previous`` ones (columns); returns (order, correlation).
+
+    ``order[k]`` is the column of ``current`` that continues branch k.
+    """
+    c = correlation(md, previous, current)
+    rows, cols = linear_sum_assignment(-c)
+    order = np.empty(len(rows), dtype=int)
+    order[rows] = cols
+    return order, c[rows, cols][np.argsort(rows)]
+
+
+def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
+          min_correlation: float = 0.5, progress: bool = False, **options) -> pd.DataFrame:
+    """Lowest ``count`` frequencies at each speed, tracked into branches.
+
+    Parameters
+    ----------
+    model : TapeModel
+    velocities : sequence of float
+        Tape speeds V, m/s (finite, >= 0), in the order they are tracked.
+    count : int
+        Modes per speed.
+    min_correlation : float
+        A match weaker than this starts a new branch (the mode left the lowest-``count``
+        window and another entered); take smaller speed steps to follow branches further.
+    progress : bool
+        Show a tqdm progress bar on stderr.
+    **options
+        Passed to :func:`gyroshell.eigen.modes` (``sigma``, ``tol``, ``ncv``, ...).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns :data:`COLUMNS`: ``velocity`` (m/s), ``branch`` (tracked label), ``rank``
+        (position in ascending ω at that speed), ``omega`` (rad/s), ``frequency`` (Hz),
+        ``period`` (s), ``growth_rate`` (1/s, > 0 only above critical), ``residual``,
+        ``correlation`` (with the previous speed's mode of the branch; 1 at the first speed),
+        ``supercritical``.
+    """
+    velocities = check_velocities(velocities)
+    if not 0.0 <= min_correlation <= 1.0:
+        raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
+    md = model.mass_diagonal
+    rows: list[dict] = []
+    previous: np.ndarray | None = None
+    labels: list[int] = []
+    next_label = 0
+    for v in tqdm(velocities, disable=not progress, desc="sweep", unit="speed"):
+        res: Modes = modes(model, v, count, **options)
+        k = res.count
+        new_labels = [-1] * k
+        corr_of = np.ones(k)
+        if previous is not None:
+            c = correlation(md, previous, res.vectors)
+            for i, j in zip(*linear_sum_assignment(-c)):
+                if c[i, j] >= min_correlation:
+                    new_labels[j], corr_of[j] = labels[i], c[i, j]
+                else:
+                    corr_of[j] = c[i, j]
+        for j in range(k):
+            if new_labels[j] < 0:  # a mode that entered the window: a new branch
+                new_labels[j], next_label = next_label, next_label + 1
+        for j in range(k):
+            rows.append({
+                "velocity": v, "branch": new_labels[j], "rank": j,
+                "omega": float(res.omega[j]), "frequency": float(res.frequency[j]),
+                "period": float(res.period[j]), "growth_rate": float(res.growth_rate[j]),
+                "residual": float(res.residuals[j]), "correlation": float(corr_of[j]),
+                "supercritical": bool(res.supercritical),
+            })
+        previous, labels = res.vectors, new_labels
+    return pd.DataFrame(rows, columns=list(COLUMNS))
+
+
+def plot_sweep(frame: pd.DataFrame, path=None, *, ax=None, title: str | None = None):
+    """ω (rad/s) against V (m/s), one line per tracked branch; returns the Figure.
+
+    Supercritical points (growth rate > 0) are marked with crosses. With ``path`` the figure
+    is written there (PNG etc., atomically). matplotlib is imported here, not at import time.
+    """
+    missing = {"velocity", "branch", "omega"} - set(frame.columns)
+    if missing:
+        raise ParameterError(f"frame lacks columns {sorted(missing)}")
+    import matplotlib
+
+    if path is not None and ax is None:
+        matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
+    else:
+        fig = ax.figure
+    for branch, group in frame.groupby("branch"):
+        group = group.sort_values("velocity")
+        ax.plot(group["velocity"], group["omega"], marker="o", ms=3, lw=1.2,
+                label=f"branch {branch}")
+    if "growth_rate" in frame and (frame["growth_rate"] > 0).any():
+        sup = frame[frame["growth_rate"] > 0]
+        ax.plot(sup["velocity"], sup["growth_rate"], "kx", ls="none",
+                label="growth rate Re λ (1/s), divergence")
+    ax.set_xlabel("tape speed V (m/s)")
+    ax.set_ylabel("angular frequency ω (rad/s)")
+    ax.set_title(title or "Lowest frequencies of the moving tape against speed")
+    ax.set_ylim(bottom=0)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, ncol=2)
+    if path is not None:
+        from .io import write_atomic
+
+        write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=120))
+    return fig
