@@ -16,15 +16,18 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pandas as pd
 from scipy.optimize import linear_sum_assignment
-from tqdm import tqdm
 
 from .eigen import Modes, modes
 from .errors import ParameterError
 from .model import TapeModel
 from .parameters import check_velocity
+
+if TYPE_CHECKING:  # pandas and tqdm are imported when a sweep runs: keep `import gyroshell` fast
+    import pandas as pd
 
 #: Columns of the sweep DataFrame (long format, one row per speed and branch).
 COLUMNS = ("velocity", "branch", "rank", "omega", "frequency", "period", "growth_rate",
@@ -67,19 +70,6 @@ def correlation(md: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.abs(a.conj().T @ (md[:, None] * b)) / np.outer(na, nb)
 
 
-def track(md: np.ndarray, previous: np.ndarray, current: np.ndarray
-          ) -> tuple[np.ndarray, np.ndarray]:
-    """Match ``current`` modes to ``previous`` ones (columns); returns (order, correlation).
-
-    ``order[k]`` is the column of ``current`` that continues branch k.
-    """
-    c = correlation(md, previous, current)
-    rows, cols = linear_sum_assignment(-c)
-    order = np.empty(len(rows), dtype=int)
-    order[rows] = cols
-    return order, c[rows, cols][np.argsort(rows)]
-
-
 def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
           min_correlation: float = 0.5, progress: bool = False, **options) -> pd.DataFrame:
     """Lowest ``count`` frequencies at each speed, tracked into branches.
@@ -108,6 +98,9 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         ``correlation`` (with the previous speed's mode of the branch; 1 at the first speed),
         ``supercritical``.
     """
+    import pandas as pd
+    from tqdm import tqdm
+
     velocities = check_velocities(velocities)
     if not 0.0 <= min_correlation <= 1.0:
         raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")

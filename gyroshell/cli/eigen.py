@@ -1,0 +1,151 @@
+"""``gyroshell modes``, ``critical`` and ``sweep``: the quadratic eigen-solver from the shell."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+from .common import parameters_from_args, positive_int, print_json
+
+
+def register(sub, common: argparse.ArgumentParser) -> None:
+    p = sub.add_parser(
+        "modes", parents=[common], help="lowest frequencies and periods at speed V",
+        description="Lowest angular frequencies (rad/s), frequencies (Hz) and periods (s) of "
+                    "(lambda^2 M + lambda G + K) phi = 0 at the tape speed --velocity (m/s).")
+    p.add_argument("--count", type=positive_int, default=6,
+                   help="number of frequencies, >= 1 (default 6)")
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.set_defaults(func=run_modes)
+
+    p = sub.add_parser(
+        "critical", parents=[common], help="critical speed, two ways, with context values",
+        description="Critical tape speed (m/s): (a) where the lowest frequency reaches zero "
+                    "(eigen-solves and root-finding) and (b) the divergence speed "
+                    "sqrt((T + mu_min)/rho) (one eigsh), beside sqrt(T/rho), the strip value "
+                    "sqrt((T + 2 sqrt(D k))/rho), Sundaram & Benson's 111 m/s and the paper's "
+                    "'just above 100 m/s'.")
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.set_defaults(func=run_critical)
+
+    p = sub.add_parser(
+        "sweep", parents=[common], help="frequencies against tape speed (CSV, plot)",
+        description="Lowest frequencies (rad/s) at a list of tape speeds (m/s), tracked into "
+                    "branches by mode-shape correlation.")
+    p.add_argument("--velocities", default="0:100:10",
+                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...' "
+                        "(default 0:100:10)")
+    p.add_argument("--count", type=positive_int, default=6,
+                   help="frequencies per speed, >= 1 (default 6)")
+    p.add_argument("--out", metavar="FILE.csv", help="write the table as CSV")
+    p.add_argument("--plot", metavar="FILE.png", help="write omega (rad/s) against V (m/s)")
+    p.set_defaults(func=run_sweep)
+
+
+def run_modes(args: argparse.Namespace) -> int:
+    from ..eigen import modes
+    from ..model import TapeModel
+    from ..parameters import check_velocity
+
+    params = parameters_from_args(args)
+    velocity = check_velocity(args.velocity)
+    model = TapeModel(params)
+    t0 = time.perf_counter()
+    res = modes(model, velocity, args.count)
+    elapsed = time.perf_counter() - t0
+    g = model.grid
+    out = {
+        "velocity": velocity,
+        "omega": res.omega.tolist(),
+        "frequency": res.frequency.tolist(),
+        "period": [p if math.isfinite(p) else None for p in res.period.tolist()],
+        "growth_rate": res.growth_rate.tolist(),
+        "supercritical": res.supercritical,
+        "residual": res.residuals.tolist(),
+        "foundation_frequency": params.foundation_frequency,
+        "nx": g.nx, "ny": g.ny, "unknowns": g.size, "edges": g.edges,
+        "seconds": elapsed,
+    }
+    if args.json:
+        print_json(out)
+        return 0
+    print(f"grid: {g.nx} x {g.ny} intervals, {g.size} unknowns, {g.edges} edges; "
+          f"V = {velocity:g} m/s")
+    if res.supercritical:
+        print("supercritical: K(V) is indefinite, the tape diverges "
+              f"({int((res.growth_rate > 0).sum())} growing eigenvalue(s) shown)")
+    print(f"{'#':>3} {'omega (rad/s)':>16} {'f (Hz)':>14} {'period (s)':>14} "
+          f"{'growth (1/s)':>13} {'residual':>9}")
+    for i in range(res.count):
+        print(f"{i + 1:>3} {res.omega[i]:16.8g} {res.frequency[i]:14.8g} "
+              f"{res.period[i]:14.6e} {res.growth_rate[i]:13.6g} {res.residuals[i]:9.1e}")
+    print(f"sqrt(k/rho) = {params.foundation_frequency:.8g} rad/s; solved in {elapsed:.2f} s")
+    return 0
+
+
+def run_critical(args: argparse.Namespace) -> int:
+    from ..critical import critical_speeds
+    from ..model import TapeModel
+
+    params = parameters_from_args(args)
+    model = TapeModel(params)
+    t0 = time.perf_counter()
+    c = critical_speeds(model)
+    elapsed = time.perf_counter() - t0
+    out = dict(c.as_dict(), seconds=elapsed, critical_seconds=c.info["critical_time"],
+               divergence_seconds=c.info["divergence_time"],
+               eigen_solves=c.info["evaluations"], mu=c.info["mu"],
+               length_ratio=params.length_ratio, edges=params.edges,
+               unknowns=model.size)
+    if args.json:
+        print_json(out)
+        return 0
+    g = model.grid
+    print(f"grid: {g.nx} x {g.ny} intervals, {g.size} unknowns, {g.edges} edges, "
+          f"L_x/L_y = {params.length_ratio:g}")
+    print(f"critical speed (a), lowest frequency -> 0:   {c.critical_speed:.9g} m/s "
+          f"({c.info['evaluations']} eigen-solves, {c.info['critical_time']:.2f} s)")
+    print(f"divergence speed (b), sqrt((T + mu)/rho):    {c.divergence_speed:.9g} m/s "
+          f"(mu = {c.info['mu']:.6g} N/m, {c.info['divergence_time']:.2f} s)")
+    print(f"relative difference |a - b| / b:             {c.relative_difference:.1e}")
+    print("context:")
+    print(f"  string/beam sqrt(T/rho) (Wickert & Mote):   {c.string_speed:.6g} m/s")
+    print(f"  strip on foundation sqrt((T+2sqrt(Dk))/rho): {c.strip_speed:.6g} m/s")
+    print(f"  Sundaram & Benson (all sides s.s.):         {c.sundaram_benson_speed:g} m/s")
+    print(f"  seed paper ('just above'):                  {c.paper_speed:g} m/s")
+    print(f"total {elapsed:.2f} s")
+    return 0
+
+
+def run_sweep(args: argparse.Namespace) -> int:
+    from ..io import write_atomic
+    from ..model import TapeModel
+    from ..sweep import check_velocities, parse_velocities, plot_sweep, sweep
+
+    params = parameters_from_args(args)
+    velocities = check_velocities(parse_velocities(args.velocities))
+    for path in (args.out, args.plot):  # fail before computing if a folder is missing
+        if path is not None:
+            from pathlib import Path
+
+            folder = Path(path).parent
+            if str(folder) and not folder.is_dir():
+                raise FileNotFoundError(f"output folder does not exist: {folder}")
+    model = TapeModel(params)
+    frame = sweep(model, velocities, args.count, progress=True)
+    if args.out:
+        write_atomic(args.out, lambda tmp: frame.to_csv(tmp, index=False))
+    if args.plot:
+        plot_sweep(frame, args.plot,
+                   title=f"L_x/L_y = {params.length_ratio:g}, {params.edges} edges")
+    if not args.out:
+        table = frame.pivot(index="velocity", columns="rank", values="omega")
+        table.columns = [f"omega_{c + 1}" for c in table.columns]
+        print("angular frequencies, rad/s (ascending at each speed V, m/s)")
+        print(table.to_string(float_format=lambda x: f"{x:.6g}"))
+    else:
+        print(f"wrote {args.out} ({len(frame)} rows)")
+    if args.plot:
+        print(f"wrote {args.plot}")
+    return 0
