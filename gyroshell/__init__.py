@@ -36,3 +36,11 @@ from .transient_result import Snapshots, TransientResult  # noqa: E402
 
 __all__ += ["Newmark", "NewmarkStabilityWarning", "Snapshots", "TransientResult",
             "available_backends", "factorize", "march"]
+
+# Quadratic eigen-solver, critical speeds and speed sweeps (issue #4).
+from .critical import CriticalSpeeds, critical_speed_eigen, critical_speeds  # noqa: E402
+from .eigen import Modes, frequencies, modes  # noqa: E402
+from .sweep import plot_sweep, sweep  # noqa: E402
+
+__all__ += ["CriticalSpeeds", "Modes", "critical_speed_eigen", "critical_speeds",
+            "frequencies", "modes", "plot_sweep", "sweep"]
