@@ -95,6 +95,7 @@ def main() -> None:
           f"medians of {args.repeats} runs; back-ends: {', '.join(available_backends())}")
     for ratio, steps in cases:
         model = TapeModel(TapeParameters(length_ratio=ratio))
+        Newmark(model, VELOCITY, dt=DT).march(min(steps, 50), progress=False)  # warm-up
         g = model.grid
         print(f"\nL_x/L_y = {ratio:g}: {g.nx} x {g.ny} intervals, {g.size} unknowns, "
               f"{steps} steps")
