@@ -1,0 +1,198 @@
+"""Quadratic eigen-solver: closed forms (Navier, moving string), pairs, clusters, refusals."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from closed_forms import navier_frequency
+from convergence import observed_order
+from gyroshell import ConvergenceError, Grid, ParameterError, TapeModel, TapeParameters
+from gyroshell.eigen import modes, relative_residuals
+
+WIDTH = TapeParameters().width
+
+
+def _model(**kw) -> TapeModel:
+    kw.setdefault("spacing", WIDTH / 8)
+    return TapeModel(TapeParameters(**kw))
+
+
+# ----- Navier: all sides simply supported, V = 0 ------------------------------------------
+class TestNavier:
+    """ω_mn² = (D(α² + β²)² + Tα² + k)/ρ; the discrete operator has exact sin·sin modes."""
+
+    ratio = 2.0
+
+    def exact_lowest(self, p: TapeParameters, count: int) -> np.ndarray:
+        w = sorted(navier_frequency(p, m, n) for m in range(1, 12) for n in range(1, 12))
+        return np.array(w[:count])
+
+    def errors(self, count: int = 3):
+        base = TapeParameters(edges="simply-supported", length_ratio=self.ratio,
+                              spacing=WIDTH / 8, foundation_stiffness=1e6)
+        grid = Grid.from_parameters(base)
+        steps, errs = [], []
+        for _ in range(3):
+            res = modes(TapeModel(base, grid), 0.0, count)
+            exact = self.exact_lowest(base, count)
+            errs.append(np.abs(res.omega - exact) / exact)
+            steps.append(grid.hx)
+            grid = grid.refined()
+        return np.array(steps), np.array(errs)
+
+    def test_second_order(self):
+        steps, errs = self.errors()
+        for j in range(errs.shape[1]):
+            assert observed_order(steps, errs[:, j]) == pytest.approx(2.0, abs=0.1)
+        assert errs[-1].max() < 1e-2
+
+    def test_mode_shape_is_sin_sin(self):
+        p = TapeParameters(edges="simply-supported", length_ratio=self.ratio,
+                           spacing=WIDTH / 8, foundation_stiffness=1e6)
+        model = TapeModel(p)
+        res = modes(model, 0.0, 1)
+        g = model.grid
+        exact = g.from_field(np.sin(np.pi * g.X / g.length) * np.sin(np.pi * g.Y / g.width))
+        phi = res.vectors[:, 0]
+        cos = abs(np.vdot(exact, phi)) / (np.linalg.norm(exact) * np.linalg.norm(phi))
+        assert cos == pytest.approx(1.0, abs=1e-10)
+        assert res.fields.shape == g.shape + (1,)
+        assert np.iscomplexobj(res.field(0))
+
+
+# ----- moving string (Wickert & Mote 1990) --------------------------------------------------
+class WidthUniformModel:
+    """The tape restricted to width-uniform fields w(x) ⊗ 1 (an exact invariant subspace for
+    ν = 0 with free edges); duck-types what :func:`modes` needs from a TapeModel."""
+
+    def __init__(self, model: TapeModel) -> None:
+        g = model.grid
+        self.full, self.params, self.grid = model, model.params, g
+        self.P = sp.kron(sp.identity(g.n_lines), np.ones((g.n_across, 1)), format="csr")
+        self.size = g.n_lines
+        self.mass_diagonal = self.P.T @ model.mass_diagonal
+
+    def K(self, v):
+        return (self.P.T @ self.full.K(v) @ self.P).tocsr()
+
+    def G(self, v):
+        return (self.P.T @ self.full.G(v) @ self.P).tocsr()
+
+
+def _string_model(nx: int) -> WidthUniformModel:
+    p = TapeParameters(foundation_stiffness=0.0, bending_rigidity=1e-14, poisson=0.0,
+                       length_ratio=2.0, spacing=WIDTH / 8)
+    return WidthUniformModel(TapeModel(p, Grid(p.length, p.width, nx, 8, "free")))
+
+
+def test_width_uniform_subspace_is_invariant():
+    red = _string_model(16)
+    full, P = red.full, red.P
+    md = full.mass_diagonal
+    for op, op_r in ((full.K(30.0), red.K(30.0)), (full.G(30.0), red.G(30.0))):
+        # op P = M P M_r⁻¹ op_r: the image of a uniform field is a uniform force density
+        lhs = (op @ P).toarray()
+        rhs = (sp.diags(md) @ P @ sp.diags(1 / red.mass_diagonal) @ op_r).toarray()
+        assert np.abs(lhs - rhs).max() <= 1e-12 * np.abs(lhs).max()
+
+
+def test_moving_string_second_order():
+    p = _string_model(16).params
+    c, L = p.string_speed, p.length
+    V = 0.5 * c
+    exact = np.array([n * np.pi * c * (1 - V**2 / c**2) / L for n in (1, 2, 3)])
+    steps, errs = [], []
+    for nx in (32, 64, 128):
+        red = _string_model(nx)
+        res = modes(red, V, 3)
+        errs.append(np.abs(res.omega - exact) / exact)
+        steps.append(L / nx)
+    errs = np.array(errs)
+    for j in range(3):
+        assert observed_order(steps, errs[:, j]) == pytest.approx(2.0, abs=0.1)
+    assert errs[-1].max() < 1e-3
+
+
+# ----- structure: pairs, agreement of shifts, clusters --------------------------------------
+def test_pairs_and_shift_independence():
+    model = _model(length_ratio=3.0)
+    auto = modes(model, 60.0, 5)
+    real = modes(model, 60.0, 5, sigma=0)   # 2·count eigenvalues, checked as ±iω pairs
+    assert np.all(np.diff(auto.omega) >= 0)
+    assert np.allclose(auto.omega, real.omega, rtol=1e-10)
+    assert np.all(auto.eigenvalues.real == 0) and np.all(real.eigenvalues.real == 0)
+    assert auto.info["pair_defect"] < 1e-8 and real.info["pair_defect"] < 1e-8
+    assert auto.residuals.max() < 1e-10
+    # the −iω partner: φ̄ solves the conjugate problem
+    phi, lam = auto.vectors[:, 0], auto.eigenvalues[0]
+    back = relative_residuals(model, 60.0, np.array([np.conj(lam)]), np.conj(phi)[:, None])
+    assert back[0] < 1e-10
+    assert np.allclose(auto.period, 2 * np.pi / auto.omega)
+    assert np.allclose(auto.frequency, auto.omega / (2 * np.pi))
+
+
+def test_gyroscopic_mode_is_complex_travelling():
+    res = modes(_model(length_ratio=2.0), 60.0, 1)
+    phi = res.vectors[:, 0]
+    # a standing (real) mode at V = 0 becomes complex (travelling) at V > 0
+    assert np.linalg.norm(phi.imag) > 0.05 * np.linalg.norm(phi.real)
+
+
+def test_clustered_long_tape_converges():
+    model = _model(length_ratio=19.0)
+    p = model.params
+    res = modes(model, 0.0, 12)
+    wf = p.foundation_frequency
+    assert res.info["below_shift"] == 0          # certified: nothing below the shift
+    assert np.all(res.omega > wf)                 # K(0) >= k W, so ω >= √(k/ρ)
+    assert res.omega[-1] / wf - 1 < 4e-3          # twelve modes within 0.4 % of √(k/ρ)
+    assert res.omega[1] / res.omega[0] - 1 < 1e-5  # a near-degenerate pair, resolved
+    assert res.residuals.max() < 1e-10
+    ref = modes(model, 0.0, 12, sigma=0)
+    assert np.allclose(res.omega, ref.omega, rtol=1e-10)
+
+
+def test_explicit_complex_shift_inside_spectrum():
+    model = _model(length_ratio=3.0)
+    ref = modes(model, 40.0, 6)
+    mid = 0.5 * (ref.omega[1] + ref.omega[2])
+    res = modes(model, 40.0, 6, sigma=1j * mid)
+    assert res.info["below_shift"] == 2         # inertia counts the two below the shift
+    assert np.allclose(res.omega, ref.omega, rtol=1e-10)
+
+
+def test_supercritical_reports_divergence():
+    model = _model(length_ratio=2.0)
+    res = modes(model, 110.0, 3)
+    assert res.supercritical
+    assert res.growth_rate.max() > 0
+    assert np.all(res.eigenvalues.real >= 0) and np.all(res.eigenvalues.imag >= 0)
+    assert res.residuals.max() < 1e-8
+    assert np.isinf(res.period[res.omega == 0]).all()
+
+
+# ----- refusals ------------------------------------------------------------------------------
+@pytest.mark.parametrize("kwargs, match", [
+    ({"count": 0}, "count must be in"),
+    ({"count": 10**6}, "count must be in"),
+    ({"count": 2.5}, "count must be an integer"),
+    ({"velocity": -1.0}, "velocity must be >= 0"),
+    ({"velocity": math.nan}, "velocity must be finite"),
+    ({"sigma": 1.0 + 2j}, "sigma must be 0 or purely imaginary"),
+    ({"sigma": "low"}, "sigma must be 'auto'"),
+    ({"tol": 2.0}, "tol must be in"),
+    ({"ncv": 3}, "ncv must be in"),
+])
+def test_refusals(kwargs, match):
+    args = {"velocity": 0.0, "count": 2, **kwargs}
+    with pytest.raises(ParameterError, match=match):
+        modes(_model(length_ratio=1.0), **args)
+
+
+def test_arpack_failure_is_a_convergence_error():
+    with pytest.raises(ConvergenceError, match="ARPACK"):
+        modes(_model(length_ratio=19.0), 0.0, 8, sigma=0, maxiter=1, ncv=20)
