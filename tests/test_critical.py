@@ -1,0 +1,163 @@
+"""Critical speed two ways, the beam-on-foundation closed form, sweeps and the CLI."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from convergence import observed_order
+from gyroshell import Grid, ParameterError, TapeModel, TapeParameters
+from gyroshell.cli import main
+from gyroshell.critical import (PAPER_SPEED, SUNDARAM_BENSON_SPEED, critical_function,
+                                critical_speeds)
+from gyroshell.divergence import beam_mu_estimate, divergence
+from gyroshell.sweep import parse_velocities, plot_sweep, sweep
+
+WIDTH = TapeParameters().width
+SMALL = ["--spacing", str(WIDTH / 8), "--length-ratio", "2"]
+
+
+# ----- (a) = (b) ----------------------------------------------------------------------------
+@pytest.mark.parametrize("edges", ["free", "simply-supported"])
+@pytest.mark.parametrize("ratio", [1.0, 3.0])
+def test_critical_and_divergence_agree(edges, ratio):
+    model = TapeModel(TapeParameters(length_ratio=ratio, edges=edges, spacing=WIDTH / 8))
+    c = critical_speeds(model)
+    assert c.relative_difference < 1e-5
+    lo, hi = c.info["bracket"]
+    assert lo <= c.critical_speed <= hi          # bracketed by a sign change of ω₁²
+    assert c.string_speed < c.critical_speed      # A > 0: always above √(T/ρ)
+    assert c.string_speed == pytest.approx(80.178, abs=1e-3)
+    assert c.sundaram_benson_speed == SUNDARAM_BENSON_SPEED == 111.0
+    assert c.paper_speed == PAPER_SPEED
+    assert set(c.as_dict()) >= {"critical_speed", "divergence_speed", "string_speed",
+                                "strip_speed"}
+
+
+def test_lowest_frequency_vanishes_like_sqrt():
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    vc = divergence(model).speed
+    d = np.array([1e-3, 1e-4, 1e-5]) * vc
+    omega = np.sqrt([critical_function(model, vc - x) for x in d])
+    # ω₁ ∝ (V_c − V)^½ near the critical speed
+    assert observed_order(d, omega) == pytest.approx(0.5, abs=0.02)
+    assert critical_function(model, vc * (1 + 1e-4)) < 0   # divergence above
+
+
+# ----- ν = 0, free edges: beam on a foundation -------------------------------------------------
+def _beam_case(ny: int) -> TapeModel:
+    p = TapeParameters(poisson=0.0, length_ratio=2.0, spacing=WIDTH / 8,
+                       foundation_stiffness=1e6)
+    return TapeModel(p, Grid(p.length, p.width, 2 * ny, ny, "free"))
+
+
+def _continuous_beam_speed(p: TapeParameters) -> float:
+    alpha = np.arange(1, 200) * np.pi / p.length
+    return float(np.sqrt((p.tension + np.min(p.D * alpha**2 + p.k / alpha**2)) / p.density))
+
+
+def test_beam_on_foundation_divergence():
+    steps, errs = [], []
+    for ny in (8, 16, 32):
+        model = _beam_case(ny)
+        p, g = model.params, model.grid
+        d = divergence(model)
+        # the discrete closed form: α² → (4/h²) sin²(αh/2), α⁴ → its square
+        alpha = np.arange(1, g.nx) * np.pi / g.length
+        a2 = (2 / g.hx * np.sin(alpha * g.hx / 2)) ** 2
+        mu_discrete = float(np.min(p.D * a2 + p.k / a2))
+        assert d.mu == pytest.approx(mu_discrete, rel=1e-10)
+        assert beam_mu_estimate(model) == pytest.approx(mu_discrete, rel=1e-14)
+        exact = _continuous_beam_speed(p)
+        steps.append(g.hx)
+        errs.append(abs(d.speed - exact) / exact)
+        # the buckling mode is uniform across the width
+        field = g.to_field(d.mode)[1:-1]
+        assert np.allclose(field, field[:, :1], atol=1e-8)
+    assert observed_order(steps, errs) == pytest.approx(2.0, abs=0.1)
+
+
+def test_divergence_shift_options_agree():
+    model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
+    assert divergence(model).speed == pytest.approx(divergence(model, shift=0.0).speed,
+                                                    rel=1e-12)
+
+
+# ----- sweeps -----------------------------------------------------------------------------------
+def test_parse_velocities():
+    assert parse_velocities("0:100:10") == pytest.approx(np.arange(0, 101, 10))
+    assert parse_velocities("0, 5,7.5") == [0.0, 5.0, 7.5]
+    for bad in ("a:b:c", "0:10", "10:0:1", "0:10:0"):
+        with pytest.raises(ParameterError, match="velocities"):
+            parse_velocities(bad)
+
+
+def test_sweep_tracks_branches(tmp_path):
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    frame = sweep(model, [0, 2, 4, 6, 8], 4)
+    assert list(frame.columns)[:4] == ["velocity", "branch", "rank", "omega"]
+    assert len(frame) == 20
+    # small steps: every mode continues its branch
+    assert sorted(frame.branch.unique()) == [0, 1, 2, 3]
+    assert frame.correlation.min() > 0.9
+    for _, g in frame.groupby("branch"):
+        assert np.all(np.diff(g.sort_values("velocity").omega) < 0)   # ω falls with V
+    fig = plot_sweep(frame, tmp_path / "s.png")
+    assert (tmp_path / "s.png").stat().st_size > 1000
+    ax = fig.axes[0]
+    assert "m/s" in ax.get_xlabel() and "rad/s" in ax.get_ylabel()
+    with pytest.raises(ParameterError, match="velocity"):
+        sweep(model, [0, -1], 2)
+    with pytest.raises(ParameterError, match="at least one"):
+        sweep(model, [], 2)
+
+
+# ----- CLI ---------------------------------------------------------------------------------------
+def test_cli_modes_json(capsys):
+    assert main(["modes", *SMALL, "--count", "3", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    omega, period = np.array(out["omega"]), np.array(out["period"])
+    assert len(omega) == 3 and np.all(np.diff(omega) >= 0)
+    assert np.allclose(period, 2 * np.pi / omega)
+
+
+def test_cli_modes_text_and_supercritical(capsys):
+    assert main(["modes", *SMALL, "--count", "2", "--velocity", "120"]) == 0
+    assert "supercritical" in capsys.readouterr().out
+
+
+def test_cli_critical_json(capsys):
+    assert main(["critical", *SMALL, "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert abs(out["critical_speed"] - out["divergence_speed"]) < 1e-5 * out["divergence_speed"]
+    for key in ("string_speed", "strip_speed", "sundaram_benson_speed", "paper_speed"):
+        assert key in out
+
+
+def test_cli_critical_text(capsys):
+    assert main(["critical", *SMALL]) == 0
+    text = capsys.readouterr().out
+    assert "critical speed (a)" in text and "divergence speed (b)" in text
+
+
+def test_cli_sweep_files(tmp_path, capsys):
+    csv, png = tmp_path / "s.csv", tmp_path / "s.png"
+    assert main(["sweep", *SMALL, "--velocities", "0:20:10", "--count", "2",
+                 "--out", str(csv), "--plot", str(png)]) == 0
+    assert csv.read_text().startswith("velocity,branch,rank,omega")
+    assert png.stat().st_size > 1000
+
+
+@pytest.mark.parametrize("argv, match", [
+    (["modes", *SMALL, "--count", "100000"], "count must be in"),
+    (["sweep", *SMALL, "--velocities", "0:10"], "velocities"),
+    (["sweep", *SMALL, "--velocities=-5,1"], "velocity must be >= 0"),
+    (["sweep", *SMALL, "--out", "/nonexistent/dir/x.csv"], "does not exist"),
+    (["modes", *SMALL, "--velocity", "-3"], "velocity must be >= 0"),
+])
+def test_cli_user_errors(argv, match, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert match in err and len(err.strip().splitlines()) == 1
