@@ -22,3 +22,18 @@ def _strict_floats_and_closed_figures():
 @pytest.fixture
 def rng() -> np.random.Generator:
     return np.random.default_rng(20261123)
+
+
+def pytest_addoption(parser):
+    parser.addoption("--runslow", action="store_true",
+                     help="also run tests marked slow (full-size grids and studies)")
+
+
+def pytest_collection_modifyitems(config, items):
+    """Skip `slow` tests unless asked for with --runslow or a -m expression naming slow."""
+    if config.getoption("--runslow") or "slow" in (config.getoption("-m") or ""):
+        return
+    skip = pytest.mark.skip(reason="slow: run with --runslow or -m slow")
+    for item in items:
+        if "slow" in item.keywords:
+            item.add_marker(skip)
