@@ -11,10 +11,10 @@ import numpy as np
 from .errors import ParameterError
 
 
-def _spectral_peak(samples: np.ndarray, spacing: float, *, pad_factor: int,
-                   min_frequency: float) -> float:
-    """Frequency (1/unit of ``spacing``) of the largest peak of a Hann-windowed, zero-padded
-    FFT of the de-meaned samples, refined by a parabola through the top three bins."""
+def amplitude_spectrum(samples: np.ndarray, spacing: float, *, pad_factor: int = 16
+                       ) -> tuple[np.ndarray, np.ndarray]:
+    """Frequencies (1/unit of ``spacing``) and amplitudes of the Hann-windowed, zero-padded
+    FFT of the de-meaned samples."""
     samples = np.asarray(samples, dtype=float)
     if samples.ndim != 1 or samples.size < 8:
         raise ParameterError("need at least 8 samples for a spectral estimate")
@@ -24,29 +24,48 @@ def _spectral_peak(samples: np.ndarray, spacing: float, *, pad_factor: int,
         raise ParameterError(f"sample spacing must be > 0, got {spacing}")
     x = (samples - samples.mean()) * np.hanning(samples.size)
     n_fft = int(2 ** np.ceil(np.log2(samples.size * max(1, pad_factor))))
-    spectrum = np.abs(np.fft.rfft(x, n_fft))
-    freqs = np.fft.rfftfreq(n_fft, spacing)
+    return np.fft.rfftfreq(n_fft, spacing), np.abs(np.fft.rfft(x, n_fft))
+
+
+def _refine(spectrum: np.ndarray, k: int) -> float:
+    """Bin index of the peak at k refined by a parabola through log amplitudes."""
+    if not 0 < k < spectrum.size - 1:
+        return float(k)
+    a, b, c = np.log(spectrum[k - 1:k + 2] + 1e-300)
+    denom = a - 2 * b + c
+    return k + (0.5 * (a - c) / denom if denom < 0 else 0.0)
+
+
+def _spectral_peak(samples: np.ndarray, spacing: float, *, pad_factor: int,
+                   min_frequency: float, lowest_fraction: float | None = None) -> float:
+    """Frequency of the largest spectral peak above ``min_frequency`` or, with
+    ``lowest_fraction``, of the lowest local peak reaching that fraction of the largest."""
+    freqs, spectrum = amplitude_spectrum(samples, spacing, pad_factor=pad_factor)
     spectrum[freqs < min_frequency] = 0.0
     k = int(np.argmax(spectrum))
     if not spectrum[k] > 0:
         raise ParameterError("signal has no oscillating content")
-    if 0 < k < spectrum.size - 1:
-        a, b, c = np.log(spectrum[k - 1:k + 2] + 1e-300)
-        denom = a - 2 * b + c
-        shift = 0.5 * (a - c) / denom if denom < 0 else 0.0
-    else:
-        shift = 0.0
-    return float((k + shift) * (freqs[1] - freqs[0]))
+    if lowest_fraction is not None:
+        s = spectrum
+        peaks = np.flatnonzero((s[1:-1] > s[:-2]) & (s[1:-1] >= s[2:])
+                               & (s[1:-1] >= lowest_fraction * s[k])) + 1
+        k = int(peaks[0]) if peaks.size else k
+    return float(_refine(spectrum, k) * (freqs[1] - freqs[0]))
 
 
 def dominant_period(t: np.ndarray, w: np.ndarray, *, pad_factor: int = 16,
-                    min_frequency: float | None = None) -> float:
+                    min_frequency: float | None = None,
+                    lowest_fraction: float | None = None) -> float:
     """Dominant period of a uniformly sampled history w(t), s.
 
     The mean is removed, a Hann window applied, the record zero-padded ``pad_factor``
     times and the spectral peak refined by a parabola in log amplitude. Frequencies below
     ``min_frequency`` (Hz; default two cycles per record) are ignored, so a slow drift of the
     mean does not count as the period.
+
+    With ``lowest_fraction`` (e.g. 0.25) the period of the *lowest-frequency* spectral peak
+    that reaches that fraction of the largest is returned instead: the band edge of a
+    response whose spectrum starts sharply at the lowest natural frequency.
 
     Parameters
     ----------
@@ -61,7 +80,8 @@ def dominant_period(t: np.ndarray, w: np.ndarray, *, pad_factor: int = 16,
         raise ParameterError("t must be uniformly spaced")
     duration = dt * (t.size - 1)
     fmin = 2.0 / duration if min_frequency is None else min_frequency
-    return 1.0 / _spectral_peak(w, dt, pad_factor=pad_factor, min_frequency=fmin)
+    return 1.0 / _spectral_peak(w, dt, pad_factor=pad_factor, min_frequency=fmin,
+                                lowest_fraction=lowest_fraction)
 
 
 def dominant_wavelength(x: np.ndarray, w: np.ndarray, *, pad_factor: int = 16) -> float:

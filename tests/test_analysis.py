@@ -20,6 +20,13 @@ def test_dominant_period_of_a_decaying_mixture_with_drift():
     assert dominant_period(t, w) == pytest.approx(50e-6, rel=2e-3)
 
 
+def test_lowest_peak_period_picks_the_band_edge():
+    t = np.arange(4000) * 2e-6
+    w = 0.5 * np.cos(2 * np.pi * t / 200e-6) + 1.0 * np.cos(2 * np.pi * t / 150e-6)
+    assert dominant_period(t, w) == pytest.approx(150e-6, rel=2e-3)
+    assert dominant_period(t, w, lowest_fraction=0.25) == pytest.approx(200e-6, rel=2e-3)
+
+
 def test_dominant_wavelength():
     x = np.linspace(0, 0.1, 800)
     assert dominant_wavelength(x, np.sin(2 * np.pi * x / 2.1e-3)) == pytest.approx(2.1e-3,

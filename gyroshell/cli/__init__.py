@@ -47,7 +47,8 @@ def main(argv: list[str] | None = None) -> int:
         return int(args.func(args) or 0)
     except UserError as exc:
         return _fail(str(exc), 2)
-    except (ParameterError, FileNotFoundError, IsADirectoryError, PermissionError) as exc:
+    except (ParameterError, FileNotFoundError, IsADirectoryError, NotADirectoryError,
+            PermissionError) as exc:
         return _fail(str(exc), 2)
     except ConvergenceError as exc:
         return _fail(f"numerical failure: {exc}", 1)

@@ -1,0 +1,43 @@
+"""``gyroshell reproduce``: the paper's figures and tables, and our studies, into a folder."""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+
+def register(sub, common: argparse.ArgumentParser) -> None:
+    from ..reproduce import STUDIES
+
+    p = sub.add_parser(
+        "reproduce", help="reproduce the paper's Figs. 2-6 and the critical-speed and "
+                          "period studies (PNG + CSV)",
+        description="Run studies and write their tables (CSV, Markdown) and figures (PNG) "
+                    "into --out. 'all' runs every study (about 5 minutes on 2 cores). The "
+                    "tape is the paper's Table 1 tape; --quick uses a coarse grid and short "
+                    "records to preview in seconds (numbers are then not the paper's).")
+    p.add_argument("studies", nargs="+", choices=(*STUDIES, "all"), metavar="STUDY",
+                   help=f"one or more of: {', '.join(STUDIES)}, all")
+    p.add_argument("--out", required=True, help="output folder (created if missing)")
+    p.add_argument("--quick", action="store_true",
+                   help="coarse grid (12 intervals across) and short records")
+    p.add_argument("--quiet", action="store_true", help="no progress bars or log lines")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from ..reproduce import Settings, run_studies
+
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise NotADirectoryError(f"--out is not a folder: {out}")
+    settings = Settings(quick=args.quick, progress=False if args.quiet else None)
+    start = time.perf_counter()
+    log = None if args.quiet else (lambda msg: print(msg, flush=True))
+    written = run_studies(args.studies, out, settings, log=log)
+    if not args.quiet:
+        n = sum(len(v) for v in written.values())
+        print(f"wrote {n} files to {out} in {time.perf_counter() - start:.1f} s")
+    return 0

@@ -1,0 +1,14 @@
+"""Fig. 6: centre-line wave action after a step load, V = 100 m/s, L_x/L_y = 19.
+
+Run: python studies/fig6.py [--out DIR] [--quick]   (same as: gyroshell reproduce fig6 --out DIR)
+"""
+
+import sys
+
+from gyroshell.cli import main
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    if "--out" not in args:
+        args += ["--out", "results"]
+    sys.exit(main(["reproduce", "fig6", *args]))
