@@ -205,7 +205,7 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
         pred = _extrapolate_zero(sorted(below)[-3:])
         lo = max(b for b, _ in below)
         if pred >= above or pred <= lo:
-            pred = 0.5 * (lo + above) if math.isfinite(above) else s2 * 1.004
+            pred = 0.5 * (lo + above) if math.isfinite(above) else lo * 1.004
         if abs(pred - lo) <= 2 * xtol * pred:
             cap = pred * (1 + 2 * xtol)
             if cap >= above or f(math.sqrt(cap)) <= 0:

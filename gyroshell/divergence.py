@@ -118,10 +118,10 @@ def divergence(model: TapeModel, *, tol: float = 1e-12, shift: float | None = No
                        diag_pivot_thresh=0.0, options={"SymmetricMode": True})
     opinv = spla.LinearOperator(A.shape, matvec=lu.solve, dtype=float)
     v0 = np.random.default_rng(12345).standard_normal(A.shape[0])
-    from .eigen import single_thread_blas
+    from .threads import blas_threads
 
     try:
-        with single_thread_blas():
+        with blas_threads(1):
             vals, vecs = spla.eigsh(A, k=1, M=B, sigma=tau, which="LM", tol=tol,
                                     OPinv=opinv, v0=v0)
     except spla.ArpackNoConvergence as exc:  # pragma: no cover - ARPACK failure path

@@ -28,7 +28,6 @@ passes. Each eigenvalue is finally polished with the quadratic Rayleigh function
 
 from __future__ import annotations
 
-import contextlib
 import math
 import time
 from dataclasses import dataclass, field
@@ -41,6 +40,7 @@ from .errors import ConvergenceError, ParameterError
 from .grid import Grid
 from .model import TapeModel
 from .parameters import TapeParameters, check_velocity
+from .threads import blas_threads
 
 #: Default relative tolerance of ARPACK.
 DEFAULT_TOL = 1e-10
@@ -247,19 +247,6 @@ def _check_sigma(sigma) -> complex | None:
     return s
 
 
-def single_thread_blas():
-    """Hold BLAS to one thread (threadpoolctl, if installed; else do nothing).
-
-    ARPACK's many small dense operations on a shared 2-core machine ran up to 100 times
-    slower with OpenBLAS's spinning worker threads than with one thread.
-    """
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:  # pragma: no cover - optional dependency
-        return contextlib.nullcontext()
-    return threadpool_limits(limits=1, user_api="blas")
-
-
 # ----- the solver -------------------------------------------------------------------------
 def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
           sigma: complex | str = "auto", tol: float = DEFAULT_TOL, ncv: int | None = None,
@@ -297,7 +284,7 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     ConvergenceError
         ARPACK did not converge, or the residuals or the mode count could not be verified.
     """
-    with single_thread_blas():
+    with blas_threads(1):
         return _modes(model, velocity, count, sigma=sigma, tol=tol, ncv=ncv, maxiter=maxiter)
 
 
@@ -435,7 +422,7 @@ def _solve_complex(model, velocity, count, K, G, md, omega_s, info, *, auto, tol
     extra = 2
     t0 = time.perf_counter()
     counter = [0]
-    for attempt in range(1, 4):
+    for attempt in range(1, 4):  # noqa: B007 - reported in info
         nev = min(count + below + extra, 2 * n - 2)
         op = _operator(lu, G, md, sigma, omega_ref, counter)
         theta, y, used = _arpack(op, nev, tol=tol, ncv=ncv, maxiter=maxiter,

@@ -27,7 +27,6 @@ import sys
 import time
 import warnings
 from collections.abc import Sequence
-from contextlib import nullcontext
 
 import numpy as np
 from scipy.sparse._sparsetools import csr_matvec
@@ -37,6 +36,7 @@ from .factorization import factorize
 from .loads import TimeProfile, step
 from .model import TapeModel
 from .parameters import check_velocity
+from .threads import blas_threads as limit_blas_threads
 from .transient_result import Recorder, TransientResult
 
 #: The run stops when ‖w‖₂ grows past this many times its natural scale.
@@ -110,7 +110,7 @@ class Newmark:
         self.blas_threads = blas_threads
         dt, b, g = self.dt, self.beta, self.gamma
         K_eq = (model.M + (g * dt) * self.G + (b * dt * dt) * self.K).tocsc()
-        with _blas_limit(blas_threads):
+        with limit_blas_threads(blas_threads):
             self.factor = factorize(K_eq, backend)
         self.info = {"backend": self.factor.name, "factor_time": self.factor.factor_time,
                      "unknowns": model.size, "factorizations": 1,
@@ -207,7 +207,7 @@ class Newmark:
         bar = _progress_bar(steps, progress)
         start = time.perf_counter()
         try:
-            with _blas_limit(self.blas_threads):
+            with limit_blas_threads(self.blas_threads):
                 w, v, a, solve_time = self._loop(steps, t0, w, v, a, profile, recorder,
                                                  history, energy, bound, bar)
         finally:
@@ -294,17 +294,6 @@ def _blowup(n: int, t: float, size: float, bound: float, stepper: Newmark
         f"V = {stepper.velocity:g} m/s, dt = {stepper.dt:g} s, beta = {stepper.beta:g}, "
         f"gamma = {stepper.gamma:g}; is V at or above the critical speed, or dt too large "
         "for these beta, gamma?")
-
-
-def _blas_limit(threads: int | None):
-    """Limit BLAS threads with threadpoolctl if installed (optional), else do nothing."""
-    if threads is None:
-        return nullcontext()
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:
-        return nullcontext()
-    return threadpool_limits(limits=int(threads), user_api="blas")
 
 
 def _progress_bar(steps: int, progress: bool | None):

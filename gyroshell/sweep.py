@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -116,7 +115,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         corr_of = np.ones(k)
         if previous is not None:
             c = correlation(md, previous, res.vectors)
-            for i, j in zip(*linear_sum_assignment(-c)):
+            for i, j in zip(*linear_sum_assignment(-c), strict=False):
                 if c[i, j] >= min_correlation:
                     new_labels[j], corr_of[j] = labels[i], c[i, j]
                 else:

@@ -1,6 +1,8 @@
 """Critical-speed table: this model (free and simply supported edges, L_x/L_y = 4 and 19)
 
-Run: python studies/critical.py [--out DIR] [--quick]   (same as: gyroshell reproduce critical --out DIR)
+Run:
+    python studies/critical.py [--out DIR] [--quick]
+Same as: gyroshell reproduce critical --out DIR
 """
 
 import sys

@@ -1,6 +1,8 @@
 """The paper's other observations, measured.
 
-Run: python studies/observations.py [--out DIR] [--quick]   (same as: gyroshell reproduce observations --out DIR)
+Run:
+    python studies/observations.py [--out DIR] [--quick]
+Same as: gyroshell reproduce observations --out DIR
 """
 
 import sys

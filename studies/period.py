@@ -1,6 +1,8 @@
 """Dominant period of the load-point displacement against tape speed, L_x/L_y = 19.
 
-Run: python studies/period.py [--out DIR] [--quick]   (same as: gyroshell reproduce period --out DIR)
+Run:
+    python studies/period.py [--out DIR] [--quick]
+Same as: gyroshell reproduce period --out DIR
 """
 
 import sys

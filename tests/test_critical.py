@@ -6,12 +6,16 @@ import json
 
 import numpy as np
 import pytest
-
 from convergence import observed_order
+
 from gyroshell import Grid, ParameterError, TapeModel, TapeParameters
 from gyroshell.cli import main
-from gyroshell.critical import (PAPER_SPEED, SUNDARAM_BENSON_SPEED, critical_function,
-                                critical_speeds)
+from gyroshell.critical import (
+    PAPER_SPEED,
+    SUNDARAM_BENSON_SPEED,
+    critical_function,
+    critical_speeds,
+)
 from gyroshell.divergence import beam_mu_estimate, divergence
 from gyroshell.sweep import parse_velocities, plot_sweep, sweep
 

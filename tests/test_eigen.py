@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 import scipy.sparse as sp
-
 from closed_forms import navier_frequency
 from convergence import observed_order
+
 from gyroshell import ConvergenceError, Grid, ParameterError, TapeModel, TapeParameters
 from gyroshell.eigen import modes, relative_residuals
 

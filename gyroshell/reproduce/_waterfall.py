@@ -27,7 +27,7 @@ def compute(settings: Settings, velocity: float) -> pd.DataFrame:
                 progress=settings.progress)
     s = res.snapshots
     return pd.concat([pd.DataFrame({"t": t, "x": s.x, "w": line})
-                      for t, line in zip(s.centerline_times, s.centerlines)],
+                      for t, line in zip(s.centerline_times, s.centerlines, strict=False)],
                      ignore_index=True)
 
 

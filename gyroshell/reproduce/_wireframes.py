@@ -33,7 +33,7 @@ def compute(settings: Settings, velocity: float) -> pd.DataFrame:
     times = list(snaps.times) + [np.inf]
     X, Y = np.asarray(g.X), np.asarray(g.Y)
     return pd.concat([pd.DataFrame({"t": t, "x": X.ravel(), "y": Y.ravel(), "w": f.ravel()})
-                      for t, f in zip(times, fields)], ignore_index=True)
+                      for t, f in zip(times, fields, strict=False)], ignore_index=True)
 
 
 def plot(table: pd.DataFrame, velocity: float, title: str, path: Path) -> Path:

@@ -48,7 +48,7 @@ def plot(history: pd.DataFrame, steady: pd.DataFrame, path: Path) -> Path:
     plt = pyplot()
     speeds = list(steady["velocity"])
     fig, axes = plt.subplots(len(speeds), 1, figsize=(8, 8.5), sharex=True)
-    for ax, v in zip(axes, speeds):
+    for ax, v in zip(axes, speeds, strict=False):
         h = history[history["velocity"] == v]
         s = steady[steady["velocity"] == v].iloc[0]
         t_us = h["t"].to_numpy() * 1e6

@@ -2,8 +2,9 @@
 
 1. **First reflection from the free edges** (the paper: near t = 28 µs, Figs. 3–4). The
    time the front (2 % of the static deflection) reaches the free edge beside the load,
-   and the time its reflection is back at the load point: the load-point history of the L_x/L_y = 4 tape is compared with that of a tape four times as
-   wide under the same load (same α, same spacing): until waves come back from the free
+   and the time its reflection is back at the load point: the load-point history of the
+   L_x/L_y = 4 tape is compared with that of a tape about four times as wide under the
+   same load (same α, same spacing): until waves come back from the free
    edges the two agree; the first time they differ by 1 % of the peak is the arrival.
 2. **Wavelength asymmetry** at V = 50 m/s (Fig. 4; Bogy et al.): the dominant wavelength of
    the centre-line disturbance w − w_static upstream and downstream of the load at 320 µs.
@@ -96,7 +97,7 @@ def fronts(settings: Settings, velocity: float) -> pd.DataFrame:
     rows = [dict(velocity=velocity, t=t,
                  downstream=front_position(s.x, line, x0, threshold, +1) - x0,
                  upstream=x0 - front_position(s.x, line, x0, threshold, -1))
-            for t, line in zip(s.centerline_times, s.centerlines)]
+            for t, line in zip(s.centerline_times, s.centerlines, strict=False)]
     return pd.DataFrame(rows)
 
 
