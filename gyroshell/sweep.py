@@ -70,7 +70,8 @@ def correlation(md: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
-          min_correlation: float = 0.5, progress: bool = False, **options) -> pd.DataFrame:
+          min_correlation: float = 0.5, progress: bool | None = False, **options
+          ) -> pd.DataFrame:
     """Lowest ``count`` frequencies at each speed, tracked into branches.
 
     Parameters
@@ -83,8 +84,8 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
     min_correlation : float
         A match weaker than this starts a new branch (the mode left the lowest-``count``
         window and another entered); take smaller speed steps to follow branches further.
-    progress : bool
-        Show a tqdm progress bar on stderr.
+    progress : bool or None
+        Show a tqdm progress bar on stderr; None: only if stderr is a terminal.
     **options
         Passed to :func:`gyroshell.eigen.modes` (``sigma``, ``tol``, ``ncv``, ...).
 
@@ -101,6 +102,10 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
     from tqdm import tqdm
 
     velocities = check_velocities(velocities)
+    if progress is None:
+        import sys
+
+        progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
     if not 0.0 <= min_correlation <= 1.0:
         raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
     md = model.mass_diagonal
@@ -154,10 +159,19 @@ def plot_sweep(frame: pd.DataFrame, path=None, *, ax=None, title: str | None = N
         fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
     else:
         fig = ax.figure
-    for branch, group in frame.groupby("branch"):
+    if "rank" in frame:  # the k-th lowest frequency: continuous even where branches end
+        for rank, group in frame.groupby("rank"):
+            group = group.sort_values("velocity")
+            ax.plot(group["velocity"], group["omega"], color="0.75", lw=0.8, zorder=1,
+                    label="k-th lowest ω" if rank == 0 else None)
+    branches = frame.groupby("branch")
+    few = branches.ngroups <= 8
+    for k, (branch, group) in enumerate(branches):
         group = group.sort_values("velocity")
-        ax.plot(group["velocity"], group["omega"], marker="o", ms=3, lw=1.2,
-                label=f"branch {branch}")
+        label = f"branch {branch}" if few else ("tracked branches (mode-shape correlation)"
+                                                if k == 0 else None)
+        ax.plot(group["velocity"], group["omega"], marker="o", ms=3, lw=1.2, zorder=2,
+                color=None if few else f"C{branch % 10}", label=label)
     if "growth_rate" in frame and (frame["growth_rate"] > 0).any():
         sup = frame[frame["growth_rate"] > 0]
         ax.plot(sup["velocity"], sup["growth_rate"], "kx", ls="none",

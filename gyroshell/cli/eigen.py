@@ -133,7 +133,7 @@ def run_sweep(args: argparse.Namespace) -> int:
             if str(folder) and not folder.is_dir():
                 raise FileNotFoundError(f"output folder does not exist: {folder}")
     model = TapeModel(params)
-    frame = sweep(model, velocities, args.count, progress=True)
+    frame = sweep(model, velocities, args.count, progress=None)
     if args.out:
         write_atomic(args.out, lambda tmp: frame.to_csv(tmp, index=False))
     if args.plot:
