@@ -1,16 +1,10 @@
 """Critical-speed table: this model (free and simply supported edges, L_x/L_y = 4 and 19)
 
-Run:
-    python studies/critical.py [--out DIR] [--quick]
-Same as: gyroshell reproduce critical --out DIR
+Run python studies/critical.py [--out DIR] [--quick], the same as
+gyroshell reproduce critical --out DIR (default DIR: results).
 """
 
-import sys
-
-from gyroshell.cli import main
+from gyroshell.cli.reproduce import script
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    if "--out" not in args:
-        args += ["--out", "results"]
-    sys.exit(main(["reproduce", "critical", *args]))
+    raise SystemExit(script("critical"))

@@ -1,14 +1,10 @@
 """Fig. 2: transient load-point displacement for V = 0, 50, 90, 100 m/s, L_x/L_y = 19.
 
-Run: python studies/fig2.py [--out DIR] [--quick]   (same as: gyroshell reproduce fig2 --out DIR)
+Run python studies/fig2.py [--out DIR] [--quick], the same as
+gyroshell reproduce fig2 --out DIR (default DIR: results).
 """
 
-import sys
-
-from gyroshell.cli import main
+from gyroshell.cli.reproduce import script
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    if "--out" not in args:
-        args += ["--out", "results"]
-    sys.exit(main(["reproduce", "fig2", *args]))
+    raise SystemExit(script("fig2"))

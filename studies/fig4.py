@@ -1,14 +1,10 @@
 """Fig. 4: 3-D wire frames of the tape after a step load, V = 50 m/s, L_x/L_y = 4.
 
-Run: python studies/fig4.py [--out DIR] [--quick]   (same as: gyroshell reproduce fig4 --out DIR)
+Run python studies/fig4.py [--out DIR] [--quick], the same as
+gyroshell reproduce fig4 --out DIR (default DIR: results).
 """
 
-import sys
-
-from gyroshell.cli import main
+from gyroshell.cli.reproduce import script
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    if "--out" not in args:
-        args += ["--out", "results"]
-    sys.exit(main(["reproduce", "fig4", *args]))
+    raise SystemExit(script("fig4"))

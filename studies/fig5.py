@@ -1,14 +1,10 @@
 """Fig. 5: centre-line wave action after a step load, V = 50 m/s, L_x/L_y = 19.
 
-Run: python studies/fig5.py [--out DIR] [--quick]   (same as: gyroshell reproduce fig5 --out DIR)
+Run python studies/fig5.py [--out DIR] [--quick], the same as
+gyroshell reproduce fig5 --out DIR (default DIR: results).
 """
 
-import sys
-
-from gyroshell.cli import main
+from gyroshell.cli.reproduce import script
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    if "--out" not in args:
-        args += ["--out", "results"]
-    sys.exit(main(["reproduce", "fig5", *args]))
+    raise SystemExit(script("fig5"))

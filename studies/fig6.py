@@ -1,14 +1,10 @@
 """Fig. 6: centre-line wave action after a step load, V = 100 m/s, L_x/L_y = 19.
 
-Run: python studies/fig6.py [--out DIR] [--quick]   (same as: gyroshell reproduce fig6 --out DIR)
+Run python studies/fig6.py [--out DIR] [--quick], the same as
+gyroshell reproduce fig6 --out DIR (default DIR: results).
 """
 
-import sys
-
-from gyroshell.cli import main
+from gyroshell.cli.reproduce import script
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    if "--out" not in args:
-        args += ["--out", "results"]
-    sys.exit(main(["reproduce", "fig6", *args]))
+    raise SystemExit(script("fig6"))

@@ -1,16 +1,10 @@
 """The paper's other observations, measured.
 
-Run:
-    python studies/observations.py [--out DIR] [--quick]
-Same as: gyroshell reproduce observations --out DIR
+Run python studies/observations.py [--out DIR] [--quick], the same as
+gyroshell reproduce observations --out DIR (default DIR: results).
 """
 
-import sys
-
-from gyroshell.cli import main
+from gyroshell.cli.reproduce import script
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    if "--out" not in args:
-        args += ["--out", "results"]
-    sys.exit(main(["reproduce", "observations", *args]))
+    raise SystemExit(script("observations"))

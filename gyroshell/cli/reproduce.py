@@ -41,3 +41,16 @@ def run(args: argparse.Namespace) -> int:
         n = sum(len(v) for v in written.values())
         print(f"wrote {n} files to {out} in {time.perf_counter() - start:.1f} s")
     return 0
+
+
+def script(name: str, argv: list[str] | None = None) -> int:
+    """Entry point of ``studies/<name>.py``: ``gyroshell reproduce <name>``, default
+    ``--out results``."""
+    import sys
+
+    from . import main
+
+    args = list(sys.argv[1:] if argv is None else argv)
+    if "--out" not in args:
+        args += ["--out", "results"]
+    return main(["reproduce", name, *args])
