@@ -60,8 +60,9 @@ def plot(table: pd.DataFrame, velocity: float, title: str, path: Path) -> Path:
         ax.set_ylabel("y (mm)", fontsize=7, labelpad=-6)
         ax.set_zlabel("w (nm)", fontsize=7, labelpad=-6)
         ax.tick_params(labelsize=6, pad=-2)
+    motion = " (tape moves toward +x)" if velocity > 0 else ""
     fig.suptitle(f"{title}: wave propagation after a step load, V = {velocity:g} m/s, "
-                 "L_x/L_y = 4 (tape moves toward +x)", fontsize=12)
+                 f"L_x/L_y = 4{motion}", fontsize=12)
     fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.93, wspace=0.0, hspace=0.05)
     return save_figure(fig, path)
 
