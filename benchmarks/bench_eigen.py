@@ -25,7 +25,8 @@ import scipy.sparse.linalg as spla
 
 from gyroshell import TapeModel, TapeParameters
 from gyroshell.critical import critical_speeds
-from gyroshell.eigen import modes, single_thread_blas
+from gyroshell.eigen import modes
+from gyroshell.threads import blas_threads
 
 
 def naive(model: TapeModel, velocity: float, count: int) -> np.ndarray:
@@ -35,7 +36,7 @@ def naive(model: TapeModel, velocity: float, count: int) -> np.ndarray:
     eye = sp.identity(n, format="csr")
     A = sp.bmat([[None, eye], [-K, -G]], format="csc")
     B = sp.bmat([[eye, None], [None, M]], format="csc")
-    with single_thread_blas():  # the same BLAS setting as the solver, for a fair race
+    with blas_threads(1):  # the same BLAS setting as the solver, for a fair race
         lam = spla.eigs(A, k=2 * count, M=B, sigma=0.0, which="LM",
                         return_eigenvectors=False)
     w = np.sort(np.abs(lam.imag))
