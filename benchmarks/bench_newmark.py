@@ -55,7 +55,7 @@ def bench_backend(model: TapeModel, steps: int, backend: str, repeats: int) -> d
     same factor is timed under the same conditions (one BLAS thread), so that a change in
     the machine's load shifts both alike.
     """
-    rhs = np.random.default_rng(0).standard_normal(model.size)
+    rhs = np.random.default_rng(0).standard_normal(model.unknowns)
     whole, per_step, factor, bare = [], [], [], []
     for _ in range(repeats):
         start = time.perf_counter()
@@ -97,7 +97,7 @@ def main() -> None:
         model = TapeModel(TapeParameters(length_ratio=ratio))
         Newmark(model, VELOCITY, dt=DT).march(min(steps, 50), progress=False)  # warm-up
         g = model.grid
-        print(f"\nL_x/L_y = {ratio:g}: {g.nx} x {g.ny} intervals, {g.size} unknowns, "
+        print(f"\nL_x/L_y = {ratio:g}: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns, "
               f"{steps} steps")
         print(f"  {'back-end':9s} {'factor s':>9s} {'whole run s':>12s} {'per step ms':>12s} "
               f"{'bare solve ms':>14s} {'step/solve':>11s}")

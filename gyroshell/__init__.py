@@ -10,23 +10,29 @@ All quantities are SI.
 
 from __future__ import annotations
 
+from importlib.metadata import PackageNotFoundError
+from importlib.metadata import version as _package_version
+
 from .divergence import Divergence, divergence, divergence_speed
 from .errors import ConvergenceError, ParameterError, SupercriticalError
 from .grid import Grid
 from .loads import Harmonic, Ramp, gaussian_load, pressure_load, step
 from .model import TapeModel
-from .operators import bending_foundation, gyroscopic, mass, membrane, stiffness
+from .operators import bending_foundation, gyroscopic, mass, membrane
 from .parameters import TapeParameters, bending_rigidity, shell_stiffness
 from .static import StaticSolution, solve_static
 
-__version__ = "0.1.0"
+try:
+    __version__ = _package_version("gyroshell")
+except PackageNotFoundError:  # pragma: no cover - run from a source tree without install
+    __version__ = "0+unknown"
 
 __all__ = [
     "ConvergenceError", "Divergence", "Grid", "Harmonic", "ParameterError", "Ramp",
     "StaticSolution", "SupercriticalError", "TapeModel", "TapeParameters",
     "bending_foundation", "bending_rigidity", "divergence", "divergence_speed",
     "gaussian_load", "gyroscopic", "mass", "membrane", "pressure_load", "shell_stiffness",
-    "solve_static", "step", "stiffness",
+    "solve_static", "step",
 ]
 
 # Time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends.
@@ -37,7 +43,7 @@ from .transient_result import Snapshots, TransientResult  # noqa: E402
 __all__ += ["Newmark", "NewmarkStabilityWarning", "Snapshots", "TransientResult",
             "available_backends", "factorize", "march"]
 
-# Quadratic eigen-solver, critical speeds and speed sweeps (issue #4).
+# Quadratic eigen-solver, critical speeds and speed sweeps.
 from .critical import CriticalSpeeds, critical_speed_eigen, critical_speeds  # noqa: E402
 from .eigen import Modes, frequencies, modes  # noqa: E402
 from .sweep import plot_sweep, sweep  # noqa: E402

@@ -15,8 +15,9 @@ from functools import cached_property
 
 import numpy as np
 
+from . import budget, validation
 from .errors import ParameterError
-from .parameters import EDGE_CHOICES, MIN_INTERVALS_ACROSS, TapeParameters
+from .parameters import EDGE_CHOICES, MIN_INTERVALS_ACROSS, MIN_INTERVALS_ALONG, TapeParameters
 
 
 @dataclass(frozen=True)
@@ -28,9 +29,22 @@ class Grid:
     length, width : float
         L_x and L_y, m.
     nx, ny : int
-        Number of intervals along x and across y (``ny`` >= 8).
+        Number of intervals along x and across y (each >= 8).
     edges : {"free", "simply-supported"}
         Condition on the lateral edges y = 0, L_y.
+
+    Raises
+    ------
+    ParameterError
+        For a non-positive or non-finite length, a fractional or too small interval count,
+        or a grid whose operators and factorization cannot fit in memory
+        (:func:`gyroshell.budget.check_unknowns`).
+
+    Examples
+    --------
+    >>> g = Grid(0.0254, 6.35e-3, 16, 8)
+    >>> g.unknowns, g.shape
+    (135, (17, 9))
     """
 
     length: float
@@ -40,22 +54,24 @@ class Grid:
     edges: str = "free"
 
     def __post_init__(self) -> None:
-        if self.ny < MIN_INTERVALS_ACROSS:
-            raise ParameterError(f"ny must be >= {MIN_INTERVALS_ACROSS}, got {self.ny}")
-        if self.nx < 2:
-            raise ParameterError(f"nx must be >= 2, got {self.nx}")
-        if self.edges not in EDGE_CHOICES:
-            raise ParameterError(f"edges must be one of {', '.join(EDGE_CHOICES)}")
+        put = object.__setattr__
+        put(self, "length", validation.positive("length", self.length, "m"))
+        put(self, "width", validation.positive("width", self.width, "m"))
+        put(self, "nx", validation.integer("nx", self.nx, low=MIN_INTERVALS_ALONG))
+        put(self, "ny", validation.integer("ny", self.ny, low=MIN_INTERVALS_ACROSS))
+        validation.choice("edges", self.edges, EDGE_CHOICES)
+        budget.check_unknowns(self.nx, self.ny, self.edges)
 
     @classmethod
     def from_parameters(cls, params: TapeParameters) -> Grid:
         """The grid nearest to ``params.spacing``: whole numbers of intervals per side."""
-        nx = max(2, round(params.length / params.spacing))
+        nx = round(params.length / params.spacing)
         ny = round(params.width / params.spacing)
         return cls(params.length, params.width, nx, ny, params.edges)
 
     def refined(self, factor: int = 2) -> Grid:
         """The same tape with ``factor`` times as many intervals each way."""
+        factor = validation.integer("factor", factor, low=1)
         return Grid(self.length, self.width, self.nx * factor, self.ny * factor, self.edges)
 
     # ----- geometry -------------------------------------------------------------------
@@ -120,8 +136,8 @@ class Grid:
         return self.ny + 1 if self.free_edges else self.ny - 1
 
     @property
-    def size(self) -> int:
-        """Number of unknowns n."""
+    def unknowns(self) -> int:
+        """Number of unknowns n (nodes that are not on a supported line)."""
         return self.n_lines * self.n_across
 
     @cached_property
@@ -144,8 +160,8 @@ class Grid:
         (nx + 1, ny + 1, ...). Complex vectors give complex fields.
         """
         vector = np.asarray(vector)
-        if vector.shape[0] != self.size:
-            raise ParameterError(f"vector must have length {self.size}, got {vector.shape[0]}")
+        if vector.shape[0] != self.unknowns:
+            raise ParameterError(f"vector must have length {self.unknowns}, got {vector.shape[0]}")
         field = np.zeros(self.shape + vector.shape[1:], dtype=vector.dtype)
         field[self.x_unknowns, self.y_unknowns] = vector.reshape(
             (self.n_lines, self.n_across) + vector.shape[1:]
@@ -158,7 +174,7 @@ class Grid:
         if field.shape[:2] != self.shape:
             raise ParameterError(f"field must have shape {self.shape}, got {field.shape[:2]}")
         sub = field[self.x_unknowns, self.y_unknowns]
-        return sub.reshape((self.size,) + field.shape[2:]).copy()
+        return sub.reshape((self.unknowns,) + field.shape[2:]).copy()
 
     def sample(self, function) -> np.ndarray:
         """Unknown vector of ``function(X, Y)`` evaluated at the unknown nodes."""
@@ -170,6 +186,7 @@ class Grid:
 
         Second-order accurate, like the scheme; a point on a node gets that node's value.
         """
+        x0, y0 = validation.real("x0", x0, unit="m"), validation.real("y0", y0, unit="m")
         if not (0.0 <= x0 <= self.length and 0.0 <= y0 <= self.width):
             raise ParameterError(
                 f"point ({x0:g}, {y0:g}) m must lie on the tape "
@@ -184,3 +201,25 @@ class Grid:
         field[i, j + 1] = (1 - fx) * fy
         field[i + 1, j + 1] = fx * fy
         return self.from_field(field)
+
+    def centerline_weights(self) -> tuple[int, float]:
+        """(j, f): the centre line y = L_y/2 is (1 − f) column j + f column j + 1 of a field."""
+        s = 0.5 * self.width / self.hy
+        j = min(int(s), self.ny - 1)
+        return j, s - j
+
+    def centerline(self, field: np.ndarray) -> np.ndarray:
+        """w(x, L_y/2) of a nodal field (shape :attr:`shape`), m: linear across y if the
+        centre line falls between nodes; shape (nx + 1,).
+
+        Examples
+        --------
+        >>> g = Grid(0.0254, 6.35e-3, 16, 9)
+        >>> g.centerline(g.Y * np.ones(g.shape))[:2] * 1e3   # y = L_y/2 = 3.175 mm
+        array([3.175, 3.175])
+        """
+        field = np.asarray(field)
+        if field.shape[:2] != self.shape:
+            raise ParameterError(f"field must have shape {self.shape}, got {field.shape[:2]}")
+        j, f = self.centerline_weights()
+        return (1.0 - f) * field[:, j] + f * field[:, j + 1]

@@ -1,40 +1,323 @@
-"""Output helpers: files are written whole or not at all."""
+"""Output files: checked before any work, written whole or not at all, together.
+
+* :func:`check_output` / :func:`check_outputs` refuse, before anything is computed, an output
+  that could never be written: a missing or read-only folder, a parent that is a file, a path
+  that is a folder or an existing read-only file, a plot format matplotlib cannot write, or
+  one file named for two outputs. Messages name the path as the user gave it.
+* :func:`atomic_path` writes to a hidden temporary file beside the real target (through
+  symlinks, so the link is kept and its target updated) and moves it into place only on
+  success; a replaced file keeps its permission bits.
+* Inside :func:`transaction` every :func:`atomic_path` is staged and moved into place only
+  when the whole block succeeds: a run with several outputs leaves none of them (and no
+  temporary file) if any step fails or is interrupted.
+* :func:`termination_signals` turns SIGTERM and SIGHUP into :class:`Terminated` (a
+  ``KeyboardInterrupt``), so they clean up temporary files exactly like Ctrl-C.
+"""
 
 from __future__ import annotations
 
+import contextvars
 import os
+import signal
+import stat
+import sys
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .errors import ParameterError
+
+#: Kinds of output whose format is checked from the file name's suffix.
+PLOT = "plot"
+
+
+class OutputPathError(ParameterError):
+    """An output path that cannot be written; the message names the path."""
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM or SIGHUP, raised in the main thread so that cleanup runs as for Ctrl-C."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = signum
+
+
+def progress_wanted(progress: bool | None) -> bool:
+    """Whether to draw a progress bar: ``progress`` if given, else whether stderr is a
+    terminal (bars in log files and pipes are noise)."""
+    if progress is None:
+        isatty = getattr(sys.stderr, "isatty", None)
+        return bool(isatty()) if isatty is not None else False
+    return bool(progress)
+
+
+def plot_formats() -> tuple[str, ...]:
+    """File suffixes matplotlib can write (without the dot), e.g. png, pdf, svg."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    return tuple(sorted(FigureCanvasBase.get_supported_filetypes()))
+
+
+def _read_only(st: os.stat_result, path: str) -> bool:
+    # Mode bits as well as access(): the superuser may write anywhere, but a file or folder
+    # someone made read-only is meant to be left alone.
+    return not (st.st_mode & 0o222) or not os.access(path, os.W_OK)
+
+
+def check_output(path: str | os.PathLike[str], *, option: str = "output",
+                 kind: str | None = None) -> Path:
+    """Refuse an output path that could never be written; returns the file to write
+    (symlinks resolved).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The path as the user gave it.
+    option : str
+        How the user named it (e.g. ``--plot``), for the message.
+    kind : {None, "plot"}
+        ``"plot"`` also checks that matplotlib can write the suffix's format.
+
+    Raises
+    ------
+    OutputPathError
+        Naming ``option`` and ``path`` and why it cannot be written.
+    """
+    if not isinstance(path, (str, os.PathLike)) or not os.fspath(path):
+        raise OutputPathError(f"{option} must be a file path, got {path!r}")
+    shown = os.fspath(path)
+    real = os.path.realpath(shown)
+    folder = os.path.dirname(real) or "."
+
+    def fail(reason: str) -> OutputPathError:
+        return OutputPathError(f"{option} {shown}: {reason}")
+
+    if os.path.isdir(real):
+        raise fail("is a folder, not a file")
+    if not os.path.exists(folder):
+        raise fail(f"folder {os.path.dirname(shown) or '.'} does not exist")
+    if not os.path.isdir(folder):
+        raise fail(f"{os.path.dirname(shown)} is a file, not a folder")
+    if _read_only(os.stat(folder), folder):
+        raise fail(f"folder {os.path.dirname(shown) or '.'} is read-only")
+    if os.path.lexists(real):
+        st = os.stat(real)
+        if not stat.S_ISREG(st.st_mode):
+            raise fail("exists and is not a regular file; not replaced")
+        if _read_only(st, real):
+            raise fail("exists and is read-only; not replaced")
+    if kind == PLOT:
+        suffix = Path(shown).suffix.lower().lstrip(".")
+        formats = plot_formats()
+        if suffix not in formats:
+            raise fail(f"unsupported plot format {suffix!r} (use one of "
+                       f"{', '.join(formats)})")
+    return Path(real)
+
+
+def check_outputs(outputs: dict[str, tuple[str | os.PathLike[str] | None, str | None]]
+                  ) -> dict[str, Path]:
+    """Check several outputs {option: (path or None, kind)}; also refuse one file named twice.
+
+    Returns {option: file to write} for the paths given.
+    """
+    checked: dict[str, Path] = {}
+    for option, (path, kind) in outputs.items():
+        if path is not None:
+            checked[option] = check_output(path, option=option, kind=kind)
+    seen: dict[Path, str] = {}
+    for option, real in checked.items():
+        if real in seen:
+            raise OutputPathError(f"{seen[real]} and {option} name the same file "
+                                  f"{os.fspath(outputs[option][0])}; give each its own")
+        seen[real] = option
+    return checked
+
+
+def _default_mode() -> int:
+    umask = os.umask(0)
+    os.umask(umask)
+    return 0o666 & ~umask
+
+
+def _match_permissions(tmp: str, target: Path) -> None:
+    """Give ``tmp`` the permissions (and owner, if allowed) of the file it replaces, or the
+    usual ones for a new file (mkstemp makes 0600)."""
+    try:
+        st = os.stat(target)
+    except FileNotFoundError:
+        os.chmod(tmp, _default_mode())
+        return
+    os.chmod(tmp, stat.S_IMODE(st.st_mode))
+    if hasattr(os, "chown"):
+        try:
+            os.chown(tmp, st.st_uid, st.st_gid)
+        except OSError:
+            pass
+
+
+def _remove(path: str | None) -> None:
+    if path is not None:
+        try:
+            os.remove(path)
+        except FileNotFoundError:
+            pass
+
+
+class Transaction:
+    """Staged outputs moved into place together by :meth:`commit` (see :func:`transaction`).
+    """
+
+    def __init__(self) -> None:
+        self._staged: list[tuple[str, Path, str]] = []  # (temporary, target, user's path)
+
+    def stage(self, tmp: str, target: Path, shown: str) -> None:
+        for i, (old_tmp, old_target, _) in enumerate(self._staged):
+            if old_target == target:  # written twice: the last version wins
+                _remove(old_tmp)
+                del self._staged[i]
+                break
+        self._staged.append((tmp, target, shown))
+
+    def rollback(self) -> None:
+        """Remove every staged temporary file."""
+        staged, self._staged = self._staged, []
+        for tmp, _, _ in staged:
+            _remove(tmp)
+
+    def commit(self) -> list[Path]:
+        """Move every staged file into place; on any failure put back what was there."""
+        done: list[tuple[Path, str | None]] = []  # (target, backup of the old file or None)
+        staged, self._staged = self._staged, []
+        try:
+            for tmp, target, shown in staged:
+                backup = None
+                if os.path.lexists(target):
+                    backup = _hidden_name(target, "old")
+                    os.link(target, backup)
+                try:
+                    os.replace(tmp, target)
+                except OSError as exc:
+                    _remove(backup)
+                    raise OSError(exc.errno, f"cannot write {shown}: {exc.strerror}"
+                                  ) from None
+                done.append((target, backup))
+        except BaseException:
+            for target, backup in reversed(done):
+                if backup is None:
+                    _remove(os.fspath(target))
+                else:
+                    os.replace(backup, target)
+            for tmp, _, _ in staged:
+                _remove(tmp)
+            raise
+        for _, backup in done:
+            _remove(backup)
+        return [target for _, target, _ in staged]
+
+
+_ACTIVE: contextvars.ContextVar[Transaction | None] = contextvars.ContextVar(
+    "gyroshell_output_transaction", default=None)
+
+
+def _hidden_name(target: Path, tag: str) -> str:
+    fd, name = tempfile.mkstemp(prefix=f".{target.name}.{tag}.", dir=target.parent)
+    os.close(fd)
+    os.remove(name)
+    return name
+
 
 @contextmanager
-def atomic_path(path: str | os.PathLike[str]):
-    """Yield a temporary path beside ``path``; move it onto ``path`` only on success.
+def transaction() -> Iterator[Transaction]:
+    """Stage every :func:`atomic_path` write inside the block; move them all into place at
+    its end, or none if it raises (including KeyboardInterrupt and :class:`Terminated`).
 
-    Raises ``FileNotFoundError``-style ``OSError`` early if the folder does not exist, so
-    nothing is computed for an output that could never be written.
+    Nested blocks join the outermost one.
     """
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    if not folder.is_dir():
-        raise FileNotFoundError(f"output folder does not exist: {folder}")
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix, dir=folder)
-    os.close(fd)
+    outer = _ACTIVE.get()
+    if outer is not None:
+        yield outer
+        return
+    current = Transaction()
+    token = _ACTIVE.set(current)
     try:
-        yield Path(tmp)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600; give the usual permissions
-        os.replace(tmp, target)
+        yield current
+    except BaseException:
+        current.rollback()
+        raise
     finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+        _ACTIVE.reset(token)
+    current.commit()
 
 
-def write_atomic(path: str | os.PathLike[str], writer: Callable[[Path], object]) -> Path:
+@contextmanager
+def atomic_path(path: str | os.PathLike[str], *, option: str = "output",
+                kind: str | None = None) -> Iterator[Path]:
+    """Yield a temporary path beside ``path``'s real file; move it there only on success.
+
+    The path is checked first (:func:`check_output`). Inside :func:`transaction` the file is
+    staged and moved with the others when the transaction ends. An ``OSError`` while writing
+    names ``path``, not the temporary file.
+    """
+    shown = os.fspath(path) if isinstance(path, (str, os.PathLike)) else str(path)
+    target = check_output(path, option=option, kind=kind)
+    tmp = None
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix,
+                                   dir=target.parent)
+        os.close(fd)
+        try:
+            yield Path(tmp)
+        except OSError as exc:
+            if exc.filename is None or os.fspath(exc.filename) != tmp:
+                raise
+            raise OSError(exc.errno, f"cannot write {shown}: {exc.strerror}") from None
+        _match_permissions(tmp, target)
+        active = _ACTIVE.get()
+        if active is not None:
+            active.stage(tmp, target, shown)
+            tmp = None
+        else:
+            try:
+                os.replace(tmp, target)
+            except OSError as exc:
+                raise OSError(exc.errno, f"cannot write {shown}: {exc.strerror}") from None
+            tmp = None
+    finally:
+        _remove(tmp)
+
+
+def write_atomic(path: str | os.PathLike[str], writer: Callable[[Path], object], *,
+                 option: str = "output", kind: str | None = None) -> Path:
     """Call ``writer(tmp_path)`` and move the result onto ``path`` (whole or nothing)."""
-    with atomic_path(path) as tmp:
+    with atomic_path(path, option=option, kind=kind) as tmp:
         writer(tmp)
     return Path(path)
+
+
+@contextmanager
+def termination_signals() -> Iterator[None]:
+    """Within the block, SIGTERM and SIGHUP raise :class:`Terminated` in the main thread
+    (like SIGINT raises KeyboardInterrupt), so ``finally`` blocks remove temporary files.
+    Does nothing outside the main thread."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def raise_terminated(signum, frame):
+        raise Terminated(signum)
+
+    previous = {}
+    for name in ("SIGTERM", "SIGHUP"):
+        signum = getattr(signal, name, None)
+        if signum is not None:
+            previous[signum] = signal.signal(signum, raise_terminated)
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)

@@ -7,16 +7,17 @@ the speed-independent parts A, B, M, W only once.
 
 from __future__ import annotations
 
+import math
+import warnings
 from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 
-from . import operators
-from .errors import ParameterError
+from . import operators, validation
 from .grid import Grid
 from .loads import gaussian_load
-from .parameters import TapeParameters, check_velocity
+from .parameters import TapeParameters
 
 
 class TapeModel:
@@ -28,29 +29,50 @@ class TapeModel:
         Physical and numerical parameters (SI).
     grid : Grid, optional
         Override the grid derived from ``params.spacing`` (e.g. for refinement studies).
+    force : numpy.ndarray, optional
+        Override the nodal force vector F, N (default: the Gaussian of Eq. 17).
     load : numpy.ndarray, optional
-        Override the nodal load vector F, N (default: the Gaussian of Eq. 17).
+        Deprecated name of ``force``.
+
+    Examples
+    --------
+    >>> TapeModel(TapeParameters(spacing=6.35e-3 / 8))
+    TapeModel(L_x=0.0254 m, L_y=0.00635 m, 32x8 intervals, edges='free', n=279)
     """
 
     def __init__(self, params: TapeParameters | None = None, grid: Grid | None = None,
-                 load: np.ndarray | None = None) -> None:
+                 force: np.ndarray | None = None, *, load: np.ndarray | None = None) -> None:
+        if params is not None and not isinstance(params, TapeParameters):
+            raise validation.ParameterError(
+                f"params must be a TapeParameters, got {type(params).__name__}")
+        if grid is not None and not isinstance(grid, Grid):
+            raise validation.ParameterError(f"grid must be a Grid, got {type(grid).__name__}")
         self.params = TapeParameters() if params is None else params
         self.grid = Grid.from_parameters(self.params) if grid is None else grid
         if load is not None:
-            load = np.asarray(load, dtype=float)
-            if load.shape != (self.grid.size,) or not np.all(np.isfinite(load)):
-                raise ParameterError(
-                    f"load must be a finite vector of length {self.grid.size} (N)")
-            self.__dict__["load"] = load
+            warnings.warn("TapeModel(load=...) is deprecated; use force= (N)",
+                          DeprecationWarning, stacklevel=2)
+            force = load if force is None else force
+        if force is not None:
+            self.__dict__["force"] = validation.vector("force", force, self.grid.unknowns,
+                                                       "N")
 
     def __repr__(self) -> str:
         g = self.grid
         return (f"TapeModel(L_x={g.length:.4g} m, L_y={g.width:.4g} m, {g.nx}x{g.ny} intervals,"
-                f" edges={g.edges!r}, n={g.size})")
+                f" edges={g.edges!r}, n={g.unknowns})")
+
+    @property
+    def unknowns(self) -> int:
+        """Number of unknowns n."""
+        return self.grid.unknowns
 
     @property
     def size(self) -> int:
-        return self.grid.size
+        """Deprecated name of :attr:`unknowns`."""
+        warnings.warn("TapeModel.size is deprecated; use unknowns", DeprecationWarning,
+                      stacklevel=2)
+        return self.grid.unknowns
 
     @cached_property
     def A(self) -> sp.csr_matrix:
@@ -73,21 +95,48 @@ class TapeModel:
         return self.params.density * self.grid.areas
 
     def effective_tension(self, velocity: float) -> float:
-        """T − ρV², N/m."""
-        return self.params.tension - self.params.density * check_velocity(velocity) ** 2
+        """T − ρV², N/m.
+
+        Raises
+        ------
+        ParameterError
+            If V is negative, not finite, or so large that ρV² overflows.
+        """
+        velocity = self.params.check_velocity(velocity)
+        return self.params.tension - self.params.density * velocity * velocity
 
     def K(self, velocity: float) -> sp.csr_matrix:
-        """Stiffness K(V) = A + (T − ρV²) B, N/m (symmetric)."""
+        """Stiffness K(V) = A + (T − ρV²) B, N/m: symmetric, positive definite below the
+        critical (divergence) speed and indefinite above it."""
         return (self.A + self.effective_tension(velocity) * self.B).tocsr()
 
     def G(self, velocity: float) -> sp.csr_matrix:
         """Gyroscopic matrix G(V), kg/s (skew-symmetric)."""
-        return operators.gyroscopic(self.grid, self.params, velocity)
+        return operators.gyroscopic(self.grid, self.params, self.params.check_velocity(velocity))
+
+    def divergence_speed_estimate(self) -> float:
+        """√((T + μ)/ρ), m/s, with μ = min_m (D a_m² + k/a_m²) over the width-uniform modes.
+
+        Exact for ν = 0 and free edges, otherwise close: a cheap (one vector over the
+        x-wavenumbers, no factorization) estimate of the critical speed for warnings.
+        """
+        g, p = self.grid, self.params
+        alpha = np.arange(1, g.nx) * np.pi / g.length
+        a2 = (2.0 / g.hx * np.sin(alpha * g.hx / 2)) ** 2
+        mu = float(np.min(p.D * a2 + p.k / a2))
+        return math.sqrt((p.tension + mu) / p.density)
 
     @cached_property
-    def load(self) -> np.ndarray:
+    def force(self) -> np.ndarray:
         """Nodal forces of the Gaussian load of Eq. 17, N (wrap pressure if enabled)."""
         return gaussian_load(self.grid, self.params)
+
+    @property
+    def load(self) -> np.ndarray:
+        """Deprecated name of :attr:`force` (N)."""
+        warnings.warn("TapeModel.load is deprecated; use force (N)", DeprecationWarning,
+                      stacklevel=2)
+        return self.force
 
     @cached_property
     def load_point_row(self) -> np.ndarray:

@@ -2,6 +2,9 @@
 
     M a + G(V) v + K(V) w = F,      K(V) = A + (T − ρV²) B
 
+The speed-independent parts A, B and M are assembled here; K(V) itself is formed by
+:meth:`gyroshell.model.TapeModel.K`, which caches A and B across speeds.
+
 Every matrix is assembled from a discrete *energy* (or power) with trapezoid weights, so the
 structure that the physics guarantees holds by construction, not by luck:
 
@@ -79,7 +82,7 @@ def mass(grid: Grid, params: TapeParameters) -> sp.dia_matrix:
     Examples
     --------
     >>> from gyroshell import TapeParameters, Grid
-    >>> p = TapeParameters(width=8.0, spacing=1.0, length_ratio=0.5)
+    >>> p = TapeParameters(width=8.0, spacing=1.0, length_ratio=1.0)
     >>> mass(Grid.from_parameters(p), p).diagonal()[:4]
     array([0.007, 0.014, 0.014, 0.014])
     """
@@ -138,16 +141,3 @@ def bending_foundation(grid: Grid, params: TapeParameters) -> sp.csr_matrix:
                   _forward_difference(grid.ny + 1, hy, dirichlet=not grid.free_edges))
     bend = bend + 2 * (1 - nu) * area * (dxy.T @ dxy)
     return (D * bend + sp.diags(params.k * grid.areas)).tocsr() if k else (D * bend).tocsr()
-
-
-def stiffness(grid: Grid, params: TapeParameters, velocity: float,
-              *, A: sp.spmatrix | None = None, B: sp.spmatrix | None = None) -> sp.csr_matrix:
-    """Stiffness K(V) = A + (T − ρV²) B, N/m: symmetric.
-
-    Positive definite below the critical (divergence) speed, indefinite above it.
-    ``A`` and ``B`` may be passed in to skip re-assembly in speed sweeps.
-    """
-    velocity = check_velocity(velocity)
-    A = bending_foundation(grid, params) if A is None else A
-    B = membrane(grid) if B is None else B
-    return (A + (params.tension - params.density * velocity**2) * B).tocsr()

@@ -7,9 +7,12 @@ tension in N/m, bending rigidity in N·m, shell (foundation) stiffness in N/m³.
 from __future__ import annotations
 
 import math
+import sys
+import warnings
 from dataclasses import dataclass, fields, replace
 from typing import Literal
 
+from . import validation
 from .errors import ParameterError
 
 Edges = Literal["free", "simply-supported"]
@@ -17,47 +20,51 @@ EDGE_CHOICES: tuple[str, ...] = ("free", "simply-supported")
 
 #: Fewest grid intervals allowed across the tape width.
 MIN_INTERVALS_ACROSS = 8
+#: Fewest grid intervals allowed along the tape length.
+MIN_INTERVALS_ALONG = 8
+
+
+def _check_poisson(poisson: object) -> float:
+    return validation.real("poisson", poisson, low=-1.0, high=0.5, low_open=True,
+                           high_open=True)
 
 
 def bending_rigidity(youngs_modulus: float, thickness: float, poisson: float) -> float:
-    """Plate bending rigidity D = E c³ / (12 (1 − ν²)), N·m."""
-    return youngs_modulus * thickness**3 / (12.0 * (1.0 - poisson**2))
+    """Plate bending rigidity D = E c³ / (12 (1 − ν²)), N·m.
+
+    Examples
+    --------
+    >>> round(bending_rigidity(4e9, 20e-6, 0.3), 12)
+    2.93e-06
+    """
+    E = validation.positive("youngs_modulus", youngs_modulus, "Pa")
+    c = validation.positive("thickness", thickness, "m")
+    nu = _check_poisson(poisson)
+    return validation.finite_scale("bending_rigidity", E * c * c * c / (12.0 * (1.0 - nu * nu)),
+                                   "N*m", what="youngs_modulus, thickness, poisson")
 
 
 def shell_stiffness(
     youngs_modulus: float, thickness: float, radius: float, poisson: float
 ) -> float:
-    """Shell (elastic-foundation) stiffness k = E c / (R² (1 − ν²)), N/m³."""
-    return youngs_modulus * thickness / (radius**2 * (1.0 - poisson**2))
+    """Shell (elastic-foundation) stiffness k = E c / (R² (1 − ν²)), N/m³.
 
-
-def _check_finite(name: str, value: float) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(value):
-        raise ParameterError(f"{name} must be finite, got {value}")
-    return value
-
-
-def _check_positive(name: str, value: float, unit: str) -> float:
-    value = _check_finite(name, value)
-    if value <= 0.0:
-        raise ParameterError(f"{name} must be > 0 {unit}, got {value:g}")
-    return value
-
-
-def _check_nonnegative(name: str, value: float, unit: str) -> float:
-    value = _check_finite(name, value)
-    if value < 0.0:
-        raise ParameterError(f"{name} must be >= 0 {unit}, got {value:g}")
-    return value
+    Examples
+    --------
+    >>> f"{shell_stiffness(4e9, 20e-6, 20e-3, 0.3):.4g}"
+    '2.198e+08'
+    """
+    E = validation.positive("youngs_modulus", youngs_modulus, "Pa")
+    c = validation.positive("thickness", thickness, "m")
+    R = validation.positive("radius", radius, "m")
+    nu = _check_poisson(poisson)
+    return validation.finite_scale("foundation_stiffness", E * c / (R * R * (1.0 - nu * nu)),
+                                   "N/m^3", what="youngs_modulus, thickness, radius, poisson")
 
 
 def check_velocity(velocity: float) -> float:
     """Validate a tape transport speed V (m/s): finite and >= 0; returns it as float."""
-    return _check_nonnegative("velocity", velocity, "m/s")
+    return validation.nonnegative("velocity", velocity, "m/s")
 
 
 @dataclass(frozen=True)
@@ -85,7 +92,7 @@ class TapeParameters:
     spacing : float
         Requested grid spacing Δx = Δy, m (1.549e-4: 41 intervals across the width).
         The grid takes the nearest whole number of intervals along each side.
-    load : float
+    load_pressure : float
         Peak pressure P_0 of the Gaussian load (Eq. 17), Pa (200).
     load_x, load_y : float or None
         Load centroid x_0, y_0, m; ``None`` means the centre of the tape.
@@ -112,7 +119,7 @@ class TapeParameters:
     width: float = 6.35e-3
     length_ratio: float = 4.0
     spacing: float = 1.549e-4
-    load: float = 200.0
+    load_pressure: float = 200.0
     load_x: float | None = None
     load_y: float | None = None
     edges: Edges = "free"
@@ -129,40 +136,90 @@ class TapeParameters:
             ("density", "kg/m^2"),
             ("width", "m"),
             ("spacing", "m"),
+            ("length_ratio", ""),
         ):
-            put(self, name, _check_positive(name, getattr(self, name), unit))
-        put(self, "length_ratio", _check_positive("length_ratio", self.length_ratio, ""))
-        put(self, "tension", _check_nonnegative("tension", self.tension, "N/m"))
-        put(self, "load", _check_finite("load", self.load))
-        nu = _check_finite("poisson", self.poisson)
-        if not -1.0 < nu < 0.5:
-            raise ParameterError(f"poisson must be in (-1, 0.5), got {nu:g}")
-        put(self, "poisson", nu)
-        if self.edges not in EDGE_CHOICES:
-            raise ParameterError(
-                f"edges must be one of {', '.join(EDGE_CHOICES)}, got {self.edges!r}"
-            )
+            put(self, name, validation.positive(name, getattr(self, name), unit))
+        put(self, "tension", validation.nonnegative("tension", self.tension, "N/m"))
+        put(self, "load_pressure", validation.real("load_pressure", self.load_pressure,
+                                                   unit="Pa"))
+        put(self, "poisson", _check_poisson(self.poisson))
+        validation.choice("edges", self.edges, EDGE_CHOICES)
         if self.bending_rigidity is not None:
             put(self, "bending_rigidity",
-                _check_positive("bending_rigidity", self.bending_rigidity, "N*m"))
+                validation.positive("bending_rigidity", self.bending_rigidity, "N*m"))
         if self.foundation_stiffness is not None:
-            put(self, "foundation_stiffness",
-                _check_nonnegative("foundation_stiffness", self.foundation_stiffness, "N/m^3"))
-        intervals = round(self.width / self.spacing)
-        if intervals < MIN_INTERVALS_ACROSS:
-            raise ParameterError(
-                f"spacing must leave at least {MIN_INTERVALS_ACROSS} intervals across the width "
-                f"(spacing <= {self.width / (MIN_INTERVALS_ACROSS - 0.5):.4g} m for width "
-                f"{self.width:g} m), got {self.spacing:g} m"
-            )
+            put(self, "foundation_stiffness", validation.nonnegative(
+                "foundation_stiffness", self.foundation_stiffness, "N/m^3"))
+        put(self, "wrap_pressure", validation.boolean("wrap_pressure", self.wrap_pressure))
+        self._check_intervals()
         for name, limit in (("load_x", self.length), ("load_y", self.width)):
             value = getattr(self, name)
             if value is not None:
-                value = _check_finite(name, value)
-                if not 0.0 <= value <= limit:
-                    raise ParameterError(f"{name} must be in [0, {limit:.6g}] m, got {value:g}")
-                put(self, name, value)
-        put(self, "wrap_pressure", bool(self.wrap_pressure))
+                put(self, name, validation.real(name, value, low=0.0, high=limit, unit="m"))
+        self._check_scales()
+
+    def _check_intervals(self) -> None:
+        """Enough intervals each way to mean anything, and a length that is a number."""
+        validation.finite_scale("length", self.length, "m", what="length_ratio x width")
+        across = self.width / self.spacing
+        if round(across) < MIN_INTERVALS_ACROSS:
+            raise ParameterError(
+                f"spacing must leave at least {MIN_INTERVALS_ACROSS} intervals across the width "
+                f"(spacing <= {self.width / (MIN_INTERVALS_ACROSS - 0.5):.4g} m for width "
+                f"{self.width:g} m), got {self.spacing:g} m")
+        along = self.length / self.spacing
+        if not math.isfinite(along):
+            raise ParameterError(f"length_ratio {self.length_ratio:g} with spacing "
+                                 f"{self.spacing:g} m gives an infinite number of intervals")
+        if round(along) < MIN_INTERVALS_ALONG:
+            raise ParameterError(
+                f"length_ratio must leave at least {MIN_INTERVALS_ALONG} intervals along the "
+                f"length (length_ratio >= {(MIN_INTERVALS_ALONG - 0.5) * self.spacing / self.width:.4g}"
+                f" with spacing {self.spacing:g} m), got {self.length_ratio:g} "
+                f"({round(along)} intervals)")
+
+    def _check_scales(self) -> None:
+        """Derived coefficients of K and M must be finite, normal numbers (no 1e±300 inputs
+        turning into inf or 0 inside the operators)."""
+        h2 = self.spacing * self.spacing
+        D = self.D  # validated by bending_rigidity() when derived
+        validation.finite_scale("bending_rigidity / spacing^2", D / h2, "N/m",
+                                what="the bending rigidity and spacing")
+        if self.k > 0:
+            validation.finite_scale("foundation_stiffness x spacing^2", self.k * h2, "N/m",
+                                    what="the shell stiffness and spacing")
+            validation.finite_scale("k / density", self.k / self.density, "1/s^2",
+                                    what="the shell stiffness and density")
+        validation.finite_scale("density x spacing^2", self.density * h2, "kg",
+                                what="density and spacing")
+        validation.finite_scale("D / density", D / self.density, "m^4/s^2",
+                                what="the bending rigidity and density")
+        if self.tension > 0:
+            validation.finite_scale("tension / density", self.tension / self.density,
+                                    "m^2/s^2", what="tension and density")
+            validation.finite_scale("tension / radius", self.tension / self.radius, "Pa",
+                                    what="tension and radius")
+        if self.load_pressure != 0:
+            validation.finite_scale("|load_pressure| x spacing^2",
+                                    abs(self.load_pressure) * h2, "N",
+                                    what="load_pressure and spacing")
+
+    def max_velocity(self) -> float:
+        """Largest speed V, m/s, whose ρV² is a finite double (far above any critical speed).
+        """
+        return math.sqrt(sys.float_info.max) / math.sqrt(self.density) / 2.0
+
+    def check_velocity(self, velocity: float) -> float:
+        """Validate a speed V for this tape: finite, >= 0 and ρV² finite; returns it (m/s)."""
+        velocity = check_velocity(velocity)
+        return validation.real("velocity", velocity, high=self.max_velocity(), unit="m/s")
+
+    @property
+    def load(self) -> float:
+        """Deprecated name of :attr:`load_pressure`, Pa."""
+        warnings.warn("TapeParameters.load is deprecated; use load_pressure (Pa)",
+                      DeprecationWarning, stacklevel=2)
+        return self.load_pressure
 
     # ----- derived quantities ------------------------------------------------------------
     @property

@@ -14,11 +14,11 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 
+from . import validation
 from .divergence import divergence_speed
-from .errors import SupercriticalError
+from .errors import ParameterError, SupercriticalError
 from .grid import Grid
 from .model import TapeModel
-from .parameters import check_velocity
 
 
 @dataclass(frozen=True)
@@ -52,6 +52,12 @@ class StaticSolution:
         return float(self.w[np.argmax(np.abs(self.w))])
 
 
+def _check_model(model: object) -> TapeModel:
+    if not isinstance(model, TapeModel):
+        raise ParameterError(f"model must be a TapeModel, got {type(model).__name__}")
+    return model
+
+
 def factor_definite(model: TapeModel, velocity: float):
     """Factor K(V) (SuperLU, symmetric mode); refuse if K(V) is not positive definite.
 
@@ -64,7 +70,7 @@ def factor_definite(model: TapeModel, velocity: float):
     SupercriticalError
         If K(V) has a non-positive pivot: V is at or above the critical speed.
     """
-    velocity = check_velocity(velocity)
+    velocity = _check_model(model).params.check_velocity(velocity)
     lu = spla.splu(model.K(velocity).tocsc(), permc_spec="MMD_AT_PLUS_A",
                    diag_pivot_thresh=0.0, options={"SymmetricMode": True})
     if np.array_equal(lu.perm_r, lu.perm_c):
@@ -94,14 +100,26 @@ def solve_static(model: TapeModel, velocity: float = 0.0,
     velocity : float
         Tape speed V, m/s (>= 0, below the critical speed).
     force : numpy.ndarray, optional
-        Nodal forces, N; default the model's Gaussian load (Eq. 17).
+        Nodal forces, N, a finite vector of length ``model.unknowns``; default the model's
+        Gaussian load (Eq. 17).
 
     Raises
     ------
     SupercriticalError
         At or above the critical speed (the message names it).
+    ParameterError
+        For a negative or non-finite speed, or a force of the wrong shape or not finite.
+
+    Examples
+    --------
+    >>> from gyroshell import TapeModel, TapeParameters
+    >>> model = TapeModel(TapeParameters(spacing=6.35e-3 / 8))
+    >>> w = solve_static(model, 50.0).load_point_deflection       # m
+    >>> 1e-8 < w < 1e-7
+    True
     """
-    velocity = check_velocity(velocity)
-    force = model.load if force is None else np.asarray(force, dtype=float)
+    velocity = _check_model(model).params.check_velocity(velocity)
+    force = (model.force if force is None
+             else validation.vector("force", force, model.unknowns, "N"))
     w = factor_definite(model, velocity).solve(force)
     return StaticSolution(model.grid, velocity, w, float(model.load_point_row @ w))

@@ -1,9 +1,9 @@
 """BLAS thread control for the engines' inner loops.
 
-Newmark's substitutions and ARPACK's iterations call BLAS on many small blocks; on a
-shared 2-core machine OpenBLAS's spinning worker threads made them several times (ARPACK:
-up to 100 times) slower than one thread. threadpoolctl (a dependency) holds BLAS to the
-given number of threads; without it this does nothing and the engines only run slower.
+Newmark's substitutions and ARPACK's iterations call BLAS on many small blocks, where
+OpenBLAS's spinning worker threads compete with other work on a shared machine (measured in
+benchmarks/). threadpoolctl (a dependency) holds BLAS to the given number of threads;
+without it this does nothing and the engines only run slower.
 """
 
 from __future__ import annotations

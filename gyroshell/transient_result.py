@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import budget, validation
 from .errors import ParameterError
 from .grid import Grid
 from .io import atomic_path
@@ -26,7 +27,10 @@ def steps_at(times, dt: float, steps: int, t0: float = 0.0, *, name: str) -> np.
     ParameterError
         If a time is not finite or lies outside [t0, t0 + steps dt] (by more than dt/2).
     """
-    t = np.atleast_1d(np.asarray(times, dtype=float))
+    try:
+        t = np.atleast_1d(np.asarray(times, dtype=float))
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a list of finite times, s") from None
     if t.ndim != 1 or not np.all(np.isfinite(t)):
         raise ParameterError(f"{name} must be a list of finite times, s")
     n = np.rint((t - t0) / dt)
@@ -38,16 +42,12 @@ def steps_at(times, dt: float, steps: int, t0: float = 0.0, *, name: str) -> np.
 
 def every(interval: int, steps: int, *, name: str) -> np.ndarray:
     """Step indices 0, N, 2N, ... <= steps."""
-    if isinstance(interval, bool) or int(interval) != interval or interval < 1:
-        raise ParameterError(f"{name} must be an integer >= 1, got {interval!r}")
-    return np.arange(0, steps + 1, int(interval), dtype=np.int64)
+    interval = validation.integer(name, interval, low=1)
+    return np.arange(0, steps + 1, interval, dtype=np.int64)
 
 
-def centerline_weights(grid: Grid) -> tuple[int, float]:
-    """(j, f): the centre line y = L_y/2 is (1 − f) column j + f column j + 1 of a field."""
-    s = 0.5 * grid.width / grid.hy
-    j = min(int(s), grid.ny - 1)
-    return j, s - j
+def _how_many(times) -> int:
+    return 0 if times is None else int(np.size(times))
 
 
 class Recorder:
@@ -62,11 +62,22 @@ class Recorder:
         Time step and initial time, s.
     snapshot_times, snapshot_every, centerline_times
         As in :meth:`gyroshell.newmark.Newmark.march`.
+
+    Raises
+    ------
+    ParameterError
+        If the history and the kept fields cannot fit in memory
+        (:func:`gyroshell.budget.check_transient`), checked before allocating them.
     """
 
     def __init__(self, grid: Grid, steps: int, dt: float, t0: float = 0.0, *,
                  snapshot_times=None, snapshot_every: int | None = None,
                  centerline_times=None) -> None:
+        steps = validation.integer("steps", steps, low=1)
+        kept = budget.snapshot_count(steps, snapshot_every) if snapshot_every else 0
+        budget.check_transient(grid.nx, grid.ny, grid.edges, steps,
+                               fields=kept + _how_many(snapshot_times),
+                               centerlines=_how_many(centerline_times))
         snap = np.zeros(0, dtype=np.int64)
         if snapshot_times is not None:
             snap = steps_at(snapshot_times, dt, steps, t0, name="snapshot_times")
@@ -76,7 +87,6 @@ class Recorder:
         if centerline_times is not None:
             line = steps_at(centerline_times, dt, steps, t0, name="centerline_times")
         self.grid, self._snap, self._line = grid, snap, line
-        self._j, self._f = centerline_weights(grid)
         self._fields = np.empty((len(snap), *grid.shape))
         self._lines = np.empty((len(line), grid.nx + 1))
         self._k_snap = self._k_line = 0
@@ -95,8 +105,7 @@ class Recorder:
             self._fields[self._k_snap] = field_n
             self._k_snap += 1
         if flags & 2:
-            self._lines[self._k_line] = ((1.0 - self._f) * field_n[:, self._j]
-                                         + self._f * field_n[:, self._j + 1])
+            self._lines[self._k_line] = self.grid.centerline(field_n)
             self._k_line += 1
 
     def snapshots(self, times: np.ndarray) -> Snapshots:
@@ -218,11 +227,18 @@ class TransientResult:
             frame.to_csv(tmp, index=False, float_format="%.17g")
         return Path(path)
 
+    @staticmethod
+    def read_csv(path: str | os.PathLike[str]):
+        """The load-point history written by :meth:`to_csv`, as a DataFrame (t in s, w in m),
+        bit-exact (pandas' round-trip float parser)."""
+        import pandas as pd
+
+        # pandas 2 parses floats with a fast, inexact parser unless told; pandas 3 is exact
+        # by default and deprecates the option.
+        exact = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision":
+                                                                     "round_trip"}
+        return pd.read_csv(path, **exact)
+
     def save_snapshots(self, path: str | os.PathLike[str]) -> Path:
         """Write the snapshots (fields, centre lines, coordinates) as .npz."""
         return self.snapshots.save(path)
-
-    @staticmethod
-    def load_snapshots(path: str | os.PathLike[str]) -> Snapshots:
-        """Read snapshots written by :meth:`save_snapshots`."""
-        return Snapshots.load(path)

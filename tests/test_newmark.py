@@ -37,8 +37,8 @@ def test_trapezoidal_rule_conserves_energy_with_gyroscopic_forces(small, start, 
     """β = 1/4, γ = 1/2, constant load, V > 0: E = ½vᵀMv + ½wᵀKw − Fᵀw is constant."""
     w0 = v0 = None
     if start == "moving":  # a state that makes G v large from the first step
-        w0 = 1e-8 * rng.standard_normal(small.size)
-        v0 = 1e-3 * rng.standard_normal(small.size)
+        w0 = 1e-8 * rng.standard_normal(small.unknowns)
+        v0 = 1e-3 * rng.standard_normal(small.unknowns)
     result = march(small, SPEED, dt=2e-6, steps=5000, w0=w0, v0=v0, record_energy=True)
     energy = result.energy
     scale = max(static_energy_scale(small, SPEED), np.abs(energy).max())
@@ -73,7 +73,7 @@ def modal_load_point(model: TapeModel):
 
 def state_space_field(model: TapeModel, velocity: float):
     """Exact w(t) at V > 0 from rest under H(t) F: matrix exponential of z' = A z + b."""
-    n = model.size
+    n = model.unknowns
     K, G = model.K(velocity).toarray(), model.G(velocity).toarray()
     minv = 1.0 / model.mass_diagonal[:, None]
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-minv * K, -minv * G]])

@@ -56,6 +56,6 @@ def test_membrane_matrix_is_positive_definite(model):
 def test_assembly_is_vectorised_and_fast_on_the_long_tape():
     """The L_x/L_y = 19 Table 1 grid (~33,000 unknowns) has the expected size and band."""
     m = TapeModel(TapeParameters(length_ratio=19))
-    assert m.size == 778 * 42
+    assert m.unknowns == 778 * 42
     K = m.K(50.0).tocoo()
     assert np.max(np.abs(K.row - K.col)) <= 2 * (m.grid.ny + 1) + 2

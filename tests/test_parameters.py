@@ -34,7 +34,7 @@ def test_grid_takes_nearest_whole_intervals_and_reports_spacing():
 
 def test_field_vector_round_trip(rng):
     g = Grid.from_parameters(TapeParameters(spacing=6.35e-3 / 8, length_ratio=2))
-    v = rng.standard_normal(g.size)
+    v = rng.standard_normal(g.unknowns)
     f = g.to_field(v)
     assert f.shape == g.shape
     assert np.all(f[0] == 0) and np.all(f[-1] == 0)

@@ -3,7 +3,9 @@
 ``main(argv)`` builds one sub-command per module listed in :data:`SUBCOMMANDS`; each module
 has ``register(subparsers, common)`` which adds its parser and sets ``func``. User errors
 (bad parameters, supercritical requests, unwritable outputs) print one line on stderr and
-exit with code 2; numerical failures exit with code 1; no tracebacks for either.
+exit with code 2; numerical failures exit with code 1; no tracebacks for either. Ctrl-C,
+SIGTERM and SIGHUP stop the run, remove its temporary files and leave no output (exit codes
+130, 143 and 129).
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ import importlib
 import sys
 
 from ..errors import ConvergenceError, ParameterError
+from ..io import Terminated, termination_signals
 from .common import ArgumentParser, UserError, common_parser
 
 #: Sub-command modules (gyroshell.cli.<name>), in help order.
@@ -28,6 +31,7 @@ def build_parser() -> ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
                                 parser_class=ArgumentParser)
     common = common_parser()
+    common_without_velocity = common_parser(velocity=False)
     for name in SUBCOMMANDS:
         try:
             module = importlib.import_module(f"{__name__}.{name}")
@@ -35,7 +39,7 @@ def build_parser() -> ArgumentParser:
             if exc.name == f"{__name__}.{name}":
                 continue  # sub-command not built yet
             raise
-        module.register(sub, common)
+        module.register(sub, common, common_without_velocity)
     return parser
 
 
@@ -43,17 +47,19 @@ def main(argv: list[str] | None = None) -> int:
     """Run the CLI; returns the exit code (0 ok, 1 numerical failure, 2 user error)."""
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
-        return int(args.func(args) or 0)
-    except UserError as exc:
+        with termination_signals():
+            args = parser.parse_args(argv)
+            return int(args.func(args) or 0)
+    except (UserError, ParameterError) as exc:
         return _fail(str(exc), 2)
-    except (ParameterError, FileNotFoundError, IsADirectoryError, NotADirectoryError,
-            PermissionError) as exc:
+    except OSError as exc:  # an output that failed while being written (disk full, ...)
         return _fail(str(exc), 2)
     except ConvergenceError as exc:
         return _fail(f"numerical failure: {exc}", 1)
+    except Terminated as exc:
+        return _fail(f"terminated by {exc}; no output written", 128 + exc.signum)
     except KeyboardInterrupt:
-        return _fail("interrupted", 130)
+        return _fail("interrupted; no output written", 130)
 
 
 def _fail(message: str, code: int) -> int:

@@ -5,9 +5,17 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 
-from ..parameters import EDGE_CHOICES, TapeParameters
+from .. import budget
+from ..errors import ParameterError
+from ..parameters import EDGE_CHOICES, TapeParameters, check_velocity
+
+#: Option values that are negative numbers (``-1e-4``, ``-.5``, ``-inf``): argparse's own
+#: pattern misses exponents, so ``--spacing -1e-4`` would be taken for an option.
+NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$",
+                             re.IGNORECASE)
 
 
 class UserError(Exception):
@@ -15,7 +23,13 @@ class UserError(Exception):
 
 
 class ArgumentParser(argparse.ArgumentParser):
-    """argparse, but a usage error is one line on stderr and exit code 2."""
+    """argparse, but a usage error is one line on stderr and exit code 2, option names must be
+    spelled out (no abbreviations), and negative numbers are option values."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBER
 
     def error(self, message: str):  # noqa: D401 - argparse API
         print(f"{self.prog}: error: {message}", file=sys.stderr)
@@ -34,14 +48,58 @@ def real(text: str) -> float:
 
 
 def positive_int(text: str) -> int:
-    """An integer >= 1."""
+    """An integer >= 1; whole numbers in exponent form (``1e6``) are accepted."""
     try:
         value = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+        try:
+            number = float(text)
+        except ValueError:
+            number = math.nan
+        if not (math.isfinite(number) and number.is_integer()):
+            raise argparse.ArgumentTypeError(f"not an integer: {text!r}") from None
+        value = int(number)
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
     return value
+
+
+def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
+    """Speeds, m/s, from ``"start:stop:step"`` (stop included) or ``"v1,v2,..."``.
+
+    The number of speeds is checked against :data:`gyroshell.budget.MAX_SWEEP_SPEEDS`
+    before the list is built, so ``0:100:1e-12`` is refused at once.
+
+    Raises
+    ------
+    ParameterError
+        For a malformed or non-finite entry, a step <= 0, stop < start, a negative speed, or
+        too many speeds.
+    """
+    text = text.strip()
+    form = f"{option} must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
+    parts = text.split(":") if ":" in text else [t for t in text.split(",") if t.strip()]
+    try:
+        numbers = [float(t) for t in parts]
+    except ValueError:
+        raise ParameterError(form) from None
+    if not numbers or (":" in text and len(numbers) != 3):
+        raise ParameterError(form)
+    for number in numbers:
+        if not math.isfinite(number):
+            raise ParameterError(f"{option} {text!r}: every number must be finite (m/s)")
+    if ":" not in text:
+        budget.check_sweep_length(len(numbers), what=f"{option} {text[:40]!r}")
+        velocities = numbers
+    else:
+        start, stop, step = numbers
+        if not step > 0 or stop < start:
+            raise ParameterError(f"{option} {text!r}: need step > 0 and stop >= start (m/s)")
+        count = math.floor((stop - start) / step + 1e-9) + 1 \
+            if math.isfinite((stop - start) / step) else math.inf
+        budget.check_sweep_length(count, what=f"{option} {text!r}")
+        velocities = [start + i * step for i in range(int(count))]
+    return [check_velocity(v) for v in velocities]
 
 
 #: (flag, TapeParameters field, help) for the physical overrides.
@@ -57,12 +115,14 @@ _OVERRIDES = (
      "override D, N*m (default E c^3 / (12 (1 - nu^2)))"),
     ("--foundation-stiffness", "foundation_stiffness",
      "override the shell stiffness k, N/m^3 (default E c / (R^2 (1 - nu^2)))"),
-    ("--load", "load", "peak pressure P_0 of the Gaussian load (Eq. 17), Pa (default 200)"),
+    ("--load", "load_pressure",
+     "peak pressure P_0 of the Gaussian load (Eq. 17), Pa (default 200)"),
 )
 
 
-def common_parser() -> argparse.ArgumentParser:
-    """Parent parser with the options every sub-command shares."""
+def common_parser(*, velocity: bool = True) -> argparse.ArgumentParser:
+    """Parent parser with the tape options; ``--velocity`` only for sub-commands that use
+    one speed (so that ``critical --velocity 5`` is refused, not ignored)."""
     p = argparse.ArgumentParser(add_help=False)
     g = p.add_argument_group("tape model (SI units; defaults: the paper's Table 1)")
     g.add_argument("--length-ratio", type=real, default=4.0,
@@ -71,10 +131,11 @@ def common_parser() -> argparse.ArgumentParser:
                    help="lateral edges y = 0, L_y (default free; ends are simply supported)")
     g.add_argument("--spacing", type=real, default=1.549e-4,
                    help="grid spacing, m (default 1.549e-4: 41 intervals across)")
-    g.add_argument("--velocity", type=real, default=0.0,
-                   help="tape transport speed V, m/s (default 0)")
-    for flag, _field, text in _OVERRIDES:
-        g.add_argument(flag, type=real, default=None, help=text)
+    if velocity:
+        g.add_argument("--velocity", type=real, default=0.0,
+                       help="tape transport speed V, m/s, >= 0 (default 0)")
+    for flag, field, text in _OVERRIDES:
+        g.add_argument(flag, dest=field, type=real, default=None, help=text)
     return p
 
 

@@ -6,10 +6,11 @@ import argparse
 import math
 import time
 
-from .common import parameters_from_args, positive_int, print_json
+from .common import parameters_from_args, parse_velocities, positive_int, print_json
 
 
-def register(sub, common: argparse.ArgumentParser) -> None:
+def register(sub, common: argparse.ArgumentParser,
+             common_without_velocity: argparse.ArgumentParser) -> None:
     p = sub.add_parser(
         "modes", parents=[common], help="lowest frequencies and periods at speed V",
         description="Lowest angular frequencies (rad/s), frequencies (Hz) and periods (s) of "
@@ -20,7 +21,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     p.set_defaults(func=run_modes)
 
     p = sub.add_parser(
-        "critical", parents=[common], help="critical speed, two ways, with context values",
+        "critical", parents=[common_without_velocity], help="critical speed, two ways, with context values",
         description="Critical tape speed (m/s): (a) where the lowest frequency reaches zero "
                     "(eigen-solves and root-finding) and (b) the divergence speed "
                     "sqrt((T + mu_min)/rho) (one eigsh), beside sqrt(T/rho), the strip value "
@@ -30,12 +31,12 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     p.set_defaults(func=run_critical)
 
     p = sub.add_parser(
-        "sweep", parents=[common], help="frequencies against tape speed (CSV, plot)",
+        "sweep", parents=[common_without_velocity], help="frequencies against tape speed (CSV, plot)",
         description="Lowest frequencies (rad/s) at a list of tape speeds (m/s), tracked into "
                     "branches by mode-shape correlation.")
     p.add_argument("--velocities", default="0:100:10",
-                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...' "
-                        "(default 0:100:10)")
+                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...', "
+                        "finite, >= 0, at most 10000 of them (default 0:100:10)")
     p.add_argument("--count", type=positive_int, default=6,
                    help="frequencies per speed, >= 1 (default 6)")
     p.add_argument("--out", metavar="FILE.csv", help="write the table as CSV")
@@ -46,10 +47,9 @@ def register(sub, common: argparse.ArgumentParser) -> None:
 def run_modes(args: argparse.Namespace) -> int:
     from ..eigen import modes
     from ..model import TapeModel
-    from ..parameters import check_velocity
 
     params = parameters_from_args(args)
-    velocity = check_velocity(args.velocity)
+    velocity = params.check_velocity(args.velocity)
     model = TapeModel(params)
     t0 = time.perf_counter()
     res = modes(model, velocity, args.count)
@@ -64,13 +64,13 @@ def run_modes(args: argparse.Namespace) -> int:
         "supercritical": res.supercritical,
         "residual": res.residuals.tolist(),
         "foundation_frequency": params.foundation_frequency,
-        "nx": g.nx, "ny": g.ny, "unknowns": g.size, "edges": g.edges,
+        "nx": g.nx, "ny": g.ny, "unknowns": g.unknowns, "edges": g.edges,
         "seconds": elapsed,
     }
     if args.json:
         print_json(out)
         return 0
-    print(f"grid: {g.nx} x {g.ny} intervals, {g.size} unknowns, {g.edges} edges; "
+    print(f"grid: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns, {g.edges} edges; "
           f"V = {velocity:g} m/s")
     if res.supercritical:
         print("supercritical: K(V) is indefinite, the tape diverges "
@@ -97,12 +97,12 @@ def run_critical(args: argparse.Namespace) -> int:
                divergence_seconds=c.info["divergence_time"],
                eigen_solves=c.info["evaluations"], mu=c.info["mu"],
                length_ratio=params.length_ratio, edges=params.edges,
-               unknowns=model.size)
+               unknowns=model.unknowns)
     if args.json:
         print_json(out)
         return 0
     g = model.grid
-    print(f"grid: {g.nx} x {g.ny} intervals, {g.size} unknowns, {g.edges} edges, "
+    print(f"grid: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns, {g.edges} edges, "
           f"L_x/L_y = {params.length_ratio:g}")
     print(f"critical speed (a), lowest frequency -> 0:   {c.critical_speed:.9g} m/s "
           f"({c.info['evaluations']} eigen-solves, {c.info['critical_time']:.2f} s)")
@@ -119,26 +119,21 @@ def run_critical(args: argparse.Namespace) -> int:
 
 
 def run_sweep(args: argparse.Namespace) -> int:
-    from ..io import write_atomic
+    from ..io import PLOT, check_outputs, transaction, write_atomic
     from ..model import TapeModel
-    from ..sweep import check_velocities, parse_velocities, plot_sweep, sweep
+    from ..sweep import plot_sweep, sweep
 
     params = parameters_from_args(args)
-    velocities = check_velocities(parse_velocities(args.velocities))
-    for path in (args.out, args.plot):  # fail before computing if a folder is missing
-        if path is not None:
-            from pathlib import Path
-
-            folder = Path(path).parent
-            if str(folder) and not folder.is_dir():
-                raise FileNotFoundError(f"output folder does not exist: {folder}")
+    velocities = [params.check_velocity(v) for v in parse_velocities(args.velocities)]
+    check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT)})
     model = TapeModel(params)
     frame = sweep(model, velocities, args.count, progress=None)
-    if args.out:
-        write_atomic(args.out, lambda tmp: frame.to_csv(tmp, index=False))
-    if args.plot:
-        plot_sweep(frame, args.plot,
-                   title=f"L_x/L_y = {params.length_ratio:g}, {params.edges} edges")
+    with transaction():
+        if args.out:
+            write_atomic(args.out, lambda tmp: frame.to_csv(tmp, index=False), option="--out")
+        if args.plot:
+            plot_sweep(frame, args.plot,
+                       title=f"L_x/L_y = {params.length_ratio:g}, {params.edges} edges")
     if not args.out:
         table = frame.pivot(index="velocity", columns="rank", values="omega")
         table.columns = [f"omega_{c + 1}" for c in table.columns]

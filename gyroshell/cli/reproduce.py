@@ -6,7 +6,8 @@ import argparse
 import time
 
 
-def register(sub, common: argparse.ArgumentParser) -> None:
+def register(sub, common: argparse.ArgumentParser,
+             common_without_velocity: argparse.ArgumentParser) -> None:
     from ..reproduce import STUDIES
 
     p = sub.add_parser(

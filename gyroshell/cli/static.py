@@ -7,7 +7,8 @@ import argparse
 from .common import parameters_from_args, print_json
 
 
-def register(sub, common: argparse.ArgumentParser) -> None:
+def register(sub, common: argparse.ArgumentParser,
+             common_without_velocity: argparse.ArgumentParser) -> None:
     p = sub.add_parser(
         "static", parents=[common], help="static deflection K(V) w = F under the load",
         description="Static deflection of the tape under the Gaussian load of Eq. 17 at speed "
@@ -19,11 +20,10 @@ def register(sub, common: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..model import TapeModel
-    from ..parameters import check_velocity
     from ..static import solve_static
 
     params = parameters_from_args(args)
-    velocity = check_velocity(args.velocity)
+    velocity = params.check_velocity(args.velocity)
     model = TapeModel(params)
     sol = solve_static(model, velocity)
     g = model.grid
@@ -33,7 +33,7 @@ def run(args: argparse.Namespace) -> int:
         "velocity": velocity,
         "load_centroid": list(params.load_centroid),
         "nx": g.nx, "ny": g.ny, "spacing_x": g.hx, "spacing_y": g.hy,
-        "unknowns": g.size,
+        "unknowns": g.unknowns,
         "edges": g.edges,
         "bending_rigidity": params.D, "foundation_stiffness": params.k,
     }
@@ -41,7 +41,7 @@ def run(args: argparse.Namespace) -> int:
         print_json(out)
     else:
         print(f"grid: {g.nx} x {g.ny} intervals, spacing {g.hx:.6g} m x {g.hy:.6g} m, "
-              f"{g.size} unknowns, {g.edges} edges")
+              f"{g.unknowns} unknowns, {g.edges} edges")
         print(f"velocity:              {velocity:g} m/s")
         print(f"load-point deflection: {sol.load_point_deflection:.6e} m")
         print(f"maximum deflection:    {sol.max_deflection:.6e} m")

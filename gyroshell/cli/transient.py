@@ -3,19 +3,21 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
+import sys
 
+from ..factorization import BACKENDS
 from .common import UserError, parameters_from_args, positive_int, print_json, real
 
 
-def register(sub, common: argparse.ArgumentParser) -> None:
+def register(sub, common: argparse.ArgumentParser,
+             common_without_velocity: argparse.ArgumentParser) -> None:
     p = sub.add_parser(
         "transient", parents=[common], help="transient response to the step load (Newmark)",
         description="March M a + G v + K w = H(t) F with Newmark's method (paper Eqs. 10-16) "
                     "from rest at the wrapped equilibrium. Writes the load-point displacement "
                     "history (CSV: t in s, w in m) and, if asked, full-field snapshots (.npz).")
     p.add_argument("--steps", type=positive_int, required=True, help="number of time steps")
-    p.add_argument("--dt", type=real, required=True, help="time step, s (paper: 2e-6)")
+    p.add_argument("--dt", type=real, required=True, help="time step, s, > 0 (paper: 2e-6)")
     p.add_argument("--beta", type=real, default=0.25,
                    help="Newmark beta (default 1/4; 1 with gamma 3/2 damps to steady state)")
     p.add_argument("--gamma", type=real, default=0.5, help="Newmark gamma (default 1/2)")
@@ -26,41 +28,55 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                    help="keep the full field w (m) every N steps (needs --snapshots)")
     p.add_argument("--snapshots", metavar="FILE.npz", default=None,
                    help="write the snapshots: x, y (m), times (s), fields (m)")
-    p.add_argument("--backend", default="auto",
-                   help="sparse LU back-end: auto, superlu, umfpack, pardiso, banded "
-                        "(default auto)")
+    p.add_argument("--backend", default="auto", choices=("auto", *BACKENDS),
+                   help="sparse LU back-end (default auto)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON summary (SI units)")
     p.set_defaults(func=run)
 
 
-def _check_folder(path: str | None) -> None:
-    """Fail before computing if an output could never be written."""
-    if path is not None:
-        folder = Path(path).parent
-        if not folder.is_dir():
-            raise FileNotFoundError(f"output folder does not exist: {folder}")
-        if Path(path).is_dir():
-            raise IsADirectoryError(f"output is a directory: {path}")
+def _stiffness_scale(model, velocity: float) -> float:
+    """Largest |K_ii|, N/m: the size of the βΔt² K term in Newmark's matrix."""
+    import numpy as np
+
+    return float(np.abs(model.K(velocity).diagonal()).max())
+
+
+def _warn_if_supercritical(model, velocity: float) -> None:
+    """One warning line when V is above the (estimated) critical speed: the run is legal,
+    but its response grows without bound."""
+    estimate = model.divergence_speed_estimate()
+    if velocity >= estimate:
+        print(f"gyroshell: warning: V = {velocity:g} m/s is at or above the critical speed "
+              f"(about {estimate:.4g} m/s): the displacement will grow without bound",
+              file=sys.stderr)
 
 
 def run(args: argparse.Namespace) -> int:
+    from .. import budget, io, validation
+    from ..grid import Grid
     from ..model import TapeModel
     from ..newmark import march
 
     if (args.snapshot_every is None) != (args.snapshots is None):
         raise UserError("--snapshot-every and --snapshots go together")
     params = parameters_from_args(args)
-    _check_folder(args.out)
-    _check_folder(args.snapshots)
-    model = TapeModel(params)
-    result = march(model, args.velocity, dt=args.dt, steps=args.steps, beta=args.beta,
+    velocity = params.check_velocity(args.velocity)
+    io.check_outputs({"--out": (args.out, None), "--snapshots": (args.snapshots, None)})
+    grid = Grid.from_parameters(params)
+    budget.check_transient(grid.nx, grid.ny, grid.edges, args.steps,
+                           fields=budget.snapshot_count(args.steps, args.snapshot_every))
+    model = TapeModel(params, grid)
+    validation.time_step(args.dt, args.beta, stiffness_scale=_stiffness_scale(model, velocity))
+    _warn_if_supercritical(model, velocity)
+    result = march(model, velocity, dt=args.dt, steps=args.steps, beta=args.beta,
                    gamma=args.gamma, backend=args.backend,
                    snapshot_every=args.snapshot_every, progress=False if args.quiet else None)
-    if args.out is not None:
-        result.to_csv(args.out)
-    if args.snapshots is not None:
-        result.save_snapshots(args.snapshots)
+    with io.transaction():
+        if args.out is not None:
+            result.to_csv(args.out)
+        if args.snapshots is not None:
+            result.save_snapshots(args.snapshots)
     g, info, w = model.grid, result.info, result.load_point
     out = {
         "velocity": result.velocity, "dt": result.dt, "steps": result.steps,
@@ -69,7 +85,7 @@ def run(args: argparse.Namespace) -> int:
         "final_load_point_displacement": float(w[-1]),
         "max_load_point_displacement": float(w.max()),
         "min_load_point_displacement": float(w.min()),
-        "nx": g.nx, "ny": g.ny, "unknowns": g.size,
+        "nx": g.nx, "ny": g.ny, "unknowns": g.unknowns,
         "backend": info["backend"], "factor_time": info["factor_time"],
         "loop_time": info["loop_time"], "step_time": info["step_time"],
         "out": args.out, "snapshots": args.snapshots,
@@ -77,7 +93,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(out)
     else:
-        print(f"grid: {g.nx} x {g.ny} intervals, {g.size} unknowns; V = {result.velocity:g} "
+        print(f"grid: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns; V = {result.velocity:g} "
               f"m/s, dt = {result.dt:g} s, {result.steps} steps, beta = {result.beta:g}, "
               f"gamma = {result.gamma:g}")
         print(f"load-point displacement: final {w[-1]:.6e} m, range [{w.min():.6e}, "

@@ -47,10 +47,9 @@ def edge_reflection(settings: Settings) -> dict:
                               length_ratio=narrow_p.length / (narrow_p.width
                                                               * (ny + 2 * extra) / ny))
     wide_grid_model = TapeModel(wide_p)
-    assert wide_grid_model.grid.ny == ny + 2 * extra
     load = gaussian_load(wide_grid_model.grid, wide_p,
                          exponent=gaussian_exponent(narrow_p.width))
-    wide = TapeModel(wide_p, load=load)
+    wide = TapeModel(wide_p, force=load)
     runs = [march(m, 0.0, dt=REFLECTION_DT, steps=REFLECTION_STEPS, progress=False,
                   snapshot_every=1 if m is narrow else None) for m in (narrow, wide)]
     t = runs[0].times
@@ -71,7 +70,7 @@ def wavelengths(settings: Settings, velocity: float = 50.0) -> dict:
     res = march(model, velocity, dt=PAPER_DT, steps=steps, centerline_times=[WAVELENGTH_TIME],
                 progress=settings.progress)
     s = res.snapshots
-    static_line = _centerline(model, solve_static(model, velocity).field)
+    static_line = model.grid.centerline(solve_static(model, velocity).field)
     dist = s.centerlines[0] - static_line
     x, x0 = s.x, model.params.load_centroid[0]
     span = 0.2 * model.params.length
@@ -79,11 +78,6 @@ def wavelengths(settings: Settings, velocity: float = 50.0) -> dict:
     down = (x > x0 + 1e-3) & (x < x0 + span)
     return dict(upstream=dominant_wavelength(x[up], dist[up]),
                 downstream=dominant_wavelength(x[down], dist[down]))
-
-
-def _centerline(model: TapeModel, field: np.ndarray) -> np.ndarray:
-    ny = model.grid.ny
-    return 0.5 * (field[:, ny // 2] + field[:, (ny + 1) // 2])
 
 
 def fronts(settings: Settings, velocity: float) -> pd.DataFrame:

@@ -1,0 +1,162 @@
+"""Size before work: memory estimates checked before anything large is allocated.
+
+Every engine factors a sparse matrix of the grid's unknowns; a transient keeps one float per
+step and the full fields it is asked for; a sweep runs one eigen-solve per speed. Each
+estimate here takes microseconds and is checked against a limit, so that a request that
+cannot fit (``--spacing 1e-9``, ``--steps 1e12``, ``--velocities 0:100:1e-12``) is refused
+in one line naming the estimate and the limit, instead of exhausting the machine.
+
+The memory limit is half the physical memory, or the environment variable
+``GYROSHELL_MEMORY_LIMIT`` (bytes, e.g. ``4e9``) if set.
+
+Examples
+--------
+>>> round(model_bytes(779, 41, "free") / 1e6)   # MB, the paper's L_x/L_y = 19 grid
+181
+>>> check_unknowns(10**7, 10**4, "free")
+Traceback (most recent call last):
+...
+gyroshell.errors.ParameterError: the grid of 10000000 x 10000 intervals ...
+"""
+
+from __future__ import annotations
+
+import math
+import os
+
+from .errors import ParameterError
+
+#: Environment variable overriding the memory limit, bytes.
+MEMORY_LIMIT_VARIABLE = "GYROSHELL_MEMORY_LIMIT"
+#: Share of the physical memory a run may plan to use.
+MEMORY_FRACTION = 0.5
+#: Bytes per stored entry of a sparse factor: a complex value (16) and a 32-bit index (4),
+#: rounded up (the eigen-solver factors complex shifted matrices).
+BYTES_PER_FACTOR_ENTRY = 24
+#: Bytes per unknown outside the factor: K, A, B, G and the shifted matrices (~13 entries
+#: per row each, 12 bytes per entry) and the work vectors.
+BYTES_PER_UNKNOWN = 1500
+#: Factor entries per unknown: the minimum-degree ordering on this 13-point stencil stays
+#: below both four times the unknowns per x-line (a band) and 12 log2(n) (nested
+#: dissection); measured 40-134 per unknown on grids of 400-33,000 unknowns.
+BAND_FILL_FACTOR = 4
+DISSECTION_FILL_FACTOR = 12
+#: SuperLU indexes its factors with 32-bit integers.
+MAX_FACTOR_ENTRIES = 2**31 - 1
+#: Bytes a transient keeps per step: time, load-point value, energy, and a step flag.
+BYTES_PER_STEP = 25
+#: Longest speed list a sweep accepts (one eigen-solve each).
+MAX_SWEEP_SPEEDS = 10_000
+
+
+def memory_limit() -> float:
+    """Bytes a run may plan to use: ``GYROSHELL_MEMORY_LIMIT`` or half the physical memory."""
+    text = os.environ.get(MEMORY_LIMIT_VARIABLE)
+    if text:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not (math.isfinite(value) and value > 0):
+            raise ParameterError(f"{MEMORY_LIMIT_VARIABLE} must be a number of bytes > 0, "
+                                 f"got {text!r}")
+        return value
+    try:
+        total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (ValueError, OSError, AttributeError):  # pragma: no cover - not POSIX
+        total = 8e9
+    return MEMORY_FRACTION * total
+
+
+def _bytes(value: float) -> str:
+    for unit, scale in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if value >= scale:
+            return f"{value / scale:.3g} {unit}"
+    return f"{value:.0f} B"
+
+
+def grid_unknowns(nx: int, ny: int, edges: str) -> int:
+    """Unknowns of an ``nx`` x ``ny``-interval grid: (nx − 1)(ny ± 1)."""
+    return (nx - 1) * (ny + 1 if edges == "free" else ny - 1)
+
+
+def factor_entries(nx: int, ny: int, edges: str) -> float:
+    """Estimated stored entries of a sparse LU factor of a grid operator (an upper bound)."""
+    n = grid_unknowns(nx, ny, edges)
+    across = ny + 1
+    per_row = min(BAND_FILL_FACTOR * across, DISSECTION_FILL_FACTOR * math.log2(max(n, 2)))
+    return float(n) * per_row
+
+
+def model_bytes(nx: int, ny: int, edges: str) -> float:
+    """Estimated memory of the operators and one factorization on the grid, bytes."""
+    n = grid_unknowns(nx, ny, edges)
+    return BYTES_PER_FACTOR_ENTRY * factor_entries(nx, ny, edges) + BYTES_PER_UNKNOWN * n
+
+
+def check_unknowns(nx: int, ny: int, edges: str) -> float:
+    """Refuse a grid whose operators and factorization cannot fit; returns the estimate.
+
+    Raises
+    ------
+    ParameterError
+        Naming the grid, the estimated memory and the limit.
+    """
+    estimate = model_bytes(nx, ny, edges)
+    limit = memory_limit()
+    what = (f"the grid of {nx} x {ny} intervals ({grid_unknowns(nx, ny, edges)} unknowns)")
+    if factor_entries(nx, ny, edges) > MAX_FACTOR_ENTRIES:
+        raise ParameterError(
+            f"{what} needs about {factor_entries(nx, ny, edges):.3g} factor entries, more "
+            f"than the sparse solver's limit {MAX_FACTOR_ENTRIES:.3g} (about "
+            f"{_bytes(estimate)}); use a larger spacing or a smaller length_ratio")
+    if estimate > limit:
+        raise ParameterError(
+            f"{what} needs about {_bytes(estimate)} for its operators and factorization, "
+            f"more than the limit {_bytes(limit)}; use a larger spacing or a smaller "
+            f"length_ratio (or set {MEMORY_LIMIT_VARIABLE})")
+    return estimate
+
+
+def transient_bytes(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0,
+                    centerlines: int = 0) -> float:
+    """Estimated memory of a transient run, bytes: the model, the per-step history and the
+    kept full fields and centre lines."""
+    nodes = (nx + 1) * (ny + 1)
+    return (model_bytes(nx, ny, edges) + BYTES_PER_STEP * (steps + 1.0)
+            + 8.0 * nodes * fields + 8.0 * (nx + 1) * centerlines)
+
+
+def snapshot_count(steps: int, every: int | None) -> int:
+    """Full fields kept when one is kept every ``every`` steps (0 if None)."""
+    return 0 if every is None else steps // every + 1
+
+
+def check_transient(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0,
+                    centerlines: int = 0) -> float:
+    """Refuse a transient that cannot fit in memory; returns the estimate, bytes.
+
+    Raises
+    ------
+    ParameterError
+        Naming the steps, the kept fields, the estimate and the limit.
+    """
+    check_unknowns(nx, ny, edges)
+    estimate = transient_bytes(nx, ny, edges, steps, fields=fields, centerlines=centerlines)
+    limit = memory_limit()
+    if estimate > limit:
+        kept = f" and {fields} full fields of {(nx + 1) * (ny + 1)} nodes" if fields else ""
+        raise ParameterError(
+            f"a transient of {steps} steps{kept} needs about {_bytes(estimate)}, more than the "
+            f"limit {_bytes(limit)}; use fewer steps or keep fewer snapshots "
+            f"(or set {MEMORY_LIMIT_VARIABLE})")
+    return estimate
+
+
+def check_sweep_length(count: float, *, what: str = "velocities") -> int:
+    """Refuse a speed sweep with more than :data:`MAX_SWEEP_SPEEDS` speeds; returns count."""
+    if not count <= MAX_SWEEP_SPEEDS:
+        raise ParameterError(
+            f"{what} gives {count:.4g} speeds, more than the limit {MAX_SWEEP_SPEEDS} per "
+            "sweep (one eigen-solve each); use a larger step")
+    return int(count)
