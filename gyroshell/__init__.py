@@ -10,43 +10,69 @@ All quantities are SI.
 
 from __future__ import annotations
 
+import importlib
+import sys
+import types
 from importlib.metadata import PackageNotFoundError
 from importlib.metadata import version as _package_version
 
-from .divergence import Divergence, divergence, divergence_speed
 from .errors import ConvergenceError, ParameterError, SupercriticalError
-from .grid import Grid
-from .loads import Harmonic, Ramp, gaussian_load, pressure_load, step
-from .model import TapeModel
-from .operators import bending_foundation, gyroscopic, mass, membrane
 from .parameters import TapeParameters, bending_rigidity, shell_stiffness
-from .static import StaticSolution, solve_static
 
 try:
     __version__ = _package_version("gyroshell")
 except PackageNotFoundError:  # pragma: no cover - run from a source tree without install
     __version__ = "0+unknown"
 
-__all__ = [
-    "ConvergenceError", "Divergence", "Grid", "Harmonic", "ParameterError", "Ramp",
-    "StaticSolution", "SupercriticalError", "TapeModel", "TapeParameters",
-    "bending_foundation", "bending_rigidity", "divergence", "divergence_speed",
-    "gaussian_load", "gyroscopic", "mass", "membrane", "pressure_load", "shell_stiffness",
-    "solve_static", "step",
-]
+#: Public name -> submodule. Engines import scipy, so they load on first use: `import
+#: gyroshell` and the CLI's refusals stay fast.
+_LAZY: dict[str, str] = {
+    # grid and operators
+    "Grid": "grid", "TapeModel": "model",
+    "bending_foundation": "operators", "gyroscopic": "operators", "mass": "operators",
+    "membrane": "operators",
+    "Harmonic": "loads", "Ramp": "loads", "gaussian_load": "loads", "pressure_load": "loads",
+    "step": "loads",
+    # static and divergence
+    "StaticSolution": "static", "solve_static": "static",
+    "Divergence": "divergence", "divergence": "divergence",
+    "divergence_speed": "divergence",
+    # time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends
+    "available_backends": "factorization", "factorize": "factorization",
+    "Newmark": "newmark", "NewmarkStabilityWarning": "newmark", "march": "newmark",
+    "Snapshots": "transient_result", "TransientResult": "transient_result",
+    # quadratic eigen-solver, critical speeds and speed sweeps
+    "CriticalSpeeds": "critical", "critical_speed_eigen": "critical",
+    "critical_speeds": "critical",
+    "Modes": "eigen", "frequencies": "eigen", "modes": "eigen",
+    "plot_sweep": "sweep", "sweep": "sweep",
+}
 
-# Time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends.
-from .factorization import available_backends, factorize  # noqa: E402
-from .newmark import Newmark, NewmarkStabilityWarning, march  # noqa: E402
-from .transient_result import Snapshots, TransientResult  # noqa: E402
+__all__ = sorted(["ConvergenceError", "ParameterError", "SupercriticalError",
+                  "TapeParameters", "bending_rigidity", "shell_stiffness", *_LAZY])
 
-__all__ += ["Newmark", "NewmarkStabilityWarning", "Snapshots", "TransientResult",
-            "available_backends", "factorize", "march"]
 
-# Quadratic eigen-solver, critical speeds and speed sweeps.
-from .critical import CriticalSpeeds, critical_speed_eigen, critical_speeds  # noqa: E402
-from .eigen import Modes, frequencies, modes  # noqa: E402
-from .sweep import plot_sweep, sweep  # noqa: E402
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'gyroshell' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
 
-__all__ += ["CriticalSpeeds", "Modes", "critical_speed_eigen", "critical_speeds",
-            "frequencies", "modes", "plot_sweep", "sweep"]
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
+
+class _Package(types.ModuleType):
+    """``gyroshell.sweep`` and ``gyroshell.divergence`` name functions, like their
+    submodules: importing a submodule must not replace the function of the same name."""
+
+    def __setattr__(self, name: str, value: object) -> None:
+        if isinstance(value, types.ModuleType) and _LAZY.get(name) == name:
+            return
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

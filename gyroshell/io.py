@@ -117,6 +117,30 @@ def check_output(path: str | os.PathLike[str], *, option: str = "output",
     return Path(real)
 
 
+def check_output_folder(path: str | os.PathLike[str], *, option: str = "output folder"
+                        ) -> Path:
+    """Refuse an output folder that is a file, is read-only, or whose parent is missing or
+    not a folder; returns it as a Path (created later, when the first file is written)."""
+    if not isinstance(path, (str, os.PathLike)) or not os.fspath(path):
+        raise OutputPathError(f"{option} must be a folder path, got {path!r}")
+    shown = os.fspath(path)
+    real = os.path.realpath(shown)
+    if os.path.exists(real):
+        if not os.path.isdir(real):
+            raise OutputPathError(f"{option} {shown}: is a file, not a folder")
+        if _read_only(os.stat(real), real):
+            raise OutputPathError(f"{option} {shown}: folder is read-only")
+        return Path(shown)
+    parent = os.path.dirname(real) or "."
+    while not os.path.exists(parent):
+        parent = os.path.dirname(parent)
+    if not os.path.isdir(parent):
+        raise OutputPathError(f"{option} {shown}: {parent} is a file, not a folder")
+    if _read_only(os.stat(parent), parent):
+        raise OutputPathError(f"{option} {shown}: cannot create it, {parent} is read-only")
+    return Path(shown)
+
+
 def check_outputs(outputs: dict[str, tuple[str | os.PathLike[str] | None, str | None]]
                   ) -> dict[str, Path]:
     """Check several outputs {option: (path or None, kind)}; also refuse one file named twice.

@@ -28,7 +28,7 @@ def small() -> TapeModel:
 
 def static_energy_scale(model: TapeModel, velocity: float) -> float:
     """|E| at the static equilibrium, ½|Fᵀw_s|, J: the natural energy scale."""
-    return 0.5 * abs(model.load @ solve_static(model, velocity).w)
+    return 0.5 * abs(model.force @ solve_static(model, velocity).w)
 
 
 # ----- energy --------------------------------------------------------------------------
@@ -45,7 +45,7 @@ def test_trapezoidal_rule_conserves_energy_with_gyroscopic_forces(small, start, 
     drift = np.abs(energy - energy[0]).max() / scale
     assert drift < 1e-10
     # The recorded energy agrees with one computed here from the final state.
-    K, m, F = small.K(SPEED), small.mass_diagonal, small.load
+    K, m, F = small.K(SPEED), small.mass_diagonal, small.force
     w, v = result.w, result.v
     final = 0.5 * v @ (m * v) + 0.5 * w @ (K @ w) - F @ w
     assert final == pytest.approx(energy[-1], rel=1e-12, abs=1e-12 * scale)
@@ -63,7 +63,7 @@ def modal_load_point(model: TapeModel):
     lam, phi = sl.eigh(model.K(0.0).toarray(), np.diag(model.mass_diagonal))
     assert lam.min() > 0.0
     omega = np.sqrt(lam)
-    coeff = (model.load_point_row @ phi) * (phi.T @ model.load) / lam
+    coeff = (model.load_point_row @ phi) * (phi.T @ model.force) / lam
 
     def exact(t: np.ndarray) -> np.ndarray:
         return (1.0 - np.cos(np.outer(t, omega))) @ coeff
@@ -77,7 +77,7 @@ def state_space_field(model: TapeModel, velocity: float):
     K, G = model.K(velocity).toarray(), model.G(velocity).toarray()
     minv = 1.0 / model.mass_diagonal[:, None]
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-minv * K, -minv * G]])
-    w_static = np.linalg.solve(K, model.load)
+    w_static = np.linalg.solve(K, model.force)
     z0 = -np.concatenate([w_static, np.zeros(n)])  # z − z_static at t = 0
 
     def exact(t: float) -> np.ndarray:

@@ -147,6 +147,13 @@ def parameters_from_args(args: argparse.Namespace) -> TapeParameters:
                           spacing=args.spacing, **kwargs)
 
 
+def grid_of(params: TapeParameters):
+    """The grid of ``params``, refused (size, interval counts) before scipy is even loaded."""
+    from ..grid import Grid
+
+    return Grid.from_parameters(params)
+
+
 def print_json(obj: dict) -> None:
     """One JSON object on stdout."""
     print(json.dumps(obj, indent=None, sort_keys=False))

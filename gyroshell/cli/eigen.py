@@ -6,7 +6,10 @@ import argparse
 import math
 import time
 
-from .common import parameters_from_args, parse_velocities, positive_int, print_json
+from ..io import PLOT, check_outputs, transaction, write_atomic
+
+from .common import (grid_of, parameters_from_args, parse_velocities, positive_int,
+                     print_json)
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -45,12 +48,13 @@ def register(sub, common: argparse.ArgumentParser,
 
 
 def run_modes(args: argparse.Namespace) -> int:
+    params = parameters_from_args(args)
+    velocity = params.check_velocity(args.velocity)
+    grid = grid_of(params)
     from ..eigen import modes
     from ..model import TapeModel
 
-    params = parameters_from_args(args)
-    velocity = params.check_velocity(args.velocity)
-    model = TapeModel(params)
+    model = TapeModel(params, grid)
     t0 = time.perf_counter()
     res = modes(model, velocity, args.count)
     elapsed = time.perf_counter() - t0
@@ -85,11 +89,12 @@ def run_modes(args: argparse.Namespace) -> int:
 
 
 def run_critical(args: argparse.Namespace) -> int:
+    params = parameters_from_args(args)
+    grid = grid_of(params)
     from ..critical import critical_speeds
     from ..model import TapeModel
 
-    params = parameters_from_args(args)
-    model = TapeModel(params)
+    model = TapeModel(params, grid)
     t0 = time.perf_counter()
     c = critical_speeds(model)
     elapsed = time.perf_counter() - t0
@@ -119,14 +124,14 @@ def run_critical(args: argparse.Namespace) -> int:
 
 
 def run_sweep(args: argparse.Namespace) -> int:
-    from ..io import PLOT, check_outputs, transaction, write_atomic
-    from ..model import TapeModel
-    from ..sweep import plot_sweep, sweep
-
     params = parameters_from_args(args)
     velocities = [params.check_velocity(v) for v in parse_velocities(args.velocities)]
     check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT)})
-    model = TapeModel(params)
+    grid = grid_of(params)
+    from ..model import TapeModel
+    from ..sweep import plot_sweep, sweep
+
+    model = TapeModel(params, grid)
     frame = sweep(model, velocities, args.count, progress=None)
     with transaction():
         if args.out:

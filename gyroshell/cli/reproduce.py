@@ -27,17 +27,15 @@ def register(sub, common: argparse.ArgumentParser,
 
 
 def run(args: argparse.Namespace) -> int:
-    from pathlib import Path
-
+    from ..io import check_output_folder, transaction
     from ..reproduce import Settings, run_studies
 
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise NotADirectoryError(f"--out is not a folder: {out}")
+    out = check_output_folder(args.out, option="--out")
     settings = Settings(quick=args.quick, progress=False if args.quiet else None)
     start = time.perf_counter()
     log = None if args.quiet else (lambda msg: print(msg, flush=True))
-    written = run_studies(args.studies, out, settings, log=log)
+    with transaction():  # every file of the run, or none
+        written = run_studies(args.studies, out, settings, log=log)
     if not args.quiet:
         n = sum(len(v) for v in written.values())
         print(f"wrote {n} files to {out} in {time.perf_counter() - start:.1f} s")

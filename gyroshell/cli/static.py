@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from .common import parameters_from_args, print_json
+from .common import grid_of, parameters_from_args, print_json
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -19,12 +19,13 @@ def register(sub, common: argparse.ArgumentParser,
 
 
 def run(args: argparse.Namespace) -> int:
+    params = parameters_from_args(args)
+    velocity = params.check_velocity(args.velocity)
+    grid = grid_of(params)
     from ..model import TapeModel
     from ..static import solve_static
 
-    params = parameters_from_args(args)
-    velocity = params.check_velocity(args.velocity)
-    model = TapeModel(params)
+    model = TapeModel(params, grid)
     sol = solve_static(model, velocity)
     g = model.grid
     out = {

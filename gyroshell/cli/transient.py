@@ -5,8 +5,12 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..factorization import BACKENDS
 from .common import UserError, parameters_from_args, positive_int, print_json, real
+
+
+#: --backend values: "auto" and the names of gyroshell.factorization.BACKENDS (not imported
+#: here, so that parsing and refusals do not load scipy).
+BACKEND_CHOICES: tuple[str, ...] = ("auto", "superlu", "umfpack", "pardiso", "banded")
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -28,7 +32,7 @@ def register(sub, common: argparse.ArgumentParser,
                    help="keep the full field w (m) every N steps (needs --snapshots)")
     p.add_argument("--snapshots", metavar="FILE.npz", default=None,
                    help="write the snapshots: x, y (m), times (s), fields (m)")
-    p.add_argument("--backend", default="auto", choices=("auto", *BACKENDS),
+    p.add_argument("--backend", default="auto", choices=BACKEND_CHOICES,
                    help="sparse LU back-end (default auto)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON summary (SI units)")
@@ -55,17 +59,19 @@ def _warn_if_supercritical(model, velocity: float) -> None:
 def run(args: argparse.Namespace) -> int:
     from .. import budget, io, validation
     from ..grid import Grid
-    from ..model import TapeModel
-    from ..newmark import march
 
     if (args.snapshot_every is None) != (args.snapshots is None):
         raise UserError("--snapshot-every and --snapshots go together")
     params = parameters_from_args(args)
     velocity = params.check_velocity(args.velocity)
+    validation.time_step(args.dt, args.beta)
     io.check_outputs({"--out": (args.out, None), "--snapshots": (args.snapshots, None)})
     grid = Grid.from_parameters(params)
     budget.check_transient(grid.nx, grid.ny, grid.edges, args.steps,
                            fields=budget.snapshot_count(args.steps, args.snapshot_every))
+    from ..model import TapeModel
+    from ..newmark import march
+
     model = TapeModel(params, grid)
     validation.time_step(args.dt, args.beta, stiffness_scale=_stiffness_scale(model, velocity))
     _warn_if_supercritical(model, velocity)

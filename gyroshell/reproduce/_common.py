@@ -4,11 +4,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from ..io import write_atomic
 from ..parameters import TapeParameters
+
+if TYPE_CHECKING:  # pandas loads when a study runs, not when the CLI starts
+    import pandas as pd
 
 #: Time step of the paper's runs (Table 1's "2x10^6 s" is 2e-6 s), s.
 PAPER_DT = 2.0e-6

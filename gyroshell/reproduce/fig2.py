@@ -27,7 +27,7 @@ DAMPED_DT, DAMPED_STEPS = 1.0e-2, 100
 def compute(settings: Settings) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Load-point histories (long format) and steady states for each speed."""
     model = TapeModel(settings.params(length_ratio=19))
-    scale = model.params.k / model.params.load
+    scale = model.params.k / model.params.load_pressure
     steps = settings.pick(1000, 200)
     histories, steady = [], []
     for v in VELOCITIES:
