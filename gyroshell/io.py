@@ -294,10 +294,9 @@ def atomic_path(path: str | os.PathLike[str], *, option: str = "output",
         os.close(fd)
         try:
             yield Path(tmp)
-        except OSError as exc:
-            if exc.filename is None or os.fspath(exc.filename) != tmp:
-                raise
-            raise OSError(exc.errno, f"cannot write {shown}: {exc.strerror}") from None
+        except OSError as exc:  # name the user's file, not the hidden temporary one
+            raise OSError(exc.errno, f"cannot write {shown}: {exc.strerror or exc}"
+                          ) from None
         _match_permissions(tmp, target)
         active = _ACTIVE.get()
         if active is not None:

@@ -1,12 +1,73 @@
-"""Test harness: non-interactive plots, floating-point errors raise, a `slow` marker."""
+"""Test harness: non-interactive plots, floating-point errors raise, a `slow` marker, and
+the fixtures several test files share (a small tape model, a CLI runner)."""
 
 from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from dataclasses import dataclass
 
 import matplotlib
 import numpy as np
 import pytest
 
 matplotlib.use("Agg")
+
+#: Table 1 tape width L_y, m.
+WIDTH = 6.35e-3
+
+
+@pytest.fixture(scope="session")
+def small():
+    """L_x/L_y = 2, 16 x 8 intervals: 135 unknowns, dense-solvable."""
+    from gyroshell import TapeModel, TapeParameters
+
+    return TapeModel(TapeParameters(length_ratio=2, spacing=WIDTH / 8))
+
+
+@dataclass(frozen=True)
+class CliRun:
+    """What one command line did: exit code, stdout, stderr."""
+
+    code: int
+    out: str
+    err: str
+
+    @property
+    def error_lines(self) -> list[str]:
+        return self.err.strip().splitlines()
+
+
+@pytest.fixture
+def cli(capsys):
+    """Run ``gyroshell.cli.main(argv)`` in-process; returns a :class:`CliRun` (argparse's
+    SystemExit becomes the exit code)."""
+    from gyroshell.cli import main
+
+    def run(argv: list[str]) -> CliRun:
+        capsys.readouterr()
+        try:
+            code = main([str(a) for a in argv])
+        except SystemExit as exc:
+            code = int(exc.code)
+        captured = capsys.readouterr()
+        return CliRun(code, captured.out, captured.err)
+
+    return run
+
+
+@pytest.fixture
+def cli_process():
+    """Run ``python -m gyroshell argv`` in a subprocess (cwd, env optional); returns CliRun."""
+
+    def run(argv: list[str], *, cwd=None, env=None, timeout: float = 120) -> CliRun:
+        proc = subprocess.run([sys.executable, "-m", "gyroshell", *map(str, argv)], cwd=cwd,
+                              env={**os.environ, **(env or {})}, capture_output=True,
+                              text=True, timeout=timeout)
+        return CliRun(proc.returncode, proc.stdout, proc.stderr)
+
+    return run
 
 
 @pytest.fixture(autouse=True)

@@ -75,6 +75,6 @@ def test_blow_up_exits_1_and_writes_nothing(tmp_path, capsys):
     assert exit_code(argv) == 1
     err = capsys.readouterr().err
     warning, error = err.strip().splitlines()  # above critical: warned first, then refused
-    assert warning.startswith("gyroshell: warning: V = 400 m/s is at or above the critical")
+    assert warning.startswith("gyroshell: warning: V = 400 m/s is above the critical")
     assert "numerical failure" in error and "blew up" in error
     assert list(tmp_path.iterdir()) == []

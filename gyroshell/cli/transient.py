@@ -46,14 +46,21 @@ def _stiffness_scale(model, velocity: float) -> float:
     return float(np.abs(model.K(velocity).diagonal()).max())
 
 
+#: Warn from this fraction of the critical-speed estimate on: the estimate (width-uniform
+#: modes) lies slightly above the true divergence speed when ν > 0.
+WARNING_FRACTION = 0.99
+
+
 def _warn_if_supercritical(model, velocity: float) -> None:
-    """One warning line when V is above the (estimated) critical speed: the run is legal,
-    but its response grows without bound."""
+    """One warning line when V is above or near the critical speed: the run is legal, but
+    above critical its displacement grows without bound."""
     estimate = model.divergence_speed_estimate()
-    if velocity >= estimate:
-        print(f"gyroshell: warning: V = {velocity:g} m/s is at or above the critical speed "
-              f"(about {estimate:.4g} m/s): the displacement will grow without bound",
-              file=sys.stderr)
+    if velocity >= WARNING_FRACTION * estimate:
+        where = "above" if velocity >= estimate else \
+            f"within {100 * (1 - WARNING_FRACTION):g} % of"
+        print(f"gyroshell: warning: V = {velocity:g} m/s is {where} the critical speed (about "
+              f"{estimate:.5g} m/s, an upper estimate); above it the displacement grows "
+              "without bound", file=sys.stderr)
 
 
 def run(args: argparse.Namespace) -> int:
