@@ -8,23 +8,39 @@ from __future__ import annotations
 
 import numpy as np
 
+from . import validation
 from .errors import ParameterError
+
+
+#: Fewest samples for a spectral estimate.
+MIN_SAMPLES = 8
 
 
 def amplitude_spectrum(samples: np.ndarray, spacing: float, *, pad_factor: int = 16
                        ) -> tuple[np.ndarray, np.ndarray]:
-    """Frequencies (1/unit of ``spacing``) and amplitudes of the Hann-windowed, zero-padded
-    FFT of the de-meaned samples."""
-    samples = np.asarray(samples, dtype=float)
-    if samples.ndim != 1 or samples.size < 8:
-        raise ParameterError("need at least 8 samples for a spectral estimate")
-    if not np.all(np.isfinite(samples)):
-        raise ParameterError("samples must be finite")
-    if not spacing > 0:
-        raise ParameterError(f"sample spacing must be > 0, got {spacing}")
-    x = (samples - samples.mean()) * np.hanning(samples.size)
-    n_fft = int(2 ** np.ceil(np.log2(samples.size * max(1, pad_factor))))
-    return np.fft.rfftfreq(n_fft, spacing), np.abs(np.fft.rfft(x, n_fft))
+    """Frequencies (1/unit of ``spacing``) and RMS amplitudes (unit of the samples) of the
+    de-meaned, Hann-windowed record zero-padded to ``pad_factor`` times its length (rounded up
+    to a power of two): the square root of :func:`scipy.signal.periodogram`'s spectrum.
+
+    Examples
+    --------
+    >>> t = np.arange(256) * 1e-3
+    >>> f, a = amplitude_spectrum(2.0 * np.sin(2 * np.pi * 125.0 * t), 1e-3)
+    >>> float(f[np.argmax(a)]), round(float(a.max()), 3)     # Hz, RMS of the sine
+    (125.0, 1.414)
+    """
+    from scipy.signal import periodogram
+
+    samples = validation.vector("samples", samples, np.size(samples))
+    if samples.size < MIN_SAMPLES:
+        raise ParameterError(f"samples must hold at least {MIN_SAMPLES} values for a "
+                             f"spectral estimate, got {samples.size}")
+    spacing = validation.positive("sample spacing", spacing)
+    pad_factor = validation.integer("pad_factor", pad_factor, low=1)
+    n_fft = int(2 ** np.ceil(np.log2(samples.size * pad_factor)))
+    freqs, power = periodogram(samples, fs=1.0 / spacing, window="hann", nfft=n_fft,
+                               detrend="constant", scaling="spectrum")
+    return freqs, np.sqrt(power)
 
 
 def _refine(spectrum: np.ndarray, k: int) -> float:
@@ -46,11 +62,20 @@ def _spectral_peak(samples: np.ndarray, spacing: float, *, pad_factor: int,
     if not spectrum[k] > 0:
         raise ParameterError("signal has no oscillating content")
     if lowest_fraction is not None:
-        s = spectrum
-        peaks = np.flatnonzero((s[1:-1] > s[:-2]) & (s[1:-1] >= s[2:])
-                               & (s[1:-1] >= lowest_fraction * s[k])) + 1
+        from scipy.signal import find_peaks
+
+        peaks, _ = find_peaks(spectrum, height=lowest_fraction * spectrum[k])
         k = int(peaks[0]) if peaks.size else k
     return float(_refine(spectrum, k) * (freqs[1] - freqs[0]))
+
+
+def _uniform_axis(name: str, axis, values) -> np.ndarray:
+    """A finite sample axis with as many points as ``values`` (at least MIN_SAMPLES)."""
+    axis = validation.vector(name, axis, np.size(axis))
+    if axis.size != np.size(values) or axis.size < MIN_SAMPLES:
+        raise ParameterError(f"{name} must hold as many samples as the values (at least "
+                             f"{MIN_SAMPLES}), got {axis.size} and {np.size(values)}")
+    return axis
 
 
 def dominant_period(t: np.ndarray, w: np.ndarray, *, pad_factor: int = 16,
@@ -74,7 +99,7 @@ def dominant_period(t: np.ndarray, w: np.ndarray, *, pad_factor: int = 16,
     w : numpy.ndarray
         Samples, any unit.
     """
-    t = np.asarray(t, dtype=float)
+    t = _uniform_axis("t", t, w)
     dt = float(t[1] - t[0])
     if not np.allclose(np.diff(t), dt, rtol=1e-6, atol=0):
         raise ParameterError("t must be uniformly spaced")
@@ -86,7 +111,7 @@ def dominant_period(t: np.ndarray, w: np.ndarray, *, pad_factor: int = 16,
 
 def dominant_wavelength(x: np.ndarray, w: np.ndarray, *, pad_factor: int = 16) -> float:
     """Dominant wavelength of a uniformly sampled profile w(x), m (see dominant_period)."""
-    x = np.asarray(x, dtype=float)
+    x = _uniform_axis("x", x, w)
     dx = float(x[1] - x[0])
     return 1.0 / _spectral_peak(w, dx, pad_factor=pad_factor,
                                 min_frequency=2.0 / (dx * (x.size - 1)))

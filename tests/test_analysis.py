@@ -41,3 +41,24 @@ def test_front_position_and_departure():
     t = np.linspace(0, 1, 101)
     assert first_departure(t, np.where(t > 0.42, 1.1, 1.0), np.ones_like(t), 0.05) == \
         pytest.approx(0.43)
+
+
+def test_amplitude_spectrum_is_the_rms_of_a_sine_in_its_units():
+    from gyroshell.analysis import amplitude_spectrum
+
+    t = np.arange(1000) * 1e-5
+    f, a = amplitude_spectrum(3e-7 * np.cos(2 * np.pi * 2000.0 * t) + 1.0, 1e-5)
+    assert f[np.argmax(a)] == pytest.approx(2000.0, rel=1e-3)
+    assert a.max() == pytest.approx(3e-7 / np.sqrt(2), rel=2e-2)  # window scalloping < 2 %
+
+
+@pytest.mark.parametrize(("call", "match"), [
+    (lambda: dominant_period(np.arange(5.0), np.ones(5)), "at least 8"),
+    (lambda: dominant_period(np.arange(10.0), np.ones(9)), "as many samples"),
+    (lambda: dominant_period(np.arange(10.0), np.full(10, np.nan)), "samples must be finite"),
+])
+def test_analysis_refuses_bad_records(call, match):
+    from gyroshell import ParameterError
+
+    with pytest.raises(ParameterError, match=match):
+        call()
