@@ -30,6 +30,10 @@ from .errors import ParameterError
 
 #: Kinds of output whose format is checked from the file name's suffix.
 PLOT = "plot"
+#: Plot formats (file suffixes) every supported matplotlib (>= 3.7) writes without extra
+#: packages; checked without importing matplotlib, so a refusal stays fast.
+PLOT_FORMATS: tuple[str, ...] = ("eps", "jpeg", "jpg", "pdf", "pgf", "png", "ps", "raw",
+                                 "rgba", "svg", "svgz", "tif", "tiff", "webp")
 
 
 class OutputPathError(ParameterError):
@@ -51,13 +55,6 @@ def progress_wanted(progress: bool | None) -> bool:
         isatty = getattr(sys.stderr, "isatty", None)
         return bool(isatty()) if isatty is not None else False
     return bool(progress)
-
-
-def plot_formats() -> tuple[str, ...]:
-    """File suffixes matplotlib can write (without the dot), e.g. png, pdf, svg."""
-    from matplotlib.backend_bases import FigureCanvasBase
-
-    return tuple(sorted(FigureCanvasBase.get_supported_filetypes()))
 
 
 def _read_only(st: os.stat_result, path: str) -> bool:
@@ -110,10 +107,9 @@ def check_output(path: str | os.PathLike[str], *, option: str = "output",
             raise fail("exists and is read-only; not replaced")
     if kind == PLOT:
         suffix = Path(shown).suffix.lower().lstrip(".")
-        formats = plot_formats()
-        if suffix not in formats:
+        if suffix not in PLOT_FORMATS:
             raise fail(f"unsupported plot format {suffix!r} (use one of "
-                       f"{', '.join(formats)})")
+                       f"{', '.join(PLOT_FORMATS)})")
     return Path(real)
 
 

@@ -268,3 +268,17 @@ def test_sigterm_during_computation_exits_cleanly(tmp_path):
     assert err.strip().splitlines() == ["gyroshell: error: terminated by SIGTERM; "
                                         "no output written"]
     assert listing(tmp_path) == []
+
+
+def test_plot_formats_are_ones_matplotlib_writes(tmp_path):
+    import matplotlib.pyplot as plt
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    from gyroshell.io import PLOT_FORMATS
+
+    assert set(PLOT_FORMATS) <= set(FigureCanvasBase.get_supported_filetypes())
+    fig = plt.figure()
+    for fmt in ("png", "pdf", "svg"):
+        write_atomic(tmp_path / f"f.{fmt}", lambda p, fmt=fmt: fig.savefig(p, format=fmt),
+                     kind="plot")
+    assert listing(tmp_path) == ["f.pdf", "f.png", "f.svg"]
