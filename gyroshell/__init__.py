@@ -16,8 +16,8 @@ import types
 from importlib.metadata import PackageNotFoundError
 from importlib.metadata import version as _package_version
 
-from .errors import ConvergenceError, ParameterError, SupercriticalError
-from .parameters import TapeParameters, bending_rigidity, shell_stiffness
+from .errors import ConvergenceError, ParameterError, SupercriticalError  # noqa: F401
+from .parameters import TapeParameters, bending_rigidity, shell_stiffness  # noqa: F401
 
 try:
     __version__ = _package_version("gyroshell")

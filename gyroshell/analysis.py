@@ -11,7 +11,6 @@ import numpy as np
 from . import validation
 from .errors import ParameterError
 
-
 #: Fewest samples for a spectral estimate.
 MIN_SAMPLES = 8
 

@@ -172,9 +172,10 @@ class TapeParameters:
             raise ParameterError(f"length_ratio {self.length_ratio:g} with spacing "
                                  f"{self.spacing:g} m gives an infinite number of intervals")
         if round(along) < MIN_INTERVALS_ALONG:
+            lowest = (MIN_INTERVALS_ALONG - 0.5) * self.spacing / self.width
             raise ParameterError(
                 f"length_ratio must leave at least {MIN_INTERVALS_ALONG} intervals along the "
-                f"length (length_ratio >= {(MIN_INTERVALS_ALONG - 0.5) * self.spacing / self.width:.4g}"
+                f"length (length_ratio >= {lowest:.4g}"
                 f" with spacing {self.spacing:g} m), got {self.length_ratio:g} "
                 f"({round(along)} intervals)")
 

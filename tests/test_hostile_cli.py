@@ -120,3 +120,30 @@ def test_sweep_list_of_speeds_is_limited_too(cli):
     speeds = ",".join(["1"] * 10_001)
     run = cli(["sweep", *COARSE, "--velocities", speeds])
     assert run.code == 2 and "gives 1e+04 speeds" in run.err
+
+
+def test_import_and_refusals_do_not_load_the_engines():
+    """`import gyroshell` and a refusal load neither scipy, pandas nor matplotlib."""
+    import subprocess
+    import sys
+
+    code = ("import sys, gyroshell\n"
+            "from gyroshell.cli import main\n"
+            "assert main(['sweep', '--velocities', '0:inf:1', '--plot', 'a.png']) == 2\n"
+            "assert main(['static', '--spacing', '1e-9']) == 2\n"
+            "print(sorted(m for m in ('scipy', 'pandas', 'matplotlib') if m in sys.modules))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=60)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.strip() == "[]"
+
+
+def test_public_names_resolve_lazily():
+    import gyroshell
+
+    for name in gyroshell.__all__:
+        assert getattr(gyroshell, name) is not None
+    import gyroshell.sweep  # the submodule does not shadow the function of the same name
+
+    assert callable(gyroshell.sweep) and callable(gyroshell.divergence)
+    assert gyroshell.__version__ and gyroshell.__version__[0].isdigit()

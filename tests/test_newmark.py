@@ -20,12 +20,6 @@ WIDTH = 6.35e-3
 SPEED = 50.0  # m/s, well below the critical speed
 
 
-@pytest.fixture(scope="module")
-def small() -> TapeModel:
-    """L_x/L_y = 2, 16 x 8 intervals: 135 unknowns, dense-solvable."""
-    return TapeModel(TapeParameters(length_ratio=2, spacing=WIDTH / 8))
-
-
 def static_energy_scale(model: TapeModel, velocity: float) -> float:
     """|E| at the static equilibrium, ½|Fᵀw_s|, J: the natural energy scale."""
     return 0.5 * abs(model.force @ solve_static(model, velocity).w)

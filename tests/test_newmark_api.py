@@ -15,11 +15,6 @@ from gyroshell.transient_result import Snapshots, TransientResult
 WIDTH = 6.35e-3
 
 
-@pytest.fixture(scope="module")
-def small() -> TapeModel:
-    return TapeModel(TapeParameters(length_ratio=2, spacing=WIDTH / 8))
-
-
 # ----- validation -------------------------------------------------------------------
 class TestValidation:
     @pytest.mark.parametrize(("kwargs", "match"), [

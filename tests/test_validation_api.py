@@ -16,11 +16,12 @@ from gyroshell import (
     TapeModel,
     TapeParameters,
     bending_rigidity,
+    budget,
     march,
     shell_stiffness,
     solve_static,
+    validation,
 )
-from gyroshell import budget, validation
 
 NAN, INF = float("nan"), float("inf")
 

@@ -7,9 +7,7 @@ import math
 import time
 
 from ..io import PLOT, check_outputs, transaction, write_atomic
-
-from .common import (grid_of, parameters_from_args, parse_velocities, positive_int,
-                     print_json)
+from .common import grid_of, parameters_from_args, parse_velocities, positive_int, print_json
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -24,7 +22,8 @@ def register(sub, common: argparse.ArgumentParser,
     p.set_defaults(func=run_modes)
 
     p = sub.add_parser(
-        "critical", parents=[common_without_velocity], help="critical speed, two ways, with context values",
+        "critical", parents=[common_without_velocity],
+        help="critical speed, two ways, with context values",
         description="Critical tape speed (m/s): (a) where the lowest frequency reaches zero "
                     "(eigen-solves and root-finding) and (b) the divergence speed "
                     "sqrt((T + mu_min)/rho) (one eigsh), beside sqrt(T/rho), the strip value "
@@ -34,7 +33,8 @@ def register(sub, common: argparse.ArgumentParser,
     p.set_defaults(func=run_critical)
 
     p = sub.add_parser(
-        "sweep", parents=[common_without_velocity], help="frequencies against tape speed (CSV, plot)",
+        "sweep", parents=[common_without_velocity],
+        help="frequencies against tape speed (CSV, plot)",
         description="Lowest frequencies (rad/s) at a list of tape speeds (m/s), tracked into "
                     "branches by mode-shape correlation.")
     p.add_argument("--velocities", default="0:100:10",

@@ -7,7 +7,6 @@ import sys
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
 
-
 #: --backend values: "auto" and the names of gyroshell.factorization.BACKENDS (not imported
 #: here, so that parsing and refusals do not load scipy).
 BACKEND_CHOICES: tuple[str, ...] = ("auto", "superlu", "umfpack", "pardiso", "banded")
