@@ -282,3 +282,18 @@ def test_plot_formats_are_ones_matplotlib_writes(tmp_path):
         write_atomic(tmp_path / f"f.{fmt}", lambda p, fmt=fmt: fig.savefig(p, format=fmt),
                      kind="plot")
     assert listing(tmp_path) == ["f.pdf", "f.png", "f.svg"]
+
+
+def test_reproduce_run_whose_last_study_fails_leaves_none_of_its_files(cli, tmp_path,
+                                                                        monkeypatch):
+    import gyroshell.reproduce.fig3 as fig3
+
+    def disk_full(out, settings):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(fig3, "run", disk_full)
+    out = tmp_path / "results"
+    run = cli(["reproduce", "critical", "fig3", "--quick", "--quiet", "--out", out])
+    assert run.code == 2 and "No space left on device" in run.err
+    assert len(run.error_lines) == 1
+    assert not out.exists() or listing(out) == []  # critical's CSV and Markdown are gone
