@@ -153,6 +153,34 @@ def check_transient(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0
     return estimate
 
 
+def eigen_bytes(nx: int, ny: int, edges: str, ncv: int) -> float:
+    """Estimated memory of a quadratic eigen-solve, bytes: the model, its complex shifted
+    factorization and ARPACK's ``ncv`` Lanczos/Arnoldi vectors of the 2n first-order system
+    (complex, 16 bytes per entry)."""
+    n = grid_unknowns(nx, ny, edges)
+    return model_bytes(nx, ny, edges) + 16.0 * ncv * 2 * n
+
+
+def check_eigen(nx: int, ny: int, edges: str, ncv: int) -> float:
+    """Refuse an eigen-solve whose Krylov basis of ``ncv`` vectors cannot fit; returns the
+    estimate, bytes.
+
+    Raises
+    ------
+    ParameterError
+        Naming the number of vectors, the estimate and the limit.
+    """
+    check_unknowns(nx, ny, edges)
+    estimate = eigen_bytes(nx, ny, edges, ncv)
+    limit = memory_limit()
+    if estimate > limit:
+        raise ParameterError(
+            f"an eigen-solve with {ncv} Krylov vectors of {2 * grid_unknowns(nx, ny, edges)} "
+            f"entries needs about {_bytes(estimate)}, more than the limit {_bytes(limit)}; "
+            f"ask for fewer modes (or set {MEMORY_LIMIT_VARIABLE})")
+    return estimate
+
+
 def check_sweep_length(count: float, *, what: str = "velocities") -> int:
     """Refuse a speed sweep with more than :data:`MAX_SWEEP_SPEEDS` speeds; returns count."""
     if not count <= MAX_SWEEP_SPEEDS:

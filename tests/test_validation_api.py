@@ -182,3 +182,18 @@ def test_sweep_length_guard_is_a_count_not_a_list():
 def test_shared_checks_name_parameter_and_range(call, match):
     with pytest.raises(ParameterError, match=match):
         call()
+
+
+def test_eigen_budget_counts_the_krylov_basis(monkeypatch):
+    monkeypatch.setenv(budget.MEMORY_LIMIT_VARIABLE, "1e9")
+    assert budget.check_eigen(779, 41, "free", 40) < 1e9  # the paper's long tape, 40 vectors
+    with pytest.raises(ParameterError, match="an eigen-solve with 100000 Krylov vectors"):
+        budget.check_eigen(779, 41, "free", 100_000)
+
+
+def test_run_study_refuses_a_file_as_folder(tmp_path):
+    from gyroshell.reproduce import run_study
+
+    (tmp_path / "f").write_text("x")
+    with pytest.raises(ParameterError, match="is a file, not a folder"):
+        run_study("critical", tmp_path / "f")

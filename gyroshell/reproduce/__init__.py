@@ -14,6 +14,7 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from ..errors import ParameterError
+from ..io import check_output_folder
 from ._common import Settings
 
 #: Study names in the order ``all`` runs them.
@@ -25,7 +26,7 @@ def run_study(name: str, out: str | Path, settings: Settings | None = None) -> l
     """Run one study into the folder ``out`` (created if missing); returns written files."""
     if name not in STUDIES:
         raise ParameterError(f"study must be one of {', '.join(STUDIES)}, all; got {name!r}")
-    out = Path(out)
+    out = check_output_folder(out, option="out")
     out.mkdir(parents=True, exist_ok=True)
     module = importlib.import_module(f"{__name__}.{name}")
     return module.run(out, settings or Settings())
