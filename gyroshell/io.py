@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import contextvars
 import os
+import shutil
 import signal
 import stat
 import sys
@@ -216,7 +217,10 @@ class Transaction:
                 backup = None
                 if os.path.lexists(target):
                     backup = _hidden_name(target, "old")
-                    os.link(target, backup)
+                    try:
+                        os.link(target, backup)
+                    except OSError:  # a file system without hard links
+                        shutil.copy2(target, backup)
                 try:
                     os.replace(tmp, target)
                 except OSError as exc:
