@@ -135,7 +135,8 @@ def common_parser(*, velocity: bool = True) -> argparse.ArgumentParser:
         g.add_argument("--velocity", type=real, default=0.0,
                        help="tape transport speed V, m/s, >= 0 (default 0)")
     for flag, field, text in _OVERRIDES:
-        g.add_argument(flag, dest=field, type=real, default=None, help=text)
+        g.add_argument(flag, dest=field, metavar=flag[2:].upper().replace("-", "_"),
+                       type=real, default=None, help=text)
     return p
 
 

@@ -14,7 +14,8 @@ def register(sub, common: argparse.ArgumentParser,
         "reproduce", help="reproduce the paper's Figs. 2-6 and the critical-speed and "
                           "period studies (PNG + CSV)",
         description="Run studies and write their tables (CSV, Markdown) and figures (PNG) "
-                    "into --out. 'all' runs every study (about 5 minutes on 2 cores). The "
+                    "into --out (every file of the run, or none if it fails). 'all' runs every "
+                    "study (minutes on 2 cores). The "
                     "tape is the paper's Table 1 tape; --quick uses a coarse grid and short "
                     "records to preview in seconds (numbers are then not the paper's).")
     p.add_argument("studies", nargs="+", choices=(*STUDIES, "all"), metavar="STUDY",
