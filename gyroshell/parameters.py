@@ -108,6 +108,22 @@ class TapeParameters:
         Include the uniform belt-wrap pressure −T/R of Eq. 2 in the static load. Off by
         default: the transient starts from the wrapped equilibrium (w⁰ = 0), so w is measured
         from it and the wrap pressure is already balanced.
+
+    Raises
+    ------
+    ParameterError
+        Naming the parameter and its allowed range: a value out of range, not a number, or
+        one whose derived quantities (D, k, the operators' scales) overflow or underflow.
+
+    Examples
+    --------
+    >>> p = TapeParameters(length_ratio=19)
+    >>> round(p.length, 6), round(p.k / 1e6, 1)          # m, MN/m^3
+    (0.12065, 219.8)
+    >>> TapeParameters(thickness=-1e-6)
+    Traceback (most recent call last):
+    ...
+    gyroshell.errors.ParameterError: thickness must be > 0 m, got -1e-06
     """
 
     youngs_modulus: float = 4.0e9
