@@ -40,7 +40,8 @@ CASES = {
 def run_once(argv: list[str], cwd: str) -> tuple[float, float, int, str]:
     """(wall s, peak RSS MB, exit code, stderr) of one `python -m gyroshell argv`."""
     start = time.perf_counter()
-    proc = subprocess.Popen([sys.executable, "-m", "gyroshell", *argv], cwd=cwd,
+    env = {**os.environ, "GYROSHELL_MEMORY_LIMIT": "8e9"}  # the same refusals on any machine
+    proc = subprocess.Popen([sys.executable, "-m", "gyroshell", *argv], cwd=cwd, env=env,
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     err = proc.stderr.read()
     _, status, usage = os.wait4(proc.pid, 0)

@@ -64,6 +64,7 @@ REFUSALS = [
 @pytest.mark.parametrize(("case", "argv", "match"), REFUSALS, ids=[r[0] for r in REFUSALS])
 def test_refused_in_one_line_with_exit_2(cli, tmp_path, monkeypatch, case, argv, match):
     monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("GYROSHELL_MEMORY_LIMIT", "8e9")  # the same refusals on any machine
     run = cli(argv)
     assert run.code == 2, run.err
     assert len(run.error_lines) == 1 and run.error_lines[0].startswith("gyroshell")

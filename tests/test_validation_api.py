@@ -124,7 +124,8 @@ def test_no_lapack_noise_on_stderr(small, capfd):
     lambda: TapeModel(TapeParameters(length_ratio=1e12)),
     lambda: TapeModel(TapeParameters(spacing=5e-6)),
 ])
-def test_oversized_grids_are_refused_without_allocating(make):
+def test_oversized_grids_are_refused_without_allocating(make, monkeypatch):
+    monkeypatch.setenv(budget.MEMORY_LIMIT_VARIABLE, "8e9")
     tracemalloc.start()
     try:
         with pytest.raises(ParameterError, match="use a larger spacing or a smaller length_ratio"):
