@@ -198,3 +198,20 @@ def test_run_study_refuses_a_file_as_folder(tmp_path):
     (tmp_path / "f").write_text("x")
     with pytest.raises(ParameterError, match="is a file, not a folder"):
         run_study("critical", tmp_path / "f")
+
+
+def test_progress_bars_only_on_a_terminal(monkeypatch):
+    import io as stdio
+    import sys
+
+    from gyroshell.io import progress_wanted
+
+    monkeypatch.setattr(sys, "stderr", stdio.StringIO())
+    assert progress_wanted(None) is False and progress_wanted(True) is True
+
+    class Terminal(stdio.StringIO):
+        def isatty(self) -> bool:
+            return True
+
+    monkeypatch.setattr(sys, "stderr", Terminal())
+    assert progress_wanted(None) is True and progress_wanted(False) is False
