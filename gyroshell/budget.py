@@ -69,6 +69,8 @@ def memory_limit() -> float:
 
 
 def _bytes(value: float) -> str:
+    if not math.isfinite(value):
+        return "more bytes than a float can count"
     for unit, scale in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
         if value >= scale:
             return f"{value / scale:.3g} {unit}"
@@ -80,17 +82,32 @@ def grid_unknowns(nx: int, ny: int, edges: str) -> int:
     return (nx - 1) * (ny + 1 if edges == "free" else ny - 1)
 
 
+def _unknowns_float(nx: int, ny: int, edges: str) -> float:
+    """Unknowns as a float (inf for absurd grids, where the int would not convert)."""
+    try:
+        return float(nx - 1) * float(ny + 1 if edges == "free" else ny - 1)
+    except OverflowError:
+        return math.inf
+
+
+def _count(n: float) -> str:
+    return f"{n:.0f}" if n < 1e15 else f"{n:.3g}"
+
+
 def factor_entries(nx: int, ny: int, edges: str) -> float:
     """Estimated stored entries of a sparse LU factor of a grid operator (an upper bound)."""
-    n = grid_unknowns(nx, ny, edges)
-    across = ny + 1
-    per_row = min(BAND_FILL_FACTOR * across, DISSECTION_FILL_FACTOR * math.log2(max(n, 2)))
-    return float(n) * per_row
+    n = _unknowns_float(nx, ny, edges)
+    try:
+        across = float(ny + 1)
+    except OverflowError:
+        return math.inf
+    per_row = min(BAND_FILL_FACTOR * across, DISSECTION_FILL_FACTOR * math.log2(max(n, 2.0)))
+    return n * per_row
 
 
 def model_bytes(nx: int, ny: int, edges: str) -> float:
     """Estimated memory of the operators and one factorization on the grid, bytes."""
-    n = grid_unknowns(nx, ny, edges)
+    n = _unknowns_float(nx, ny, edges)
     return BYTES_PER_FACTOR_ENTRY * factor_entries(nx, ny, edges) + BYTES_PER_UNKNOWN * n
 
 
@@ -104,7 +121,9 @@ def check_unknowns(nx: int, ny: int, edges: str) -> float:
     """
     estimate = model_bytes(nx, ny, edges)
     limit = memory_limit()
-    what = (f"the grid of {nx} x {ny} intervals ({grid_unknowns(nx, ny, edges)} unknowns)")
+    what = (f"the grid of {_count(float(nx))} x {_count(float(ny))} intervals "
+            f"({_count(_unknowns_float(nx, ny, edges))} unknowns)"
+            if max(nx, ny) < 1e300 else "the grid")
     if factor_entries(nx, ny, edges) > MAX_FACTOR_ENTRIES:
         raise ParameterError(
             f"{what} needs about {factor_entries(nx, ny, edges):.3g} factor entries, more "
@@ -122,7 +141,7 @@ def transient_bytes(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0
                     centerlines: int = 0) -> float:
     """Estimated memory of a transient run, bytes: the model, the per-step history and the
     kept full fields and centre lines."""
-    nodes = (nx + 1) * (ny + 1)
+    nodes = float(nx + 1) * float(ny + 1)
     return (model_bytes(nx, ny, edges) + BYTES_PER_STEP * (steps + 1.0)
             + 8.0 * nodes * fields + 8.0 * (nx + 1) * centerlines)
 
@@ -157,7 +176,7 @@ def eigen_bytes(nx: int, ny: int, edges: str, ncv: int) -> float:
     """Estimated memory of a quadratic eigen-solve, bytes: the model, its complex shifted
     factorization and ARPACK's ``ncv`` Lanczos/Arnoldi vectors of the 2n first-order system
     (complex, 16 bytes per entry)."""
-    n = grid_unknowns(nx, ny, edges)
+    n = _unknowns_float(nx, ny, edges)
     return model_bytes(nx, ny, edges) + 16.0 * ncv * 2 * n
 
 
@@ -175,7 +194,8 @@ def check_eigen(nx: int, ny: int, edges: str, ncv: int) -> float:
     limit = memory_limit()
     if estimate > limit:
         raise ParameterError(
-            f"an eigen-solve with {ncv} Krylov vectors of {2 * grid_unknowns(nx, ny, edges)} "
+            f"an eigen-solve with {ncv} Krylov vectors of "
+            f"{_count(2 * _unknowns_float(nx, ny, edges))} "
             f"entries needs about {_bytes(estimate)}, more than the limit {_bytes(limit)}; "
             f"ask for fewer modes (or set {MEMORY_LIMIT_VARIABLE})")
     return estimate

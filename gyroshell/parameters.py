@@ -7,7 +7,6 @@ tension in N/m, bending rigidity in N·m, shell (foundation) stiffness in N/m³.
 from __future__ import annotations
 
 import math
-import sys
 import warnings
 from dataclasses import dataclass, fields, replace
 from typing import Literal
@@ -58,7 +57,7 @@ def shell_stiffness(
     c = validation.positive("thickness", thickness, "m")
     R = validation.positive("radius", radius, "m")
     nu = _check_poisson(poisson)
-    return validation.finite_scale("foundation_stiffness", E * c / (R * R * (1.0 - nu * nu)),
+    return validation.finite_scale("foundation_stiffness", E * c / R / R / (1.0 - nu * nu),
                                    "N/m^3", what="youngs_modulus, thickness, radius, poisson")
 
 
@@ -178,6 +177,9 @@ class TapeParameters:
         """Enough intervals each way to mean anything, and a length that is a number."""
         validation.finite_scale("length", self.length, "m", what="length_ratio x width")
         across = self.width / self.spacing
+        if not math.isfinite(across):
+            raise ParameterError(f"width {self.width:g} m with spacing {self.spacing:g} m "
+                                 "gives an infinite number of intervals")
         if round(across) < MIN_INTERVALS_ACROSS:
             raise ParameterError(
                 f"spacing must leave at least {MIN_INTERVALS_ACROSS} intervals across the width "
@@ -196,35 +198,30 @@ class TapeParameters:
                 f"({round(along)} intervals)")
 
     def _check_scales(self) -> None:
-        """Derived coefficients of K and M must be finite, normal numbers (no 1e±300 inputs
-        turning into inf or 0 inside the operators)."""
-        h2 = self.spacing * self.spacing
-        D = self.D  # validated by bending_rigidity() when derived
-        validation.finite_scale("bending_rigidity / spacing^2", D / h2, "N/m",
-                                what="the bending rigidity and spacing")
-        if self.k > 0:
-            validation.finite_scale("foundation_stiffness x spacing^2", self.k * h2, "N/m",
-                                    what="the shell stiffness and spacing")
-            validation.finite_scale("k / density", self.k / self.density, "1/s^2",
-                                    what="the shell stiffness and density")
-        validation.finite_scale("density x spacing^2", self.density * h2, "kg",
-                                what="density and spacing")
-        validation.finite_scale("D / density", D / self.density, "m^4/s^2",
-                                what="the bending rigidity and density")
-        if self.tension > 0:
-            validation.finite_scale("tension / density", self.tension / self.density,
-                                    "m^2/s^2", what="tension and density")
-            validation.finite_scale("tension / radius", self.tension / self.radius, "Pa",
-                                    what="tension and radius")
-        if self.load_pressure != 0:
-            validation.finite_scale("|load_pressure| x spacing^2",
-                                    abs(self.load_pressure) * h2, "N",
-                                    what="load_pressure and spacing")
+        """Derived coefficients of K and M must lie within the solvers' range (no 1e±300
+        inputs turning into inf or 0 inside the operators or the eigen-solver)."""
+        h, D, k, rho = self.spacing, self.D, self.k, self.density
+        scale = validation.scale
+        scale("bending_rigidity / spacing^2", D / h / h, "N/m",
+              what="the bending rigidity and spacing")
+        scale("density x spacing^2", rho * h * h, "kg", what="density and spacing")
+        scale("bending_rigidity / density", D / rho, "m^4/s^2",
+              what="the bending rigidity and density")
+        scale("foundation_stiffness x spacing^2", k * h * h, "N/m", lower=False,
+              what="the shell stiffness and spacing")
+        scale("k / density", k / rho, "1/s^2", lower=False,
+              what="the shell stiffness and density")
+        scale("tension / density", self.tension / rho, "m^2/s^2", lower=False,
+              what="tension and density")
+        scale("tension / radius", self.tension / self.radius, "Pa", lower=False,
+              what="tension and radius")
+        scale("|load_pressure| x spacing^2", abs(self.load_pressure) * h * h, "N",
+              lower=False, what="load_pressure and spacing")
 
     def max_velocity(self) -> float:
-        """Largest speed V, m/s, whose ρV² is a finite double (far above any critical speed).
-        """
-        return math.sqrt(sys.float_info.max) / math.sqrt(self.density) / 2.0
+        """Largest speed V, m/s, whose ρV² stays within the solvers' range (1e150 N/m; far
+        above any critical speed)."""
+        return math.sqrt(validation.MAX_SCALE) / math.sqrt(self.density)
 
     def check_velocity(self, velocity: float) -> float:
         """Validate a speed V for this tape: finite, >= 0 and ρV² finite; returns it (m/s)."""

@@ -28,6 +28,10 @@ from .errors import ParameterError
 
 #: Smallest positive normal double: scales below it have lost precision (subnormal) or are 0.
 TINY = sys.float_info.min
+#: Range of the operators' scales (entries of K, G, M and ratios such as k/ρ): the solvers
+#: multiply two of them (ω² M, residual norms), so each must stay within the square root of
+#: the double range. Physical tapes lie near 1e-10..1e10.
+MIN_SCALE, MAX_SCALE = 1e-150, 1e150
 
 
 def _unit(unit: str) -> str:
@@ -144,6 +148,34 @@ def finite_scale(name: str, value: float, unit: str = "", *, what: str = "") -> 
     if not value >= TINY:
         raise ParameterError(f"{name}{source} underflows: {value:g}{_unit(unit)} is below "
                              f"{TINY:g}; use values nearer the physical range")
+    return value
+
+
+def scale(name: str, value: float, unit: str = "", *, what: str = "",
+          lower: bool = True) -> float:
+    """A derived scale of the operators: finite and within [MIN_SCALE, MAX_SCALE] (only
+    <= MAX_SCALE with ``lower=False``, for quantities that may vanish, such as T and k).
+
+    ``what`` says which inputs it comes from, so the message points at them.
+
+    Examples
+    --------
+    >>> scale("k / density", 1.57e10, "1/s^2")
+    15700000000.0
+    >>> scale("k / density", 1e200, "1/s^2", what="the shell stiffness and density")
+    Traceback (most recent call last):
+    ...
+    gyroshell.errors.ParameterError: k / density (from the shell stiffness and density) ...
+    """
+    source = f" (from {what})" if what else ""
+    if not value <= MAX_SCALE:
+        raise ParameterError(f"{name}{source} overflows the solvers' range: {value:g}"
+                             f"{_unit(unit)} > {MAX_SCALE:g}; use values nearer the physical "
+                             "range")
+    if lower and not value >= MIN_SCALE:
+        raise ParameterError(f"{name}{source} underflows the solvers' range: {value:g}"
+                             f"{_unit(unit)} < {MIN_SCALE:g}; use values nearer the physical "
+                             "range")
     return value
 
 

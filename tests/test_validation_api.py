@@ -59,8 +59,11 @@ def test_grid_accepts_whole_floats_as_counts():
     ({"width": 1e300, "spacing": 1e299, "length_ratio": 1e10}, "length .* overflows"),
     ({"youngs_modulus": 1e-300}, "bending_rigidity .* underflows"),
     ({"youngs_modulus": 1e308}, "overflows"),
-    ({"density": 1e-300}, "k / density .* overflows"),
-    ({"tension": 1e306, "radius": 1e-5}, "tension / radius .* overflows"),
+    ({"density": 1e-300}, "density x spacing.* underflows"),
+    ({"tension": 1e140, "radius": 1e-20}, "tension / radius .* overflows"),
+    ({"foundation_stiffness": 1e200}, "foundation_stiffness x spacing.* overflows"),
+    ({"radius": 1e-300}, "foundation_stiffness .* overflows"),
+    ({"spacing": 1e-300}, "bending_rigidity / spacing.* overflows"),
     ({"bending_rigidity": 1e-320}, "underflows"),
     ({"load_x": 1.0}, r"load_x must be in \[0, 0.0254\] m, got 1"),
 ])
