@@ -159,3 +159,27 @@ def test_public_names_resolve_lazily():
 
     assert callable(gyroshell.sweep) and callable(gyroshell.divergence)
     assert gyroshell.__version__ and gyroshell.__version__[0].isdigit()
+
+
+EXTREME_FLAGS = ("--youngs-modulus", "--poisson", "--thickness", "--radius", "--density",
+                 "--tension", "--width", "--bending-rigidity", "--foundation-stiffness",
+                 "--load", "--length-ratio", "--spacing", "--velocity")
+EXTREME_VALUES = ("5e-324", "1e-308", "1e-300", "1e-150", "1e-30", "1e30", "1e150", "1e300",
+                  "1.7e308", "0", "-0", "-1e-300")
+
+
+@pytest.mark.parametrize("command", [["static"], ["modes", "--count", "2"]],
+                         ids=["static", "modes"])
+def test_every_option_at_every_extreme_answers_or_refuses_in_one_line(cli, command):
+    """Each tape option set to each extreme double: a result (exit 0, silent stderr) or one
+    refusal line (exit 2); never a traceback, an overflow or a numerical failure."""
+    failures = []
+    for flag in EXTREME_FLAGS:
+        for value in EXTREME_VALUES:
+            run = cli([*command, *COARSE, flag, value])
+            ok = (run.code == 0 and run.err == "") or (
+                run.code == 2 and len(run.error_lines) == 1
+                and run.error_lines[0].startswith("gyroshell"))
+            if not ok:
+                failures.append(f"{flag} {value}: exit {run.code}: {run.err[:160]!r}")
+    assert failures == []
