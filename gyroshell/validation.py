@@ -180,9 +180,9 @@ def scale(name: str, value: float, unit: str = "", *, what: str = "",
 
 
 def time_step(dt: object, beta: object, *, stiffness_scale: float | None = None) -> float:
-    """A Newmark time step Δt, s: > 0 and finite, with βΔt² a normal number (no underflow to
-    zero, which divides the corrector) and βΔt² · max|K_ii| finite (no overflow in the
-    Newmark matrix M + γΔt G + βΔt² K). Returns Δt.
+    """A Newmark time step Δt, s: > 0 and finite, with βΔt² >= MIN_SCALE (no underflow
+    towards zero, which divides the corrector) and βΔt² · max|K_ii| <= MAX_SCALE (no
+    overflow in the Newmark matrix M + γΔt G + βΔt² K). Returns Δt.
 
     Examples
     --------
@@ -191,15 +191,16 @@ def time_step(dt: object, beta: object, *, stiffness_scale: float | None = None)
     >>> time_step(1e-170, 0.25)
     Traceback (most recent call last):
     ...
-    gyroshell.errors.ParameterError: dt 1e-170 s is too small: beta x dt^2 = ...
+    gyroshell.errors.ParameterError: dt 1e-170 s is too small: beta x dt^2 = 0 s^2 ...
     """
     dt = positive("dt", dt, "s")
     beta = positive("beta", beta)
     bdt2 = beta * dt * dt
-    if not bdt2 >= TINY:
+    if not bdt2 >= MIN_SCALE:
         raise ParameterError(f"dt {dt:g} s is too small: beta x dt^2 = {bdt2:g} s^2 underflows "
-                             f"(need beta x dt^2 >= {TINY:g} s^2)")
-    if not math.isfinite(bdt2) or (stiffness_scale is not None
-                                   and not math.isfinite(bdt2 * stiffness_scale)):
-        raise ParameterError(f"dt {dt:g} s is too large: beta x dt^2 x K overflows")
+                             f"the solvers' range (need beta x dt^2 >= {MIN_SCALE:g} s^2)")
+    if not bdt2 <= MAX_SCALE or (stiffness_scale is not None
+                                 and not bdt2 * stiffness_scale <= MAX_SCALE):
+        raise ParameterError(f"dt {dt:g} s is too large: beta x dt^2 x K overflows the "
+                             f"solvers' range ({MAX_SCALE:g})")
     return dt
