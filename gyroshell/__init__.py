@@ -44,3 +44,9 @@ from .sweep import plot_sweep, sweep  # noqa: E402
 
 __all__ += ["CriticalSpeeds", "Modes", "critical_speed_eigen", "critical_speeds",
             "frequencies", "modes", "plot_sweep", "sweep"]
+
+# Parameter studies, saved results (issue #11); xarray, Dask and matplotlib load lazily.
+from .persistence import load, save  # noqa: E402
+from .study import StudyResult, classify_stability, run_study  # noqa: E402
+
+__all__ += ["StudyResult", "classify_stability", "load", "run_study", "save"]

@@ -18,8 +18,9 @@ float64 variables ``z_real`` and ``z_imag`` with attributes ``complex_of = "z"``
 ``complex_part = "real"`` / ``"imag"``; :func:`load` joins them again. Any NetCDF reader
 (ncdump, netCDF4, MATLAB) sees two ordinary real arrays.
 
-Tables (sweeps, studies) also go to CSV (floats written with 17 significant digits, so
-they read back exactly) or Parquet (``.parquet``, needs pyarrow).
+Tables (sweeps, studies) also go to CSV (floats in Python's shortest round-trip form, NaN
+written as ``NaN`` so that empty text stays empty text; read back exactly) or Parquet
+(``.parquet``, needs pyarrow).
 
 Files are written whole or not at all (a temporary file moved into place). xarray and a
 NetCDF engine (h5netcdf, or netCDF4) are imported only when a NetCDF file is written or read:
@@ -42,7 +43,6 @@ from .errors import ParameterError
 NETCDF_SUFFIXES = (".nc", ".nc4", ".netcdf")
 TABLE_SUFFIXES = (".csv", ".parquet")
 
-_FLOAT_FORMAT = "%.17g"
 
 
 # ----- JSON for metadata ------------------------------------------------------------------
@@ -280,7 +280,7 @@ def save(result, path: str | os.PathLike[str], *, params=None) -> Path:
     elif suffix == ".csv":
         frame = _table_of(result)
         with atomic_path(path) as tmp:
-            frame.to_csv(tmp, index=False, float_format=_FLOAT_FORMAT)
+            frame.to_csv(tmp, index=False, na_rep="NaN")
     elif suffix == ".parquet":
         frame = _table_of(result)
         with atomic_path(path) as tmp:
@@ -304,7 +304,9 @@ def load(path: str | os.PathLike[str]):
     import pandas as pd
 
     if suffix == ".csv":
-        return pd.read_csv(path, keep_default_na=False, na_values=["", "NaN", "nan"])
+        exact = {} if int(pd.__version__.split(".")[0]) >= 3 else {
+            "float_precision": "round_trip"}  # pandas 3 parses floats exactly by default
+        return pd.read_csv(path, keep_default_na=False, na_values=["NaN"], **exact)
     if suffix == ".parquet":
         return pd.read_parquet(path)
     import xarray as xr
