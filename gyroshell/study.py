@@ -10,7 +10,9 @@ at every point:
     :func:`gyroshell.critical.critical_speeds`.
 ``modes``
     ``omega_1`` ... ``omega_<count>`` (rad/s, the lowest frequencies from
-    :func:`gyroshell.eigen.modes`), ``growth_rate`` (largest Re λ, 1/s) and ``stability``.
+    :func:`gyroshell.eigen.modes`; above the critical speed the eigenvalues nearest zero),
+    ``growth_rate`` (largest Re λ among them, 1/s) and ``stability``
+    (:func:`tape_stability`: ``stable``, ``divergence`` or ``flutter``).
 ``static``
     ``load_point_deflection`` and ``max_deflection`` (m) from
     :func:`gyroshell.static.solve_static` (a speed at or above critical fails in its row).
@@ -57,8 +59,14 @@ VARIABLE_NAMES: tuple[str, ...] = ("velocity",) + tuple(
     f.name for f in dataclasses.fields(TapeParameters))
 
 STABLE, DIVERGENCE, FLUTTER = "stable", "divergence", "flutter"
+#: K(V) indefinite with an even index and no growing eigenvalue among those computed.
+UNDETERMINED = "undetermined"
+#: Largest number of unknowns for which a point's whole spectrum is computed densely.
+DENSE_LIMIT = 700
 #: Relative size |Re λ|/|λ| (and |Im λ|/|λ|) below which a part counts as zero.
 STABILITY_RTOL = 1e-8
+#: How long to wait for a Dask scheduler to answer.
+CONNECT_TIMEOUT = "10s"
 #: Chunks per worker when chunk size is automatic (balances load against overhead).
 CHUNKS_PER_WORKER = 4
 
@@ -89,6 +97,61 @@ def classify_stability(eigenvalues: Iterable[complex], *, rtol: float = STABILIT
     if np.any(growing & (np.abs(lam.imag) <= rtol * size)):
         return DIVERGENCE
     return FLUTTER
+
+
+def quadratic_eigenvalues(M, G, K) -> np.ndarray:
+    """All 2n eigenvalues λ (1/s) of det(λ²M + λG + K) = 0, dense (M diagonal or full)."""
+    M, G, K = (np.asarray(a.toarray() if hasattr(a, "toarray") else a, dtype=float)
+               for a in (M, G, K))
+    n = len(K)
+    Minv = np.linalg.inv(M)
+    companion = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ G]])
+    import scipy.linalg as la
+
+    from .threads import blas_threads
+
+    with blas_threads(1):  # studies run one point per core
+        return la.eigvals(companion)
+
+
+def tape_stability(model, velocity: float, eigenvalues=None) -> str:
+    """Stability of the moving tape at speed V: ``stable``, ``divergence`` or ``flutter``.
+
+    The tape is a conservative gyroscopic system (G skew, K symmetric), so two facts decide
+    most speeds without eigenvalues, from the inertia of K(V) (negative pivots of its LDLᵀ):
+
+    * K(V) positive definite (below the critical speed): stable, by the energy
+      ½vᵀMv + ½wᵀKw, which is conserved and positive definite.
+    * An odd number of negative eigenvalues of K(V): det Q(λ) = det(λ²M + λG + K) is
+      negative at λ = 0 and positive for large real λ, so a real positive eigenvalue exists:
+      divergence.
+
+    With an even, non-zero number, G may stabilize the tape or not: the whole spectrum is
+    computed densely (up to :data:`DENSE_LIMIT` unknowns) and classified by
+    :func:`classify_stability`. On larger grids the ``eigenvalues`` given (those nearest
+    zero, from :func:`gyroshell.eigen.modes`) decide if one of them grows, else the answer
+    is ``undetermined``: the modes nearest zero do not show a far-off growing one.
+    """
+    from .eigen import factor_hermitian
+
+    K = model.K(velocity)
+    _, negatives = factor_hermitian(K)
+    if negatives is None:  # pivoting happened: count the negative eigenvalues densely
+        if model.size > DENSE_LIMIT:
+            negatives = -1
+        else:
+            negatives = int(np.count_nonzero(np.linalg.eigvalsh(K.toarray()) < 0))
+    if negatives == 0:
+        return STABLE
+    if negatives > 0 and negatives % 2 == 1:
+        return DIVERGENCE
+    if model.size <= DENSE_LIMIT:
+        return classify_stability(quadratic_eigenvalues(model.M, model.G(velocity), K))
+    if eigenvalues is not None:
+        verdict = classify_stability(eigenvalues)
+        if verdict != STABLE:
+            return verdict
+    return UNDETERMINED
 
 
 # ----- points ------------------------------------------------------------------------------
@@ -204,7 +267,7 @@ def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
             row["growth_rate"] = float(np.max(res.eigenvalues.real.clip(min=0.0)))
         if "period" in compute:
             row["period"] = float(res.period[0])
-        row["stability"] = classify_stability(res.eigenvalues)
+        row["stability"] = tape_stability(model[0], state["v"], res.eigenvalues)
 
     def static() -> None:
         from .static import solve_static
@@ -500,7 +563,7 @@ def _execute_dask(todo, record, args, compute, count, scheduler, chunk_size
         raise ParameterError(f"scheduler must be an address like tcp://HOST:PORT, got "
                              f"{scheduler!r}")
     try:
-        client = Client(scheduler, timeout="10s")
+        client = Client(scheduler, timeout=CONNECT_TIMEOUT)
     except (OSError, TimeoutError) as exc:
         raise ParameterError(f"cannot reach the Dask scheduler at {scheduler}: {exc}"
                              ) from None

@@ -8,6 +8,11 @@
   imaginary for every V ≠ c = √(T/ρ) (Wickert & Mote 1990): beyond c the string's spectrum
   stays on the imaginary axis (stable in the classification), which the tape model reproduces
   at second order.
+  The finite-difference string is another matter: beyond c, K(V) is negative definite, so
+  with an odd number of unknowns a real positive eigenvalue must exist (next item). It
+  sits at the grid scale (the sawtooth mode, which the centred difference in G does not
+  see), with a growth rate ∝ 1/h: the discrete string beyond c diverges, at a rate set by
+  the grid, while its low modes stay on the imaginary axis.
 * Just above the divergence speed K(V) has exactly one negative eigenvalue. With an odd
   number, det Q(λ) = det(λ²M + λG + K) is negative at λ = 0 and positive as λ → ∞, so a real
   positive eigenvalue exists (Kelvin–Tait–Chetaev): divergence, whatever G does.
@@ -23,6 +28,7 @@ from convergence import observed_order
 
 from gyroshell import Grid, TapeModel, TapeParameters, classify_stability, divergence_speed, modes
 from gyroshell.errors import ParameterError
+from gyroshell.study import tape_stability
 
 WIDTH = 6.35e-3
 
@@ -104,6 +110,10 @@ class WidthUniform:
     def G(self, v):
         return (self.P.T @ self.full.G(v) @ self.P).tocsr()
 
+    @property
+    def M(self):
+        return sp.diags(self.mass_diagonal)
+
 
 def string(nx: int) -> WidthUniform:
     p = TapeParameters(foundation_stiffness=0.0, bending_rigidity=1e-14, poisson=0.0,
@@ -150,3 +160,38 @@ def test_odd_morse_index_just_above_divergence_diverges():
     assert s[-1] < 1e-9 * s[0]
     # and below V_div every eigenvalue is ±iω
     assert classify_stability(modes(model, 0.999 * v_div, 3).eigenvalues) == "stable"
+
+
+@pytest.mark.parametrize("nx", [16, 32])  # 15 and 31 unknowns: K(V) has an odd index
+def test_discrete_string_beyond_string_speed_diverges_at_grid_scale(nx):
+    s = string(nx)
+    V = 1.2 * s.params.string_speed
+    assert np.all(np.linalg.eigvalsh(s.K(V).toarray()) < 0)
+    assert tape_stability(s, V) == "divergence"
+    lam = quadratic_eigenvalues(s.M.toarray(), s.G(V).toarray(), s.K(V).toarray())
+    assert classify_stability(lam) == "divergence"
+
+
+def test_discrete_string_growth_rate_scales_with_one_over_h():
+    V = 1.2 * string(16).params.string_speed
+    rates, steps = [], []
+    for nx in (16, 32, 64):
+        s = string(nx)
+        lam = quadratic_eigenvalues(s.M.toarray(), s.G(V).toarray(), s.K(V).toarray())
+        rates.append(lam.real.max())
+        steps.append(s.params.length / nx)
+    assert observed_order(steps, rates) == pytest.approx(-1.0, abs=0.05)
+    # with an even number of unknowns the grid-scale pairs flutter instead
+    s = string(17)
+    assert tape_stability(s, V) == "flutter"
+
+
+def test_tape_stability_below_and_above_critical():
+    p = TapeParameters(length_ratio=4, spacing=WIDTH / 8)
+    model = TapeModel(p)
+    v_div = divergence_speed(model)
+    assert tape_stability(model, 0.99 * v_div) == "stable"
+    for V in (1.02 * v_div, 1.1 * v_div, 1.3 * v_div):
+        lam = quadratic_eigenvalues(model.M.toarray(), model.G(V).toarray(),
+                                    model.K(V).toarray())
+        assert tape_stability(model, V) == classify_stability(lam) != "stable"
