@@ -7,6 +7,7 @@ import math
 import time
 
 from .common import parameters_from_args, positive_int, print_json
+from .saving import add_save_option, check_save_path, save_result
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
@@ -17,6 +18,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     p.add_argument("--count", type=positive_int, default=6,
                    help="number of frequencies, >= 1 (default 6)")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    add_save_option(p)
     p.set_defaults(func=run_modes)
 
     p = sub.add_parser(
@@ -40,6 +42,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                    help="frequencies per speed, >= 1 (default 6)")
     p.add_argument("--out", metavar="FILE.csv", help="write the table as CSV")
     p.add_argument("--plot", metavar="FILE.png", help="write omega (rad/s) against V (m/s)")
+    add_save_option(p)
     p.set_defaults(func=run_sweep)
 
 
@@ -50,10 +53,12 @@ def run_modes(args: argparse.Namespace) -> int:
 
     params = parameters_from_args(args)
     velocity = check_velocity(args.velocity)
+    check_save_path(args.save)
     model = TapeModel(params)
     t0 = time.perf_counter()
     res = modes(model, velocity, args.count)
     elapsed = time.perf_counter() - t0
+    save_result(args.save, res, params)
     g = model.grid
     out = {
         "velocity": velocity,
@@ -132,8 +137,10 @@ def run_sweep(args: argparse.Namespace) -> int:
             folder = Path(path).parent
             if str(folder) and not folder.is_dir():
                 raise FileNotFoundError(f"output folder does not exist: {folder}")
+    check_save_path(args.save)
     model = TapeModel(params)
     frame = sweep(model, velocities, args.count, progress=None)
+    save_result(args.save, frame, params)
     if args.out:
         write_atomic(args.out, lambda tmp: frame.to_csv(tmp, index=False))
     if args.plot:

@@ -6,6 +6,7 @@ import argparse
 from pathlib import Path
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
+from .saving import add_save_option, check_save_path, save_result
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
@@ -31,6 +32,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                         "(default auto)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON summary (SI units)")
+    add_save_option(p)
     p.set_defaults(func=run)
 
 
@@ -53,6 +55,7 @@ def run(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
     _check_folder(args.out)
     _check_folder(args.snapshots)
+    check_save_path(args.save)
     model = TapeModel(params)
     result = march(model, args.velocity, dt=args.dt, steps=args.steps, beta=args.beta,
                    gamma=args.gamma, backend=args.backend,
@@ -61,6 +64,7 @@ def run(args: argparse.Namespace) -> int:
         result.to_csv(args.out)
     if args.snapshots is not None:
         result.save_snapshots(args.snapshots)
+    save_result(args.save, result, params)
     g, info, w = model.grid, result.info, result.load_point
     out = {
         "velocity": result.velocity, "dt": result.dt, "steps": result.steps,
