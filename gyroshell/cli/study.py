@@ -1,0 +1,147 @@
+"""``gyroshell study``: parameter studies (grids of tape parameters), locally or on Dask."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from .common import UserError, parameters_from_args, positive_int
+from .saving import add_save_option, check_save_path
+
+
+def register(sub, common: argparse.ArgumentParser) -> None:
+    from ..study import COMPUTE_CHOICES, VARIABLE_NAMES
+
+    p = sub.add_parser(
+        "study", parents=[common], help="parameter study: vary tape parameters, one row each",
+        description="Vary tape parameters over a grid (every combination of the --vary "
+                    "values) and compute, per point, the critical speed, the lowest "
+                    "frequencies with the stability (stable/divergence/flutter), the static "
+                    "deflection or the period. Points run in local worker processes, or on a "
+                    "running Dask cluster with --scheduler. A point that fails is reported in "
+                    "its row. SI units: m, Pa, N/m, kg/m^2, m/s.")
+    p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
+                   help="a parameter and its values: NAME=V1,V2,... or NAME=START:STOP:NUM "
+                        "(NUM evenly spaced values, both ends included); repeat for a grid. "
+                        f"NAME: {', '.join(VARIABLE_NAMES)} (SI units)")
+    p.add_argument("--compute", action="append", required=True, metavar="WHAT",
+                   help=f"what to compute: {', '.join(COMPUTE_CHOICES)} (repeat or "
+                        "comma-separate for several)")
+    p.add_argument("--count", type=positive_int, default=3,
+                   help="frequencies per point for 'modes' (default 3)")
+    p.add_argument("--workers", type=positive_int, default=None,
+                   help="local worker processes (default: one per CPU; 1 runs in this "
+                        "process)")
+    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786 "
+                        "(start it with 'dask scheduler' and 'dask worker ADDRESS')")
+    p.add_argument("--cache", metavar="FILE.jsonl", default=None,
+                   help="keep finished points here; running the same study again resumes")
+    p.add_argument("--out", metavar="FILE.csv", default=None,
+                   help="write the table (CSV, or .parquet); one row per point")
+    add_save_option(p)
+    p.add_argument("--plot", metavar="FILE.png", default=None,
+                   help="stability map (two varied parameters) or the computed quantity "
+                        "against the varied parameter (one)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=run)
+
+
+def parse_values(name: str, text: str) -> list:
+    """``V1,V2,...`` or ``START:STOP:NUM`` (numbers, SI) or words (``edges``)."""
+    import numpy as np
+
+    from .common import real
+
+    text = text.strip()
+    if not text:
+        raise UserError(f"--vary {name}: no values")
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) != 3:
+            raise UserError(f"--vary {name}={text}: use START:STOP:NUM")
+        try:
+            start, stop = real(parts[0]), real(parts[1])
+            num = int(parts[2])
+        except (argparse.ArgumentTypeError, ValueError):
+            raise UserError(f"--vary {name}={text}: START and STOP must be numbers and NUM "
+                            "an integer") from None
+        if num < 1:
+            raise UserError(f"--vary {name}={text}: NUM must be >= 1")
+        return [float(v) for v in np.linspace(start, stop, num)]
+    items = [item.strip() for item in text.split(",")]
+    if name.replace("-", "_") == "edges":
+        return items
+    try:
+        return [real(item) for item in items]
+    except argparse.ArgumentTypeError as exc:
+        raise UserError(f"--vary {name}: {exc}") from None
+
+
+def parse_vary(specs: list[str]) -> dict[str, list]:
+    vary: dict[str, list] = {}
+    for spec in specs:
+        name, sep, values = spec.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise UserError(f"--vary needs NAME=VALUES, got {spec!r}")
+        key = name.replace("-", "_")
+        if key in vary:
+            raise UserError(f"--vary {name} given twice")
+        vary[key] = parse_values(name, values)
+    return vary
+
+
+def _check_output(path: str | None, suffixes: tuple[str, ...], flag: str) -> None:
+    if path is None:
+        return
+    target = Path(path)
+    if target.suffix.lower() not in suffixes:
+        raise UserError(f"{flag}: use a {' or '.join(suffixes)} file, got {path}")
+    if str(target.parent) and not target.parent.is_dir():
+        raise FileNotFoundError(f"output folder does not exist: {target.parent}")
+    if target.is_dir():
+        raise IsADirectoryError(f"output is a directory: {path}")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..parameters import check_velocity
+    from ..study import run_study
+
+    params = parameters_from_args(args)
+    velocity = check_velocity(args.velocity)
+    vary = parse_vary(args.vary)
+    compute = [c.strip() for item in args.compute for c in item.split(",") if c.strip()]
+    _check_output(args.out, (".csv", ".parquet"), "--out")
+    _check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
+    _check_output(args.cache, (".jsonl",), "--cache")
+    check_save_path(args.save)
+    if args.plot and len(vary) > 2:
+        raise UserError("--plot needs one or two varied parameters")
+    if args.plot and len(vary) == 2 and not {"modes", "period"} & set(compute):
+        raise UserError("--plot with two varied parameters draws a stability map: add "
+                        "--compute modes (or period)")
+    result = run_study(params, vary=vary, compute=compute, velocity=velocity,
+                       count=args.count, workers=args.workers, scheduler=args.scheduler,
+                       cache=args.cache, progress=False if args.quiet else None)
+    for path in (args.out, args.save):
+        if path is not None:
+            result.save(path)
+    if args.plot:
+        from ..io import write_atomic
+        from ..plot import pyplot
+
+        plt = pyplot(path=args.plot)
+        ax = result.plot()
+        write_atomic(args.plot, lambda tmp: ax.figure.savefig(tmp, dpi=120))
+        plt.close(ax.figure)
+    info = result.info
+    failed = len(result.failed)
+    if args.out is None:
+        print(result.table.drop(columns=["point"]).to_string(index=False))
+    print(f"{info['points']} points ({info['computed']} computed, {info['cached']} from the "
+          f"cache, {failed} with errors) in {info['seconds']:.2f} s on {info['executor']}")
+    for path in (args.out, args.save, args.plot):
+        if path is not None:
+            print(f"wrote {path}")
+    return 0
