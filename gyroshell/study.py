@@ -409,8 +409,20 @@ def _check_workers(workers) -> int:
     return int(workers)
 
 
+def _init_worker() -> None:
+    """One BLAS thread per worker process: the workers already use every core."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - threadpoolctl missing
+        return
+    threadpool_limits(limits=1)
+
+
 def _chunks(tasks: list, size: int) -> list[list]:
-    return [tasks[i:i + size] for i in range(0, len(tasks), size)]
+    """Tasks dealt round-robin into chunks of about ``size``: neighbouring points (similar
+    cost, e.g. all the supercritical speeds) spread over the chunks, balancing the load."""
+    n = max(1, math.ceil(len(tasks) / size))
+    return [tasks[i::n] for i in range(n) if tasks[i::n]]
 
 
 def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence] | None = None,
@@ -539,7 +551,7 @@ def _execute(todo, record: Callable, base_fields, velocity, compute, count, *, w
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     size = chunk_size or max(1, math.ceil(len(todo) / (workers * CHUNKS_PER_WORKER)))
-    with ProcessPoolExecutor(max_workers=workers) as pool:
+    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker) as pool:
         futures = [pool.submit(_evaluate_chunk, *args, chunk, compute, count)
                    for chunk in _chunks(todo, size)]
         try:
