@@ -9,7 +9,15 @@ import xarray as xr
 
 import gyroshell
 from gyroshell import (
-    TapeModel, TapeParameters, critical_speeds, march, modes, run_study, solve_static, sweep)
+    TapeModel,
+    TapeParameters,
+    critical_speeds,
+    march,
+    modes,
+    run_study,
+    solve_static,
+    sweep,
+)
 from gyroshell.errors import ParameterError
 from gyroshell.persistence import metadata
 

@@ -7,14 +7,19 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
+from test_stability import quadratic_eigenvalues  # the tests' own dense solver
 
 import gyroshell.study as study_module
 from gyroshell import (
-    TapeModel, TapeParameters, classify_stability, critical_speeds, modes, run_study,
-    solve_static)
+    TapeModel,
+    TapeParameters,
+    classify_stability,
+    critical_speeds,
+    modes,
+    run_study,
+    solve_static,
+)
 from gyroshell.errors import ParameterError, SupercriticalError
-
-from test_stability import quadratic_eigenvalues  # noqa: I001 - the tests' dense solver
 
 BASE = TapeParameters(length_ratio=4, spacing=6.35e-3 / 8)
 VARY = {"velocity": [0.0, 60.0, 104.0], "tension": [70.0, 90.0]}
