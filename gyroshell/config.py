@@ -101,6 +101,12 @@ def parse_quantity(key: str, value, where: str = "") -> float:
             raise ParameterError(f"{prefix}: unit {unit!r} is not a unit of {kind} "
                                  f"(use one of: {allowed})")
         factor = UNITS[kind][unit]
+        exponent = round(math.log10(factor))
+        if math.isfinite(number) and factor == 10.0**exponent:
+            # decimal prefixes are applied in decimal, rounded once: "20 um" is 2e-05 exactly
+            from decimal import Decimal
+
+            return float(Decimal(match.group(1)).scaleb(exponent))
     else:
         raise ParameterError(f"{prefix} must be a number or '<number> <unit>', got {value!r}")
     if not math.isfinite(number):

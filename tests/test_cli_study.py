@@ -109,3 +109,15 @@ def test_bad_config_exits_2_naming_the_key(tmp_path, capsys):
     assert exit_code(["modes", "--config", str(bad)]) == 2
     err = capsys.readouterr().err
     assert "tension: unit 'N' is not a unit of N/m" in err and len(err.splitlines()) == 1
+
+
+def test_vary_values_may_carry_units(tmp_path, capsys):
+    out = tmp_path / "t.csv"
+    assert main(["study", *COARSE, "--vary", "thickness=20um,30 um", "--vary",
+                 "tension=0.09N/mm", "--compute", "static", "--workers", "1", "--quiet",
+                 "--out", str(out)]) == 0
+    table = pd.read_csv(out)
+    assert list(table["thickness"]) == [20e-6, 30e-6] and set(table["tension"]) == {90.0}
+    assert exit_code(["study", *COARSE, "--vary", "thickness=20N", "--compute", "static",
+                      "--workers", "1"]) == 2
+    assert "unit 'N' is not a unit of m" in capsys.readouterr().err

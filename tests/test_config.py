@@ -35,12 +35,11 @@ def write(tmp_path, text: str):
 def test_units_are_converted_to_si(tmp_path):
     cfg = load_config(write(tmp_path, TABLE1))
     assert cfg.name == "Table 1"
-    assert cfg.velocity == pytest.approx(50.0, rel=1e-15)
+    assert cfg.velocity == pytest.approx(50.0, rel=1e-15)  # km/h: not a decimal prefix
     p = cfg.params
-    assert p.youngs_modulus == 4e9 and p.thickness == pytest.approx(20e-6, rel=1e-15)
-    assert p.radius == 20e-3 and p.density == pytest.approx(0.014, rel=1e-15)
-    assert p.tension == pytest.approx(90.0, rel=1e-15) and p.load == pytest.approx(200.0)
-    assert p.spacing == pytest.approx(1.549e-4, rel=1e-15) and p.width == 6.35e-3
+    # decimal prefixes are exact: the same floats as typing the SI numbers
+    assert (p.youngs_modulus, p.thickness, p.radius, p.density) == (4e9, 20e-6, 20e-3, 0.014)
+    assert (p.tension, p.load, p.spacing, p.width) == (90.0, 200.0, 1.549e-4, 6.35e-3)
     assert p == TapeParameters(**{k: getattr(p, k) for k in ("youngs_modulus", "thickness",
                                                                "density", "tension", "load",
                                                                "spacing")})

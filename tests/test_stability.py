@@ -195,3 +195,15 @@ def test_tape_stability_below_and_above_critical():
         lam = quadratic_eigenvalues(model.M.toarray(), model.G(V).toarray(),
                                     model.K(V).toarray())
         assert tape_stability(model, V) == classify_stability(lam) != "stable"
+
+
+def test_eigenvalues_nearest_zero_can_miss_the_instability():
+    # Far above critical the growing modes are not among the few nearest zero: a verdict
+    # from modes(...)'s eigenvalues alone would call this speed stable.
+    model = TapeModel(TapeParameters(length_ratio=4, spacing=WIDTH / 8))
+    V = 130.0
+    near_zero = modes(model, V, 3).eigenvalues
+    lam = quadratic_eigenvalues(model.M.toarray(), model.G(V).toarray(), model.K(V).toarray())
+    assert classify_stability(near_zero) == "stable"
+    assert classify_stability(lam) == "divergence"
+    assert tape_stability(model, V, near_zero) == "divergence"

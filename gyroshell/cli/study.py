@@ -23,6 +23,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
                    help="a parameter and its values: NAME=V1,V2,... or NAME=START:STOP:NUM "
                         "(NUM evenly spaced values, both ends included); repeat for a grid. "
+                        "Values in SI, or with a unit as in a --config file (20um,30um). "
                         f"NAME: {', '.join(VARIABLE_NAMES)} (SI units)")
     p.add_argument("--compute", action="append", required=True, metavar="WHAT",
                    help=f"what to compute: {', '.join(COMPUTE_CHOICES)} (repeat or "
@@ -48,9 +49,11 @@ def register(sub, common: argparse.ArgumentParser) -> None:
 
 
 def parse_values(name: str, text: str) -> list:
-    """``V1,V2,...`` or ``START:STOP:NUM`` (numbers, SI) or words (``edges``)."""
+    """``V1,V2,...`` or ``START:STOP:NUM`` (numbers in SI, or values with a unit such as
+    ``20um`` / ``"20 um"``; words for ``edges``)."""
     import numpy as np
 
+    from ..config import QUANTITIES, parse_quantity
     from .common import real
 
     text = text.strip()
@@ -72,10 +75,18 @@ def parse_values(name: str, text: str) -> list:
     items = [item.strip() for item in text.split(",")]
     if name.replace("-", "_") == "edges":
         return items
-    try:
-        return [real(item) for item in items]
-    except argparse.ArgumentTypeError as exc:
-        raise UserError(f"--vary {name}: {exc}") from None
+    key = name.replace("-", "_")
+    out = []
+    for item in items:
+        try:
+            out.append(real(item))
+        except argparse.ArgumentTypeError as exc:
+            if key not in QUANTITIES or not item[:1].strip("+-.0123456789") == "":
+                raise UserError(f"--vary {name}: {exc}") from None
+            unit = item.lstrip("+-.0123456789eE")  # "20um" -> "um"
+            number = item[:len(item) - len(unit)].strip()
+            out.append(parse_quantity(key, f"{number} {unit.strip()}", "--vary "))
+    return out
 
 
 def parse_vary(specs: list[str]) -> dict[str, list]:
