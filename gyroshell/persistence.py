@@ -199,11 +199,29 @@ def _transient(result, params):
     return _dataset(dv, coords, "transient", params=params, info=result.info)
 
 
+#: Units of the table columns that studies and sweeps write.
+_UNITS_OF = {"velocity": "m/s", "tension": "N/m", "thickness": "m", "youngs_modulus": "Pa",
+             "radius": "m", "width": "m", "spacing": "m", "density": "kg/m^2", "load": "Pa",
+             "load_x": "m", "load_y": "m", "bending_rigidity": "N*m",
+             "foundation_stiffness": "N/m^3", "critical_speed": "m/s",
+             "divergence_speed": "m/s", "growth_rate": "1/s", "omega": "rad/s",
+             "frequency": "Hz", "period": "s", "load_point_deflection": "m",
+             "max_deflection": "m", "poisson": "1", "length_ratio": "1"}
+
+
+def _column_units(ds) -> None:
+    for name in ds.variables:
+        unit = "rad/s" if str(name).startswith("omega_") else _UNITS_OF.get(str(name))
+        if unit:
+            ds[name].attrs["units"] = unit
+
+
 def _table(frame, kind: str = "table", params=None, **attrs):
     import xarray as xr
 
     frame = frame.reset_index(drop=True)
     ds = xr.Dataset.from_dataframe(frame.rename_axis("row"))
+    _column_units(ds)
     columns = list(frame.columns)
     base = _dataset({}, {}, kind, params=params, columns=columns, **attrs)
     ds.attrs.update(base.attrs)

@@ -359,6 +359,21 @@ class StudyResult:
 
         return persistence.to_xarray(self)
 
+    def gridded(self):
+        """The table as an :class:`xarray.Dataset` with one dimension per varied parameter
+        (e.g. ``stability`` over (velocity, tension)); missing combinations are NaN/empty.
+
+        Raises ParameterError if two points share the same varied values.
+        """
+        table = self.table.drop(columns=["point"])
+        if table.duplicated(list(self.varied)).any():
+            raise ParameterError("points repeat the same varied values: no grid")
+        from .persistence import _column_units
+
+        ds = table.set_index(list(self.varied)).to_xarray()
+        _column_units(ds)
+        return ds
+
     def save(self, path):
         """Write NetCDF (.nc), CSV or Parquet; see :func:`gyroshell.persistence.save`."""
         from . import persistence

@@ -126,3 +126,20 @@ def test_refusals(tmp_path, model):
     with pytest.raises(ParameterError, match="not a gyroshell result"):
         gyroshell.load(tmp_path / "other.nc")
     assert not list(tmp_path.glob(".*")), "temporary files left behind"
+
+
+def test_study_gridded_view_has_one_dimension_per_varied_parameter():
+    study = run_study(PARAMS, vary={"velocity": [0.0, 50.0, 100.5], "tension": [70.0, 90.0]},
+                      compute="modes", count=1, workers=1)
+    ds = study.gridded()
+    assert ds["stability"].dims == ("velocity", "tension")
+    assert ds["omega_1"].attrs["units"] == "rad/s" and ds["velocity"].attrs["units"] == "m/s"
+    for row in study.table.itertuples():
+        cell = ds.sel(velocity=row.velocity, tension=row.tension)
+        assert cell["omega_1"].item() == row.omega_1
+        assert cell["stability"].item() == row.stability
+    assert study.to_xarray()["omega_1"].attrs["units"] == "rad/s"
+    twice = run_study(PARAMS, points=[{"tension": 80.0}, {"tension": 80.0}],
+                      compute="modes", count=1, workers=1)
+    with pytest.raises(ParameterError, match="no grid"):
+        twice.gridded()
