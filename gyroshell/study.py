@@ -556,6 +556,8 @@ def _execute(todo, record: Callable, base_fields, velocity, compute, count, *, w
              scheduler, chunk_size) -> tuple[str, int]:
     """Run the tasks where asked; ``record`` gets each finished chunk's (index, row)s."""
     args = (base_fields, velocity)
+    if not todo:
+        return "cache", 0
     if scheduler is not None:
         return _execute_dask(todo, record, args, compute, count, scheduler, chunk_size)
     if workers == 1:
@@ -579,6 +581,29 @@ def _execute(todo, record: Callable, base_fields, velocity, compute, count, *, w
     return f"processes({workers})", size
 
 
+def _worker_version() -> str:
+    try:
+        from gyroshell import __version__
+    except ImportError:
+        return "not installed"
+    return __version__
+
+
+def _check_worker_versions(client, scheduler: str) -> None:
+    """Refuse workers that run another gyroshell: their rows would not be this version's."""
+    from . import __version__
+
+    versions = client.run(_worker_version)
+    if not versions:
+        raise ParameterError(f"the Dask scheduler at {scheduler} has no workers: start some "
+                             f"with 'dask worker {scheduler}'")
+    other = {addr: v for addr, v in versions.items() if v != __version__}
+    if other:
+        addr, v = next(iter(other.items()))
+        raise ParameterError(f"Dask worker {addr} runs gyroshell {v}, this process "
+                             f"{__version__}: install the same version on every worker")
+
+
 def _execute_dask(todo, record, args, compute, count, scheduler, chunk_size
                   ) -> tuple[str, int]:
     try:
@@ -595,6 +620,7 @@ def _execute_dask(todo, record, args, compute, count, scheduler, chunk_size
         raise ParameterError(f"cannot reach the Dask scheduler at {scheduler}: {exc}"
                              ) from None
     try:
+        _check_worker_versions(client, scheduler)
         threads = max(1, sum(client.nthreads().values()))
         size = chunk_size or max(1, math.ceil(len(todo) / (threads * CHUNKS_PER_WORKER)))
         futures = [client.submit(_evaluate_chunk, *args, chunk, compute, count, pure=False)

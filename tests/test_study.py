@@ -161,3 +161,13 @@ def test_cut_short_cache_line_is_recomputed(tmp_path, quick):
 def test_refusals_name_the_problem(kwargs, match):
     with pytest.raises(ParameterError, match=match):
         run_study(BASE, **kwargs)
+
+
+def test_dask_workers_must_run_this_gyroshell(monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    monkeypatch.setattr(study_module, "_worker_version", lambda: "0.0-other")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster:
+        with pytest.raises(ParameterError, match="runs gyroshell 0.0-other"):
+            run_study(BASE, vary={"tension": [80.0]}, compute="modes",
+                      scheduler=cluster.scheduler_address)
