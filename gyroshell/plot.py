@@ -138,18 +138,21 @@ def campbell(diagram, *, ax=None, circumference: float | None = None,
         ax.plot(v["velocity"], 0.5 * (v["omega_a"] + v["omega_b"]), "D", ms=8, mfc="none",
                 mec="m", label="veering")
     vmax = float(frame["velocity"].max())
+    crit = diagram.critical_speed
+    if crit is not None and np.isfinite(crit) and crit <= 1.15 * vmax:
+        vmax = max(vmax, crit * 1.01)  # show the critical speed just beyond the sweep
+    top = float(np.nanmax(frame["omega"])) * 1.08 if len(frame) else 1.0
     if circumference is not None:
         speeds = np.linspace(0.0, vmax, 50)
         for n in orders:
             ax.plot(speeds, diagram.excitation(n, circumference, speeds), "--", color="0.4",
                     lw=0.9)
-            ax.annotate(f"n = {n}", (speeds[-1], diagram.excitation(n, circumference,
-                                                                     speeds[-1])),
-                        fontsize=8, color="0.3", ha="right", va="bottom")
-    if diagram.critical_speed is not None and np.isfinite(diagram.critical_speed):
-        ax.axvline(diagram.critical_speed, color="k", ls=":", lw=1.2,
-                   label=f"critical speed {diagram.critical_speed:.4g} m/s")
-    top = float(np.nanmax(frame["omega"])) * 1.08 if len(frame) else 1.0
+            v_end = min(vmax, top * circumference / (2 * np.pi * n))  # where it leaves
+            ax.annotate(f"n = {n}", (v_end, float(diagram.excitation(n, circumference, v_end))),
+                        fontsize=8, color="0.3", ha="right", va="top",
+                        xytext=(-3, -3), textcoords="offset points")
+    if crit is not None and np.isfinite(crit):
+        ax.axvline(crit, color="k", ls=":", lw=1.2, label=f"critical speed {crit:.4g} m/s")
     ax.set_ylim(0, top)
     ax.set_xlim(float(frame["velocity"].min()), vmax)
     ax.set_xlabel("tape speed V (m/s)")

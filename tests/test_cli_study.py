@@ -121,3 +121,18 @@ def test_vary_values_may_carry_units(tmp_path, capsys):
     assert exit_code(["study", *COARSE, "--vary", "thickness=20N", "--compute", "static",
                       "--workers", "1"]) == 2
     assert "unit 'N' is not a unit of m" in capsys.readouterr().err
+
+
+def test_campbell_command(tmp_path, capsys):
+    out, png = tmp_path / "c.csv", tmp_path / "c.png"
+    assert main(["campbell", "--length-ratio", "1.5", "--spacing", str(6.35e-3 / 10),
+                 "--edges", "simply-supported", "--foundation-stiffness", "0",
+                 "--velocities", "0:75:5", "--count", "5", "--circumference", "0.01",
+                 "--out", str(out), "--plot", str(png)]) == 0
+    text = capsys.readouterr().out
+    assert "crossing: branches" in text and "resonance: order 1" in text
+    table = pd.read_csv(out)
+    assert list(table.columns) == ["velocity", "branch", "rank", "omega", "growth_rate", "mac"]
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert exit_code(["campbell", *COARSE, "--orders", "x"]) == 2
+    assert "--orders must be integers" in capsys.readouterr().err

@@ -1,4 +1,4 @@
-"""``gyroshell study``: parameter studies (grids of tape parameters), locally or on Dask."""
+"""``gyroshell study`` (parameter studies, locally or on Dask) and ``gyroshell campbell``."""
 
 from __future__ import annotations
 
@@ -46,6 +46,33 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                         "against the varied parameter (one)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run)
+    register_campbell(sub, common)
+
+
+def register_campbell(sub, common: argparse.ArgumentParser) -> None:
+    p = sub.add_parser(
+        "campbell", parents=[common], help="Campbell diagram: MAC-tracked frequencies vs speed",
+        description="Lowest frequencies (rad/s) against tape speed (m/s), tracked into "
+                    "branches by the modal assurance criterion (MAC of every link reported), "
+                    "with crossings, veerings, the critical speed and, for a roller or "
+                    "capstan of circumference L (m), the excitation lines omega = n 2 pi V/L "
+                    "and the speeds where they meet a branch.")
+    p.add_argument("--velocities", default="0:100:5",
+                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...' "
+                        "(default 0:100:5)")
+    p.add_argument("--count", type=positive_int, default=6,
+                   help="modes per speed (default 6)")
+    p.add_argument("--min-mac", type=float, default=None,
+                   help="smallest MAC that continues a branch (default 0.5)")
+    p.add_argument("--circumference", type=float, default=None,
+                   help="roller/capstan circumference, m: draw excitation lines")
+    p.add_argument("--orders", default="1,2,3",
+                   help="harmonics n of the excitation lines (default 1,2,3)")
+    p.add_argument("--out", metavar="FILE.csv", default=None,
+                   help="write the tracked branches (velocity, branch, rank, omega, "
+                        "growth_rate, mac)")
+    p.add_argument("--plot", metavar="FILE.png", default=None, help="write the diagram")
+    p.set_defaults(func=run_campbell)
 
 
 def parse_values(name: str, text: str) -> list:
@@ -154,5 +181,56 @@ def run(args: argparse.Namespace) -> int:
           f"cache, {failed} with errors) in {info['seconds']:.2f} s on {info['executor']}")
     for path in (args.out, args.save, args.plot):
         if path is not None:
+            print(f"wrote {path}")
+    return 0
+
+
+def run_campbell(args: argparse.Namespace) -> int:
+    import math
+
+    from ..campbell import MIN_MAC, campbell
+    from ..model import TapeModel
+    from ..sweep import check_velocities, parse_velocities
+
+    params = parameters_from_args(args)
+    velocities = check_velocities(parse_velocities(args.velocities))
+    try:
+        orders = [int(n) for n in args.orders.split(",") if n.strip()]
+    except ValueError:
+        raise UserError(f"--orders must be integers like 1,2,3, got {args.orders!r}") from None
+    if args.circumference is not None and not (math.isfinite(args.circumference)
+                                               and args.circumference > 0):
+        raise UserError(f"--circumference must be > 0 m, got {args.circumference:g}")
+    _check_output(args.out, (".csv", ".parquet", ".nc"), "--out")
+    _check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
+    min_mac = MIN_MAC if args.min_mac is None else args.min_mac
+    d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac, progress=None)
+    if args.out:
+        d.save(args.out)
+    if args.plot:
+        from ..io import write_atomic
+        from ..plot import pyplot
+
+        plt = pyplot(path=args.plot)
+        ax = d.plot(circumference=args.circumference, orders=orders)
+        write_atomic(args.plot, lambda tmp: ax.figure.savefig(tmp, dpi=120))
+        plt.close(ax.figure)
+    links = d.frame["mac"].dropna()
+    print(f"{d.frame['branch'].nunique()} branches over {len(velocities)} speeds; MAC of "
+          f"the links: min {links.min():.3f}, median {links.median():.3f}"
+          if len(links) else f"{d.frame['branch'].nunique()} branches")
+    print(f"critical speed: {d.critical_speed:.6g} m/s")
+    for row in d.crossings.itertuples():
+        print(f"crossing: branches {row.branch_a} and {row.branch_b} at V = "
+              f"{row.velocity:.4g} m/s, omega = {row.omega:.6g} rad/s")
+    for row in d.veerings.itertuples():
+        print(f"veering: branches {row.branch_a} and {row.branch_b} at V = "
+              f"{row.velocity:.4g} m/s, gap {100 * row.gap:.2g} %")
+    if args.circumference is not None:
+        for row in d.resonances(args.circumference, orders).itertuples():
+            print(f"resonance: order {row.order} meets branch {row.branch} at V = "
+                  f"{row.velocity:.4g} m/s (omega = {row.omega:.6g} rad/s)")
+    for path in (args.out, args.plot):
+        if path:
             print(f"wrote {path}")
     return 0
