@@ -300,18 +300,44 @@ def _point_key(spec: str, point: dict) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:32]
 
 
-def _read_cache(path: Path) -> dict[str, dict]:
-    done: dict[str, dict] = {}
-    if not path.exists():
-        return done
-    with open(path, encoding="utf-8") as fh:
-        for line in fh:
-            try:
-                entry = json.loads(line)
-                done[entry["key"]] = entry["row"]
-            except (json.JSONDecodeError, KeyError, TypeError):
-                continue  # a line cut short by an interruption: that point runs again
-    return done
+class _Cache:
+    """Finished points in a JSON Lines file (one ``{"key", "row"}`` object per line)."""
+
+    def __init__(self, path: str | os.PathLike[str] | None) -> None:
+        self.path = None if path is None else Path(path)
+        self._file = None
+        if self.path is not None and not self.path.parent.is_dir():
+            raise FileNotFoundError(f"cache folder does not exist: {self.path.parent}")
+
+    def done(self) -> dict[str, dict]:
+        """Rows already computed, by key; a line cut short by an interruption is skipped
+        (that point runs again)."""
+        rows: dict[str, dict] = {}
+        if self.path is None or not self.path.exists():
+            return rows
+        with open(self.path, encoding="utf-8") as fh:
+            for line in fh:
+                try:
+                    entry = json.loads(line)
+                    rows[entry["key"]] = entry["row"]
+                except (json.JSONDecodeError, KeyError, TypeError):
+                    continue
+        return rows
+
+    def __enter__(self) -> _Cache:
+        if self.path is not None:
+            self._file = open(self.path, "a", encoding="utf-8")
+        return self
+
+    def add(self, entries: list[tuple[str, dict]]) -> None:
+        if self._file is not None:
+            for key, row in entries:
+                self._file.write(json.dumps({"key": key, "row": row}) + "\n")
+            self._file.flush()
+
+    def __exit__(self, *exc) -> None:
+        if self._file is not None:
+            self._file.close()
 
 
 # ----- the result --------------------------------------------------------------------------
@@ -513,36 +539,22 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     spec = json.dumps([base_fields, velocity, compute, count, __version__], sort_keys=True,
                       default=repr)
     keys = [_point_key(spec, p) for p in pts]
-    rows: dict[int, dict] = {}
-    cache_path = Path(cache) if cache is not None else None
-    if cache_path is not None:
-        if not cache_path.parent.is_dir():
-            raise FileNotFoundError(f"cache folder does not exist: {cache_path.parent}")
-        done = _read_cache(cache_path)
-        rows = {i: done[k] for i, k in enumerate(keys) if k in done}
+    cache = _Cache(cache)
+    done = cache.done()
+    rows: dict[int, dict] = {i: done[k] for i, k in enumerate(keys) if k in done}
     todo = [(i, pts[i]) for i in range(len(pts)) if i not in rows]
 
     t0 = time.perf_counter()
     bar = tqdm(total=len(pts), initial=len(rows), disable=not progress, desc="study",
                unit="point")
-    cache_file = open(cache_path, "a", encoding="utf-8") if cache_path is not None else None
+    with cache, bar:
+        def record(results: list[tuple[int, dict]]) -> None:
+            rows.update(results)
+            cache.add([(keys[i], row) for i, row in results])
+            bar.update(len(results))
 
-    def record(results: list[tuple[int, dict]]) -> None:
-        for i, row in results:
-            rows[i] = row
-            if cache_file is not None:
-                cache_file.write(json.dumps({"key": keys[i], "row": row}) + "\n")
-        if cache_file is not None:
-            cache_file.flush()
-        bar.update(len(results))
-
-    try:
         executor, size = _execute(todo, record, base_fields, velocity, compute, count,
                                   workers=workers, scheduler=scheduler, chunk_size=chunk_size)
-    finally:
-        bar.close()
-        if cache_file is not None:
-            cache_file.close()
     columns = result_columns(compute, count)
     records = [{"point": i, **pts[i], **{c: rows[i][c] for c in columns}}
                for i in range(len(pts))]
