@@ -188,19 +188,24 @@ def stability_map(study, *, x: str | None = None, y: str | None = None, ax=None,
     from matplotlib.patches import Patch
 
     ax = _axes(ax)
-    xs = np.unique(table[x].to_numpy(float))
-    ys = np.unique(table[y].to_numpy(float))
+    xv, xs, xticks = _positions(table[x])
+    yv, ys, yticks = _positions(table[y])
     classes = list(STABILITY_COLOURS)
     grid = np.full((len(ys), len(xs)), classes.index(""), dtype=float)
-    for xv, yv, s in zip(table[x], table[y], table["stability"], strict=True):
-        grid[np.searchsorted(ys, yv), np.searchsorted(xs, xv)] = classes.index(s)
+    for a, b, s in zip(xv, yv, table["stability"], strict=True):
+        grid[np.searchsorted(ys, b), np.searchsorted(xs, a)] = classes.index(s)
+    if xticks is not None:
+        ax.set_xticks(xs, xticks)
+    if yticks is not None:
+        ax.set_yticks(ys, yticks)
     cmap = ListedColormap([STABILITY_COLOURS[c] for c in classes])
     ax.pcolormesh(_edges(xs), _edges(ys), grid, cmap=cmap, vmin=-0.5,
                   vmax=len(classes) - 0.5, shading="flat", edgecolors="w", linewidth=0.3)
     present = [c for c in classes if c and (table["stability"] == c).any()]
     handles = [Patch(color=STABILITY_COLOURS[c], label=c) for c in present]
-    if "critical_speed" in table and "velocity" in (x, y):
-        other = y if x == "velocity" else x
+    other = y if x == "velocity" else x
+    if ("critical_speed" in table and "velocity" in (x, y)
+            and table[other].dtype.kind in "fiu"):
         crit = table.groupby(other)["critical_speed"].first().dropna()
         if len(crit):
             cx, cy = (crit.to_numpy(), crit.index.to_numpy()) if x == "velocity" else (
@@ -264,6 +269,17 @@ _UNITS = {"velocity": "m/s", "tension": "N/m", "thickness": "m", "youngs_modulus
 def _label(name: str) -> str:
     unit = "rad/s" if name.startswith("omega_") else _UNITS.get(name)
     return f"{name.replace('_', ' ')} ({unit})" if unit else name.replace("_", " ")
+
+
+def _positions(column):
+    """(values, sorted unique values, tick labels or None): text (e.g. ``edges``) is placed
+    at 0, 1, 2, ... with its words as tick labels."""
+    if column.dtype.kind in "fiu":
+        values = column.to_numpy(float)
+        return values, np.unique(values), None
+    words = sorted(set(column.astype(str)))
+    values = np.array([words.index(w) for w in column.astype(str)], dtype=float)
+    return values, np.arange(len(words), dtype=float), words
 
 
 def _edges(centres: np.ndarray) -> np.ndarray:

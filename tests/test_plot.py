@@ -105,3 +105,12 @@ def test_import_gyroshell_does_not_import_matplotlib_xarray_or_dask():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == "[]"
+
+
+def test_stability_map_over_a_word_parameter(tmp_path):
+    study = run_study(PARAMS, vary={"edges": ["free", "simply-supported"],
+                                    "velocity": [50.0, 120.0]},
+                      compute="period", workers=1)
+    ax = study.plot()
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["free", "simply-supported"]
+    assert saved(ax, tmp_path / "edges.png") == PNG
