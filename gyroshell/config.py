@@ -84,7 +84,13 @@ def _tomllib():
 
 
 def parse_quantity(key: str, value, where: str = "") -> float:
-    """A number (SI) or ``"<number> <unit>"`` for ``key``, converted to SI."""
+    """A number (SI) or ``"<number> <unit>"`` for ``key``, converted to SI.
+
+    Examples
+    --------
+    >>> parse_quantity("thickness", "20 um"), parse_quantity("tension", "0.09 N/mm")
+    (2e-05, 90.0)
+    """
     kind = QUANTITIES[key]
     prefix = f"{where}{key}"
     if isinstance(value, bool):

@@ -82,7 +82,16 @@ def classify_stability(eigenvalues: Iterable[complex], *, rtol: float = STABILIT
     reported. A part counts as zero when it is below ``rtol`` × |λ|.
 
     The gyroscopic eigen-solver returns only the eigenvalues nearest zero, so the verdict is
-    about those modes.
+    about those modes (:func:`tape_stability` decides for the whole tape).
+
+    Examples
+    --------
+    >>> classify_stability([125e3j, -125e3j])
+    'stable'
+    >>> classify_stability([2.3e4 + 0j, 1.5e4j])
+    'divergence'
+    >>> classify_stability([8e2 + 7.9e2j, 8e2 - 7.9e2j])
+    'flutter'
     """
     lam = np.asarray(list(eigenvalues) if not isinstance(eigenvalues, np.ndarray)
                      else eigenvalues, dtype=complex).ravel()
@@ -163,7 +172,14 @@ def _canonical(name: str) -> str:
 
 
 def grid_points(vary: Mapping[str, Sequence]) -> list[dict]:
-    """All combinations of the values in ``vary`` (the first name varies slowest)."""
+    """All combinations of the values in ``vary`` (the first name varies slowest).
+
+    Examples
+    --------
+    >>> grid_points({"velocity": [0.0, 50.0], "youngs-modulus": [4e9]})
+    [{'velocity': 0.0, 'youngs_modulus': 4000000000.0},
+     {'velocity': 50.0, 'youngs_modulus': 4000000000.0}]
+    """
     names = [_canonical(n) for n in vary]
     values = []
     for name, vals in zip(names, vary.values(), strict=True):
