@@ -35,10 +35,13 @@ WIDTH = 6.35e-3
 
 def quadratic_eigenvalues(M, G, K) -> np.ndarray:
     """All 2n roots of det(λ²M + λG + K) = 0 by a dense companion linearization."""
+    from threadpoolctl import threadpool_limits
+
     n = len(M)
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -G]])
     B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), M]])
-    return la.eig(A, B, right=False)
+    with threadpool_limits(1):  # one BLAS thread: much faster on a shared machine
+        return la.eig(A, B, right=False)
 
 
 def two_dof(k1: float, k2: float, g: float):
