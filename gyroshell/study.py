@@ -543,6 +543,12 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     pts, varied = _check_points(base, velocity, raw)
     if vary is not None:
         varied = tuple(_canonical(n) for n in vary)
+    if scheduler is not None and (not isinstance(scheduler, str) or "://" not in scheduler):
+        raise ParameterError(f"scheduler must be an address like tcp://HOST:PORT, got "
+                             f"{scheduler!r}")
+    if scheduler is not None and workers is not None:
+        raise ParameterError("give workers (local processes) or scheduler (a Dask cluster, "
+                             "whose workers run the points), not both")
     workers = _check_workers(workers) if scheduler is None else None
     if chunk_size is not None and (int(chunk_size) != chunk_size or chunk_size < 1):
         raise ParameterError(f"chunk_size must be an integer >= 1, got {chunk_size!r}")
@@ -639,9 +645,6 @@ def _execute_dask(todo, record, args, compute, count, scheduler, chunk_size
     except ImportError:
         raise ParameterError('--scheduler needs Dask: pip install "gyroshell[cluster]"'
                              ) from None
-    if not isinstance(scheduler, str) or "://" not in scheduler:
-        raise ParameterError(f"scheduler must be an address like tcp://HOST:PORT, got "
-                             f"{scheduler!r}")
     try:
         client = Client(scheduler, timeout=CONNECT_TIMEOUT)
     except (OSError, TimeoutError) as exc:

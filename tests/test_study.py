@@ -157,6 +157,7 @@ def test_cut_short_cache_line_is_recomputed(tmp_path, quick):
     ({"vary": {"tension": [1.0]}, "points": [{}]}, "either vary"),
     ({}, "either vary"),
     ({"vary": {"tension": [1.0]}, "scheduler": "localhost"}, "tcp://HOST:PORT"),
+    ({"vary": {"tension": [1.0]}, "scheduler": "tcp://a:1", "workers": 2}, "not both"),
 ])
 def test_refusals_name_the_problem(kwargs, match):
     with pytest.raises(ParameterError, match=match):
