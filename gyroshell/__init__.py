@@ -46,6 +46,9 @@ _LAZY: dict[str, str] = {
     "critical_speeds": "critical",
     "Modes": "eigen", "frequencies": "eigen", "modes": "eigen",
     "plot_sweep": "sweep", "sweep": "sweep",
+    # parameter studies and saved results (xarray, Dask and matplotlib load on use)
+    "load": "persistence", "save": "persistence",
+    "StudyResult": "study", "classify_stability": "study", "run_study": "study",
 }
 
 __all__ = sorted(["ConvergenceError", "ParameterError", "SupercriticalError",

@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import persistence
 from .divergence import divergence
 from .eigen import modes
 from .errors import ConvergenceError, ParameterError
@@ -119,6 +120,14 @@ class CriticalSpeeds:
             "sundaram_benson_speed": self.sundaram_benson_speed,
             "paper_speed": self.paper_speed,
         }
+
+    def to_xarray(self, *, params=None):
+        """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
+        return persistence.to_xarray(self, params=params)
+
+    def save(self, path, *, params=None):
+        """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
+        return persistence.save(self, path, params=params)
 
 
 def _extrapolate_zero(points: list[tuple[float, float]]) -> float:

@@ -36,6 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from . import persistence
 from .errors import ConvergenceError, ParameterError
 from .grid import Grid
 from .model import TapeModel
@@ -115,6 +116,14 @@ class Modes:
     def field(self, index: int) -> np.ndarray:
         """Complex mode shape ``index`` on all nodes, shape (nx + 1, ny + 1)."""
         return self.grid.to_field(self.vectors[:, index])
+
+    def to_xarray(self, *, params=None):
+        """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
+        return persistence.to_xarray(self, params=params)
+
+    def save(self, path, *, params=None):
+        """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
+        return persistence.save(self, path, params=params)
 
 
 # ----- small pieces -----------------------------------------------------------------------

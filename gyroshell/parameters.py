@@ -7,7 +7,6 @@ tension in N/m, bending rigidity in N·m, shell (foundation) stiffness in N/m³.
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, fields, replace
 from typing import Literal
 
@@ -91,8 +90,9 @@ class TapeParameters:
     spacing : float
         Requested grid spacing Δx = Δy, m (1.549e-4: 41 intervals across the width).
         The grid takes the nearest whole number of intervals along each side.
-    load_pressure : float
-        Peak pressure P_0 of the Gaussian load (Eq. 17), Pa (200).
+    load : float
+        Peak pressure P_0 of the Gaussian load (Eq. 17), Pa (200); also readable as
+        :attr:`load_pressure`.
     load_x, load_y : float or None
         Load centroid x_0, y_0, m; ``None`` means the centre of the tape.
     edges : {"free", "simply-supported"}
@@ -134,7 +134,7 @@ class TapeParameters:
     width: float = 6.35e-3
     length_ratio: float = 4.0
     spacing: float = 1.549e-4
-    load_pressure: float = 200.0
+    load: float = 200.0
     load_x: float | None = None
     load_y: float | None = None
     edges: Edges = "free"
@@ -155,8 +155,7 @@ class TapeParameters:
         ):
             put(self, name, validation.positive(name, getattr(self, name), unit))
         put(self, "tension", validation.nonnegative("tension", self.tension, "N/m"))
-        put(self, "load_pressure", validation.real("load_pressure", self.load_pressure,
-                                                   unit="Pa"))
+        put(self, "load", validation.real("load", self.load, unit="Pa"))
         put(self, "poisson", _check_poisson(self.poisson))
         validation.choice("edges", self.edges, EDGE_CHOICES)
         if self.bending_rigidity is not None:
@@ -215,8 +214,8 @@ class TapeParameters:
               what="tension and density")
         scale("tension / radius", self.tension / self.radius, "Pa", lower=False,
               what="tension and radius")
-        scale("|load_pressure| x spacing^2", abs(self.load_pressure) * h * h, "N",
-              lower=False, what="load_pressure and spacing")
+        scale("|load| x spacing^2", abs(self.load) * h * h, "N",
+              lower=False, what="the load pressure and spacing")
 
     def max_velocity(self) -> float:
         """Largest speed V, m/s, whose ρV² stays within the solvers' range (1e150 N/m; far
@@ -229,11 +228,10 @@ class TapeParameters:
         return validation.real("velocity", velocity, high=self.max_velocity(), unit="m/s")
 
     @property
-    def load(self) -> float:
-        """Deprecated name of :attr:`load_pressure`, Pa."""
-        warnings.warn("TapeParameters.load is deprecated; use load_pressure (Pa)",
-                      DeprecationWarning, stacklevel=2)
-        return self.load_pressure
+    def load_pressure(self) -> float:
+        """Peak pressure P_0 of the Gaussian load, Pa (the field ``load``; a pressure, unlike
+        the nodal forces :attr:`gyroshell.model.TapeModel.force` in N)."""
+        return self.load
 
     # ----- derived quantities ------------------------------------------------------------
     @property

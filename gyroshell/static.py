@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from . import validation
+from . import persistence, validation
 from .divergence import divergence_speed
 from .errors import ParameterError, SupercriticalError
 from .grid import Grid
@@ -50,6 +50,14 @@ class StaticSolution:
     def max_deflection(self) -> float:
         """Deflection of largest magnitude (signed), m."""
         return float(self.w[np.argmax(np.abs(self.w))])
+
+    def to_xarray(self, *, params=None):
+        """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
+        return persistence.to_xarray(self, params=params)
+
+    def save(self, path, *, params=None):
+        """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
+        return persistence.save(self, path, params=params)
 
 
 def _check_model(model: object) -> TapeModel:

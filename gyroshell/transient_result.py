@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import budget, validation
+from . import budget, persistence, validation
 from .errors import ParameterError
 from .grid import Grid
 from .io import atomic_path
@@ -210,6 +210,14 @@ class TransientResult:
     @property
     def steps(self) -> int:
         return len(self.times) - 1
+
+    def to_xarray(self, *, params=None):
+        """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
+        return persistence.to_xarray(self, params=params)
+
+    def save(self, path, *, params=None):
+        """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
+        return persistence.save(self, path, params=params)
 
     def to_frame(self):
         """pandas DataFrame with columns ``t`` (s) and ``w`` (m) (+ ``energy``, J)."""

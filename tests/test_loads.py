@@ -23,12 +23,12 @@ def test_nodal_forces_add_up_to_the_pressure_integral(ratio):
     p = TapeParameters(length_ratio=ratio)
     m = TapeModel(p)
     total = gaussian_load(m.grid, p).sum()
-    assert total == pytest.approx(p.load_pressure * math.pi / gaussian_exponent(p.width), rel=1e-12)
+    assert total == pytest.approx(p.load * math.pi / gaussian_exponent(p.width), rel=1e-12)
 
 
 def test_off_centre_load_is_clipped_at_the_free_edge():
     p = TapeParameters(load_y=0.0)
-    full = p.load_pressure * math.pi / gaussian_exponent(p.width)
+    full = p.load * math.pi / gaussian_exponent(p.width)
     assert gaussian_load(TapeModel(p).grid, p).sum() == pytest.approx(full / 2, rel=1e-9)
 
 

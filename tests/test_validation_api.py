@@ -52,7 +52,7 @@ def test_grid_accepts_whole_floats_as_counts():
     ({"wrap_pressure": 1}, "wrap_pressure must be True or False, got 1"),
     ({"thickness": "thin"}, "thickness must be a real number m, got 'thin'"),
     ({"density": True}, "density must be a real number"),
-    ({"load_pressure": NAN}, "load_pressure must be finite Pa"),
+    ({"load": NAN}, "load must be finite Pa"),
     ({"edges": None}, "edges must be one of"),
     ({"length_ratio": 1e-6}, "length_ratio must leave at least 8 intervals along the length"),
     ({"length_ratio": 1e308}, "gives an infinite number of intervals"),
@@ -108,8 +108,7 @@ def test_deprecated_names_still_answer(small):
         assert small.size == small.unknowns
     with pytest.warns(DeprecationWarning, match="use force"):
         assert small.load is small.force
-    with pytest.warns(DeprecationWarning, match="use load_pressure"):
-        assert small.params.load == small.params.load_pressure == 200.0
+    assert small.params.load == small.params.load_pressure == 200.0  # Pa
 
 
 def test_no_lapack_noise_on_stderr(small, capfd):

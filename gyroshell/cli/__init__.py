@@ -1,7 +1,8 @@
 """Command-line interface: a thin layer over the public API.
 
 ``main(argv)`` builds one sub-command per module listed in :data:`SUBCOMMANDS`; each module
-has ``register(subparsers, common)`` which adds its parser and sets ``func``. User errors
+has ``register(subparsers, common[, common_without_velocity])`` which adds its parser and
+sets ``func``. User errors
 (bad parameters, supercritical requests, unwritable outputs) print one line on stderr and
 exit with code 2; numerical failures exit with code 1; no tracebacks for either. Ctrl-C,
 SIGTERM and SIGHUP stop the run, remove its temporary files and leave no output (exit codes
@@ -11,6 +12,7 @@ SIGTERM and SIGHUP stop the run, remove its temporary files and leave no output 
 from __future__ import annotations
 
 import importlib
+import inspect
 import sys
 
 from ..errors import ConvergenceError, ParameterError
@@ -18,7 +20,7 @@ from ..io import Terminated, termination_signals
 from .common import ArgumentParser, UserError, common_parser
 
 #: Sub-command modules (gyroshell.cli.<name>), in help order.
-SUBCOMMANDS: tuple[str, ...] = ("static", "transient", "eigen", "reproduce")
+SUBCOMMANDS: tuple[str, ...] = ("static", "transient", "eigen", "study", "reproduce")
 
 
 def build_parser() -> ArgumentParser:
@@ -39,7 +41,10 @@ def build_parser() -> ArgumentParser:
             if exc.name == f"{__name__}.{name}":
                 continue  # sub-command not built yet
             raise
-        module.register(sub, common, common_without_velocity)
+        if len(inspect.signature(module.register).parameters) >= 3:
+            module.register(sub, common, common_without_velocity)
+        else:  # a sub-command every variant of which takes --velocity
+            module.register(sub, common)
     return parser
 
 

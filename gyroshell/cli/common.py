@@ -115,9 +115,17 @@ _OVERRIDES = (
      "override D, N*m (default E c^3 / (12 (1 - nu^2)))"),
     ("--foundation-stiffness", "foundation_stiffness",
      "override the shell stiffness k, N/m^3 (default E c / (R^2 (1 - nu^2)))"),
-    ("--load", "load_pressure",
+    ("--load", "load",
      "peak pressure P_0 of the Gaussian load (Eq. 17), Pa (default 200)"),
 )
+
+
+class _Unset(float):
+    """A float default that was not typed on the command line (a --config file may set it)."""
+
+
+class _UnsetText(str):
+    """A text default that was not typed on the command line."""
 
 
 def common_parser(*, velocity: bool = True) -> argparse.ArgumentParser:
@@ -125,14 +133,17 @@ def common_parser(*, velocity: bool = True) -> argparse.ArgumentParser:
     one speed (so that ``critical --velocity 5`` is refused, not ignored)."""
     p = argparse.ArgumentParser(add_help=False)
     g = p.add_argument_group("tape model (SI units; defaults: the paper's Table 1)")
-    g.add_argument("--length-ratio", type=real, default=4.0,
+    g.add_argument("--config", metavar="TAPE.toml", default=None,
+                   help="tape definition file (TOML, values with units, e.g. tension = "
+                        "\"90 N/m\"); options given here override it")
+    g.add_argument("--length-ratio", type=real, default=_Unset(4.0),
                    help="L_x / L_y, > 0 (default 4; the paper also uses 19)")
-    g.add_argument("--edges", choices=EDGE_CHOICES, default="free",
+    g.add_argument("--edges", choices=EDGE_CHOICES, default=_UnsetText("free"),
                    help="lateral edges y = 0, L_y (default free; ends are simply supported)")
-    g.add_argument("--spacing", type=real, default=1.549e-4,
+    g.add_argument("--spacing", type=real, default=_Unset(1.549e-4),
                    help="grid spacing, m (default 1.549e-4: 41 intervals across)")
     if velocity:
-        g.add_argument("--velocity", type=real, default=0.0,
+        g.add_argument("--velocity", type=real, default=_Unset(0.0),
                        help="tape transport speed V, m/s, >= 0 (default 0)")
     for flag, field, text in _OVERRIDES:
         g.add_argument(flag, dest=field, metavar=flag[2:].upper().replace("-", "_"),
@@ -141,11 +152,29 @@ def common_parser(*, velocity: bool = True) -> argparse.ArgumentParser:
 
 
 def parameters_from_args(args: argparse.Namespace) -> TapeParameters:
-    """TapeParameters from the common options (validated; raises ParameterError)."""
+    """TapeParameters from the common options (validated; raises ParameterError).
+
+    With ``--config`` the file's values replace the defaults of the options not typed (and
+    its ``velocity`` becomes ``args.velocity``).
+    """
     kwargs = {field: getattr(args, field) for _flag, field, _text in _OVERRIDES
               if getattr(args, field) is not None}
+    if getattr(args, "config", None):
+        return _with_config(args, kwargs)
     return TapeParameters(length_ratio=args.length_ratio, edges=args.edges,
                           spacing=args.spacing, **kwargs)
+
+
+def _with_config(args: argparse.Namespace, kwargs: dict) -> TapeParameters:
+    from ..config import load_config
+
+    cfg = load_config(args.config)
+    for name in ("length_ratio", "edges", "spacing"):
+        if not isinstance(getattr(args, name), (_Unset, _UnsetText)):
+            kwargs[name] = getattr(args, name)
+    if isinstance(getattr(args, "velocity", None), _Unset) and cfg.velocity is not None:
+        args.velocity = cfg.velocity
+    return cfg.params.replace(**kwargs)
 
 
 def grid_of(params: TapeParameters):

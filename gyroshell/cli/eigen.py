@@ -8,6 +8,7 @@ import time
 
 from ..io import PLOT, check_outputs, transaction, write_atomic
 from .common import grid_of, parameters_from_args, parse_velocities, positive_int, print_json
+from .saving import add_save_option, check_save_path, save_result
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -19,6 +20,7 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--count", type=positive_int, default=6,
                    help="number of frequencies, >= 1 (default 6)")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    add_save_option(p)
     p.set_defaults(func=run_modes)
 
     p = sub.add_parser(
@@ -44,6 +46,7 @@ def register(sub, common: argparse.ArgumentParser,
                    help="frequencies per speed, >= 1 (default 6)")
     p.add_argument("--out", metavar="FILE.csv", help="write the table as CSV")
     p.add_argument("--plot", metavar="FILE.png", help="write omega (rad/s) against V (m/s)")
+    add_save_option(p)
     p.set_defaults(func=run_sweep)
 
 
@@ -54,10 +57,12 @@ def run_modes(args: argparse.Namespace) -> int:
     from ..eigen import modes
     from ..model import TapeModel
 
+    check_save_path(args.save)
     model = TapeModel(params, grid)
     t0 = time.perf_counter()
     res = modes(model, velocity, args.count)
     elapsed = time.perf_counter() - t0
+    save_result(args.save, res, params)
     g = model.grid
     out = {
         "velocity": velocity,
@@ -126,14 +131,17 @@ def run_critical(args: argparse.Namespace) -> int:
 def run_sweep(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
     velocities = [params.check_velocity(v) for v in parse_velocities(args.velocities)]
-    check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT)})
+    check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT),
+                   "--save": (args.save, None)})
     grid = grid_of(params)
     from ..model import TapeModel
     from ..sweep import plot_sweep, sweep
 
+    check_save_path(args.save)
     model = TapeModel(params, grid)
     frame = sweep(model, velocities, args.count, progress=None)
     with transaction():
+        save_result(args.save, frame, params)
         if args.out:
             write_atomic(args.out, lambda tmp: frame.to_csv(tmp, index=False), option="--out")
         if args.plot:

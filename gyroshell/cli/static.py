@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from .common import grid_of, parameters_from_args, print_json
+from .saving import add_save_option, check_save_path, save_result
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -15,6 +16,7 @@ def register(sub, common: argparse.ArgumentParser,
                     "V (below the critical speed). Prints the load-point and maximum "
                     "deflections, m.")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    add_save_option(p)
     p.set_defaults(func=run)
 
 
@@ -25,8 +27,10 @@ def run(args: argparse.Namespace) -> int:
     from ..model import TapeModel
     from ..static import solve_static
 
+    check_save_path(args.save)
     model = TapeModel(params, grid)
     sol = solve_static(model, velocity)
+    save_result(args.save, sol, params)
     g = model.grid
     out = {
         "load_point_deflection": sol.load_point_deflection,

@@ -6,6 +6,7 @@ import argparse
 import sys
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
+from .saving import add_save_option, check_save_path, save_result
 
 #: --backend values: "auto" and the names of gyroshell.factorization.BACKENDS (not imported
 #: here, so that parsing and refusals do not load scipy).
@@ -35,6 +36,7 @@ def register(sub, common: argparse.ArgumentParser,
                    help="sparse LU back-end (default auto)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON summary (SI units)")
+    add_save_option(p)
     p.set_defaults(func=run)
 
 
@@ -71,7 +73,9 @@ def run(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
     velocity = params.check_velocity(args.velocity)
     validation.time_step(args.dt, args.beta)
-    io.check_outputs({"--out": (args.out, None), "--snapshots": (args.snapshots, None)})
+    io.check_outputs({"--out": (args.out, None), "--snapshots": (args.snapshots, None),
+                      "--save": (args.save, None)})
+    check_save_path(args.save)
     grid = Grid.from_parameters(params)
     budget.check_transient(grid.nx, grid.ny, grid.edges, args.steps,
                            fields=budget.snapshot_count(args.steps, args.snapshot_every))
@@ -89,6 +93,7 @@ def run(args: argparse.Namespace) -> int:
             result.to_csv(args.out)
         if args.snapshots is not None:
             result.save_snapshots(args.snapshots)
+        save_result(args.save, result, params)
     g, info, w = model.grid, result.info, result.load_point
     out = {
         "velocity": result.velocity, "dt": result.dt, "steps": result.steps,

@@ -1,0 +1,37 @@
+"""``--save FILE.nc``: the one option every result-producing sub-command shares."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+
+def add_save_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--save", metavar="FILE.nc", default=None,
+                        help="save the result with its parameters, grid and version "
+                             "(NetCDF; read it back with gyroshell.load)")
+
+
+def check_save_path(path: str | None) -> None:
+    """Fail before computing if the result could never be written there."""
+    if path is None:
+        return
+    from ..persistence import NETCDF_SUFFIXES, TABLE_SUFFIXES
+    from .common import UserError
+
+    target = Path(path)
+    if target.suffix.lower() not in NETCDF_SUFFIXES + TABLE_SUFFIXES:
+        raise UserError(f"--save: use a .nc file (or .csv/.parquet for tables), got {path}")
+    folder = target.parent
+    if str(folder) and not folder.is_dir():
+        raise FileNotFoundError(f"output folder does not exist: {folder}")
+    if target.is_dir():
+        raise IsADirectoryError(f"output is a directory: {path}")
+
+
+def save_result(path: str | None, result, params) -> None:
+    """Write ``result`` to ``path`` (if given) with ``params`` as metadata."""
+    if path is not None:
+        from ..persistence import save
+
+        save(result, path, params=params)

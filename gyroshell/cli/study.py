@@ -1,0 +1,236 @@
+"""``gyroshell study`` (parameter studies, locally or on Dask) and ``gyroshell campbell``."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from .common import UserError, parameters_from_args, positive_int
+from .saving import add_save_option, check_save_path
+
+
+def register(sub, common: argparse.ArgumentParser) -> None:
+    from ..study import COMPUTE_CHOICES, VARIABLE_NAMES
+
+    p = sub.add_parser(
+        "study", parents=[common], help="parameter study: vary tape parameters, one row each",
+        description="Vary tape parameters over a grid (every combination of the --vary "
+                    "values) and compute, per point, the critical speed, the lowest "
+                    "frequencies with the stability (stable/divergence/flutter), the static "
+                    "deflection or the period. Points run in local worker processes, or on a "
+                    "running Dask cluster with --scheduler. A point that fails is reported in "
+                    "its row. SI units: m, Pa, N/m, kg/m^2, m/s.")
+    p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
+                   help="a parameter and its values: NAME=V1,V2,... or NAME=START:STOP:NUM "
+                        "(NUM evenly spaced values, both ends included); repeat for a grid. "
+                        "Values in SI, or with a unit as in a --config file (20um,30um). "
+                        f"NAME: {', '.join(VARIABLE_NAMES)} (SI units)")
+    p.add_argument("--compute", action="append", required=True, metavar="WHAT",
+                   help=f"what to compute: {', '.join(COMPUTE_CHOICES)} (repeat or "
+                        "comma-separate for several)")
+    p.add_argument("--count", type=positive_int, default=3,
+                   help="frequencies per point for 'modes' (default 3)")
+    p.add_argument("--workers", type=positive_int, default=None,
+                   help="local worker processes (default: one per CPU; 1 runs in this "
+                        "process)")
+    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786 "
+                        "(start it with 'dask scheduler' and 'dask worker ADDRESS')")
+    p.add_argument("--cache", metavar="FILE.jsonl", default=None,
+                   help="keep finished points here; running the same study again resumes")
+    p.add_argument("--out", metavar="FILE.csv", default=None,
+                   help="write the table (CSV, or .parquet); one row per point")
+    add_save_option(p)
+    p.add_argument("--plot", metavar="FILE.png", default=None,
+                   help="stability map (two varied parameters) or the computed quantity "
+                        "against the varied parameter (one)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=run)
+    register_campbell(sub, common)
+
+
+def register_campbell(sub, common: argparse.ArgumentParser) -> None:
+    p = sub.add_parser(
+        "campbell", parents=[common], help="Campbell diagram: MAC-tracked frequencies vs speed",
+        description="Lowest frequencies (rad/s) against tape speed (m/s), tracked into "
+                    "branches by the modal assurance criterion (MAC of every link reported), "
+                    "with crossings, veerings, the critical speed and, for a roller or "
+                    "capstan of circumference L (m), the excitation lines omega = n 2 pi V/L "
+                    "and the speeds where they meet a branch.")
+    p.add_argument("--velocities", default="0:100:5",
+                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...' "
+                        "(default 0:100:5)")
+    p.add_argument("--count", type=positive_int, default=6,
+                   help="modes per speed (default 6)")
+    p.add_argument("--min-mac", type=float, default=None,
+                   help="smallest MAC that continues a branch (default 0.5)")
+    p.add_argument("--circumference", type=float, default=None,
+                   help="roller/capstan circumference, m: draw excitation lines")
+    p.add_argument("--orders", default="1,2,3",
+                   help="harmonics n of the excitation lines (default 1,2,3)")
+    p.add_argument("--out", metavar="FILE.csv", default=None,
+                   help="write the tracked branches (velocity, branch, rank, omega, "
+                        "growth_rate, mac)")
+    p.add_argument("--plot", metavar="FILE.png", default=None, help="write the diagram")
+    p.set_defaults(func=run_campbell)
+
+
+def parse_values(name: str, text: str) -> list:
+    """``V1,V2,...`` or ``START:STOP:NUM`` (numbers in SI, or values with a unit such as
+    ``20um`` / ``"20 um"``; words for ``edges``)."""
+    import numpy as np
+
+    from ..config import QUANTITIES, parse_quantity
+    from .common import real
+
+    text = text.strip()
+    if not text:
+        raise UserError(f"--vary {name}: no values")
+    if ":" in text:
+        parts = text.split(":")
+        if len(parts) != 3:
+            raise UserError(f"--vary {name}={text}: use START:STOP:NUM")
+        try:
+            start, stop = real(parts[0]), real(parts[1])
+            num = int(parts[2])
+        except (argparse.ArgumentTypeError, ValueError):
+            raise UserError(f"--vary {name}={text}: START and STOP must be numbers and NUM "
+                            "an integer") from None
+        if num < 1:
+            raise UserError(f"--vary {name}={text}: NUM must be >= 1")
+        return [float(v) for v in np.linspace(start, stop, num)]
+    items = [item.strip() for item in text.split(",")]
+    if name.replace("-", "_") == "edges":
+        return items
+    key = name.replace("-", "_")
+    out = []
+    for item in items:
+        try:
+            out.append(real(item))
+        except argparse.ArgumentTypeError as exc:
+            if key not in QUANTITIES or not item[:1].strip("+-.0123456789") == "":
+                raise UserError(f"--vary {name}: {exc}") from None
+            unit = item.lstrip("+-.0123456789eE")  # "20um" -> "um"
+            number = item[:len(item) - len(unit)].strip()
+            out.append(parse_quantity(key, f"{number} {unit.strip()}", "--vary "))
+    return out
+
+
+def parse_vary(specs: list[str]) -> dict[str, list]:
+    vary: dict[str, list] = {}
+    for spec in specs:
+        name, sep, values = spec.partition("=")
+        name = name.strip()
+        if not sep or not name:
+            raise UserError(f"--vary needs NAME=VALUES, got {spec!r}")
+        key = name.replace("-", "_")
+        if key in vary:
+            raise UserError(f"--vary {name} given twice")
+        vary[key] = parse_values(name, values)
+    return vary
+
+
+def _check_output(path: str | None, suffixes: tuple[str, ...], flag: str) -> None:
+    if path is None:
+        return
+    target = Path(path)
+    if target.suffix.lower() not in suffixes:
+        raise UserError(f"{flag}: use a {' or '.join(suffixes)} file, got {path}")
+    if str(target.parent) and not target.parent.is_dir():
+        raise FileNotFoundError(f"output folder does not exist: {target.parent}")
+    if target.is_dir():
+        raise IsADirectoryError(f"output is a directory: {path}")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..parameters import check_velocity
+    from ..study import run_study
+
+    params = parameters_from_args(args)
+    velocity = check_velocity(args.velocity)
+    vary = parse_vary(args.vary)
+    compute = [c.strip() for item in args.compute for c in item.split(",") if c.strip()]
+    _check_output(args.out, (".csv", ".parquet"), "--out")
+    _check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
+    _check_output(args.cache, (".jsonl",), "--cache")
+    check_save_path(args.save)
+    if args.plot and len(vary) > 2:
+        raise UserError("--plot needs one or two varied parameters")
+    if args.plot and len(vary) == 2 and not {"modes", "period"} & set(compute):
+        raise UserError("--plot with two varied parameters draws a stability map: add "
+                        "--compute modes (or period)")
+    result = run_study(params, vary=vary, compute=compute, velocity=velocity,
+                       count=args.count, workers=args.workers, scheduler=args.scheduler,
+                       cache=args.cache, progress=False if args.quiet else None)
+    for path in (args.out, args.save):
+        if path is not None:
+            result.save(path)
+    if args.plot:
+        from ..io import write_atomic
+        from ..plot import pyplot
+
+        plt = pyplot(path=args.plot)
+        ax = result.plot()
+        write_atomic(args.plot, lambda tmp: ax.figure.savefig(tmp, dpi=120))
+        plt.close(ax.figure)
+    info = result.info
+    failed = len(result.failed)
+    if args.out is None:
+        print(result.table.drop(columns=["point"]).to_string(index=False))
+    print(f"{info['points']} points ({info['computed']} computed, {info['cached']} from the "
+          f"cache, {failed} with errors) in {info['seconds']:.2f} s on {info['executor']}")
+    for path in (args.out, args.save, args.plot):
+        if path is not None:
+            print(f"wrote {path}")
+    return 0
+
+
+def run_campbell(args: argparse.Namespace) -> int:
+    import math
+
+    from ..campbell import MIN_MAC, campbell
+    from ..model import TapeModel
+    from ..sweep import check_velocities, parse_velocities
+
+    params = parameters_from_args(args)
+    velocities = check_velocities(parse_velocities(args.velocities))
+    try:
+        orders = [int(n) for n in args.orders.split(",") if n.strip()]
+    except ValueError:
+        raise UserError(f"--orders must be integers like 1,2,3, got {args.orders!r}") from None
+    if args.circumference is not None and not (math.isfinite(args.circumference)
+                                               and args.circumference > 0):
+        raise UserError(f"--circumference must be > 0 m, got {args.circumference:g}")
+    _check_output(args.out, (".csv", ".parquet", ".nc"), "--out")
+    _check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
+    min_mac = MIN_MAC if args.min_mac is None else args.min_mac
+    d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac, progress=None)
+    if args.out:
+        d.save(args.out)
+    if args.plot:
+        from ..io import write_atomic
+        from ..plot import pyplot
+
+        plt = pyplot(path=args.plot)
+        ax = d.plot(circumference=args.circumference, orders=orders)
+        write_atomic(args.plot, lambda tmp: ax.figure.savefig(tmp, dpi=120))
+        plt.close(ax.figure)
+    links = d.frame["mac"].dropna()
+    print(f"{d.frame['branch'].nunique()} branches over {len(velocities)} speeds; MAC of "
+          f"the links: min {links.min():.3f}, median {links.median():.3f}"
+          if len(links) else f"{d.frame['branch'].nunique()} branches")
+    print(f"critical speed: {d.critical_speed:.6g} m/s")
+    for row in d.crossings.itertuples():
+        print(f"crossing: branches {row.branch_a} and {row.branch_b} at V = "
+              f"{row.velocity:.4g} m/s, omega = {row.omega:.6g} rad/s")
+    for row in d.veerings.itertuples():
+        print(f"veering: branches {row.branch_a} and {row.branch_b} at V = "
+              f"{row.velocity:.4g} m/s, gap {100 * row.gap:.2g} %")
+    if args.circumference is not None:
+        for row in d.resonances(args.circumference, orders).itertuples():
+            print(f"resonance: order {row.order} meets branch {row.branch} at V = "
+                  f"{row.velocity:.4g} m/s (omega = {row.omega:.6g} rad/s)")
+    for path in (args.out, args.plot):
+        if path:
+            print(f"wrote {path}")
+    return 0

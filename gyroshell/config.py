@@ -1,0 +1,212 @@
+"""Tape definitions in TOML files, with units.
+
+A file describes one tape (and optionally its speed); a value is a number in SI units or a
+string ``"<number> <unit>"``::
+
+    # tape.toml: the paper's Table 1 tape at 50 m/s
+    [tape]
+    name = "Table 1"              # optional, free text
+    youngs_modulus = "4 GPa"
+    poisson = 0.3
+    thickness = "20 um"
+    radius = "20 mm"
+    density = "0.014 kg/m^2"
+    tension = "90 N/m"
+    width = "6.35 mm"
+    length_ratio = 4
+    spacing = "0.1549 mm"
+    edges = "free"
+    load = "200 Pa"
+    velocity = "50 m/s"           # optional: the default tape speed
+
+Keys are the :class:`~gyroshell.parameters.TapeParameters` fields plus ``velocity`` and
+``name``; they may also sit at the top level instead of under ``[tape]``. Missing keys take
+the Table 1 defaults. An unknown key, an unknown or mismatched unit, or a value out of range
+raises :class:`~gyroshell.errors.ParameterError` naming the file and the key.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+from .errors import ParameterError
+from .parameters import TapeParameters, check_velocity
+
+#: Units accepted for each kind of quantity, with their factor to SI.
+UNITS: dict[str, dict[str, float]] = {
+    "m": {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6,
+          "nm": 1e-9, "in": 0.0254, "mil": 2.54e-5},
+    "Pa": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "N/m^2": 1.0, "N/mm^2": 1e6,
+           "psi": 6894.757293168361},
+    "kg/m^2": {"kg/m^2": 1.0, "g/m^2": 1e-3},
+    "N/m": {"N/m": 1.0, "N/mm": 1e3, "mN/m": 1e-3},
+    "N*m": {"N*m": 1.0, "N m": 1.0, "N·m": 1.0, "Nm": 1.0},
+    "N/m^3": {"N/m^3": 1.0, "Pa/m": 1.0, "MPa/m": 1e6, "GPa/m": 1e9},
+    "m/s": {"m/s": 1.0, "mm/s": 1e-3, "km/h": 1 / 3.6, "in/s": 0.0254},
+    "1": {"": 1.0, "1": 1.0},
+}
+
+#: The SI unit (a key of :data:`UNITS`) of every numeric key.
+QUANTITIES: dict[str, str] = {
+    "youngs_modulus": "Pa", "poisson": "1", "thickness": "m", "radius": "m",
+    "density": "kg/m^2", "tension": "N/m", "width": "m", "length_ratio": "1", "spacing": "m",
+    "load": "Pa", "load_x": "m", "load_y": "m", "bending_rigidity": "N*m",
+    "foundation_stiffness": "N/m^3", "velocity": "m/s",
+}
+TEXT_KEYS = ("edges", "name")
+BOOL_KEYS = ("wrap_pressure",)
+KEYS = tuple(QUANTITIES) + TEXT_KEYS + BOOL_KEYS
+
+_VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+
+
+@dataclass(frozen=True)
+class TapeConfig:
+    """A tape read from a file: its parameters, its speed (m/s, None if not given), its name."""
+
+    params: TapeParameters
+    velocity: float | None = None
+    name: str | None = None
+
+
+def _tomllib():
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - Python 3.10
+        import tomli as tomllib
+    return tomllib
+
+
+def parse_quantity(key: str, value, where: str = "") -> float:
+    """A number (SI) or ``"<number> <unit>"`` for ``key``, converted to SI.
+
+    Examples
+    --------
+    >>> parse_quantity("thickness", "20 um"), parse_quantity("tension", "0.09 N/mm")
+    (2e-05, 90.0)
+    """
+    kind = QUANTITIES[key]
+    prefix = f"{where}{key}"
+    if isinstance(value, bool):
+        raise ParameterError(f"{prefix} must be a number or '<number> <unit>', got {value!r}")
+    if isinstance(value, int | float):
+        number, factor = float(value), 1.0
+    elif isinstance(value, str):
+        match = _VALUE.match(value)
+        if match is None:
+            raise ParameterError(f"{prefix} must look like '<number> <unit>', got {value!r}")
+        number, unit = float(match.group(1)), match.group(2)
+        if unit not in UNITS[kind]:
+            allowed = ", ".join(u for u in UNITS[kind] if u) or "no unit"
+            raise ParameterError(f"{prefix}: unit {unit!r} is not a unit of {kind} "
+                                 f"(use one of: {allowed})")
+        factor = UNITS[kind][unit]
+        exponent = round(math.log10(factor))
+        if math.isfinite(number) and factor == 10.0**exponent:
+            # decimal prefixes are applied in decimal, rounded once: "20 um" is 2e-05 exactly
+            from decimal import Decimal
+
+            return float(Decimal(match.group(1)).scaleb(exponent))
+    else:
+        raise ParameterError(f"{prefix} must be a number or '<number> <unit>', got {value!r}")
+    if not math.isfinite(number):
+        raise ParameterError(f"{prefix} must be finite, got {value!r}")
+    return number * factor
+
+
+def config_from_dict(data: dict, where: str = "") -> TapeConfig:
+    """Validate a parsed TOML table (see the module docstring) into a :class:`TapeConfig`."""
+    if "tape" in data:
+        extra = sorted(set(data) - {"tape"})
+        if extra:
+            raise ParameterError(f"{where}unknown key(s) {', '.join(extra)} beside [tape]")
+        data = data["tape"]
+    if not isinstance(data, dict):
+        raise ParameterError(f"{where}[tape] must be a table")
+    unknown = sorted(set(data) - set(KEYS))
+    if unknown:
+        raise ParameterError(f"{where}unknown key(s) {', '.join(unknown)}; allowed: "
+                             f"{', '.join(KEYS)}")
+    fields: dict = {}
+    velocity = name = None
+    for key, value in data.items():
+        if key in QUANTITIES:
+            number = parse_quantity(key, value, where)
+            if key == "velocity":
+                try:
+                    velocity = check_velocity(number)
+                except ParameterError as exc:
+                    raise ParameterError(f"{where}{exc}") from None
+            else:
+                fields[key] = number
+        elif key in BOOL_KEYS:
+            if not isinstance(value, bool):
+                raise ParameterError(f"{where}{key} must be true or false, got {value!r}")
+            fields[key] = value
+        else:
+            if not isinstance(value, str):
+                raise ParameterError(f"{where}{key} must be text, got {value!r}")
+            if key == "name":
+                name = value
+            else:
+                fields[key] = value
+    try:
+        params = TapeParameters(**fields)
+    except ParameterError as exc:
+        raise ParameterError(f"{where}{exc}") from None
+    return TapeConfig(params, velocity, name)
+
+
+def load_config(path: str | os.PathLike[str]) -> TapeConfig:
+    """Read a tape definition (TOML, see the module docstring)."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no such config file: {path}")
+    try:
+        with open(path, "rb") as fh:
+            data = _tomllib().load(fh)
+    except _tomllib().TOMLDecodeError as exc:
+        raise ParameterError(f"{path}: not valid TOML: {exc}") from None
+    return config_from_dict(data, where=f"{path}: ")
+
+
+def _format(key: str, value) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    unit = QUANTITIES[key]
+    return repr(float(value)) if unit == "1" else f'"{float(value)!r} {unit}"'
+
+
+def config_text(params: TapeParameters, velocity: float | None = None,
+                name: str | None = None) -> str:
+    """TOML text of a tape (SI values with their units; ``None`` fields left out).
+
+    :func:`load_config` reads it back to equal parameters (floats written exactly).
+    """
+    lines = ["[tape]"]
+    if name is not None:
+        lines.append(f"name = {_format('name', name)}")
+    for f in dataclasses.fields(params):
+        value = getattr(params, f.name)
+        if value is not None:
+            lines.append(f"{f.name} = {_format(f.name, value)}")
+    if velocity is not None:
+        lines.append(f"velocity = {_format('velocity', check_velocity(velocity))}")
+    return "\n".join(lines) + "\n"
+
+
+def write_config(params: TapeParameters, path: str | os.PathLike[str], *,
+                 velocity: float | None = None, name: str | None = None) -> Path:
+    """Write a tape definition file (whole or not at all)."""
+    from .io import write_atomic
+
+    text = config_text(params, velocity, name)
+    return write_atomic(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

@@ -1,0 +1,17 @@
+"""The docstring Examples of the study and config modules run as written."""
+
+from __future__ import annotations
+
+import doctest
+
+import pytest
+
+import gyroshell.config
+import gyroshell.study
+
+
+@pytest.mark.parametrize("module", [gyroshell.study, gyroshell.config],
+                         ids=lambda m: m.__name__)
+def test_docstring_examples(module):
+    result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0

@@ -1,0 +1,116 @@
+"""gyroshell.plot: every function takes ax=, returns it, and draws what it says."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from matplotlib.axes import Axes
+
+from gyroshell import TapeModel, TapeParameters, march, modes, run_study, solve_static
+from gyroshell import plot as gplot
+from gyroshell.campbell import campbell
+from gyroshell.errors import ParameterError
+
+PARAMS = TapeParameters(length_ratio=4, spacing=6.35e-3 / 8)
+PNG = b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.fixture(scope="module")
+def model():
+    return TapeModel(PARAMS)
+
+
+def saved(ax, path) -> bytes:
+    assert isinstance(ax, Axes)
+    ax.figure.savefig(path, dpi=80)
+    return path.read_bytes()[:8]
+
+
+def test_mode_shape_parts_are_the_real_and_imaginary_fields(model, tmp_path):
+    res = modes(model, 60.0, 2)
+    fig, (a, b) = plt.subplots(2, 1)
+    assert gplot.mode_shape(res, 0, part="real", ax=a) is a
+    assert gplot.mode_shape(res, 0, part="imag", ax=b) is b
+    phi = res.field(0)
+    assert "Re φ" in a.get_title() and "Im φ" in b.get_title()
+    # the contour levels span the part they show
+    top = max(level for level in a.collections[0].levels)
+    assert top >= np.abs(phi.real).max() * 0.999
+    axes = gplot.mode_shape_parts(res, 1)
+    assert saved(axes[0], tmp_path / "m.png") == PNG
+    with pytest.raises(ParameterError, match="part must be"):
+        gplot.mode_shape(res, 0, part="abs")
+    with pytest.raises(ParameterError, match="index must be in"):
+        gplot.mode_shape(res, 5)
+
+
+def test_field_of_a_static_solution(model, tmp_path):
+    sol = solve_static(model, 50.0)
+    ax = gplot.field(sol, title="static")
+    assert saved(ax, tmp_path / "f.png") == PNG
+    assert ax.get_xlabel().startswith("x along")
+    with pytest.raises(ParameterError, match="shape"):
+        gplot.field(np.zeros((3, 3)), np.zeros(2), np.zeros(3))
+
+
+def test_stability_map_and_study_lines(tmp_path):
+    study = run_study(PARAMS, vary={"velocity": [0.0, 104.0, 120.0], "tension": [70.0, 90.0]},
+                      compute=["modes", "critical"], workers=1)
+    _, ax = plt.subplots()
+    assert study.plot(ax=ax) is ax  # two varied parameters: the stability map
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert set(labels) >= {"stable", "divergence", "critical speed"}
+    assert saved(ax, tmp_path / "map.png") == PNG
+    one = run_study(PARAMS, vary={"tension": [70.0, 90.0]}, compute="critical", workers=1)
+    ax = one.plot()
+    assert ax.get_ylabel() == "critical speed (m/s)"
+    assert np.array_equal(ax.lines[0].get_ydata(), one.table["critical_speed"])
+    with pytest.raises(ParameterError, match="stability"):
+        gplot.stability_map(run_study(PARAMS, vary={"tension": [70.0], "velocity": [0.0]},
+                                      compute="critical", workers=1))
+
+
+def test_campbell_plot_marks_what_it_found(tmp_path):
+    p = TapeParameters(length_ratio=1.5, spacing=6.35e-3 / 10, edges="simply-supported",
+                       foundation_stiffness=0.0)
+    d = campbell(TapeModel(p), np.linspace(0.0, 75.0, 16), 5)
+    _, ax = plt.subplots()
+    assert d.plot(ax=ax, circumference=0.01) is ax
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert "crossing" in labels and any(s.startswith("critical speed") for s in labels)
+    assert saved(ax, tmp_path / "campbell.png") == PNG
+
+
+def test_gif_animations(model, tmp_path):
+    res = modes(model, 60.0, 1)
+    ax = gplot.animate_mode(res, tmp_path / "mode.gif", frames=4)
+    assert isinstance(ax, Axes)
+    assert (tmp_path / "mode.gif").read_bytes()[:6] == b"GIF89a"
+    run = march(model, 50.0, dt=2e-6, steps=20, snapshot_every=5, progress=False)
+    gplot.animate_transient(run, tmp_path / "run.gif")
+    assert (tmp_path / "run.gif").read_bytes()[:6] == b"GIF89a"
+    with pytest.raises(ParameterError, match=".gif"):
+        gplot.animate_mode(res, tmp_path / "x.png")
+    assert not list(tmp_path.glob(".*")), "temporary files left behind"
+
+
+def test_import_gyroshell_does_not_import_matplotlib_xarray_or_dask():
+    code = ("import sys, gyroshell, gyroshell.plot, gyroshell.study, gyroshell.campbell; "
+            "print([m for m in ('matplotlib', 'xarray', 'dask', 'distributed', 'pandas') "
+            "if m in sys.modules])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "[]"
+
+
+def test_stability_map_over_a_word_parameter(tmp_path):
+    study = run_study(PARAMS, vary={"edges": ["free", "simply-supported"],
+                                    "velocity": [50.0, 120.0]},
+                      compute="period", workers=1)
+    ax = study.plot()
+    assert [t.get_text() for t in ax.get_xticklabels()] == ["free", "simply-supported"]
+    assert saved(ax, tmp_path / "edges.png") == PNG
