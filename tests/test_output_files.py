@@ -297,3 +297,13 @@ def test_reproduce_run_whose_last_study_fails_leaves_none_of_its_files(cli, tmp_
     assert run.code == 2 and "No space left on device" in run.err
     assert len(run.error_lines) == 1
     assert listing(tmp_path) == []  # critical's files and the folders made for them are gone
+
+
+@pytest.mark.parametrize("command", [["static"], ["modes", "--count", "2"]])
+def test_save_into_a_read_only_file_is_refused(cli, tmp_path, command):
+    saved = tmp_path / "r.nc"
+    saved.write_bytes(b"an earlier result")
+    saved.chmod(0o444)
+    run = cli([*command, *COARSE, "--save", saved])
+    assert run.code == 2 and f"--save {saved}: exists and is read-only" in run.err
+    assert saved.read_bytes() == b"an earlier result"
