@@ -58,6 +58,17 @@ def progress_wanted(progress: bool | None) -> bool:
     return bool(progress)
 
 
+def read_csv_exact(path: str | os.PathLike[str], **kwargs):
+    """pandas.read_csv that gives back every float bit for bit (floats written with 17
+    significant digits): pandas 2 needs ``float_precision="round_trip"`` for that, pandas 3
+    parses exactly by default and deprecates the option."""
+    import pandas as pd
+
+    if int(pd.__version__.split(".")[0]) < 3:
+        kwargs.setdefault("float_precision", "round_trip")
+    return pd.read_csv(path, **kwargs)
+
+
 def _read_only(st: os.stat_result, path: str) -> bool:
     # Mode bits as well as access(): the superuser may write anywhere, but a file or folder
     # someone made read-only is meant to be left alone.

@@ -239,13 +239,9 @@ class TransientResult:
     def read_csv(path: str | os.PathLike[str]):
         """The load-point history written by :meth:`to_csv`, as a DataFrame (t in s, w in m),
         bit-exact (pandas' round-trip float parser)."""
-        import pandas as pd
+        from .io import read_csv_exact
 
-        # pandas 2 parses floats with a fast, inexact parser unless told; pandas 3 is exact
-        # by default and deprecates the option.
-        exact = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision":
-                                                                     "round_trip"}
-        return pd.read_csv(path, **exact)
+        return read_csv_exact(path)
 
     def save_snapshots(self, path: str | os.PathLike[str]) -> Path:
         """Write the snapshots (fields, centre lines, coordinates) as .npz."""

@@ -12,6 +12,7 @@ import gyroshell
 from gyroshell import TapeModel, TapeParameters, modes, run_study, solve_static
 from gyroshell.cli import main
 from gyroshell.config import write_config
+from gyroshell.io import read_csv_exact
 
 COARSE = ["--length-ratio", "4", "--spacing", str(6.35e-3 / 8)]
 BASE = TapeParameters(length_ratio=4, spacing=6.35e-3 / 8)
@@ -30,7 +31,7 @@ def test_study_csv_nc_png_and_the_same_rows_as_the_api(tmp_path, capsys):
             "--compute", "modes,critical", "--workers", "1", "--quiet",
             "--out", str(out), "--save", str(nc), "--plot", str(png)]
     assert main(argv) == 0
-    table = pd.read_csv(out, keep_default_na=False, na_values=["NaN"])
+    table = read_csv_exact(out, keep_default_na=False, na_values=["NaN"])  # bit for bit
     api = run_study(BASE, vary={"velocity": [0.0, 60.0, 104.0], "tension": [70.0, 90.0]},
                     compute=["modes", "critical"], workers=1)
     pd.testing.assert_frame_equal(table, api.table, check_exact=True)
