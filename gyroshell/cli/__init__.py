@@ -15,7 +15,8 @@ from ..errors import ConvergenceError, ParameterError
 from .common import ArgumentParser, UserError, common_parser
 
 #: Sub-command modules (gyroshell.cli.<name>), in help order.
-SUBCOMMANDS: tuple[str, ...] = ("static", "transient", "eigen", "study", "reproduce")
+SUBCOMMANDS: tuple[str, ...] = ("static", "transient", "eigen", "frf", "study",
+                               "reproduce")
 
 
 def build_parser() -> ArgumentParser:

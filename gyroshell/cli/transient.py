@@ -7,6 +7,7 @@ from pathlib import Path
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
 from .saving import add_save_option, check_save_path, save_result
+from .loading import add_damping_options, add_load_options, damping_from_args, load_from_args
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
@@ -33,6 +34,8 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON summary (SI units)")
     add_save_option(p)
+    add_load_options(p)
+    add_damping_options(p)
     p.set_defaults(func=run)
 
 
@@ -56,9 +59,10 @@ def run(args: argparse.Namespace) -> int:
     _check_folder(args.out)
     _check_folder(args.snapshots)
     check_save_path(args.save)
+    load, damping = load_from_args(args, params), damping_from_args(args)
     model = TapeModel(params)
     result = march(model, args.velocity, dt=args.dt, steps=args.steps, beta=args.beta,
-                   gamma=args.gamma, backend=args.backend,
+                   gamma=args.gamma, backend=args.backend, damping=damping, load=load,
                    snapshot_every=args.snapshot_every, progress=False if args.quiet else None)
     if args.out is not None:
         result.to_csv(args.out)
@@ -77,6 +81,8 @@ def run(args: argparse.Namespace) -> int:
         "backend": info["backend"], "factor_time": info["factor_time"],
         "loop_time": info["loop_time"], "step_time": info["step_time"],
         "out": args.out, "snapshots": args.snapshots,
+        "moving_load": load is not None, "damping": damping.viscous,
+        "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
     }
     if args.json:
         print_json(out)
