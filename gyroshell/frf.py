@@ -63,8 +63,8 @@ ESTIMATE_SAFETY = 2.0
 #: ... plus this relative round-off level of the reduced evaluation (basis orthogonalization
 #: and the small eigen-decomposition lose about 1e-9 against direct solves).
 ESTIMATE_ROUNDOFF = 1e-8
-#: Basis vectors whose singular value is below this fraction of the largest are dropped.
-BASIS_RANK_TOL = 1e-12
+#: A new (unit) vector whose part outside the basis is smaller than this adds no direction.
+NEW_DIRECTION_TOL = 1e-8
 #: Interpolation points added per greedy round (one rebuild of the reduced model each).
 POINTS_PER_ROUND = 4
 #: Frequencies per batch of small dense solves.
@@ -291,6 +291,56 @@ def _direct(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
 
 
 # ----- the reduced model ----------------------------------------------------------------------
+class _Projection:
+    """An orthonormal real basis V, grown block by block, and M, G + C, K, F projected on it.
+
+    Each block costs O(n r k) (two Gram–Schmidt passes and the new rows and columns of the
+    projected matrices), not a re-orthogonalization of the whole basis.
+    """
+
+    def __init__(self, ops: _Operators, rows: sp.csr_matrix) -> None:
+        self.ops, self.rows = ops, rows
+        self.V = np.empty((len(ops.m), 0))
+        self.Mr, self.Kr, self.Dr = (np.empty((0, 0)) for _ in range(3))
+
+    @property
+    def size(self) -> int:
+        return self.V.shape[1]
+
+    def extend(self, vectors: Sequence[np.ndarray]) -> None:
+        """Add the real and imaginary parts of ``vectors`` (dependent ones are dropped)."""
+        X = np.array([part for v in vectors for part in (v.real, v.imag)]).T
+        norms = np.linalg.norm(X, axis=0)
+        X = X[:, norms > 0] / norms[norms > 0]
+        V = self.V
+        for _ in range(2):  # twice is enough (Kahan-Parlett)
+            X -= V @ (V.T @ X)
+        U, sv, _ = sl.svd(X, full_matrices=False, check_finite=False)
+        new = U[:, sv > NEW_DIRECTION_TOL]
+        if new.shape[1] == 0:
+            return
+        for _ in range(2):
+            new -= V @ (V.T @ new)
+        new, _ = np.linalg.qr(new)
+        ops = self.ops
+        MN, KN, DN, DtN = ops.m[:, None] * new, ops.K @ new, ops.D @ new, ops.D.T @ new
+        self.Mr = _grow(self.Mr, V.T @ MN, MN.T @ V, new.T @ MN)
+        self.Kr = _grow(self.Kr, V.T @ KN, KN.T @ V, new.T @ KN)
+        self.Dr = _grow(self.Dr, V.T @ DN, DtN.T @ V, new.T @ DN)
+        self.V = np.hstack([V, new])
+
+    def parts(self):
+        """(M_r, K_r, D_r, F_r, R_r) on the current basis."""
+        V = self.V
+        return (0.5 * (self.Mr + self.Mr.T), 0.5 * (self.Kr + self.Kr.T), self.Dr,
+                V.T @ self.ops.F, np.asarray(self.rows @ V))
+
+
+def _grow(A: np.ndarray, right: np.ndarray, below: np.ndarray, corner: np.ndarray
+          ) -> np.ndarray:
+    return np.block([[A, right], [below, corner]])
+
+
 class ReducedModel:
     """Rational Krylov (moment-matching) reduction of Q(ω) W = F on a real basis.
 
@@ -318,37 +368,24 @@ class ReducedModel:
         self.points, self.rows = response_rows(model, probes)
         self.moments = int(moments)
         self.interpolation_points: list[float] = []
-        self._vectors: list[list[np.ndarray]] = []
+        self._spaces = (_Projection(self.ops, self.rows), _Projection(self.ops, self.rows))
         self._full = self._nested = None
 
     def add_points(self, omegas: Sequence[float]) -> None:
         """Factor Q at each ω (rad/s), add W and its Taylor coefficients to the basis, and
         rebuild the reduced model."""
+        full, nested = self._spaces
         for omega in omegas:
             self.interpolation_points.append(float(omega))
-            self._vectors.append(self.ops.moments(float(omega), self.moments))
-        self._full = self._poles(self._project(self.moments))
-        self._nested = self._poles(self._project(self.moments - 1))
+            vectors = self.ops.moments(float(omega), self.moments)
+            full.extend(vectors)
+            nested.extend(vectors[:-1])
+        self._full = self._poles(full.parts())
+        self._nested = self._poles(nested.parts())
 
     @property
     def basis_size(self) -> int:
-        return 0 if self._full is None else len(self._full[0]) // 2
-
-    def _project(self, moments: int):
-        columns = []
-        for vecs in self._vectors:
-            for v in vecs[:moments]:
-                columns += [v.real, v.imag]
-        X = np.array(columns).T
-        X /= np.maximum(np.linalg.norm(X, axis=0), 1e-300)
-        U, s, _ = sl.svd(X, full_matrices=False, overwrite_a=True, check_finite=False)
-        V = U[:, s > BASIS_RANK_TOL * s[0]]
-        ops = self.ops
-        Mr = V.T @ (ops.m[:, None] * V)
-        Kr = V.T @ (ops.K @ V)
-        Dr = V.T @ (ops.D @ V)
-        return (0.5 * (Mr + Mr.T), 0.5 * (Kr + Kr.T), Dr, V.T @ ops.F,
-                np.asarray(self.rows @ V))
+        return self._spaces[0].size
 
     @staticmethod
     def _poles(parts) -> tuple[np.ndarray, np.ndarray]:

@@ -126,12 +126,12 @@ def test_reduced_model_matches_direct_solves_within_its_estimate():
 
 def test_auto_falls_back_to_direct_solves_where_the_estimate_is_too_large():
     model = TapeModel(TapeParameters(length_ratio=4, spacing=WIDTH / 12))
-    omega = np.linspace(0.0, 2.0e5, 120)
-    res = frequency_response(model, 50.0, omega, damping=100.0, max_points=4, tol=1e-8)
+    omega = np.linspace(0.0, 2.0e5, 60)
+    res = frequency_response(model, 50.0, omega, damping=100.0, max_points=2, tol=1e-5)
     direct = res.method == "direct"
     assert direct.any() and (~direct).any()
     assert res.info["direct_solves"] == direct.sum()
-    assert np.all(res.error_estimate <= 1e-8)
+    assert np.all(res.error_estimate <= 1e-5)
     exact = direct_response(model, 50.0, omega[direct], damping=100.0).response
     np.testing.assert_allclose(res.response[direct], exact, rtol=1e-12)
 
