@@ -50,3 +50,20 @@ from .persistence import load, save  # noqa: E402
 from .study import StudyResult, classify_stability, run_study  # noqa: E402
 
 __all__ += ["StudyResult", "classify_stability", "load", "run_study", "save"]
+
+# Damping, moving and intermittent loads, and the frequency response (issue #10).
+from .damping import Damping  # noqa: E402
+from .frf import FrequencyResponse, ReducedModel, direct_response, frequency_response  # noqa: E402
+from .moving_load import (  # noqa: E402
+    ContactWindows,
+    GaussianShape,
+    MovingLoad,
+    StraightPath,
+    UniformShape,
+    UserShape,
+    drum_heads,
+)
+
+__all__ += ["ContactWindows", "Damping", "FrequencyResponse", "GaussianShape", "MovingLoad",
+            "ReducedModel", "StraightPath", "UniformShape", "UserShape", "direct_response",
+            "drum_heads", "frequency_response"]
