@@ -282,6 +282,12 @@ def _force(model: TapeModel, force) -> np.ndarray | None:
 
 def _direct(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
             progress: bool | None) -> np.ndarray:
+    with limit_blas_threads(1):  # SuperLU's dense kernels: one thread is fastest here
+        return _direct_loop(ops, rows, omega, progress)
+
+
+def _direct_loop(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
+                 progress: bool | None) -> np.ndarray:
     out = np.empty((len(omega), rows.shape[0]), dtype=complex)
     bar = _progress_bar(len(omega), progress)
     try:
