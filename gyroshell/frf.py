@@ -54,7 +54,7 @@ PIVOT_THRESHOLD = 0.1
 #: Default relative accuracy of the reduced model against direct solves.
 DEFAULT_TOL = 1e-6
 #: Taylor coefficients matched at each interpolation frequency (W₀ ... W_{m−1}).
-DEFAULT_MOMENTS = 4
+DEFAULT_MOMENTS = 6
 #: Interpolation frequencies placed before the greedy enrichment.
 INITIAL_POINTS = 4
 #: Largest number of interpolation frequencies (factorizations) of the reduced model.

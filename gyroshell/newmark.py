@@ -31,6 +31,7 @@ import sys
 import time
 import warnings
 from collections.abc import Sequence
+from dataclasses import asdict
 
 import numpy as np
 
@@ -289,7 +290,7 @@ class Newmark:
         loop_time = time.perf_counter() - start
 
         info = dict(self.info, steps=steps, solve_time=solve_time, loop_time=loop_time,
-                    step_time=loop_time / steps, damping=self.damping)
+                    step_time=loop_time / steps, damping=asdict(self.damping))
         heads = history if loads.heads > 1 else None
         return TransientResult(times, history[:, 0].copy(), recorder.snapshots(times), w, v,
                                a, self.velocity, self.dt, self.beta, self.gamma, energy, info,
