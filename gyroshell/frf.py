@@ -15,14 +15,16 @@ Two methods, chosen per frequency:
   interpolation frequencies ω_k; the amplitude W(ω_k) and its first Taylor coefficients
   (Q W₁ = −Q′W₀, Q W_j = −(Q′W_{j−1} − M W_{j−2}), Q′ = −2ωM + i(G + C)) span, in real
   form, a basis V; M, G + C, K are projected on it (keeping M and K symmetric and G skew) and
-  every frequency costs one small dense solve. The reduced response matches W(ω) and its
-  first derivatives at each ω_k.
+  every frequency costs O(r) through the poles and residues of the small model (one dense
+  eigen-decomposition). The reduced response matches W(ω) and its first derivatives at
+  each ω_k.
 
 The error of the reduced model is estimated at every frequency as twice the difference
 between it and the nested model built without the highest moment at each point (the
-nested model is the less accurate one), plus a round-off level of 1e-8. Interpolation points are added
-greedily where the estimate is largest until it is below ``tol`` everywhere or the point
-budget is spent; frequencies still above ``tol`` are solved directly.
+nested model is the less accurate one), plus a round-off level of 1e-8. Interpolation
+points are added greedily where the estimate is largest until it is below ``tol``
+everywhere or the point budget is spent; frequencies still above ``tol`` are solved
+directly.
 """
 
 from __future__ import annotations

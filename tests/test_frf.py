@@ -54,8 +54,8 @@ def test_damped_navier_plate_with_order_two():
         p = TapeParameters(length_ratio=2, spacing=WIDTH / n, edges="simply-supported")
         model = TapeModel(p)
         omega = np.array([0.5, 0.99, 1.3]) * p.foundation_frequency
-        force = pressure_load(model.grid, lambda X, Y: p.load * np.sin(np.pi * X / p.length)
-                              * np.sin(np.pi * Y / p.width))
+        force = pressure_load(model.grid, lambda X, Y, p=p: p.load * np.sin(
+            np.pi * X / p.length) * np.sin(np.pi * Y / p.width))
         res = direct_response(model, 0.0, omega, damping=c, force=force)
         stiffness = 1.0 / navier_static(p, 0.0, 1, 1)
         exact = p.load / (stiffness - p.density * omega**2 + 1j * omega * c)

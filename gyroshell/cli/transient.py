@@ -6,8 +6,8 @@ import argparse
 from pathlib import Path
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
-from .saving import add_save_option, check_save_path, save_result
 from .loading import add_damping_options, add_load_options, damping_from_args, load_from_args
+from .saving import add_save_option, check_save_path, save_result
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
