@@ -208,6 +208,9 @@ class Newmark:
         if load is not None:
             if force is not None:
                 raise ParameterError("give either load (moving heads) or force, not both")
+            if profile is not step:
+                raise ParameterError("profile applies to a fixed load; a moving head's time "
+                                     "dependence is its contact windows (ContactWindows)")
             return PreparedLoads(self.model, as_loads(load), times)
         force = self.model.load if force is None else check_force(force, self.model.size)
         return _FixedLoad(force, profile, self.model.load_point_row, times)

@@ -236,3 +236,7 @@ def test_a_path_leaving_the_tape_is_refused_before_marching():
     idle = MovingLoad(StraightPath((1e-3, 3e-3), (0.0, 100.0)),
                       contact=ContactWindows(period=1e-3, duration=20e-6))
     march(model, 0.0, dt=1e-6, steps=100, load=idle)
+    with pytest.raises(ParameterError, match="give either load"):
+        march(model, 0.0, dt=1e-6, steps=2, load=idle, force=model.load)
+    with pytest.raises(ParameterError, match="profile applies to a fixed load"):
+        march(model, 0.0, dt=1e-6, steps=2, load=idle, profile=lambda t: 1.0)
