@@ -240,3 +240,28 @@ def test_a_path_leaving_the_tape_is_refused_before_marching():
         march(model, 0.0, dt=1e-6, steps=2, load=idle, force=model.load)
     with pytest.raises(ParameterError, match="profile applies to a fixed load"):
         march(model, 0.0, dt=1e-6, steps=2, load=idle, profile=lambda t: 1.0)
+
+
+def test_a_path_given_as_a_function_of_time():
+    """A curved path, vectorized or scalar-only (math functions): same centres and forces."""
+    import math as m
+
+    model = TapeModel(TapeParameters(length_ratio=4, spacing=6.35e-3 / 12))
+    p = model.params
+    x0, y0 = p.load_centroid
+
+    def vectorized(t):
+        return x0 + 2e-3 * np.cos(2e4 * t), y0 + 1e-3 * np.sin(2e4 * t)
+
+    def scalar(t):
+        return x0 + 2e-3 * m.cos(2e4 * t), y0 + 1e-3 * m.sin(2e4 * t)
+
+    times = 1e-5 * np.arange(8)
+    a = PreparedLoads(model, [MovingLoad(vectorized)], times)
+    b = PreparedLoads(model, [MovingLoad(scalar)], times)
+    np.testing.assert_allclose(a.centres, b.centres, rtol=1e-15)
+    np.testing.assert_allclose(a.centres[3, 0], [x0 + 2e-3 * m.cos(0.6), y0 + 1e-3 * m.sin(0.6)])
+    for n in range(8):
+        np.testing.assert_array_equal(a.vector(n), b.vector(n))
+    result = march(model, 0.0, dt=1e-5, steps=7, load=MovingLoad(scalar))
+    assert np.all(np.isfinite(result.load_point))
