@@ -12,7 +12,8 @@ from .saving import add_save_option, check_save_path, save_result
 
 def register(sub, common: argparse.ArgumentParser) -> None:
     p = sub.add_parser(
-        "transient", parents=[common], help="transient response to the step load (Newmark)",
+        "transient", parents=[common],
+        help="transient response to the step load or moving heads (Newmark)",
         description="March M a + G v + K w = H(t) F with Newmark's method (paper Eqs. 10-16) "
                     "from rest at the wrapped equilibrium. Writes the load-point displacement "
                     "history (CSV: t in s, w in m) and, if asked, full-field snapshots (.npz).")
