@@ -179,7 +179,17 @@ def check_frequencies(omega) -> np.ndarray:
 
 
 def parse_frequencies(text: str) -> np.ndarray:
-    """'START:STOP:NUM' (NUM points, both ends included) or 'w1,w2,...', rad/s."""
+    """'START:STOP:NUM' (NUM points, both ends included) or 'w1,w2,...', rad/s.
+
+    Examples
+    --------
+    >>> parse_frequencies("0:1e5:3")
+    array([     0.,  50000., 100000.])
+    >>> parse_frequencies("1e5:0:3")
+    Traceback (most recent call last):
+    ...
+    gyroshell.errors.ParameterError: frequencies: need finite START <= STOP, got '1e5:0:3'
+    """
     try:
         if ":" in text:
             start, stop, num = text.split(":")

@@ -181,7 +181,14 @@ class ContactWindows:
         return np.mod(np.asarray(t, dtype=float) - self.phase, self.period)
 
     def envelope(self, t: np.ndarray) -> np.ndarray:
-        """e(t) in [0, 1]: 1 in contact, 0 out, ramps between (dimensionless)."""
+        """e(t) in [0, 1]: 1 in contact, 0 out, ramps between (dimensionless).
+
+        Examples
+        --------
+        >>> ContactWindows(period=10e-6, duration=4e-6, ramp=1e-6).envelope(
+        ...     [0.5e-6, 2e-6, 5e-6, 10.5e-6])
+        array([0.5, 1. , 0. , 0.5])
+        """
         tau = self.local_time(t)
         on = tau < self.duration
         if self.ramp == 0.0:

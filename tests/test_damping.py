@@ -108,3 +108,13 @@ def test_bad_force_exponent_and_blowup_factor(small):
         stepper.march(2, force=np.full(small.size, np.nan))
     with pytest.raises(ParameterError, match="blowup_factor must be > 0"):
         stepper.march(2, blowup_factor=-1.0)
+
+
+@pytest.mark.parametrize("name", ["gyroshell.damping", "gyroshell.frf", "gyroshell.moving_load"])
+def test_docstring_examples(name):
+    import doctest
+    import importlib
+
+    result = doctest.testmod(importlib.import_module(name),
+                             optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
