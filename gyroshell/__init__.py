@@ -49,6 +49,13 @@ _LAZY: dict[str, str] = {
     # parameter studies and saved results (xarray, Dask and matplotlib load on use)
     "load": "persistence", "save": "persistence",
     "StudyResult": "study", "classify_stability": "study", "run_study": "study",
+    # damping, moving and intermittent loads, and the frequency response
+    "Damping": "damping",
+    "FrequencyResponse": "frf", "ReducedModel": "frf", "direct_response": "frf",
+    "frequency_response": "frf",
+    "ContactWindows": "moving_load", "GaussianShape": "moving_load",
+    "MovingLoad": "moving_load", "StraightPath": "moving_load", "UniformShape": "moving_load",
+    "UserShape": "moving_load", "drum_heads": "moving_load",
 }
 
 __all__ = sorted(["ConvergenceError", "ParameterError", "SupercriticalError",

@@ -10,6 +10,7 @@ Callers never touch that numbering: use :meth:`Grid.to_field` and :meth:`Grid.fr
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -139,6 +140,13 @@ class Grid:
     def unknowns(self) -> int:
         """Number of unknowns n (nodes that are not on a supported line)."""
         return self.n_lines * self.n_across
+
+    @property
+    def size(self) -> int:
+        """Deprecated name of :attr:`unknowns` (it counts unknowns, not nodes)."""
+        warnings.warn("Grid.size is deprecated; use unknowns", DeprecationWarning,
+                      stacklevel=2)
+        return self.unknowns
 
     @cached_property
     def y_weights(self) -> np.ndarray:

@@ -28,6 +28,22 @@ def gaussian_exponent(width: float) -> float:
     return math.log(1.0 / DECAY_LEVEL) / (DECAY_FRACTION * width) ** 2
 
 
+def check_exponent(exponent: float) -> float:
+    """Validate a Gaussian exponent α, 1/m² (finite, > 0)."""
+    return _check_positive("exponent", exponent, "1/m^2")
+
+
+def _check_positive(name: str, value: float, unit: str) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a real number > 0 {unit}, got {value!r}"
+                             ) from None
+    if not (math.isfinite(value) and value > 0.0):
+        raise ParameterError(f"{name} must be finite and > 0 {unit}, got {value:g}")
+    return value
+
+
 def _cell_integrals(nodes: np.ndarray, h: float, centre: float, alpha: float,
                     lo: float, hi: float) -> np.ndarray:
     """∫ exp(−α (s − centre)²) ds over each node's control interval, clipped to [lo, hi]."""
@@ -47,7 +63,7 @@ def gaussian_load(grid: Grid, params: TapeParameters, *, exponent: float | None 
     ``params.wrap_pressure`` is set, the uniform belt-wrap pressure −T/R is added.
     ``exponent`` overrides α (1/m²), e.g. to put the same load on a wider reference tape.
     """
-    alpha = gaussian_exponent(params.width) if exponent is None else float(exponent)
+    alpha = gaussian_exponent(params.width) if exponent is None else check_exponent(exponent)
     x0, y0 = params.load_centroid
     fx = _cell_integrals(grid.x[grid.x_unknowns], grid.hx, x0, alpha, 0.0, grid.length)
     fy = _cell_integrals(grid.y[grid.y_unknowns], grid.hy, y0, alpha, 0.0, grid.width)
@@ -79,8 +95,7 @@ class Ramp:
     rise_time: float
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.rise_time) and self.rise_time > 0):
-            raise ParameterError(f"rise_time must be > 0 s, got {self.rise_time}")
+        object.__setattr__(self, "rise_time", _check_positive("rise_time", self.rise_time, "s"))
 
     def __call__(self, t: float) -> float:
         return min(max(t / self.rise_time, 0.0), 1.0)
@@ -93,8 +108,7 @@ class Harmonic:
     frequency: float
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.frequency) and self.frequency > 0):
-            raise ParameterError(f"frequency must be > 0 Hz, got {self.frequency}")
+        object.__setattr__(self, "frequency", _check_positive("frequency", self.frequency, "Hz"))
 
     def __call__(self, t: float) -> float:
         return math.sin(2 * math.pi * self.frequency * t) if t >= 0 else 0.0

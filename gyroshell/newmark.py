@@ -1,4 +1,4 @@
-"""Newmark time marching of M a + G v + K w = f(t) F, displacement form (paper Eqs. 10-16).
+"""Newmark time marching of M a + (G + C) v + K w = F(t), displacement form (paper Eqs. 10-16).
 
 Each step: predictors (Eqs. 10-11)
 
@@ -6,18 +6,22 @@ Each step: predictors (Eqs. 10-11)
 
 one solve K_eq wⁿ⁺¹ = f_eq (Eqs. 12, 15-16) with the matrix factored once,
 
-    K_eq = M + γΔt G + βΔt² K,
-    f_eq = βΔt² f(tⁿ⁺¹) F + M w̃ + G (γΔt w̃ − βΔt² ṽ),
+    K_eq = M + γΔt (G + C) + βΔt² K,
+    f_eq = βΔt² F(tⁿ⁺¹) + M w̃ + (G + C)(γΔt w̃ − βΔt² ṽ),
 
 and correctors (Eqs. 13-14) aⁿ⁺¹ = (wⁿ⁺¹ − w̃)/(βΔt²), vⁿ⁺¹ = ṽ + γΔt aⁿ⁺¹.
 
 β = 1/4, γ = 1/2 (the default) is the trapezoidal rule: unconditionally stable, no
-algorithmic damping, and with G skew and a constant load it conserves
-E = ½vᵀMv + ½wᵀKw − Fᵀw to round-off. β = 1, γ = 3/2 damps strongly and brings a transient
-to its static equilibrium with large steps (the paper's "t = ∞" pictures).
+algorithmic damping. With G skew, C the (optional) damping matrix and a constant load, the
+energy E = ½vᵀMv + ½wᵀKw − Fᵀw then changes by exactly −Δt v̄ᵀC v̄ per step, v̄ the mean of
+the step's two velocities: conserved without damping, decreasing with it. β = 1, γ = 3/2
+damps strongly and brings a transient to its static equilibrium with large steps (the
+paper's "t = ∞" pictures).
 
-A :class:`Newmark` object holds one factorization for one (V, Δt, β, γ) and can march any
-number of runs with it; :func:`march` is the one-call form.
+F(t) is either f(t) F (a fixed load with a time profile, by default the model's Gaussian
+switched on at t = 0) or moving heads (:mod:`gyroshell.moving_load`). A :class:`Newmark`
+object holds one factorization for one (V, Δt, β, γ, C) and can march any number of runs
+with it; :func:`march` is the one-call form.
 """
 
 from __future__ import annotations
@@ -27,14 +31,17 @@ import sys
 import time
 import warnings
 from collections.abc import Sequence
+from dataclasses import asdict
 
 import numpy as np
-from scipy.sparse._sparsetools import csr_matvec
 
+from . import budget
+from .damping import Damping, as_damping
 from .errors import ConvergenceError, ParameterError
 from .factorization import factorize
 from .loads import TimeProfile, step
 from .model import TapeModel
+from .moving_load import MovingLoad, PreparedLoads, as_loads
 from .parameters import check_velocity
 from .threads import blas_threads as limit_blas_threads
 from .transient_result import Recorder, TransientResult
@@ -64,8 +71,56 @@ def check_steps(steps: int) -> int:
     return int(steps)
 
 
+def check_force(force, size: int, name: str = "force") -> np.ndarray:
+    """Validate a nodal force vector (N): finite, shape (size,)."""
+    try:
+        out = np.asarray(force, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a finite vector of length {size} (N)") from None
+    if out.shape != (size,) or not np.all(np.isfinite(out)):
+        raise ParameterError(f"{name} must be a finite vector of length {size} (N), got "
+                             f"shape {out.shape}" + ("" if out.shape != (size,) else
+                                                     " with non-finite entries"))
+    return out
+
+
+class _FixedLoad:
+    """F(t) = f(t) F at the instants of one run, with the load-point interpolation row."""
+
+    heads = 1
+
+    def __init__(self, force: np.ndarray, profile: TimeProfile, row: np.ndarray,
+                 times: np.ndarray) -> None:
+        if not callable(profile):
+            raise ParameterError("profile must be callable: f(t) with t in s")
+        self.force, self.profile, self.times = force, profile, times
+        self._tmp = np.empty_like(force)
+        # r @ w through the row's few non-zeros: no BLAS call (no BLAS threads) per step
+        self._idx = np.flatnonzero(row)
+        self._wts = row[self._idx]
+
+    def factor(self, n: int) -> float:
+        f = float(self.profile(float(self.times[n])))
+        if not math.isfinite(f):
+            raise ParameterError(f"profile must return finite values, got {f} at "
+                                 f"t = {self.times[n]:g} s")
+        return f
+
+    def add(self, n: int, scale: float, out: np.ndarray) -> None:
+        f = self.factor(n)
+        if f != 0.0:
+            np.multiply(self.force, scale * f, out=self._tmp)
+            out += self._tmp
+
+    def vector(self, n: int) -> np.ndarray:
+        return self.factor(n) * self.force
+
+    def displacement(self, n: int, w: np.ndarray, out: np.ndarray) -> None:
+        out[0] = w[self._idx] @ self._wts
+
+
 class Newmark:
-    """Newmark's method for one tape, speed, time step and (β, γ): factored once.
+    """Newmark's method for one tape, speed, time step, (β, γ) and damping: factored once.
 
     Parameters
     ----------
@@ -76,6 +131,8 @@ class Newmark:
         Time step Δt, s (> 0).
     beta, gamma : float
         Newmark parameters (β > 0). Outside 2β ≥ γ ≥ ½ a NewmarkStabilityWarning is issued.
+    damping : Damping, float or None
+        Damping C (:class:`gyroshell.damping.Damping`; a number is viscous c, N·s/m³).
     backend : str
         Sparse LU back-end (see :func:`gyroshell.factorization.factorize`).
     blas_threads : int or None
@@ -85,19 +142,21 @@ class Newmark:
 
     Notes
     -----
-    Construction assembles K(V), G(V) and factors K_eq (the expensive part, reported as
+    Construction assembles K(V), G(V), C and factors K_eq (the expensive part, reported as
     ``info["factor_time"]``); :meth:`march` then costs one substitution per step plus a few
-    vector operations and one G mat-vec, all into preallocated arrays.
+    vector operations and one (G + C) mat-vec.
     """
 
     def __init__(self, model: TapeModel, velocity: float = 0.0, *, dt: float,
-                 beta: float = 0.25, gamma: float = 0.5, backend: str = "auto",
+                 beta: float = 0.25, gamma: float = 0.5,
+                 damping: Damping | float | None = None, backend: str = "auto",
                  blas_threads: int | None = 1) -> None:
         self.model = model
         self.velocity = check_velocity(velocity)
         self.dt = _check_real("dt", dt, positive=True)
         self.beta = _check_real("beta", beta, positive=True)
         self.gamma = _check_real("gamma", gamma)
+        self.damping = as_damping(damping)
         if not 2.0 * self.beta >= self.gamma >= 0.5:
             warnings.warn(
                 f"Newmark beta={self.beta:g}, gamma={self.gamma:g} lie outside the "
@@ -105,11 +164,14 @@ class Newmark:
                 "only for small enough dt", NewmarkStabilityWarning, stacklevel=2)
         self.K = model.K(self.velocity)
         self.G = model.G(self.velocity).tocsr()
-        self.G.sort_indices()
+        self.C = None if self.damping.is_zero else self.damping.matrix(model, self.velocity)
+        #: G + C, the velocity-proportional operator, kg/s.
+        self.D = self.G if self.C is None else (self.G + self.C).tocsr()
+        self.D.sort_indices()
         self.m = np.ascontiguousarray(model.mass_diagonal, dtype=float)
         self.blas_threads = blas_threads
         dt, b, g = self.dt, self.beta, self.gamma
-        K_eq = (model.M + (g * dt) * self.G + (b * dt * dt) * self.K).tocsc()
+        K_eq = (model.M + (g * dt) * self.D + (b * dt * dt) * self.K).tocsc()
         with limit_blas_threads(blas_threads):
             self.factor = factorize(K_eq, backend)
         self.info = {"backend": self.factor.name, "factor_time": self.factor.factor_time,
@@ -118,50 +180,66 @@ class Newmark:
 
     def __repr__(self) -> str:
         return (f"Newmark(V={self.velocity:g} m/s, dt={self.dt:g} s, beta={self.beta:g}, "
-                f"gamma={self.gamma:g}, backend={self.factor.name!r}, n={self.model.size})")
+                f"gamma={self.gamma:g}, damping={self.damping}, backend={self.factor.name!r},"
+                f" n={self.model.size})")
 
     # ----- pieces ---------------------------------------------------------------------
-    def _gmatvec(self, x: np.ndarray, out: np.ndarray) -> np.ndarray:
-        """out += G x without allocating (scipy's csr kernel accumulates into out)."""
-        G = self.G
-        csr_matvec(G.shape[0], G.shape[1], G.indptr, G.indices, G.data, x, out)
-        return out
-
     def initial_acceleration(self, w0: np.ndarray, v0: np.ndarray, force0: np.ndarray
                              ) -> np.ndarray:
-        """a⁰ from M a⁰ = P(0) − K w⁰ − G v⁰, m/s²."""
-        return (force0 - self.K @ w0 - self.G @ v0) / self.m
+        """a⁰ from M a⁰ = F(0) − K w⁰ − (G + C) v⁰, m/s²."""
+        return (force0 - self.K @ w0 - self.D @ v0) / self.m
 
     def energy(self, w: np.ndarray, v: np.ndarray, force: np.ndarray) -> float:
         """½vᵀMv + ½wᵀKw − Fᵀw, J (G does no work, so it has no term)."""
         return float(0.5 * np.dot(v * self.m, v) + 0.5 * np.dot(w, self.K @ w)
                      - np.dot(force, w))
 
+    def dissipation(self, v: np.ndarray) -> float:
+        """vᵀCv, W: the power the damping takes out (0 without damping)."""
+        return 0.0 if self.C is None else float(np.dot(v, self.C @ v))
+
     def _state(self, vector, name: str) -> np.ndarray:
         n = self.model.size
         if vector is None:
             return np.zeros(n)
-        out = np.array(vector, dtype=float)  # a copy: the march writes into it
-        if out.shape != (n,) or not np.all(np.isfinite(out)):
-            raise ParameterError(f"{name} must be a finite vector of length {n} (unknowns)")
-        return out
+        return check_force(vector, n, name).copy()  # a copy: the march writes into it
+
+    def _prepare_load(self, load, force, profile, times: np.ndarray):
+        """The run's F(t): moving heads, or f(t) F with F the model's load or ``force``."""
+        if load is not None:
+            if force is not None:
+                raise ParameterError("give either load (moving heads) or force, not both")
+            if profile is not step:
+                raise ParameterError("profile applies to a fixed load; a moving head's time "
+                                     "dependence is its contact windows (ContactWindows)")
+            return PreparedLoads(self.model, as_loads(load), times)
+        force = self.model.load if force is None else check_force(force, self.model.size)
+        return _FixedLoad(force, profile, self.model.load_point_row, times)
 
     # ----- the march --------------------------------------------------------------------
     def march(self, steps: int, *, profile: TimeProfile = step,
+              force: np.ndarray | None = None,
+              load: MovingLoad | Sequence[MovingLoad] | None = None,
               w0: np.ndarray | None = None, v0: np.ndarray | None = None, t0: float = 0.0,
               snapshot_times: Sequence[float] | None = None,
               snapshot_every: int | None = None,
               centerline_times: Sequence[float] | None = None,
               record_energy: bool = False, progress: bool | None = None,
               blowup_factor: float = BLOWUP_FACTOR) -> TransientResult:
-        """March ``steps`` steps from (w⁰, v⁰) at t0 under F(t) = profile(t) · model.load.
+        """March ``steps`` steps from (w⁰, v⁰) at t0 under F(t).
 
         Parameters
         ----------
         steps : int
             Number of time steps (>= 1); the result holds steps + 1 instants.
         profile : callable
-            f(t), dimensionless, t in s (default: a step switched on at t = 0).
+            f(t), dimensionless, t in s (default: a step switched on at t = 0); the load is
+            f(t) F with F = ``force`` or the model's load.
+        force : numpy.ndarray, optional
+            Nodal force vector F, N (default: the model's load).
+        load : MovingLoad or list of MovingLoad, optional
+            Moving and intermittent heads instead of f(t) F; the history is then the
+            displacement under each head's current centre.
         w0, v0 : numpy.ndarray, optional
             Initial displacement (m) and velocity (m/s) of the unknowns; default zero (the
             wrapped equilibrium).
@@ -174,12 +252,12 @@ class Newmark:
         centerline_times : sequence of float, optional
             Times (s) at which to keep w(x, L_y/2).
         record_energy : bool
-            Record E_n = ½vᵀMv + ½wᵀKw − f(t_n)Fᵀw (J) every step (one K mat-vec per step).
+            Record E_n = ½vᵀMv + ½wᵀKw − F(t_n)ᵀw (J) every step (one K mat-vec per step).
         progress : bool or None
             Show a progress bar on stderr; None: only if stderr is a terminal.
         blowup_factor : float
             Stop with ConvergenceError once max |w| exceeds this many times its scale
-            max(max|w⁰|, max|F| / max diag K, Δt steps max|v⁰|), m.
+            max(max|w⁰|, max|F| / max diag K, Δt steps max|v⁰|), m (> 0).
 
         Returns
         -------
@@ -192,96 +270,108 @@ class Newmark:
         """
         steps = check_steps(steps)
         t0 = _check_real("t0", t0)
-        model = self.model
-        force = model.load
+        blowup_factor = _check_real("blowup_factor", blowup_factor, positive=True)
+        grid = self.model.grid  # size before work: the per-step arrays below must fit
+        budget.check_transient(grid.nx, grid.ny, grid.edges, steps)
+        times = t0 + self.dt * np.arange(steps + 1)
+        loads = self._prepare_load(load, force, profile, times)
         w, v = self._state(w0, "w0"), self._state(v0, "v0")
-        a = self.initial_acceleration(w, v, profile(t0) * force)
-        recorder = Recorder(model.grid, steps, self.dt, t0, snapshot_times=snapshot_times,
+        force0 = loads.vector(0)
+        a = self.initial_acceleration(w, v, force0)
+        recorder = Recorder(self.model.grid, steps, self.dt, t0, snapshot_times=snapshot_times,
                             snapshot_every=snapshot_every, centerline_times=centerline_times)
-        scale = max(np.abs(w).max(), steps * self.dt * np.abs(v).max(),
-                    np.abs(force).max() / np.abs(self.K.diagonal()).max())
-        bound = blowup_factor * scale if scale > 0 else math.inf
+        bound = self._blowup_bound(w, v, loads, steps, blowup_factor)
 
-        history = np.empty(steps + 1)
+        history = np.empty((steps + 1, loads.heads))
         energy = np.empty(steps + 1) if record_energy else None
         bar = _progress_bar(steps, progress)
         start = time.perf_counter()
         try:
             with limit_blas_threads(self.blas_threads):
-                w, v, a, solve_time = self._loop(steps, t0, w, v, a, profile, recorder,
+                w, v, a, solve_time = self._loop(steps, times, w, v, a, loads, recorder,
                                                  history, energy, bound, bar)
         finally:
             if bar is not None:
                 bar.close()
         loop_time = time.perf_counter() - start
 
-        times = t0 + self.dt * np.arange(steps + 1)
         info = dict(self.info, steps=steps, solve_time=solve_time, loop_time=loop_time,
-                    step_time=loop_time / steps)
-        return TransientResult(times, history, recorder.snapshots(times), w, v, a,
-                               self.velocity, self.dt, self.beta, self.gamma, energy, info)
+                    step_time=loop_time / steps, damping=asdict(self.damping))
+        heads = history if loads.heads > 1 else None
+        return TransientResult(times, history[:, 0].copy(), recorder.snapshots(times), w, v,
+                               a, self.velocity, self.dt, self.beta, self.gamma, energy, info,
+                               head_displacements=heads)
 
-    def _loop(self, steps, t0, w, v, a, profile, recorder, history, energy, bound, bar):
+    def _blowup_bound(self, w, v, loads, steps: int, factor: float) -> float:
+        """The displacement (m) past which the run counts as blown up."""
+        if isinstance(loads, _FixedLoad):
+            peak = np.abs(loads.force).max()
+        else:  # the largest force a head can put on one node: its peak over all steps
+            peak = max(np.abs(loads.vector(n)).max() for n in
+                       np.unique(np.linspace(0, steps, min(steps + 1, 64)).astype(int)))
+        scale = max(np.abs(w).max(), steps * self.dt * np.abs(v).max(),
+                    peak / np.abs(self.K.diagonal()).max())
+        return factor * scale if scale > 0 else math.inf
+
+    # ----- one step, in named pieces -----------------------------------------------------
+    def _predict(self, w, v, a, w_t, v_t, tmp) -> None:
+        """w̃ = w + Δt v + (½ − β)Δt² a, ṽ = v + (1 − γ)Δt a (Eqs. 10-11)."""
+        dt = self.dt
+        np.multiply(v, dt, out=w_t)
+        w_t += w
+        np.multiply(a, (0.5 - self.beta) * dt * dt, out=tmp)
+        w_t += tmp
+        np.multiply(a, (1.0 - self.gamma) * dt, out=v_t)
+        v_t += v
+
+    def _right_hand_side(self, n, w_t, v_t, loads, rhs, tmp, tmp2) -> None:
+        """f_eq = M w̃ + (G + C)(γΔt w̃ − βΔt² ṽ) + βΔt² F(t_n) (Eq. 16)."""
+        bdt2 = self.beta * self.dt * self.dt
+        np.multiply(w_t, self.gamma * self.dt, out=tmp)
+        np.multiply(v_t, bdt2, out=tmp2)
+        tmp -= tmp2
+        np.multiply(self.m, w_t, out=rhs)
+        rhs += self.D @ tmp
+        loads.add(n, bdt2, rhs)
+
+    def _correct(self, w_new, w_t, v_t, a, v) -> None:
+        """a = (w − w̃)/(βΔt²), v = ṽ + γΔt a (Eqs. 13-14)."""
+        np.subtract(w_new, w_t, out=a)
+        a *= 1.0 / (self.beta * self.dt * self.dt)
+        np.multiply(a, self.gamma * self.dt, out=v)
+        v += v_t
+
+    def _loop(self, steps, times, w, v, a, loads, recorder, history, energy, bound, bar):
         """The time loop; fills ``history`` (and ``energy``) and returns (w, v, a, solve s)."""
-        dt, m, force, solve = self.dt, self.m, self.model.load, self.factor.solve
-        bdt2, gdt = self.beta * dt * dt, self.gamma * dt
-        c_w, c_v = (0.5 - self.beta) * dt * dt, (1.0 - self.gamma) * dt
-        # r @ w through the row's few non-zeros: no BLAS call (no BLAS threads) per step
-        row = self.model.load_point_row
-        row_idx = np.flatnonzero(row)
-        row_w = row[row_idx]
-        wanted = recorder.wanted
-        # Work vectors: the loop allocates only the solver's output.
-        w_t, v_t, rhs, tmp = (np.empty_like(w) for _ in range(4))
-
-        history[0] = w[row_idx] @ row_w
+        solve, wanted = self.factor.solve, recorder.wanted
+        w_t, v_t, rhs, tmp, tmp2 = (np.empty_like(w) for _ in range(5))
+        loads.displacement(0, w, history[0])
         if energy is not None:
-            energy[0] = self.energy(w, v, profile(t0) * force)
+            energy[0] = self.energy(w, v, loads.vector(0))
         recorder.record(0, w)
         solve_time = 0.0
-        n, t = 0, t0
+        n = 0
         try:
             for n in range(1, steps + 1):
-                t = t0 + n * dt
-                # predictors (Eqs. 10-11)
-                np.multiply(v, dt, out=w_t)
-                w_t += w
-                np.multiply(a, c_w, out=tmp)
-                w_t += tmp
-                np.multiply(a, c_v, out=v_t)
-                v_t += v
-                # f_eq (Eq. 16) = M w̃ + G (γΔt w̃ − βΔt² ṽ) + βΔt² f(t) F
-                np.multiply(m, w_t, out=rhs)
-                np.multiply(w_t, gdt, out=tmp)
-                np.multiply(v_t, bdt2, out=a)  # a is free until the corrector
-                tmp -= a
-                self._gmatvec(tmp, rhs)
-                f_t = profile(t)
-                if f_t != 0.0:
-                    np.multiply(force, bdt2 * f_t, out=tmp)
-                    rhs += tmp
+                self._predict(w, v, a, w_t, v_t, tmp)
+                self._right_hand_side(n, w_t, v_t, loads, rhs, tmp, tmp2)
                 tick = time.perf_counter()
-                w_new = solve(rhs)  # Eq. 12
+                w = solve(rhs)  # Eq. 12
                 solve_time += time.perf_counter() - tick
-                # correctors (Eqs. 13-14)
-                np.subtract(w_new, w_t, out=a)
-                a *= 1.0 / bdt2
-                np.multiply(a, gdt, out=v)
-                v += v_t
-                w = w_new
+                self._correct(w, w_t, v_t, a, v)
                 size = np.abs(w, out=tmp).max()  # NaN propagates: "not <=" catches it
                 if not size <= bound:
-                    raise _blowup(n, t, size, bound, self)
-                history[n] = w[row_idx] @ row_w
+                    raise _blowup(n, times[n], size, bound, self)
+                loads.displacement(n, w, history[n])
                 if energy is not None:
-                    energy[n] = self.energy(w, v, f_t * force)
+                    energy[n] = self.energy(w, v, loads.vector(n))
                 if wanted[n]:
                     recorder.record(n, w)
                 if bar is not None:
                     bar.update(1)
         except FloatingPointError as exc:
-            raise ConvergenceError(f"Newmark march overflowed at step {n} (t = {t:.6g} s): "
-                                   f"{exc}") from None
+            raise ConvergenceError(f"Newmark march overflowed at step {n} (t = "
+                                   f"{times[n]:.6g} s): {exc}") from None
         return w, v, a, solve_time
 
 
@@ -308,17 +398,19 @@ def _progress_bar(steps: int, progress: bool | None):
 
 
 def march(model: TapeModel, velocity: float = 0.0, *, dt: float, steps: int,
-          beta: float = 0.25, gamma: float = 0.5, backend: str = "auto",
-          blas_threads: int | None = 1, **options) -> TransientResult:
+          beta: float = 0.25, gamma: float = 0.5, damping: Damping | float | None = None,
+          backend: str = "auto", blas_threads: int | None = 1, **options
+          ) -> TransientResult:
     """Transient response of the tape: one call that factors and marches.
 
-    ``march(model, V, dt=..., steps=..., beta=..., gamma=..., backend=..., blas_threads=...,
-    **options)`` is ``Newmark(model, V, dt=dt, beta=beta, gamma=gamma, backend=backend,
-    blas_threads=blas_threads).march(steps, **options)``; keep the :class:`Newmark` object
-    instead to reuse its factorization across runs with the same (V, Δt, β, γ). See
-    :meth:`Newmark.march` for ``options`` (profile, w0, v0, t0, snapshot_times,
-    snapshot_every, centerline_times, record_energy, progress, blowup_factor).
+    ``march(model, V, dt=..., steps=..., beta=..., gamma=..., damping=..., backend=...,
+    blas_threads=..., **options)`` is ``Newmark(model, V, dt=dt, beta=beta, gamma=gamma,
+    damping=damping, backend=backend, blas_threads=blas_threads).march(steps, **options)``;
+    keep the :class:`Newmark` object instead to reuse its factorization across runs with
+    the same (V, Δt, β, γ, C). See :meth:`Newmark.march` for ``options`` (profile, force,
+    load, w0, v0, t0, snapshot_times, snapshot_every, centerline_times, record_energy,
+    progress, blowup_factor).
     """
     steps = check_steps(steps)
-    return Newmark(model, velocity, dt=dt, beta=beta, gamma=gamma, backend=backend,
-                   blas_threads=blas_threads).march(steps, **options)
+    return Newmark(model, velocity, dt=dt, beta=beta, gamma=gamma, damping=damping,
+                   backend=backend, blas_threads=blas_threads).march(steps, **options)

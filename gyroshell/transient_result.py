@@ -192,6 +192,9 @@ class TransientResult:
         Tape speed V (m/s), time step Δt (s) and Newmark's β, γ.
     info : dict
         Run statistics: back-end, factor_time, solve_time, loop_time (s), steps, unknowns.
+    head_displacements : numpy.ndarray or None
+        With several moving heads: w under each head's current centre, m, shape
+        (steps + 1, heads); ``load_point`` is then head 0's column.
     """
 
     times: np.ndarray
@@ -206,6 +209,7 @@ class TransientResult:
     gamma: float
     energy: np.ndarray | None = None
     info: dict = field(default_factory=dict)
+    head_displacements: np.ndarray | None = None
 
     @property
     def steps(self) -> int:
@@ -220,10 +224,14 @@ class TransientResult:
         return persistence.save(self, path, params=params)
 
     def to_frame(self):
-        """pandas DataFrame with columns ``t`` (s) and ``w`` (m) (+ ``energy``, J)."""
+        """pandas DataFrame with columns ``t`` (s) and ``w`` (m) (+ ``w_head<k>``, m, with
+        several heads; + ``energy``, J)."""
         import pandas as pd
 
         data = {"t": self.times, "w": self.load_point}
+        if self.head_displacements is not None:
+            for k in range(self.head_displacements.shape[1]):
+                data[f"w_head{k}"] = self.head_displacements[:, k]
         if self.energy is not None:
             data["energy"] = self.energy
         return pd.DataFrame(data)

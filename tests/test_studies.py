@@ -32,6 +32,8 @@ EXPECTED = {
     "fig6": ("fig6_centerline.csv", "fig6_waterfall.png"),
     "period": ("period_vs_velocity.csv", "period_vs_velocity.png"),
     "observations": ("observations.csv", "observations.png"),
+    "helical": ("helical_heads.csv", "helical_heads.png"),
+    "frf": ("frf.csv", "frf_bode.png"),
 }
 
 
@@ -47,6 +49,32 @@ def test_each_study_writes_csv_and_png(quick_results, name):
         assert (quick_results / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert not [p for p in quick_results.iterdir() if p.name.startswith(".")], \
         "temporary files left behind"
+
+
+def test_helical_heads_alternate_and_each_sees_a_spacing_variation(quick_results):
+    contacts = pd.read_csv(quick_results / "helical_contacts.csv")
+    assert set(contacts["head"]) == {0, 1}
+    assert (contacts["range_w"] > 0).all() and (contacts["mean_w"] > 0).all()
+    heads = pd.read_csv(quick_results / "helical_heads.csv")
+    both = (heads["contact_head0"] > 0) & (heads["contact_head1"] > 0)
+    assert not both.any()  # wrap below 180 degrees: never two heads at once
+    assert (quick_results / "helical_wireframes.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_frf_first_resonance_follows_the_eigen_solver_down(quick_results):
+    from scipy.signal import find_peaks
+
+    table = pd.read_csv(quick_results / "frf.csv")
+    found = pd.read_csv(quick_results / "frf_modes.csv")
+    first = []
+    for v, rows in table.groupby("velocity"):
+        peaks, _ = find_peaks(rows["amplitude"].to_numpy())
+        omega = rows["omega"].to_numpy()
+        step = omega[1] - omega[0]
+        w1 = found[(found["velocity"] == v) & (found["rank"] == 1)]["omega"].iloc[0]
+        assert abs(omega[peaks[0]] - w1) <= 1.5 * step
+        first.append(omega[peaks[0]])
+    assert first[0] > first[1] > first[2]
 
 
 def test_critical_table_routes_agree(quick_results):

@@ -20,7 +20,8 @@ from ..io import Terminated, termination_signals
 from .common import ArgumentParser, UserError, common_parser
 
 #: Sub-command modules (gyroshell.cli.<name>), in help order.
-SUBCOMMANDS: tuple[str, ...] = ("static", "transient", "eigen", "study", "reproduce")
+SUBCOMMANDS: tuple[str, ...] = ("static", "transient", "eigen", "frf", "study",
+                               "reproduce")
 
 
 def build_parser() -> ArgumentParser:

@@ -6,6 +6,7 @@ import argparse
 import sys
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
+from .loading import add_damping_options, add_load_options, damping_from_args, load_from_args
 from .saving import add_save_option, check_save_path, save_result
 
 #: --backend values: "auto" and the names of gyroshell.factorization.BACKENDS (not imported
@@ -16,7 +17,8 @@ BACKEND_CHOICES: tuple[str, ...] = ("auto", "superlu", "umfpack", "pardiso", "ba
 def register(sub, common: argparse.ArgumentParser,
              common_without_velocity: argparse.ArgumentParser) -> None:
     p = sub.add_parser(
-        "transient", parents=[common], help="transient response to the step load (Newmark)",
+        "transient", parents=[common],
+        help="transient response to the step load or moving heads (Newmark)",
         description="March M a + G v + K w = H(t) F with Newmark's method (paper Eqs. 10-16) "
                     "from rest at the wrapped equilibrium. Writes the load-point displacement "
                     "history (CSV: t in s, w in m) and, if asked, full-field snapshots (.npz).")
@@ -37,6 +39,8 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON summary (SI units)")
     add_save_option(p)
+    add_load_options(p)
+    add_damping_options(p)
     p.set_defaults(func=run)
 
 
@@ -82,11 +86,12 @@ def run(args: argparse.Namespace) -> int:
     from ..model import TapeModel
     from ..newmark import march
 
+    load, damping = load_from_args(args, params), damping_from_args(args)
     model = TapeModel(params, grid)
     validation.time_step(args.dt, args.beta, stiffness_scale=_stiffness_scale(model, velocity))
     _warn_if_supercritical(model, velocity)
     result = march(model, velocity, dt=args.dt, steps=args.steps, beta=args.beta,
-                   gamma=args.gamma, backend=args.backend,
+                   gamma=args.gamma, backend=args.backend, damping=damping, load=load,
                    snapshot_every=args.snapshot_every, progress=False if args.quiet else None)
     with io.transaction():
         if args.out is not None:
@@ -106,6 +111,8 @@ def run(args: argparse.Namespace) -> int:
         "backend": info["backend"], "factor_time": info["factor_time"],
         "loop_time": info["loop_time"], "step_time": info["step_time"],
         "out": args.out, "snapshots": args.snapshots,
+        "moving_load": load is not None, "damping": damping.viscous,
+        "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
     }
     if args.json:
         print_json(out)

@@ -1,0 +1,134 @@
+"""``gyroshell frf``: frequency response (amplitude and phase) to a harmonic load."""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+from .common import UserError, parameters_from_args, positive_int, print_json, real
+from .loading import add_damping_options, damping_from_args, pair
+
+
+def register(sub, common: argparse.ArgumentParser) -> None:
+    p = sub.add_parser(
+        "frf", parents=[common], help="frequency response to a harmonic load (Bode plot)",
+        description="Steady response W e^(i omega t) to the Gaussian load P_0 e^(i omega t) "
+                    "(Eq. 17): (K - omega^2 M + i omega (G + C)) W = F at each angular "
+                    "frequency, at the load centroid and any probe points. Amplitude in m "
+                    "(for the peak pressure --load), phase in rad (negative: lagging). "
+                    "Many frequencies use a reduced (rational Krylov) model whose error is "
+                    "estimated; direct solves take over wherever it is above --tol.")
+    p.add_argument("--frequencies", required=True, metavar="START:STOP:NUM",
+                   help="angular frequencies, rad/s: NUM points from START to STOP "
+                        "(both included), or a list 'w1,w2,...'")
+    p.add_argument("--probe", metavar="X,Y", type=pair, action="append", default=[],
+                   help="extra response point, m (repeatable)")
+    p.add_argument("--method", choices=("auto", "direct", "reduced"), default="auto",
+                   help="auto (default): reduced model, direct solves where it is not "
+                        "accurate enough; direct: one sparse LU per frequency; reduced: the "
+                        "reduced model alone, with its estimated error")
+    p.add_argument("--tol", type=real, default=1e-6,
+                   help="target relative error of the reduced model (default 1e-6)")
+    p.add_argument("--max-points", type=positive_int, default=40,
+                   help="most interpolation frequencies (factorizations) of the reduced "
+                        "model (default 40)")
+    p.add_argument("--out", metavar="FILE.csv", default=None,
+                   help="write omega (rad/s), frequency (Hz), amplitude (m), phase (rad), "
+                        "method, error_estimate, and amplitude_k, phase_k per probe")
+    p.add_argument("--plot", metavar="FILE.png", default=None, help="write a Bode plot (PNG)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    add_damping_options(p)
+    p.set_defaults(func=run)
+
+
+def _check_outputs(out: str | None, plot: str | None) -> None:
+    """Fail before computing if an output could never be written."""
+    for path in (out, plot):
+        if path is None:
+            continue
+        folder = Path(path).parent
+        if not folder.is_dir():
+            raise FileNotFoundError(f"output folder does not exist: {folder}")
+        if Path(path).is_dir():
+            raise IsADirectoryError(f"output is a directory: {path}")
+    if plot is not None and Path(plot).suffix.lower() != ".png":
+        raise UserError(f"--plot must be a .png file, got {plot}")
+    if out is not None and plot is not None and Path(out).resolve() == Path(plot).resolve():
+        raise UserError("--out and --plot must be different files")
+
+
+def run(args: argparse.Namespace) -> int:
+    from ..frf import frequency_response, parse_frequencies
+    from ..model import TapeModel
+    from ..parameters import check_velocity
+
+    params = parameters_from_args(args)
+    velocity = check_velocity(args.velocity)
+    omega = parse_frequencies(args.frequencies)
+    damping = damping_from_args(args)
+    _check_outputs(args.out, args.plot)
+    model = TapeModel(params)
+    start = time.perf_counter()
+    result = frequency_response(model, velocity, omega, damping=damping, probes=args.probe,
+                                method=args.method, tol=args.tol, max_points=args.max_points,
+                                progress=False if args.quiet else None)
+    elapsed = time.perf_counter() - start
+    if args.out is not None:
+        result.to_csv(args.out)
+    if args.plot is not None:
+        _plot(result, params, damping, args.plot)
+    info = result.info
+    out = {
+        "velocity": velocity, "omega": result.omega.tolist(),
+        "amplitude": result.amplitude[:, 0].tolist(), "phase": result.phase[:, 0].tolist(),
+        "probes": [list(p) for p in result.points[1:].tolist()],
+        "probe_amplitude": result.amplitude[:, 1:].T.tolist(),
+        "probe_phase": result.phase[:, 1:].T.tolist(),
+        "method": result.method.tolist(), "error_estimate": result.error_estimate.tolist(),
+        "max_error_estimate": float(result.error_estimate.max()),
+        "direct_solves": info["direct_solves"], "factorizations": info["factorizations"],
+        "basis_size": info["basis_size"], "damping": damping.viscous,
+        "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
+        "unknowns": model.size, "seconds": elapsed, "out": args.out, "plot": args.plot,
+    }
+    if args.json:
+        print_json(out)
+        return 0
+    g = model.grid
+    print(f"grid: {g.nx} x {g.ny} intervals, {g.size} unknowns; V = {velocity:g} m/s; "
+          f"{len(omega)} frequencies in [{omega.min():g}, {omega.max():g}] rad/s")
+    print(f"method: {info['factorizations']} factorizations ({info['direct_solves']} direct "
+          f"solves), reduced basis {info['basis_size']}, largest estimated relative error "
+          f"{result.error_estimate.max():.2e}; {elapsed:.2f} s")
+    k = int(result.amplitude[:, 0].argmax())
+    print(f"load point: largest amplitude {result.amplitude[k, 0]:.6e} m at omega = "
+          f"{result.omega[k]:.6g} rad/s")
+    if args.out is None:
+        print(f"{'omega (rad/s)':>14} {'amplitude (m)':>14} {'phase (rad)':>12}")
+        step = max(1, len(omega) // 20)
+        for i in range(0, len(omega), step):
+            print(f"{result.omega[i]:14.6g} {result.amplitude[i, 0]:14.6e} "
+                  f"{result.phase[i, 0]:12.6f}")
+    for label, path in (("table", args.out), ("plot", args.plot)):
+        if path is not None:
+            print(f"{label}: {path}")
+    return 0
+
+
+def _plot(result, params, damping, path: str) -> None:
+    from ..io import write_atomic
+    from ..reproduce._common import pyplot
+
+    plt = pyplot()
+    fig, ax = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
+    result.plot(ax)
+    ax[0].legend(fontsize=8)
+    ax[0].set_title(f"Frequency response, V = {result.velocity:g} m/s, L_x/L_y = "
+                    f"{params.length_ratio:g}, c = {damping.viscous:g} N·s/m³")
+    fig.tight_layout()
+    try:
+        write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
+    finally:
+        plt.close(fig)

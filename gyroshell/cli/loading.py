@@ -1,0 +1,76 @@
+"""Command-line options for damping and moving / intermittent loads, shared by sub-commands."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from .common import UserError
+
+
+def pair(text: str) -> tuple[float, float]:
+    """'A,B': two finite numbers."""
+    parts = text.split(",")
+    try:
+        a, b = (float(s) for s in parts)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected two numbers 'A,B', got {text!r}") from None
+    if not (math.isfinite(a) and math.isfinite(b)):
+        raise argparse.ArgumentTypeError(f"must be finite, got {text!r}")
+    return a, b
+
+
+def add_damping_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("damping (lab frame)")
+    g.add_argument("--damping", metavar="C", type=float, default=None,
+                   help="viscous damping c, N*s/m^3 (>= 0; damping pressure c dw/dt)")
+    g.add_argument("--rayleigh", metavar="A,B", type=pair, default=None,
+                   help="Rayleigh damping C = A M + B K: A in 1/s, B in s (both >= 0)")
+
+
+def damping_from_args(args: argparse.Namespace):
+    """A Damping from --damping and --rayleigh (validated; raises ParameterError)."""
+    from ..damping import Damping
+
+    a, b = args.rayleigh if args.rayleigh is not None else (0.0, 0.0)
+    c = 0.0 if args.damping is None else args.damping
+    return Damping(viscous=c, mass_coefficient=a, stiffness_coefficient=b)
+
+
+def add_load_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group(
+        "moving and intermittent load (lab frame, where the supports x = 0, L_x stand)")
+    g.add_argument("--load-position", metavar="X,Y", type=pair, default=None,
+                   help="load centre at t = 0 (or at the start of each contact), m "
+                        "(default: the tape centre)")
+    g.add_argument("--load-velocity", metavar="VX,VY", type=pair, default=None,
+                   help="load centre velocity, m/s; the history's w is then the "
+                        "displacement under the load's current centre")
+    g.add_argument("--contact-period", metavar="S", type=float, default=None,
+                   help="intermittent contact: one window every S seconds (needs "
+                        "--contact-duration); each contact restarts the head at "
+                        "--load-position")
+    g.add_argument("--contact-duration", metavar="S", type=float, default=None,
+                   help="length of each contact window, s (<= --contact-period)")
+    g.add_argument("--contact-ramp", metavar="S", type=float, default=0.0,
+                   help="raised-cosine rise and fall time inside each window, s "
+                        "(default 0: abrupt)")
+
+
+def load_from_args(args: argparse.Namespace, params):
+    """A MovingLoad from the load options, or None for the paper's fixed step load."""
+    from ..moving_load import ContactWindows, MovingLoad, StraightPath
+
+    contact_given = (args.contact_period is not None, args.contact_duration is not None)
+    if any(contact_given) and not all(contact_given):
+        raise UserError("--contact-period and --contact-duration go together")
+    if args.load_position is None and args.load_velocity is None and not any(contact_given):
+        return None
+    start = params.load_centroid if args.load_position is None else args.load_position
+    velocity = (0.0, 0.0) if args.load_velocity is None else args.load_velocity
+    contact = None
+    if all(contact_given):
+        contact = ContactWindows(args.contact_period, args.contact_duration,
+                                 ramp=args.contact_ramp)
+    return MovingLoad(StraightPath(start, velocity), contact=contact,
+                      restart_path=contact is not None)

@@ -1,0 +1,590 @@
+"""Frequency response: the steady harmonic answer to F e^{iωt}, an engine beside static and Newmark.
+
+At each angular frequency ω (rad/s) the displacement amplitude W (complex, m) solves
+
+    Q(ω) W = F,        Q(ω) = K(V) − ω² M + iω (G(V) + C),
+
+and the response at a point is r·W (bilinear interpolation row r): amplitude |r·W| (m) and
+phase arg(r·W) (rad; negative = lagging the load). F is the model's load (the Gaussian of
+Eq. 17 with its peak pressure P₀), so the amplitude is the displacement per P₀-load.
+
+Two methods, chosen per frequency:
+
+* **direct**: one sparse complex LU of Q(ω) per frequency (exact to round-off);
+* **reduced**: a rational Krylov (moment-matching) subspace. Q is factored at a few
+  interpolation frequencies ω_k; the amplitude W(ω_k) and its first Taylor coefficients
+  (Q W₁ = −Q′W₀, Q W_j = −(Q′W_{j−1} − M W_{j−2}), Q′ = −2ωM + i(G + C)) span, in real
+  form, a basis V; M, G + C, K are projected on it (keeping M and K symmetric and G skew) and
+  every frequency costs O(r) through the poles and residues of the small model (one dense
+  eigen-decomposition). The reduced response matches W(ω) and its first derivatives at
+  each ω_k.
+
+The error of the reduced model is estimated at every frequency as twice the difference
+between it and the nested model built without the highest moment at each point (the
+nested model is the less accurate one), plus a round-off level of 1e-8. Interpolation
+points are added greedily where the estimate is largest until it is below ``tol``
+everywhere or the point budget is spent; frequencies still above ``tol`` are solved
+directly.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import scipy.linalg as sl
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from .damping import Damping, as_damping
+from .errors import ParameterError
+from .io import atomic_path
+from .model import TapeModel
+from .parameters import check_velocity
+from .threads import blas_threads as limit_blas_threads
+
+#: SuperLU's threshold for keeping a diagonal pivot. Q has a symmetric pattern; the default
+#: partial pivoting (1.0) abandons the fill-reducing order when K − ω²M is indefinite and
+#: took minutes per factorization at L_x/L_y = 19 instead of about a second.
+PIVOT_THRESHOLD = 0.1
+#: Default relative accuracy of the reduced model against direct solves.
+DEFAULT_TOL = 1e-6
+#: Taylor coefficients matched at each interpolation frequency (W₀ ... W_{m−1}).
+DEFAULT_MOMENTS = 6
+#: Interpolation frequencies placed before the greedy enrichment.
+INITIAL_POINTS = 4
+#: Largest number of interpolation frequencies (factorizations) of the reduced model.
+MAX_POINTS = 40
+#: Responses below this fraction of the largest one count as this fraction (relative
+#: errors at deep anti-resonances are not meaningful).
+RESPONSE_FLOOR = 1e-6
+#: The estimate is this multiple of the nested models' difference ...
+ESTIMATE_SAFETY = 2.0
+#: ... plus this relative round-off level of the reduced evaluation (basis orthogonalization
+#: and the small eigen-decomposition lose about 1e-9 against direct solves).
+ESTIMATE_ROUNDOFF = 1e-8
+#: A new (unit) vector whose part outside the basis is smaller than this adds no direction.
+NEW_DIRECTION_TOL = 1e-8
+#: Interpolation points added per greedy round (one rebuild of the reduced model each).
+POINTS_PER_ROUND = 4
+#: Frequencies per batch of small dense solves.
+BATCH = 256
+METHODS = ("auto", "direct", "reduced")
+
+
+@dataclass(frozen=True)
+class FrequencyResponse:
+    """Steady harmonic response at a list of frequencies and points.
+
+    Attributes
+    ----------
+    omega : numpy.ndarray
+        Angular frequencies ω, rad/s, shape (k,).
+    response : numpy.ndarray
+        Complex displacement amplitude, m, shape (k, p): column 0 at the load centroid, then
+        one per probe.
+    points : numpy.ndarray
+        (x, y) of the response points, m, shape (p, 2).
+    velocity : float
+        Tape speed V, m/s.
+    method : numpy.ndarray
+        "reduced" or "direct" per frequency, shape (k,).
+    error_estimate : numpy.ndarray
+        Estimated relative error per frequency (0 where solved directly), shape (k,).
+    info : dict
+        Statistics: ``factorizations``, ``interpolation_points`` (rad/s), ``basis_size``,
+        ``direct_solves``, ``reduced_time``, ``direct_time`` (s), ``tol``.
+    """
+
+    omega: np.ndarray
+    response: np.ndarray
+    points: np.ndarray
+    velocity: float
+    method: np.ndarray
+    error_estimate: np.ndarray
+    info: dict = field(default_factory=dict, compare=False)
+
+    @property
+    def amplitude(self) -> np.ndarray:
+        """|W|, m, shape (k, p)."""
+        return np.abs(self.response)
+
+    @property
+    def phase(self) -> np.ndarray:
+        """arg W, rad in (−π, π], shape (k, p)."""
+        return np.angle(self.response)
+
+    def to_frame(self):
+        """DataFrame: omega (rad/s), frequency (Hz), amplitude (m), phase (rad), method,
+        error_estimate, then amplitude_<k>, phase_<k> for each probe k = 1, 2, ..."""
+        import pandas as pd
+
+        data = {"omega": self.omega, "frequency": self.omega / (2 * np.pi),
+                "amplitude": self.amplitude[:, 0], "phase": self.phase[:, 0],
+                "method": self.method, "error_estimate": self.error_estimate}
+        for k in range(1, self.response.shape[1]):
+            data[f"amplitude_{k}"] = self.amplitude[:, k]
+            data[f"phase_{k}"] = self.phase[:, k]
+        return pd.DataFrame(data)
+
+    def to_csv(self, path: str | os.PathLike[str]) -> Path:
+        """Write :meth:`to_frame` as CSV, whole or not at all."""
+        frame = self.to_frame()
+        with atomic_path(path) as tmp:
+            frame.to_csv(tmp, index=False, float_format="%.17g")
+        return Path(path)
+
+    def plot(self, ax=None, *, label: str | None = None, probes: bool = True):
+        """Bode plot (amplitude, m, log scale; phase, rad) against ω (rad/s).
+
+        ``ax`` is a pair of Axes (amplitude, phase) or None for a new figure; returns it.
+        """
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
+        columns = range(self.response.shape[1]) if probes else range(1)
+        for k in columns:
+            name = "load point" if k == 0 else f"probe {k} ({self.points[k, 0] * 1e3:.3g}, " \
+                f"{self.points[k, 1] * 1e3:.3g}) mm"
+            text = name if label is None else f"{label}, {name}" if k else label
+            line, = ax[0].semilogy(self.omega, self.amplitude[:, k], lw=0.9, label=text)
+            ax[1].plot(self.omega, self.phase[:, k], lw=0.9, color=line.get_color())
+        ax[0].set_ylabel("amplitude |W| (m)")
+        ax[1].set_ylabel("phase (rad)")
+        ax[1].set_xlabel("angular frequency ω (rad/s)")
+        for a in ax:
+            a.grid(alpha=0.3)
+        return ax
+
+
+# ----- validation ----------------------------------------------------------------------
+def check_frequencies(omega) -> np.ndarray:
+    """Validate angular frequencies (rad/s): a non-empty 1-D list of finite values >= 0."""
+    try:
+        out = np.atleast_1d(np.asarray(omega, dtype=float))
+    except (TypeError, ValueError):
+        raise ParameterError("frequencies must be a list of numbers >= 0, rad/s") from None
+    if out.ndim != 1 or out.size == 0:
+        raise ParameterError("frequencies must be a non-empty list of numbers >= 0, rad/s")
+    if not np.all(np.isfinite(out)) or np.any(out < 0):
+        raise ParameterError("frequencies must be finite and >= 0 rad/s")
+    return out
+
+
+def parse_frequencies(text: str) -> np.ndarray:
+    """'START:STOP:NUM' (NUM points, both ends included) or 'w1,w2,...', rad/s.
+
+    Examples
+    --------
+    >>> parse_frequencies("0:1e5:3")
+    array([     0.,  50000., 100000.])
+    >>> parse_frequencies("1e5:0:3")
+    Traceback (most recent call last):
+    ...
+    gyroshell.errors.ParameterError: frequencies: need finite START <= STOP, got '1e5:0:3'
+    """
+    try:
+        if ":" in text:
+            start, stop, num = text.split(":")
+            count = float(num)
+            if count != int(count) or count < 1:
+                raise ParameterError(f"frequencies: NUM must be an integer >= 1, got {num!r}")
+            a, b = float(start), float(stop)
+            if not (math.isfinite(a) and math.isfinite(b)) or b < a:
+                raise ParameterError(f"frequencies: need finite START <= STOP, got {text!r}")
+            if int(count) > 10**6:
+                raise ParameterError(f"frequencies: NUM must be <= 1000000, got {num}")
+            return check_frequencies(np.linspace(a, b, int(count)))
+        return check_frequencies([float(s) for s in text.split(",") if s.strip()])
+    except ValueError as exc:
+        if isinstance(exc, ParameterError):
+            raise
+        raise ParameterError(f"frequencies must be 'START:STOP:NUM' or 'w1,w2,...' in rad/s, "
+                             f"got {text!r}") from None
+
+
+def response_rows(model: TapeModel, probes: Sequence[tuple[float, float]]
+                  ) -> tuple[np.ndarray, sp.csr_matrix]:
+    """Points (load centroid first, then probes), m, and their interpolation rows."""
+    points = [tuple(map(float, model.params.load_centroid))]
+    for probe in probes:
+        try:
+            x, y = probe
+            points.append((float(x), float(y)))
+        except (TypeError, ValueError):
+            raise ParameterError(f"probe must be a point (x, y) in m, got {probe!r}") from None
+    rows = sp.csr_matrix(np.array([model.grid.interpolation_row(x, y) for x, y in points]))
+    return np.array(points), rows
+
+
+# ----- the operator -----------------------------------------------------------------------
+class _Operators:
+    """M (diagonal), D = G + C, K and F of one model, speed and damping."""
+
+    def __init__(self, model: TapeModel, velocity: float, damping: Damping,
+                 force: np.ndarray | None):
+        self.m = model.mass_diagonal
+        self.M = sp.diags(self.m, format="csr")
+        self.K = model.K(velocity).tocsr()
+        G = model.G(velocity).tocsr()
+        self.D = G if damping.is_zero else (G + damping.matrix(model, velocity)).tocsr()
+        self.F = model.load if force is None else force
+
+    def Q(self, omega: float) -> sp.csc_matrix:
+        """K − ω²M + iω(G + C), N/m (complex unless ω = 0)."""
+        if omega == 0.0:
+            return self.K.tocsc()
+        return (self.K - omega**2 * self.M + (1j * omega) * self.D).tocsc()
+
+    def factor(self, omega: float):
+        """A solver b -> Q(ω)⁻¹ b for complex b (one sparse LU)."""
+        lu = spla.splu(self.Q(omega), permc_spec="MMD_AT_PLUS_A",
+                       diag_pivot_thresh=PIVOT_THRESHOLD, options={"SymmetricMode": True})
+        if omega != 0.0:
+            return lu.solve
+        return lambda b: lu.solve(np.ascontiguousarray(b.real)) + 1j * lu.solve(
+            np.ascontiguousarray(b.imag))
+
+    def moments(self, omega: float, count: int) -> list[np.ndarray]:
+        """W₀ ... W_{count−1}: Taylor coefficients of W about ω (one factorization)."""
+        solve = self.factor(omega)
+        dQ = lambda x: -2.0 * omega * (self.m * x) + 1j * (self.D @ x)  # noqa: E731
+        out = [solve(self.F.astype(complex))]
+        for j in range(1, count):
+            rhs = -dQ(out[j - 1])
+            if j >= 2:
+                rhs += self.m * out[j - 2]
+            out.append(solve(rhs))
+        return out
+
+
+def direct_response(model: TapeModel, velocity: float, omega, *,
+                    damping: Damping | float | None = None, force: np.ndarray | None = None,
+                    probes: Sequence[tuple[float, float]] = (), progress: bool | None = None
+                    ) -> FrequencyResponse:
+    """The response by one sparse LU of Q(ω) per frequency (exact to round-off)."""
+    velocity, omega = check_velocity(velocity), check_frequencies(omega)
+    ops = _Operators(model, velocity, as_damping(damping), _force(model, force))
+    points, rows = response_rows(model, probes)
+    start = time.perf_counter()
+    response = _direct(ops, rows, omega, progress)
+    k = len(omega)
+    return FrequencyResponse(omega, response, points, velocity, np.full(k, "direct"),
+                             np.zeros(k), {"factorizations": k, "direct_solves": k,
+                                           "direct_time": time.perf_counter() - start,
+                                           "reduced_time": 0.0, "basis_size": 0,
+                                           "interpolation_points": []})
+
+
+def _force(model: TapeModel, force) -> np.ndarray | None:
+    if force is None:
+        return None
+    out = np.asarray(force, dtype=float)
+    if out.shape != (model.size,) or not np.all(np.isfinite(out)):
+        raise ParameterError(f"force must be a finite vector of length {model.size} (N)")
+    return out
+
+
+def _direct(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
+            progress: bool | None) -> np.ndarray:
+    with limit_blas_threads(1):  # SuperLU's dense kernels: one thread is fastest here
+        return _direct_loop(ops, rows, omega, progress)
+
+
+def _direct_loop(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
+                 progress: bool | None) -> np.ndarray:
+    out = np.empty((len(omega), rows.shape[0]), dtype=complex)
+    bar = _progress_bar(len(omega), progress)
+    try:
+        for k, w in enumerate(omega):
+            out[k] = rows @ ops.factor(float(w))(ops.F.astype(complex))
+            if bar is not None:
+                bar.update(1)
+    finally:
+        if bar is not None:
+            bar.close()
+    return out
+
+
+# ----- the reduced model ----------------------------------------------------------------------
+class _Projection:
+    """An orthonormal real basis V, grown block by block, and M, G + C, K, F projected on it.
+
+    Each block costs O(n r k) (two Gram–Schmidt passes and the new rows and columns of the
+    projected matrices), not a re-orthogonalization of the whole basis.
+    """
+
+    def __init__(self, ops: _Operators, rows: sp.csr_matrix) -> None:
+        self.ops, self.rows = ops, rows
+        self.V = np.empty((len(ops.m), 0))
+        self.Mr, self.Kr, self.Dr = (np.empty((0, 0)) for _ in range(3))
+
+    @property
+    def size(self) -> int:
+        return self.V.shape[1]
+
+    def extend(self, vectors: Sequence[np.ndarray]) -> None:
+        """Add the real and imaginary parts of ``vectors`` (dependent ones are dropped)."""
+        X = np.array([part for v in vectors for part in (v.real, v.imag)]).T
+        norms = np.linalg.norm(X, axis=0)
+        X = X[:, norms > 0] / norms[norms > 0]
+        V = self.V
+        for _ in range(2):  # twice is enough (Kahan-Parlett)
+            X -= V @ (V.T @ X)
+        U, sv, _ = sl.svd(X, full_matrices=False, check_finite=False)
+        new = U[:, sv > NEW_DIRECTION_TOL]
+        if new.shape[1] == 0:
+            return
+        for _ in range(2):
+            new -= V @ (V.T @ new)
+        new, _ = np.linalg.qr(new)
+        ops = self.ops
+        MN, KN, DN, DtN = ops.m[:, None] * new, ops.K @ new, ops.D @ new, ops.D.T @ new
+        self.Mr = _grow(self.Mr, V.T @ MN, MN.T @ V, new.T @ MN)
+        self.Kr = _grow(self.Kr, V.T @ KN, KN.T @ V, new.T @ KN)
+        self.Dr = _grow(self.Dr, V.T @ DN, DtN.T @ V, new.T @ DN)
+        self.V = np.hstack([V, new])
+
+    def parts(self):
+        """(M_r, K_r, D_r, F_r, R_r) on the current basis."""
+        V = self.V
+        return (0.5 * (self.Mr + self.Mr.T), 0.5 * (self.Kr + self.Kr.T), self.Dr,
+                V.T @ self.ops.F, np.asarray(self.rows @ V))
+
+
+def _grow(A: np.ndarray, right: np.ndarray, below: np.ndarray, corner: np.ndarray
+          ) -> np.ndarray:
+    return np.block([[A, right], [below, corner]])
+
+
+class ReducedModel:
+    """Rational Krylov (moment-matching) reduction of Q(ω) W = F on a real basis.
+
+    Parameters
+    ----------
+    model : TapeModel
+    velocity : float
+        Tape speed V, m/s.
+    damping : Damping, float or None
+        Damping C (a number is viscous c, N·s/m³).
+    probes : sequence of (x, y)
+        Extra response points, m.
+    moments : int
+        Taylor coefficients matched per interpolation frequency (>= 2).
+    """
+
+    def __init__(self, model: TapeModel, velocity: float = 0.0, *,
+                 damping: Damping | float | None = None, force: np.ndarray | None = None,
+                 probes: Sequence[tuple[float, float]] = (), moments: int = DEFAULT_MOMENTS):
+        if isinstance(moments, bool) or not isinstance(moments, (int, np.integer)) \
+                or moments < 2:
+            raise ParameterError(f"moments must be an integer >= 2, got {moments!r}")
+        self.velocity = check_velocity(velocity)
+        self.ops = _Operators(model, self.velocity, as_damping(damping), _force(model, force))
+        self.points, self.rows = response_rows(model, probes)
+        self.moments = int(moments)
+        self.interpolation_points: list[float] = []
+        self._spaces = (_Projection(self.ops, self.rows), _Projection(self.ops, self.rows))
+        self._full = self._nested = None
+
+    def add_points(self, omegas: Sequence[float]) -> None:
+        """Factor Q at each ω (rad/s), add W and its Taylor coefficients to the basis, and
+        rebuild the reduced model."""
+        full, nested = self._spaces
+        for omega in omegas:
+            self.interpolation_points.append(float(omega))
+            vectors = self.ops.moments(float(omega), self.moments)
+            full.extend(vectors)
+            nested.extend(vectors[:-1])
+        self._full = self._poles(full.parts())
+        self._nested = self._poles(nested.parts())
+
+    @property
+    def basis_size(self) -> int:
+        return self._spaces[0].size
+
+    @staticmethod
+    def _poles(parts) -> tuple[np.ndarray, np.ndarray]:
+        """Poles λ_j (1/s) and residues (p, 2r) of the reduced transfer function.
+
+        H(s) = R (s²M_r + sD_r + K_r)⁻¹ F = Σ_j res_j / (s − λ_j), from the eigen-
+        decomposition of the first-order form A z = λ B z, A = [[0, I], [−K_r, −D_r]],
+        B = diag(I, M_r): then every frequency costs O(r) instead of a dense solve.
+        """
+        Mr, Kr, Dr, Fr, Rr = parts
+        r = len(Fr)
+        Minv_K = np.linalg.solve(Mr, Kr)
+        Minv_D = np.linalg.solve(Mr, Dr)
+        A = np.block([[np.zeros((r, r)), np.eye(r)], [-Minv_K, -Minv_D]])
+        lam, X = sl.eig(A, check_finite=False)
+        b = np.concatenate([np.zeros(r), np.linalg.solve(Mr, Fr)])
+        coeff = np.linalg.solve(X, b.astype(complex))
+        return lam, (Rr @ X[:r]) * coeff[None, :]
+
+    @staticmethod
+    def _evaluate(poles, omega: np.ndarray) -> np.ndarray:
+        lam, residues = poles
+        out = np.empty((len(omega), residues.shape[0]), dtype=complex)
+        for lo in range(0, len(omega), BATCH):
+            s = 1j * omega[lo:lo + BATCH, None]
+            out[lo:lo + BATCH] = (1.0 / (s - lam[None, :])) @ residues.T
+        return out
+
+    def evaluate(self, omega) -> tuple[np.ndarray, np.ndarray]:
+        """Reduced response (complex, m, shape (k, p)) and its estimated relative error."""
+        if self._full is None:
+            raise ParameterError("the reduced model has no interpolation point yet")
+        omega = check_frequencies(omega)
+        full = self._evaluate(self._full, omega)
+        nested = self._evaluate(self._nested, omega)
+        return full, ESTIMATE_SAFETY * relative_error(full, nested) + ESTIMATE_ROUNDOFF
+
+
+def relative_error(value: np.ndarray, reference: np.ndarray) -> np.ndarray:
+    """max over points of |value − reference| / max(|reference|, floor), per frequency.
+
+    floor = RESPONSE_FLOOR × the largest |reference| of that point over all frequencies.
+    """
+    scale = np.maximum(np.abs(reference), RESPONSE_FLOOR * np.abs(reference).max(axis=0))
+    scale = np.where(scale > 0, scale, 1.0)
+    return (np.abs(value - reference) / scale).max(axis=1)
+
+
+def frequency_response(model: TapeModel, velocity: float, omega, *,
+                       damping: Damping | float | None = None,
+                       force: np.ndarray | None = None,
+                       probes: Sequence[tuple[float, float]] = (), method: str = "auto",
+                       tol: float = DEFAULT_TOL, max_points: int = MAX_POINTS,
+                       moments: int = DEFAULT_MOMENTS, progress: bool | None = None,
+                       blas_threads: int | None = 1) -> FrequencyResponse:
+    """Steady harmonic response to F e^{iωt} at the load centroid and probes.
+
+    Parameters
+    ----------
+    model : TapeModel
+    velocity : float
+        Tape speed V, m/s (>= 0, below critical).
+    omega : array_like
+        Angular frequencies, rad/s (>= 0).
+    damping : Damping, float or None
+        Damping C (a number is viscous c, N·s/m³). Without damping the response is infinite
+        at the natural frequencies; a frequency exactly on one gives a singular Q.
+    force : numpy.ndarray, optional
+        Nodal force amplitude F, N (default: the model's Gaussian load, peak P₀).
+    probes : sequence of (x, y)
+        Extra response points, m.
+    method : {"auto", "direct", "reduced"}
+        "direct": one LU per frequency. "reduced": the rational Krylov model with greedy
+        interpolation points (up to ``max_points``), reporting its estimated error.
+        "auto": "direct" for a handful of frequencies, otherwise "reduced" with direct
+        solves wherever the estimated error stays above ``tol``.
+    tol : float
+        Target relative error of the reduced model (> 0).
+    max_points : int
+        Budget of interpolation frequencies (factorizations) of the reduced model.
+    moments : int
+        Taylor coefficients matched per interpolation frequency.
+    progress : bool or None
+        Progress bar for direct solves; None: only on a terminal.
+    blas_threads : int or None
+        BLAS threads for the reduced model's dense algebra (None: leave them alone); one
+        is fastest on a shared machine, where spinning BLAS workers compete for cores.
+    """
+    velocity, omega = check_velocity(velocity), check_frequencies(omega)
+    if method not in METHODS:
+        raise ParameterError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
+    tol = _positive("tol", tol)
+    if isinstance(max_points, bool) or not isinstance(max_points, (int, np.integer)) \
+            or max_points < 1:
+        raise ParameterError(f"max_points must be an integer >= 1, got {max_points!r}")
+    _check_subcritical(model, velocity)
+    if method == "direct" or (method == "auto" and len(omega) <= INITIAL_POINTS * 2):
+        return direct_response(model, velocity, omega, damping=damping, force=force,
+                               probes=probes, progress=progress)
+    start = time.perf_counter()
+    reduced = ReducedModel(model, velocity, damping=damping, force=force, probes=probes,
+                           moments=moments)
+    with limit_blas_threads(blas_threads):
+        response, estimate = _greedy(reduced, omega, tol, max_points)
+    reduced_time = time.perf_counter() - start
+    chosen = np.full(len(omega), "reduced", dtype=object)
+    direct = 0
+    start = time.perf_counter()
+    if method == "auto":
+        bad = np.flatnonzero(estimate > tol)
+        if bad.size:
+            response[bad] = _direct(reduced.ops, reduced.rows, omega[bad], progress)
+            estimate[bad] = 0.0
+            chosen[bad] = "direct"
+            direct = int(bad.size)
+    info = {"factorizations": len(reduced.interpolation_points) + direct,
+            "interpolation_points": list(reduced.interpolation_points),
+            "basis_size": reduced.basis_size, "direct_solves": direct,
+            "reduced_time": reduced_time, "direct_time": time.perf_counter() - start,
+            "tol": tol, "moments": reduced.moments}
+    return FrequencyResponse(omega, response, reduced.points, velocity,
+                             chosen.astype(str), estimate, info)
+
+
+def _greedy(reduced: ReducedModel, omega: np.ndarray, tol: float, max_points: int
+            ) -> tuple[np.ndarray, np.ndarray]:
+    """Add interpolation points where the estimate peaks until it is below ``tol``.
+
+    Each round adds up to POINTS_PER_ROUND of the largest local maxima of the estimate
+    (one rebuild of the reduced model per round).
+    """
+    lo, hi = float(omega.min()), float(omega.max())
+    reduced.add_points(np.linspace(lo, hi, min(INITIAL_POINTS, max_points)))
+    response, estimate = reduced.evaluate(omega)
+    while estimate.max() > tol and len(reduced.interpolation_points) < max_points:
+        budget = min(POINTS_PER_ROUND, max_points - len(reduced.interpolation_points))
+        chosen = _peaks(estimate, tol, budget, omega, reduced.interpolation_points)
+        if not chosen:
+            break
+        reduced.add_points(chosen)
+        response, estimate = reduced.evaluate(omega)
+    return response, estimate
+
+
+def _peaks(estimate: np.ndarray, tol: float, count: int, omega: np.ndarray,
+           taken: list[float]) -> list[float]:
+    """Frequencies of the ``count`` largest local maxima of ``estimate`` above ``tol``."""
+    padded = np.concatenate([[-np.inf], estimate, [-np.inf]])
+    peak = (estimate >= padded[:-2]) & (estimate >= padded[2:]) & (estimate > tol)
+    order = np.flatnonzero(peak)[np.argsort(-estimate[peak])]
+    return [float(omega[i]) for i in order if float(omega[i]) not in taken][:count]
+
+
+def _positive(name: str, value) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a number > 0, got {value!r}") from None
+    if not (math.isfinite(value) and value > 0):
+        raise ParameterError(f"{name} must be finite and > 0, got {value:g}")
+    return value
+
+
+def _check_subcritical(model: TapeModel, velocity: float) -> None:
+    """Refuse at or above the critical speed: there is no steady harmonic state there."""
+    from .static import factor_definite
+
+    factor_definite(model, velocity)
+
+
+def _progress_bar(total: int, progress: bool | None):
+    if progress is None:
+        progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
+    if not progress or total < 2:
+        return None
+    from tqdm import tqdm
+
+    return tqdm(total=total, unit="freq", desc="frf direct", mininterval=0.25, leave=False,
+                file=sys.stderr)

@@ -1,0 +1,417 @@
+"""Moving and intermittent loads: heads that travel over the tape and touch it in windows.
+
+A head presses with P(x, y, t) = P₀ e(t) p_x(x − x_c(t)) p_y(y − y_c(t)), where the centre
+(x_c, y_c)(t) follows a path given in the lab frame (the frame of the supports x = 0, L_x),
+e(t) ∈ [0, 1] is the contact envelope and p_x, p_y are 1-D shapes (default: the paper's
+Gaussian of Eq. 17, so p_x p_y = exp(−α r²)). Each shape is integrated exactly over the
+control cells through its antiderivative, so a load between nodes carries the right force.
+
+The shape is separable, so the nodal force vector is P₀ e(t) kron(f_x(t), f_y(t)); only the
+few cells under a narrow shape are non-zero, and a step adds them into the right-hand side
+through small preallocated buffers: the update costs microseconds whatever the grid.
+
+Usage: ``Newmark(...).march(steps, load=MovingLoad(StraightPath((x0, y0), (vx, vy))))``;
+several heads are a list of loads (see :func:`drum_heads`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import erf
+
+from .errors import ParameterError
+from .grid import Grid
+from .loads import check_exponent, gaussian_exponent
+from .model import TapeModel
+
+#: A Gaussian's cell integrals are cut where erfc(√α r) < 1e-17 (below round-off of the sum).
+GAUSSIAN_CUTOFF = 6.0
+#: Ramp shapes of a contact window.
+RAMP_SHAPES = ("cosine", "linear")
+
+
+def _real(name: str, value, unit: str, *, positive: bool = False,
+          nonnegative: bool = False) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a real number, {unit}, got {value!r}") from None
+    if not math.isfinite(value):
+        raise ParameterError(f"{name} must be finite, {unit}, got {value}")
+    if positive and value <= 0.0:
+        raise ParameterError(f"{name} must be > 0 {unit}, got {value:g}")
+    if nonnegative and value < 0.0:
+        raise ParameterError(f"{name} must be >= 0 {unit}, got {value:g}")
+    return value
+
+
+def _pair(name: str, value, unit: str) -> tuple[float, float]:
+    try:
+        a, b = value
+    except (TypeError, ValueError):
+        raise ParameterError(f"{name} must be a pair of numbers ({unit}), got {value!r}"
+                             ) from None
+    return _real(name, a, unit), _real(name, b, unit)
+
+
+# ----- 1-D shapes ------------------------------------------------------------------------
+class Shape1D:
+    """A load shape p(s) along one axis, through its antiderivative P(s) = ∫ p ds (m).
+
+    ``radius`` (m) bounds the support: cells farther than it from the centre get nothing.
+    """
+
+    radius: float = math.inf
+
+    def antiderivative(self, s: np.ndarray, out: np.ndarray) -> np.ndarray:
+        """P(s) into ``out`` (s is the offset from the centre, m)."""
+        raise NotImplementedError
+
+
+@dataclass(frozen=True)
+class GaussianShape(Shape1D):
+    """exp(−α s²), α in 1/m² (Eq. 17: α = ln 100 / (0.05 L_y)²)."""
+
+    exponent: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "exponent", check_exponent(self.exponent))
+
+    @property
+    def radius(self) -> float:  # type: ignore[override]
+        return GAUSSIAN_CUTOFF / math.sqrt(self.exponent)
+
+    def antiderivative(self, s: np.ndarray, out: np.ndarray) -> np.ndarray:
+        root = math.sqrt(self.exponent)
+        np.multiply(s, root, out=out)
+        erf(out, out=out)
+        out *= 0.5 * math.sqrt(math.pi) / root
+        return out
+
+
+@dataclass(frozen=True)
+class UniformShape(Shape1D):
+    """p = 1 everywhere (a line load uniform along this axis)."""
+
+    def antiderivative(self, s: np.ndarray, out: np.ndarray) -> np.ndarray:
+        np.copyto(out, s)
+        return out
+
+
+@dataclass(frozen=True)
+class UserShape(Shape1D):
+    """A user shape given by its antiderivative P(s) (vectorized, m) and support radius (m)."""
+
+    function: Callable[[np.ndarray], np.ndarray]
+    radius: float = math.inf
+
+    def __post_init__(self) -> None:
+        if not callable(self.function):
+            raise ParameterError("function must be callable: the antiderivative P(s), m")
+        if self.radius != math.inf:
+            object.__setattr__(self, "radius",
+                               _real("radius", self.radius, "m", positive=True))
+
+    def antiderivative(self, s: np.ndarray, out: np.ndarray) -> np.ndarray:
+        out[...] = self.function(s)
+        return out
+
+
+# ----- paths and contact windows -----------------------------------------------------------
+@dataclass(frozen=True)
+class StraightPath:
+    """Centre (x, y)(t) = start + velocity · t, lab frame (m, m/s)."""
+
+    start: tuple[float, float]
+    velocity: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "start", _pair("start", self.start, "m"))
+        object.__setattr__(self, "velocity", _pair("load velocity", self.velocity, "m/s"))
+
+    def __call__(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        t = np.asarray(t, dtype=float)
+        return self.start[0] + self.velocity[0] * t, self.start[1] + self.velocity[1] * t
+
+
+@dataclass(frozen=True)
+class ContactWindows:
+    """Contact on for ``duration`` in every ``period`` (s), starting at ``phase`` (s).
+
+    Parameters
+    ----------
+    period, duration : float
+        τ_p and τ_c, s (0 < τ_c <= τ_p).
+    ramp : float
+        Rise and fall time inside the window, s (0: abrupt; 2 ramp <= duration).
+    ramp_shape : {"cosine", "linear"}
+        Raised cosine (smooth) or linear ramps.
+    phase : float
+        Start of the first window, s (heads on a drum are offset by period / heads).
+    """
+
+    period: float
+    duration: float
+    ramp: float = 0.0
+    ramp_shape: str = "cosine"
+    phase: float = 0.0
+
+    def __post_init__(self) -> None:
+        put = object.__setattr__
+        put(self, "period", _real("contact period", self.period, "s", positive=True))
+        put(self, "duration", _real("contact duration", self.duration, "s", positive=True))
+        put(self, "ramp", _real("contact ramp", self.ramp, "s", nonnegative=True))
+        put(self, "phase", _real("contact phase", self.phase, "s"))
+        if self.duration > self.period:
+            raise ParameterError(f"contact duration must be <= the contact period "
+                                 f"{self.period:g} s, got {self.duration:g} s")
+        if 2.0 * self.ramp > self.duration:
+            raise ParameterError(f"contact ramp must be <= half the contact duration "
+                                 f"({self.duration / 2:g} s), got {self.ramp:g} s")
+        if self.ramp_shape not in RAMP_SHAPES:
+            raise ParameterError(f"ramp_shape must be one of {', '.join(RAMP_SHAPES)}, "
+                                 f"got {self.ramp_shape!r}")
+
+    def local_time(self, t: np.ndarray) -> np.ndarray:
+        """Time since the start of the current window, s, in [0, period)."""
+        return np.mod(np.asarray(t, dtype=float) - self.phase, self.period)
+
+    def envelope(self, t: np.ndarray) -> np.ndarray:
+        """e(t) in [0, 1]: 1 in contact, 0 out, ramps between (dimensionless).
+
+        Examples
+        --------
+        >>> ContactWindows(period=10e-6, duration=4e-6, ramp=1e-6).envelope(
+        ...     [0.5e-6, 2e-6, 5e-6, 10.5e-6])
+        array([0.5, 1. , 0. , 0.5])
+        """
+        tau = self.local_time(t)
+        on = tau < self.duration
+        if self.ramp == 0.0:
+            return on.astype(float)
+        edge = np.minimum(tau, self.duration - tau) / self.ramp
+        s = np.clip(edge, 0.0, 1.0)
+        if self.ramp_shape == "cosine":
+            s = 0.5 - 0.5 * np.cos(np.pi * s)
+        return np.where(on, s, 0.0)
+
+
+# ----- a head -------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class MovingLoad:
+    """One head: a load of peak pressure P₀ moving along ``path``, in contact per ``contact``.
+
+    Parameters
+    ----------
+    path : callable
+        t (s, array) -> (x, y) centre (m, arrays), lab frame; e.g. :class:`StraightPath`.
+    pressure : float or None
+        Peak pressure P₀, Pa; None: the model's ``params.load``.
+    shape : (Shape1D, Shape1D) or None
+        Shapes along x and y; None: the Gaussian of Eq. 17 for the model's width.
+    contact : ContactWindows or None
+        Intermittent contact; None: always in contact.
+    restart_path : bool
+        With contact windows, evaluate the path at the time since the window started, so
+        every contact sweeps the same track (a head on a drum); otherwise at t.
+    """
+
+    path: Callable
+    pressure: float | None = None
+    shape: tuple[Shape1D, Shape1D] | None = None
+    contact: ContactWindows | None = None
+    restart_path: bool = False
+
+    def __post_init__(self) -> None:
+        if not callable(self.path):
+            raise ParameterError("path must be callable: t (s) -> (x, y) (m)")
+        if self.pressure is not None:
+            object.__setattr__(self, "pressure", _real("pressure", self.pressure, "Pa"))
+        if self.shape is not None and (len(self.shape) != 2 or not all(
+                isinstance(s, Shape1D) for s in self.shape)):
+            raise ParameterError("shape must be a pair of Shape1D (along x, along y)")
+        if self.contact is not None and not isinstance(self.contact, ContactWindows):
+            raise ParameterError("contact must be a ContactWindows or None")
+
+    def centres(self, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Centre coordinates (m) at ``times`` (s)."""
+        t = np.asarray(times, dtype=float)
+        if self.contact is not None and self.restart_path:
+            t = self.contact.local_time(t)
+        try:
+            x, y = self.path(t)
+            x, y = np.broadcast_to(np.asarray(x, float), t.shape), \
+                np.broadcast_to(np.asarray(y, float), t.shape)
+        except (TypeError, ValueError):  # a scalar-only user path
+            xy = np.array([self.path(float(s)) for s in t], dtype=float).reshape(len(t), 2)
+            x, y = xy[:, 0], xy[:, 1]
+        return x, y
+
+    def envelope(self, times: np.ndarray) -> np.ndarray:
+        """Contact envelope e(t) (dimensionless) at ``times`` (s)."""
+        t = np.asarray(times, dtype=float)
+        return np.ones_like(t) if self.contact is None else self.contact.envelope(t)
+
+
+def drum_heads(heads: int, start: tuple[float, float], velocity: tuple[float, float], *,
+               revolution_period: float, contact_duration: float, ramp: float = 0.0,
+               pressure: float | None = None,
+               shape: tuple[Shape1D, Shape1D] | None = None) -> list[MovingLoad]:
+    """Heads on a rotating drum: each sweeps the same straight track once per revolution.
+
+    Head k touches the tape from ``k · revolution_period / heads`` for ``contact_duration``
+    (s), moving from ``start`` (m) at ``velocity`` (m/s, lab frame).
+    """
+    if isinstance(heads, bool) or not isinstance(heads, (int, np.integer)) or heads < 1:
+        raise ParameterError(f"heads must be an integer >= 1, got {heads!r}")
+    path = StraightPath(start, velocity)
+    return [MovingLoad(path, pressure=pressure, shape=shape, restart_path=True,
+                       contact=ContactWindows(revolution_period, contact_duration, ramp=ramp,
+                                              phase=k * revolution_period / heads))
+            for k in range(heads)]
+
+
+def as_loads(load) -> list[MovingLoad]:
+    """A list of MovingLoad from one load or a sequence of them."""
+    loads = [load] if isinstance(load, MovingLoad) else list(load)
+    if not loads or not all(isinstance(h, MovingLoad) for h in loads):
+        raise ParameterError("load must be a MovingLoad or a non-empty list of them")
+    return loads
+
+
+# ----- a run: precomputed centres, envelopes, windows and interpolation -----------------------
+class PreparedLoads:
+    """The heads of one run at the instants t0 + n Δt, ready for the time loop.
+
+    ``add(n, scale, out)`` adds scale · F(t_n) (N) into ``out`` touching only the cells
+    under each head; ``displacement(n, w, out)`` writes w under each head's centre (m).
+    """
+
+    def __init__(self, model: TapeModel, loads: Sequence[MovingLoad], times: np.ndarray):
+        grid, params = model.grid, model.params
+        self.grid, self.heads = grid, len(loads)
+        self.centres = np.empty((len(times), self.heads, 2))
+        self.envelopes = np.empty((len(times), self.heads))
+        self.amplitudes = np.empty(self.heads)
+        default = GaussianShape(gaussian_exponent(params.width))
+        self._axes = []
+        xs, ys = grid.x[grid.x_unknowns], grid.y[grid.y_unknowns]
+        for k, head in enumerate(loads):
+            x, y = head.centres(times)
+            env = head.envelope(times)
+            _check_on_tape(grid, x, y, env, k)
+            self.centres[:, k, 0], self.centres[:, k, 1] = x, y
+            self.envelopes[:, k] = env
+            self.amplitudes[k] = params.load if head.pressure is None else head.pressure
+            sx, sy = head.shape if head.shape is not None else (default, default)
+            ax = _Window(xs, grid.hx, 0.0, grid.length, sx)
+            ay = _Window(ys, grid.hy, 0.0, grid.width, sy)
+            self._axes.append((ax, ay, ax.first(x), ay.first(y)))
+        self._field = np.empty(0)
+        self._interp = _interpolation(grid, self.centres)
+
+    def add(self, n: int, scale: float, out: np.ndarray) -> None:
+        """out += scale · F(t_n), N (only the cells under the heads are touched)."""
+        grid = self.grid
+        view = out.reshape(grid.n_lines, grid.n_across)
+        for k in range(self.heads):
+            e = self.envelopes[n, k]
+            if e == 0.0:
+                continue
+            ax, ay, ix, iy = self._axes[k]
+            i0, j0 = int(ix[n]), int(iy[n])
+            fx = ax.integrals(i0, self.centres[n, k, 0])
+            fy = ay.integrals(j0, self.centres[n, k, 1])
+            fy *= scale * e * self.amplitudes[k]
+            block = view[i0:i0 + ax.width, j0:j0 + ay.width]
+            np.multiply(fx[:, None], fy[None, :], out=ax.block(ay.width))
+            block += ax.block(ay.width)
+
+    def vector(self, n: int) -> np.ndarray:
+        """F(t_n), N (allocates: for the initial acceleration and energies)."""
+        out = np.zeros(self.grid.size)
+        self.add(n, 1.0, out)
+        return out
+
+    def displacement(self, n: int, w: np.ndarray, out: np.ndarray) -> None:
+        """w under each head's centre at step n (bilinear), m, into ``out[heads]``."""
+        idx, wts = self._interp
+        np.sum(w[idx[n]] * wts[n], axis=1, out=out)
+
+
+class _Window:
+    """One axis of one head: the window of cells under it and its buffers."""
+
+    def __init__(self, nodes: np.ndarray, h: float, lo: float, hi: float, shape: Shape1D):
+        self.nodes, self.h, self.lo, self.hi, self.shape = nodes, h, lo, hi, shape
+        n = len(nodes)
+        self.width = n if not math.isfinite(shape.radius) else min(
+            n, int(math.ceil(2 * shape.radius / h)) + 3)
+        # cell edges of the first `width` nodes relative to node 0 (shifted per step)
+        self._offsets = (np.arange(self.width + 1) - 0.5) * h
+        self._edges = np.empty(self.width + 1)
+        self._prim = np.empty(self.width + 1)
+        self._values = np.empty(self.width)
+        self._block = np.empty(0)
+
+    def first(self, centre: np.ndarray) -> np.ndarray:
+        """Index (into the unknown nodes) of each window's first node."""
+        n = len(self.nodes)
+        if self.width == n:
+            return np.zeros(len(centre), dtype=np.int64)
+        start = np.floor((centre - self.shape.radius - self.nodes[0]) / self.h)
+        return np.clip(start, 0, n - self.width).astype(np.int64)
+
+    def integrals(self, first: int, centre: float) -> np.ndarray:
+        """∫ p(s − centre) ds over the control cells of the window's nodes (clipped), m."""
+        e = self._edges
+        np.add(self._offsets, self.nodes[first] - centre, out=e)
+        np.clip(e, self.lo - centre, self.hi - centre, out=e)
+        P = self.shape.antiderivative(e, self._prim)
+        np.subtract(P[1:], P[:-1], out=self._values)
+        return self._values
+
+    def block(self, columns: int) -> np.ndarray:
+        """A (width, columns) work buffer."""
+        if self._block.shape != (self.width, columns):
+            self._block = np.empty((self.width, columns))
+        return self._block
+
+
+def _check_on_tape(grid: Grid, x: np.ndarray, y: np.ndarray, env: np.ndarray, k: int) -> None:
+    on = env > 0.0
+    bad = on & ~((x >= 0.0) & (x <= grid.length) & (y >= 0.0) & (y <= grid.width))
+    bad |= on & ~(np.isfinite(x) & np.isfinite(y))
+    if np.any(bad):
+        n = int(np.argmax(bad))
+        raise ParameterError(
+            f"load path leaves the tape: head {k} is at ({x[n]:.6g}, {y[n]:.6g}) m at step "
+            f"{n} while in contact; the path must stay in [0, {grid.length:.6g}] x "
+            f"[0, {grid.width:.6g}] m")
+
+
+def _interpolation(grid: Grid, centres: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Unknown indices and bilinear weights, shapes (steps, heads, 4), of each centre.
+
+    Supported nodes (w = 0) get index 0 with weight 0.
+    """
+    x = np.clip(centres[..., 0], 0.0, grid.length)
+    y = np.clip(centres[..., 1], 0.0, grid.width)
+    sx, sy = x / grid.hx, y / grid.hy
+    i = np.minimum(sx.astype(np.int64), grid.nx - 1)
+    j = np.minimum(sy.astype(np.int64), grid.ny - 1)
+    fx, fy = sx - i, sy - j
+    jo = 0 if grid.free_edges else 1
+    idx = np.empty(x.shape + (4,), dtype=np.int64)
+    wts = np.empty(x.shape + (4,))
+    for c, (di, dj, wt) in enumerate(((0, 0, (1 - fx) * (1 - fy)), (1, 0, fx * (1 - fy)),
+                                      (0, 1, (1 - fx) * fy), (1, 1, fx * fy))):
+        ii, jj = i + di, j + dj
+        valid = (ii >= 1) & (ii <= grid.nx - 1) & (jj - jo >= 0) & (jj - jo < grid.n_across)
+        idx[..., c] = np.where(valid, (ii - 1) * grid.n_across + (jj - jo), 0)
+        wts[..., c] = np.where(valid, wt, 0.0)
+    return idx, wts

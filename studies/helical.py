@@ -1,0 +1,10 @@
+"""Helical scan: a two-head drum crossing the tape obliquely with intermittent contact.
+
+Run python studies/helical.py [--out DIR] [--quick], the same as
+gyroshell reproduce helical --out DIR (default DIR: results).
+"""
+
+from gyroshell.cli.reproduce import script
+
+if __name__ == "__main__":
+    raise SystemExit(script("helical"))
