@@ -65,6 +65,9 @@ STABILITY_LABELS = ("divergence", "flutter", "stable")
 #: Basis size of the Lanczos iteration: max(2 nev + LANCZOS_EXTRA, LANCZOS_MIN_BASIS).
 LANCZOS_EXTRA = 10
 LANCZOS_MIN_BASIS = 24
+#: A second Gram-Schmidt pass is made when the first leaves less than this fraction of
+#: the vector's norm (Daniel, Gragg, Kaufman and Stewart's criterion).
+REORTHOGONALIZE = 0.7071
 #: Thick restarts of the Lanczos iteration before falling back to ARPACK.
 LANCZOS_RESTARTS = 30
 #: Weight of the random part of a start vector built from previous modes.
@@ -270,13 +273,19 @@ def _check_count(count: int, n: int) -> int:
     return count
 
 
-#: Most eigenpairs one call computes: the Krylov basis (about 2·count + 20 vectors of length
-#: 2n) and its orthogonalization grow with the count; beyond this use several shifts.
-MAX_COUNT = 100
+#: Most eigenpairs one sparse call computes: the Krylov basis (about 2·count + 10 vectors
+#: of length 2n, twice) and its orthogonalization grow with the count; beyond it, use
+#: several shifts.
+MAX_COUNT = 50
+#: Up to this many unknowns the problem is solved densely (every eigenvalue, LAPACK).
+DENSE_LIMIT = 40
 
 
 def max_count(n: int) -> int:
-    """Largest ``count`` accepted for n unknowns: min(MAX_COUNT, n/2 − 1), at least 1."""
+    """Largest ``count`` accepted for n unknowns: n when solved densely (n <= DENSE_LIMIT),
+    else min(MAX_COUNT, n/2 − 1)."""
+    if n <= DENSE_LIMIT:
+        return n
     return max(1, min(MAX_COUNT, n // 2 - 1))
 
 
@@ -446,49 +455,61 @@ def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: floa
              ) -> tuple[np.ndarray, np.ndarray, int] | None:
     """Thick-restart Lanczos with full reorthogonalization in the energy inner product.
 
-    ``wanted(theta)`` ranks Ritz values (larger first). Returns (θ, Ritz vectors, restarts)
-    for the ``nev`` best once each residual |β sₘ| <= tol·|θ|, or None if not converged
-    within LANCZOS_RESTARTS restarts.
+    ``wanted(theta)`` ranks Ritz values (larger first). Returns (θ, Ritz vectors as
+    columns, restarts) for the ``nev`` best once each residual |β sₘ| <= tol·|θ|, or None if
+    not converged within LANCZOS_RESTARTS restarts. The basis is stored by rows, with its
+    image under L beside it, so that each step costs one application of T, one of L and
+    two matrix-vector products with the basis.
     """
     n2 = len(start)
     m = min(max(2 * nev + LANCZOS_EXTRA, LANCZOS_MIN_BASIS), n2 - 1)
-    V = np.empty((n2, m + 1), dtype=complex)
+    V = np.empty((m + 1, n2), dtype=complex)
+    LV = np.empty((m + 1, n2), dtype=complex)
     H = np.zeros((m + 1, m), dtype=complex)
+
+    def put(j: int, w: np.ndarray, Lw: np.ndarray) -> float:
+        norm = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
+        if norm > 0:
+            V[j], LV[j] = w / norm, Lw / norm
+        return norm
+
     v = start.astype(complex)
-    v /= math.sqrt(max(np.vdot(v, op.weight(v)).real, 1e-300))
-    V[:, 0] = v
-    kept = 0  # locked Ritz vectors at the front after a restart
+    put(0, v, op.weight(v))
+    kept = 0  # Ritz vectors kept at the front after a restart
     for restart in range(LANCZOS_RESTARTS + 1):
         for j in range(kept, m):
-            w = op.apply(V[:, j])
-            for _ in range(2):  # classical Gram-Schmidt, twice is enough
-                h = V[:, : j + 1].conj().T @ op.weight(w)
-                w -= V[:, : j + 1] @ h
+            w = op.apply(V[j])
+            Lw = op.weight(w)
+            size = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
+            for _ in range(2):  # classical Gram-Schmidt, repeated if it cancelled (DGKS)
+                h = np.conj(LV[: j + 1] @ np.conj(w))
+                w -= h @ V[: j + 1]
+                Lw -= h @ LV[: j + 1]
                 H[: j + 1, j] += h
-            beta = math.sqrt(max(np.vdot(w, op.weight(w)).real, 0.0))
+                left = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
+                if left > REORTHOGONALIZE * size:
+                    break
+                size = left
+            beta = put(j + 1, w, op.weight(w))
             H[j + 1, j] = beta
-            if beta == 0.0:  # an invariant subspace: restart from a random direction
+            if beta == 0.0:  # an invariant subspace: continue from a fresh direction
                 w = _random_start(n2, complex)
-                w -= V[:, : j + 1] @ (V[:, : j + 1].conj().T @ op.weight(w))
-                w /= math.sqrt(np.vdot(w, op.weight(w)).real)
-                H[j + 1, j] = 0.0
-            else:
-                w /= beta
-            V[:, j + 1] = w
+                for _ in range(2):
+                    w -= np.conj(LV[: j + 1] @ np.conj(w)) @ V[: j + 1]
+                put(j + 1, w, op.weight(w))
         Hm = H[:m, :m]
         theta, S = la.eigh(0.5 * (Hm + Hm.conj().T))
         order = np.argsort(-wanted(theta), kind="stable")
         resid = np.abs(H[m, m - 1] * S[m - 1, :])
         best = order[:nev]
         if np.all(resid[best] <= tol * np.abs(theta[best])):
-            return theta[best], V[:, :m] @ S[:, best], restart
-        # keep the wanted Ritz vectors plus a few more, and the residual direction
+            return theta[best], (S[:, best].T @ V[:m]).T, restart
+        # keep the wanted Ritz vectors plus some more, and the residual direction
         kept = min(nev + (m - nev) // 2, m - 1)
         keep = order[:kept]
-        Y = V[:, :m] @ S[:, keep]
         coupling = H[m, m - 1] * S[m - 1, keep]
-        V[:, :kept] = Y
-        V[:, kept] = V[:, m]
+        V[:kept], LV[:kept] = S[:, keep].T @ V[:m], S[:, keep].T @ LV[:m]
+        V[kept], LV[kept] = V[m], LV[m]
         # T Y = Y Θ + v (β sₘ)ᵀ: an arrowhead; column `kept` is filled by the next step
         H[:] = 0.0
         H[np.arange(kept), np.arange(kept)] = theta[keep]
@@ -630,10 +651,16 @@ def _solve_general(prob: _Problem, sigma: complex, solve, omega_ref: float, *,
         order = np.lexsort((np.abs(reps), np.abs(reps.imag)))
         reps, vecs = reps[order], vecs[:, order]
     lams, vecs = reps[:count], vecs[:, :count]
-    if symmetric_pairs:  # clean parts at round-off level: exactly imaginary or real
-        lams = np.where(lams.real < STABILITY_RTOL * np.abs(lams), 1j * lams.imag, lams)
-        lams = np.where(lams.imag < STABILITY_RTOL * np.abs(lams), lams.real + 0j, lams)
+    if symmetric_pairs:
+        lams = _clean_parts(lams)
     return lams, vecs
+
+
+def _clean_parts(lams: np.ndarray) -> np.ndarray:
+    """Undamped representatives (Re, Im >= 0): parts at round-off level set to zero, so a
+    gyroscopically stable eigenvalue is exactly imaginary and a divergent one exactly real."""
+    lams = np.where(lams.real < STABILITY_RTOL * np.abs(lams), 1j * lams.imag, lams)
+    return np.where(lams.imag < STABILITY_RTOL * np.abs(lams), lams.real + 0j, lams)
 
 
 def _solve_pairs_real(prob: _Problem, factor: InertiaFactor, omega_ref: float
@@ -702,6 +729,8 @@ def _gyroscopic_modes(M, G, K, count, *, sigma, C, estimate, definite, tol, ncv,
     shift = check_shift(sigma)
     if method not in ("auto", "lanczos", "arpack"):
         raise ParameterError(f"method must be 'auto', 'lanczos' or 'arpack', got {method!r}")
+    if prob.n <= DENSE_LIMIT:
+        return _solve_dense(prob, shift, definite)
     t0 = time.perf_counter()
     k_factor = _factor_stiffness(prob, definite, need=C is not None or shift == 0 or (
         shift is None and estimate is None))
@@ -715,6 +744,43 @@ def _gyroscopic_modes(M, G, K, count, *, sigma, C, estimate, definite, tol, ncv,
         return _finish(prob, lams, vecs, supercritical=True, damped=False)
     lams, vecs = _subcritical(prob, shift, estimate, k_factor, method)
     return _finish(prob, lams, vecs, supercritical=False, damped=False)
+
+
+def _solve_dense(prob: _Problem, shift: complex | None, definite: bool | None
+                 ) -> GyroscopicModes:
+    """Small problems: every eigenvalue of the 2n linearization by LAPACK, then the same
+    selection as the sparse paths."""
+    n, count = prob.n, prob.count
+    M, D, K = (x.toarray() for x in (prob.M, prob.D, prob.K))
+    eye, zero = np.eye(n), np.zeros((n, n))
+    A = np.block([[zero, eye], [-K, -D]])
+    B = np.block([[eye, zero], [zero, M]])
+    t0 = time.perf_counter()
+    lam, Z = la.eig(A, B)
+    prob.info.update(method="dense", solve_time=time.perf_counter() - t0, factor_time=0.0)
+    phi = Z[:n]
+    if definite is None:
+        definite = bool(np.all(la.eigvalsh(K) > 0))
+    damped = prob.C is not None
+    omega_s = 0.0 if shift is None else shift.imag
+    if not damped and definite:
+        lam = quadratic_rayleigh(prob.M, prob.D, prob.K, lam, phi)
+        up = np.flatnonzero(lam.imag > 0)
+        up = up[np.argsort(lam.imag[up])][:count]
+        prob.info.update(shift=1j * omega_s, below_shift=int(np.count_nonzero(
+            lam.imag[lam.imag > 0] < omega_s)))
+        prob.info["pair_defect"] = float(np.max(np.abs(lam[up].real) / np.abs(lam[up])))
+        lams, vecs = 1j * lam[up].imag, phi[:, up]
+    else:
+        reps, vecs = _representatives(lam, phi, right_half=not damped)
+        if damped:
+            order = np.lexsort((np.abs(reps), np.abs(reps.imag)))
+            reps, vecs = reps[order], vecs[:, order]
+        lams, vecs = reps[:count], vecs[:, :count]
+        if not damped:
+            lams = _clean_parts(lams)
+        prob.info.update(shift=1j * omega_s, below_shift=None)
+    return _finish(prob, lams, vecs, supercritical=not definite, damped=damped)
 
 
 def _check_start(start, n: int):
