@@ -70,6 +70,8 @@ LANCZOS_MIN_BASIS = 24
 REORTHOGONALIZE = 0.7071
 #: Thick restarts of the Lanczos iteration before falling back to ARPACK.
 LANCZOS_RESTARTS = 30
+#: Largest residual accepted from Lanczos before the ARPACK path is tried instead.
+LANCZOS_RESIDUAL_LIMIT = 1e-10
 #: Weight of the random part of a start vector built from previous modes.
 WARM_START_NOISE = 1e-3
 #: Extra eigenvalues asked for beyond those wanted, and how many times the request grows.
@@ -546,7 +548,14 @@ def _solve_hermitian(prob: _Problem, omega_s: float, factor: InertiaFactor, belo
     if found_below < below or len(keep) < count:
         return None
     keep = keep[:count]
-    return 1j * omega[keep], Z[n:, keep]
+    lams, vecs = 1j * omega[keep], Z[n:, keep]
+    # Near a critical point K is nearly singular and the energy norm degenerates: the
+    # Ritz pairs may then be less accurate than their Lanczos residuals say.
+    res = relative_residuals(prob.M, prob.G, prob.K, lams, vecs)
+    prob.info["lanczos_residual"] = float(res.max())
+    if res.max() > LANCZOS_RESIDUAL_LIMIT:
+        return None
+    return lams, vecs
 
 
 def _start_vector(prob: _Problem) -> np.ndarray:

@@ -165,3 +165,47 @@ def test_cli_user_errors(argv, match, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert match in err and len(err.strip().splitlines()) == 1
+
+
+# ----- no tension, no foundation: bending alone resists ------------------------------------------
+def _bending_only(ny: int) -> TapeModel:
+    p = TapeParameters(tension=0.0, foundation_stiffness=0.0, poisson=0.0, length_ratio=2.0,
+                       spacing=WIDTH / 8)
+    return TapeModel(p, Grid(p.length, p.width, 2 * ny, ny, "free"))
+
+
+def test_critical_speed_without_tension_and_foundation():
+    """T = 0, k = 0, ν = 0, free edges: K(V) = A − ρV²B with width-uniform modes sin(mπx/L):
+    μ = D α² (continuous), so V_c = (π/L_x) √(D/ρ); the discrete model has α² → a₁² =
+    (4/h²) sin²(πh/2L_x), exactly."""
+    steps, errs = [], []
+    for ny in (8, 16, 32):
+        model = _bending_only(ny)
+        p, g = model.params, model.grid
+        c = critical_speeds(model)
+        a1 = (2 / g.hx * np.sin(np.pi * g.hx / (2 * g.length))) ** 2
+        assert c.critical_speed == pytest.approx(np.sqrt(p.D * a1 / p.density), rel=1e-8)
+        assert c.relative_difference < 1e-8
+        exact = np.pi / p.length * np.sqrt(p.D / p.density)
+        steps.append(g.hx)
+        errs.append(abs(c.critical_speed - exact) / exact)
+    assert observed_order(steps, errs) == pytest.approx(2.0, abs=0.1)
+
+
+def test_cli_critical_without_tension_and_foundation(capsys):
+    assert main(["critical", *SMALL, "--tension", "0", "--foundation-stiffness", "0",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    p = TapeParameters(length_ratio=2.0)
+    beam = np.pi / p.length * np.sqrt(p.D / p.density)     # ν-free beam value, m/s
+    assert out["critical_speed"] == pytest.approx(out["divergence_speed"], rel=1e-6)
+    assert 0.5 * beam < out["critical_speed"] < 1.5 * beam
+
+
+def test_critical_refusals():
+    model = TapeModel(TapeParameters(length_ratio=1.0, spacing=WIDTH / 8))
+    for kwargs, match in (({"guess": 0.0}, "guess must be"), ({"xtol": 0.0}, "xtol must be"),
+                          ({"xtol": -1.0}, "xtol must be"),
+                          ({"max_evaluations": 0}, "max_evaluations must be")):
+        with pytest.raises(ParameterError, match=match):
+            critical_speeds(model, **kwargs)
