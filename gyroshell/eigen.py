@@ -178,32 +178,31 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
     """τ >= 0, N/m, with A − τB proved positive definite; None if A itself is not.
 
     K(V) = (A − τB) + (τ + T − ρV²) B with B positive semi-definite, so K(V) is positive
-    definite whenever ρV² − T <= τ: one factorization per model certifies every such speed,
+    definite whenever ρV² − T < τ: one factorization per model certifies every such speed,
     and the eigen-solver skips factoring K(V). τ = 0 from a factorization of A; with
     ``near_divergence`` the inertia-proved shift just below μ_min of the divergence solver
-    (a few factorizations, worth it for sweeps and critical-speed searches). Cached per model.
+    (a few factorizations, worth it for sweeps). Cached per model.
     """
     known = _FLOORS.get(model)
-    if known is not None and (known > 0 or not near_divergence):
-        return known
+    if known is not None and (known > 0 or known == -math.inf or not near_divergence):
+        return None if known == -math.inf else known
     if not (hasattr(model, "A") and hasattr(model, "B")):
         return None
     tau = None
     if near_divergence:
         from .divergence import safe_shift
 
-        tau_d, lu = safe_shift(model)
-        tau = tau_d if lu is not None else None
+        tau_d, factor = safe_shift(model)
+        tau = tau_d if factor is not None else None
     if tau is None:
-        tau = 0.0 if factor_inertia(model.A).definite else None
-    if tau is not None:
-        _FLOORS[model] = tau
-    return tau
+        tau = 0.0 if factor_inertia(model.A).definite else -math.inf
+    _FLOORS[model] = tau
+    return None if tau == -math.inf else tau
 
 
 def _known_definite(model, velocity: float) -> bool | None:
-    """True if a cached stiffness floor proves K(V) positive definite, else None."""
-    tau = _FLOORS.get(model)
+    """True if the model's stiffness floor proves K(V) positive definite, else None."""
+    tau = stiffness_floor(model)
     if tau is None:
         return None
     p = model.params
@@ -214,7 +213,7 @@ def _known_definite(model, velocity: float) -> bool | None:
 def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
           sigma: complex | str = "auto", damping=None, tol: float = DEFAULT_TOL,
           ncv: int | None = None, maxiter: int | None = None, start: Modes | None = None,
-          method: str = "auto") -> Modes:
+          estimate: float | None = None, method: str = "auto") -> Modes:
     """Lowest ``count`` frequencies and complex mode shapes of the tape at speed V.
 
     Parameters
@@ -238,6 +237,10 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         ARPACK's Krylov basis size and restarts (giving either selects ARPACK).
     start : Modes, optional
         Modes at a nearby speed: their vectors start the iteration (continuation).
+    estimate : float, optional
+        Estimate of the lowest frequency, rad/s, for the automatic shift (e.g. extrapolated
+        along a sweep); default the bottom of the travelling-wave band
+        (:func:`strip_frequency_estimate`). The shift is still certified by inertia.
     method : {"auto", "lanczos", "arpack"}
         See :func:`gyroshell.qep.gyroscopic_modes`.
 
@@ -257,7 +260,11 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     """
     velocity = check_velocity(velocity)
     C = damping_matrix(model, damping)
-    estimate = strip_frequency_estimate(model.params, model.grid, velocity)
+    if estimate is None:
+        estimate = strip_frequency_estimate(model.params, model.grid, velocity)
+    elif isinstance(estimate, bool) or not isinstance(estimate, (int, float)) or \
+            not (math.isfinite(estimate) and estimate >= 0):
+        raise ParameterError(f"estimate must be a frequency >= 0 in rad/s, got {estimate!r}")
     shift = None if isinstance(sigma, str) and sigma == "auto" else sigma
     if isinstance(sigma, str) and sigma != "auto":
         raise ParameterError(f"sigma must be 'auto', 0 or i*omega_s, got {sigma!r}")

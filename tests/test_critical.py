@@ -129,7 +129,8 @@ def test_cli_modes_json(capsys):
 
 def test_cli_modes_text_and_supercritical(capsys):
     assert main(["modes", *SMALL, "--count", "2", "--velocity", "120"]) == 0
-    assert "supercritical" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "the tape diverges" in out and "K(V) indefinite" in out
 
 
 def test_cli_critical_json(capsys):
@@ -209,3 +210,43 @@ def test_critical_refusals():
                           ({"max_evaluations": 0}, "max_evaluations must be")):
         with pytest.raises(ParameterError, match=match):
             critical_speeds(model, **kwargs)
+
+
+def test_modes_text_says_what_is_true():
+    from gyroshell.cli.eigen import stability_sentence
+    from gyroshell.qep import gyroscopic_modes
+
+    def two_dof(k1, k2, g):
+        return gyroscopic_modes(np.eye(2), np.array([[0.0, g], [-g, 0.0]]), np.diag([k1, k2]),
+                                2)
+
+    assert stability_sentence(two_dof(1.0, 4.0, 1.0)) == ""
+    assert "gyroscopically stable" in stability_sentence(two_dof(-1.0, -4.0, 4.0))
+    assert "flutters" in stability_sentence(two_dof(-1.0, -4.0, 2.0))
+    assert "diverges" in stability_sentence(two_dof(-1.0, 4.0, 1.0))
+
+
+def test_cli_modes_damped_json(capsys):
+    assert main(["modes", *SMALL, "--count", "2", "--damping", "50", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    rho = TapeParameters().density
+    assert out["decay_rate"] == pytest.approx([50 / (2 * rho)] * 2, rel=1e-9)
+    assert all(0 < z < 1 for z in out["damping_ratio"]) and out["stability"] == "stable"
+
+
+# ----- continuation ------------------------------------------------------------------------------
+def test_continuation_sweep_equals_independent_solves():
+    model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
+    speeds = np.linspace(0, 95, 8)
+    cont = sweep(model, speeds, 4, continuation=True)
+    fresh = sweep(TapeModel(model.params), speeds, 4, continuation=False)
+    assert np.allclose(cont.omega, fresh.omega, rtol=1e-10, atol=0)
+    assert (cont.branch == fresh.branch).all()
+    assert set(cont.stability) == {"stable"}
+
+
+def test_sweep_stability_column_above_critical():
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    frame = sweep(model, [90.0, 120.0], 2)
+    by_speed = frame.groupby("velocity").stability.first()
+    assert by_speed[90.0] == "stable" and by_speed[120.0] == "divergence"

@@ -196,3 +196,23 @@ def test_refusals(kwargs, match):
 def test_arpack_failure_is_a_convergence_error():
     with pytest.raises(ConvergenceError, match="ARPACK"):
         modes(_model(length_ratio=19.0), 0.0, 8, sigma=0, maxiter=1, ncv=20)
+
+
+@pytest.mark.parametrize("velocity", [0.0, 50.0, 95.0])
+def test_lanczos_and_arpack_agree(velocity):
+    model = _model(length_ratio=6.0)
+    lanczos = modes(model, velocity, 6, method="lanczos")
+    arpack = modes(model, velocity, 6, method="arpack")
+    assert lanczos.info["method"] == "lanczos" and arpack.info["method"] == "arpack"
+    assert np.allclose(lanczos.omega, arpack.omega, rtol=1e-10, atol=0)
+    assert lanczos.info["below_shift"] == arpack.info["below_shift"] == 0
+    assert lanczos.residuals.max() < 1e-13
+
+
+def test_count_above_the_limit_is_refused_quickly():
+    from gyroshell.eigen import max_count
+
+    model = _model(length_ratio=19.0)
+    limit = max_count(model.size)
+    with pytest.raises(ParameterError, match=rf"count must be in \[1, {limit}\]"):
+        modes(model, 0.0, limit + 1)
