@@ -433,29 +433,46 @@ SHIFT_RETREAT = (0.98, 0.8)
 
 
 class _EnergyOperator:
-    """T = (H − ω_s L)⁻¹ L and the energy inner product on z = [λφ; φ] (module notes)."""
+    """T = (H − ω_s L)⁻¹ L and the energy inner product on z = [λφ; φ] (module notes).
+
+    G and K are cast to complex once (a real sparse matrix times a complex vector casts its
+    entries at every product), and a diagonal M is applied as a vector.
+    """
 
     def __init__(self, prob: _Problem, omega_s: float, factor: InertiaFactor) -> None:
-        self.M, self.G, self.K = prob.M, prob.G, prob.K
+        self.G = prob.G.astype(complex)
+        self.K = prob.K.astype(complex)
+        self.md = prob.M.diagonal() if _is_diagonal(prob.M) else None
+        self.M = prob.M.astype(complex)
         self.omega_s, self.factor, self.n = omega_s, factor, prob.n
         self.applications = 0
         self.solve_time = 0.0
+
+    def mass(self, u: np.ndarray) -> np.ndarray:
+        return self.md * u if self.md is not None else self.M @ u
 
     def apply(self, z: np.ndarray) -> np.ndarray:
         self.applications += 1
         n, ws = self.n, self.omega_s
         u1, u2 = z[:n], z[n:]
-        rhs = self.M @ u1 + self.G @ u2 + (1j * ws) * (self.M @ u2)
+        rhs = self.mass(u1 + (1j * ws) * u2) + self.G @ u2
         t0 = time.perf_counter()
-        b = -1j * self.factor.solve(rhs)
+        b = self.factor.solve(rhs)
         self.solve_time += time.perf_counter() - t0
-        a = 1j * (u2 + ws * b)
-        return np.concatenate([a, b])
+        out = np.empty(2 * n, dtype=complex)
+        out[n:] = b
+        out[n:] *= -1j
+        out[:n] = u2 + ws * out[n:]
+        out[:n] *= 1j
+        return out
 
-    def weight(self, Z: np.ndarray) -> np.ndarray:
-        """L Z (columns)."""
+    def weight(self, z: np.ndarray) -> np.ndarray:
+        """L z."""
         n = self.n
-        return np.concatenate([self.M @ Z[:n], self.K @ Z[n:]])
+        out = np.empty(2 * n, dtype=complex)
+        out[:n] = self.mass(z[:n])
+        out[n:] = self.K @ z[n:]
+        return out
 
 
 def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: float,
@@ -506,7 +523,7 @@ def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: floa
                 if left > REORTHOGONALIZE * size:
                     break
                 size = left
-            beta = put(j + 1, w, op.weight(w))
+            beta = put(j + 1, w, Lw)
             H[j + 1, j] = beta
             if beta == 0.0:  # an invariant subspace: continue from a fresh direction
                 w = _random_start(n2, complex)
