@@ -40,10 +40,13 @@ __all__ += ["Newmark", "NewmarkStabilityWarning", "Snapshots", "TransientResult"
 # Quadratic eigen-solver, critical speeds and speed sweeps (issue #4).
 from .critical import CriticalSpeeds, critical_speed_eigen, critical_speeds  # noqa: E402
 from .eigen import Modes, frequencies, modes  # noqa: E402
+from .inertia import InertiaFactor, factor_inertia  # noqa: E402
+from .qep import GyroscopicModes, gyroscopic_modes  # noqa: E402
 from .sweep import plot_sweep, sweep  # noqa: E402
 
-__all__ += ["CriticalSpeeds", "Modes", "critical_speed_eigen", "critical_speeds",
-            "frequencies", "modes", "plot_sweep", "sweep"]
+__all__ += ["CriticalSpeeds", "GyroscopicModes", "InertiaFactor", "Modes",
+            "critical_speed_eigen", "critical_speeds", "factor_inertia", "frequencies",
+            "gyroscopic_modes", "modes", "plot_sweep", "sweep"]
 
 # Parameter studies, saved results (issue #11); xarray, Dask and matplotlib load lazily.
 from .persistence import load, save  # noqa: E402
