@@ -22,7 +22,6 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import toms748
 
 from . import persistence
 from .divergence import beam_mu_estimate, divergence
@@ -123,9 +122,10 @@ class CriticalSpeeds:
 
 #: The default starting speed is this fraction of the beam estimate √((T + μ_beam)/ρ).
 GUESS_FRACTION = 0.99
-#: First bracketing step in s = V², relative; each further step grows by BRACKET_GROWTH.
-BRACKET_STEP = 0.01
-BRACKET_GROWTH = 2.0
+#: From a supercritical start, s = V² is multiplied by this until a subcritical point.
+DESCENT_FACTOR = 0.96
+#: Where no extrapolated zero lies ahead (and no point above is known), s grows by this.
+ADVANCE_FACTOR = 1.004
 
 
 def default_guess(model: TapeModel) -> float:
@@ -140,11 +140,13 @@ def default_guess(model: TapeModel) -> float:
 
 
 class _Counted:
-    """f(s) = critical_function at V = √s, counted and capped at ``limit`` evaluations."""
+    """f(s) = critical_function at V = √s, remembered, counted and capped at ``limit``."""
 
     def __init__(self, model: TapeModel, count: int, options: dict, limit: int) -> None:
         self.model, self.count, self.options, self.limit = model, count, options, limit
         self.trace: list[tuple[float, float]] = []
+        self.below: list[tuple[float, float]] = []   # (s, ω₁²) with ω₁² > 0
+        self.above = math.inf                         # smallest s with f <= 0
 
     def __call__(self, s: float) -> float:
         if len(self.trace) >= self.limit:
@@ -153,27 +155,54 @@ class _Counted:
                 f"{self.limit} eigen-solves")
         value = critical_function(self.model, math.sqrt(s), count=self.count, **self.options)
         self.trace.append((math.sqrt(s), value))
+        if value > 0:
+            self.below.append((s, value))
+            self.below.sort()
+        else:
+            self.above = min(self.above, s)
         return value
 
+    @property
+    def highest_below(self) -> float:
+        return self.below[-1][0]
 
-def _bracket(f: _Counted, s: float) -> tuple[float, float]:
-    """[s_lo, s_hi] (s = V², m²/s²) with f(s_lo) > 0 >= f(s_hi), searched from ``s`` by
-    steps growing geometrically (BRACKET_STEP, BRACKET_GROWTH)."""
-    value = f(s)
-    step = BRACKET_STEP
-    if value > 0:
-        lo = s
-        while True:
-            hi = lo * (1 + step)
-            if f(hi) <= 0:
-                return lo, hi
-            lo, step = hi, step * BRACKET_GROWTH
-    hi = s
-    while True:
-        lo = hi / (1 + step)
-        if f(lo) > 0:
-            return lo, hi
-        hi, step = lo, step * BRACKET_GROWTH
+
+def _extrapolate_zero(points: list[tuple[float, float]]) -> float | None:
+    """Zero of the interpolant of (s, ω₁²) beyond the last point: quadratic through three
+    points (ω₁² ≈ a d + c d², d = s_c − s, seen in practice), else the secant; None if
+    neither has a zero beyond the last point."""
+    s_last = points[-1][0]
+    if len(points) == 3:
+        s = np.array([q[0] for q in points]) - s_last
+        fv = np.array([q[1] for q in points])
+        scale = abs(s[0]) or 1.0
+        c2, c1, c0 = np.polyfit(s / scale, fv, 2)
+        roots = np.roots([c2, c1, c0]) if c2 != 0 else np.array([-c0 / c1])
+        roots = roots[np.isreal(roots)].real * scale
+        roots = roots[roots > 0]
+        if roots.size:
+            return float(s_last + roots.min())
+    if len(points) >= 2:
+        (s1, f1), (s2, f2) = points[-2:]
+        if s2 > s1 and f1 > f2:
+            return s2 - f2 * (s2 - s1) / (f2 - f1)
+    return None
+
+
+def _first_subcritical(f: _Counted, s: float) -> None:
+    """Step s down by DESCENT_FACTOR from the start until ω₁² > 0 (a point below)."""
+    while f(s) <= 0:
+        s *= DESCENT_FACTOR
+
+
+def _next_trial(f: _Counted) -> float:
+    """The extrapolated zero from the last three points below, kept inside the bracket
+    (bisection of [highest below, lowest above] where it falls outside)."""
+    lo, hi = f.highest_below, f.above
+    pred = _extrapolate_zero(f.below[-3:])
+    if pred is None or pred >= hi or pred <= lo:
+        pred = 0.5 * (lo + hi) if math.isfinite(hi) else lo * ADVANCE_FACTOR
+    return pred
 
 
 def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
@@ -181,18 +210,21 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
                          **options) -> tuple[float, dict]:
     """(a) The speed where the lowest frequency reaches zero, m/s, and diagnostics.
 
-    Near the root ω₁² is a smooth, nearly linear function of s = V² (ω₁ ∝ √(V_c − V)), and
-    above it −λ₀² continues it linearly. So f(s) (:func:`critical_function`) is bracketed by
-    a sign change from the starting speed (:func:`_bracket`) and its zero found by
-    Alefeld-Potra-Shi's TOMS 748 method (:func:`scipy.optimize.toms748`), each evaluation
-    one eigen-solve.
+    Below the root ω₁²(s), s = V², is smooth; above it the eigenvalue nearest zero may
+    belong to any of the long tape's many nearly critical branches, so values there are
+    not a continuation of ω₁² (a two-sided root finder, scipy's toms748 on f, needed more
+    than twice the eigen-solves: the values above are erratic). The root is therefore
+    approached from below by extrapolating ω₁² (:func:`_extrapolate_zero`), a point above
+    (f <= 0) only capping the bracket, with bisection where the extrapolation leaves it.
+    It stops when the extrapolated zero is within ``xtol`` (relative, in V) of the highest
+    point below and a point just above it confirms the sign change.
 
     Parameters
     ----------
     guess : float, optional
         Starting speed, m/s; default :func:`default_guess`.
     xtol : float
-        Relative tolerance on V (> 0).
+        Relative tolerance on V, in (0, 0.1).
     count : int
         Eigenvalue pairs per solve (see :func:`critical_function`).
     max_evaluations : int
@@ -216,12 +248,21 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
         raise ParameterError(f"max_evaluations must be an integer >= 2, got "
                              f"{max_evaluations!r}")
     f = _Counted(model, count, options, max_evaluations)
-    lo, hi = _bracket(f, float(guess) ** 2)
-    s_root = toms748(f, lo, hi, xtol=1e-300, rtol=2 * xtol)
-    root = math.sqrt(s_root)
-    below = [v for v, value in f.trace if value > 0]
-    above = [v for v, value in f.trace if value <= 0]
-    return root, {"evaluations": len(f.trace), "bracket": (max(below), min(above)),
+    _first_subcritical(f, float(guess) ** 2)
+    s = f.highest_below * ADVANCE_FACTOR
+    while True:
+        if s < f.above:
+            f(s)
+        pred = _next_trial(f)
+        if abs(pred - f.highest_below) <= 2 * xtol * pred:
+            cap = pred * (1 + 2 * xtol)   # confirm the sign change just above
+            if cap >= f.above or f(cap) <= 0:
+                root = math.sqrt(pred)
+                break
+            pred = cap * (1 + 2 * xtol)
+        s = pred
+    return root, {"evaluations": len(f.trace),
+                  "bracket": (math.sqrt(f.highest_below), math.sqrt(f.above)),
                   "trace": f.trace}
 
 

@@ -664,9 +664,13 @@ def _representatives(lam: np.ndarray, phi: np.ndarray, *, right_half: bool
 
 
 def _solve_general(prob: _Problem, sigma: complex, solve, omega_ref: float, *,
-                   symmetric_pairs: bool) -> tuple[np.ndarray, np.ndarray]:
+                   symmetric_pairs: bool, imaginary_pairs: bool = False
+                   ) -> tuple[np.ndarray, np.ndarray]:
     """ARPACK nearest σ; one representative per pair. ``symmetric_pairs``: undamped
-    supercritical, where λ, −λ, λ̄, −λ̄ come together (Re λ >= 0 representative)."""
+    supercritical, where λ, −λ, λ̄, −λ̄ come together (Re λ >= 0 representative).
+    ``imaginary_pairs``: undamped below critical, every λ = ±iω; the +iω are kept by the
+    sign of Im λ alone (an eigenvalue near zero has a real part of round-off size relative
+    to the others, not to itself), ascending."""
     n, count = prob.n, prob.count
     counter = [0]
     op = _linearized_operator(prob, solve, sigma, omega_ref, counter)
@@ -680,13 +684,18 @@ def _solve_general(prob: _Problem, sigma: complex, solve, omega_ref: float, *,
         lam = sigma + 1.0 / theta
         phi = y[:n] / (omega_ref * np.sqrt(prob.mass_diagonal))[:, None]
         lam = quadratic_rayleigh(prob.M, prob.D, prob.K, lam, phi)
-        reps, vecs = _representatives(lam, phi, right_half=symmetric_pairs)
+        if imaginary_pairs:
+            up = np.flatnonzero(lam.imag > 0)
+            up = up[np.argsort(lam.imag[up])]
+            reps, vecs = lam[up], phi[:, up]
+        else:
+            reps, vecs = _representatives(lam, phi, right_half=symmetric_pairs)
         if len(reps) >= count or nev == 2 * n - 2:
             break
         extra = 2 * extra + 2 * (count - len(reps))
     prob.info.update(method="arpack", solve_time=time.perf_counter() - t0, ncv=used,
                      nev=nev, attempts=attempt, operator_applications=counter[0])
-    if not symmetric_pairs:  # damped: ascending damped frequency
+    if not (symmetric_pairs or imaginary_pairs):  # damped: ascending damped frequency
         order = np.lexsort((np.abs(reps), np.abs(reps.imag)))
         reps, vecs = reps[order], vecs[:, order]
     lams, vecs = reps[:count], vecs[:, :count]
@@ -705,8 +714,8 @@ def _clean_parts(lams: np.ndarray) -> np.ndarray:
 def _solve_pairs_real(prob: _Problem, factor: InertiaFactor, omega_ref: float
                       ) -> tuple[np.ndarray, np.ndarray]:
     """Undamped, K > 0, σ = 0 by ARPACK: 2·count eigenvalues, checked as ±iω pairs."""
-    lams, vecs = _solve_general(prob, 0j, factor.solve, omega_ref, symmetric_pairs=True)
-    return lams, vecs
+    return _solve_general(prob, 0j, factor.solve, omega_ref, symmetric_pairs=False,
+                          imaginary_pairs=True)
 
 
 # ----- the solver -----------------------------------------------------------------------------
@@ -888,7 +897,7 @@ def _subcritical(prob, shift, estimate, k_factor, method):
                                           _omega_ref(prob, omega_s))
     lams, vecs = result
     lams = quadratic_rayleigh(prob.M, prob.G, prob.K, lams, vecs)
-    scale = np.maximum(np.abs(lams), omega_s)
+    scale = np.maximum(np.abs(lams), omega_s or _omega_ref(prob, estimate))
     prob.info["pair_defect"] = float(np.max(np.abs(lams.real) / scale))
     if prob.info["pair_defect"] > PAIR_DEFECT_LIMIT:
         raise ConvergenceError(f"eigenvalues off the imaginary axis below critical "
