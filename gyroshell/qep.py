@@ -677,7 +677,7 @@ def _solve_general(prob: _Problem, sigma: complex, solve, omega_ref: float, *,
     real = sigma == 0
     extra = EXTRA_EIGENVALUES
     t0 = time.perf_counter()
-    for attempt in range(1, REQUEST_ATTEMPTS + 1):
+    for attempt in range(1, REQUEST_ATTEMPTS + 1):  # noqa: B007 - reported in info
         nev = min((2 * count if real else count) + extra, 2 * n - 2)
         theta, y, used = _arpack(op, nev, tol=prob.tol, ncv=prob.ncv, maxiter=prob.maxiter,
                                  v0=_random_start(2 * n, float if real else complex))
@@ -914,7 +914,7 @@ def _solve_shifted_pairs(prob, omega_s, factor, below, omega_ref):
     op = _linearized_operator(prob, factor.solve, sigma, omega_ref, counter)
     extra = EXTRA_EIGENVALUES
     t0 = time.perf_counter()
-    for attempt in range(1, REQUEST_ATTEMPTS + 1):
+    for attempt in range(1, REQUEST_ATTEMPTS + 1):  # noqa: B007 - reported in info
         nev = min(count + below + extra, 2 * n - 2)
         theta, y, used = _arpack(op, nev, tol=prob.tol, ncv=prob.ncv, maxiter=prob.maxiter,
                                  v0=_random_start(2 * n, complex))
