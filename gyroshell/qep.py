@@ -481,20 +481,19 @@ def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: floa
 
     ``wanted(theta)`` ranks Ritz values (larger first). Returns (θ, Ritz vectors as
     columns, restarts) for the ``nev`` best once each residual |β sₘ| <= tol·|θ|, or None if
-    not converged within LANCZOS_RESTARTS restarts. The basis is stored by rows, with its
-    image under L beside it, so that each step costs one application of T, one of L and
-    two matrix-vector products with the basis.
+    not converged within LANCZOS_RESTARTS restarts. The basis is stored by rows; a
+    Gram-Schmidt pass costs one application of L (sparse, cheaper than updating a stored
+    image of the basis) and two matrix-vector products with the basis.
     """
     n2 = len(start)
     m = min(max(2 * nev + LANCZOS_EXTRA, LANCZOS_MIN_BASIS), n2 - 1)
     V = np.empty((m + 1, n2), dtype=complex)
-    LV = np.empty((m + 1, n2), dtype=complex)
     H = np.zeros((m + 1, m), dtype=complex)
 
     def put(j: int, w: np.ndarray, Lw: np.ndarray) -> float:
         norm = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
         if norm > 0:
-            V[j], LV[j] = w / norm, Lw / norm
+            V[j] = w / norm
         return norm
 
     v = start.astype(complex)
@@ -515,9 +514,9 @@ def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: floa
             Lw = op.weight(w)
             size = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
             for _ in range(2):  # classical Gram-Schmidt, repeated if it cancelled (DGKS)
-                h = np.conj(LV[: j + 1] @ np.conj(w))
+                h = np.conj(V[: j + 1] @ np.conj(Lw))
                 w -= h @ V[: j + 1]
-                Lw -= h @ LV[: j + 1]
+                Lw = op.weight(w)
                 H[: j + 1, j] += h
                 left = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
                 if left > REORTHOGONALIZE * size:
@@ -528,7 +527,7 @@ def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: floa
             if beta == 0.0:  # an invariant subspace: continue from a fresh direction
                 w = _random_start(n2, complex)
                 for _ in range(2):
-                    w -= np.conj(LV[: j + 1] @ np.conj(w)) @ V[: j + 1]
+                    w -= np.conj(V[: j + 1] @ np.conj(op.weight(w))) @ V[: j + 1]
                 put(j + 1, w, op.weight(w))
             if j + 1 >= nev + EXTRA_EIGENVALUES or j == m - 1:
                 theta, S, order, done = ritz(j + 1)
@@ -539,8 +538,8 @@ def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: floa
         kept = min(nev + (m - nev) // 2, m - 1)
         keep = order[:kept]
         coupling = H[m, m - 1] * S[m - 1, keep]
-        V[:kept], LV[:kept] = S[:, keep].T @ V[:m], S[:, keep].T @ LV[:m]
-        V[kept], LV[kept] = V[m], LV[m]
+        V[:kept] = S[:, keep].T @ V[:m]
+        V[kept] = V[m]
         # T Y = Y Θ + v (β sₘ)ᵀ: an arrowhead; column `kept` is filled by the next step
         H[:] = 0.0
         H[np.arange(kept), np.arange(kept)] = theta[keep]
