@@ -112,6 +112,11 @@ def divergence(model: TapeModel, *, tol: float = 1e-12, shift: float | None = No
     shift : float, optional
         τ, N/m, to use instead (must be below μ_min); 0 reproduces plain shift-invert.
     """
+    if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not 0 <= tol < 1:
+        raise ParameterError(f"tol must be in [0, 1), got {tol!r}")
+    if shift is not None and (isinstance(shift, bool) or not isinstance(shift, (int, float))
+                              or not math.isfinite(shift)):
+        raise ParameterError(f"shift must be a finite number in N/m or None, got {shift!r}")
     A, B = model.A, model.B
     tau, factor = safe_shift(model) if shift is None else (float(shift), None)
     if factor is None:

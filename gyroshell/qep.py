@@ -296,6 +296,15 @@ def max_count(n: int) -> int:
     return max(1, min(MAX_COUNT, n // 2 - 1))
 
 
+def _check_optional_int(name: str, value) -> int | None:
+    """None or an integer >= 1 (ARPACK's ncv and maxiter)."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ParameterError(f"{name} must be None or an integer >= 1, got {value!r}")
+    return int(value)
+
+
 def _check_tol(tol) -> float:
     if isinstance(tol, bool) or not isinstance(tol, (int, float, np.floating)) or \
             not 0 <= tol < 1:
@@ -771,8 +780,9 @@ def gyroscopic_modes(M, G, K, count: int = 6, *, sigma: complex | str | None = N
 def _gyroscopic_modes(M, G, K, count, *, sigma, C, estimate, definite, tol, ncv, maxiter,
                       start, method) -> GyroscopicModes:
     M, G, K, C = check_structure(M, G, K, C)
-    prob = _Problem(M, G, K, C, _check_count(count, M.shape[0]), _check_tol(tol), ncv,
-                    maxiter, _check_start(start, M.shape[0]), {"operator_applications": 0})
+    prob = _Problem(M, G, K, C, _check_count(count, M.shape[0]), _check_tol(tol),
+                    _check_optional_int("ncv", ncv), _check_optional_int("maxiter", maxiter),
+                    _check_start(start, M.shape[0]), {"operator_applications": 0})
     shift = check_shift(sigma)
     if method not in ("auto", "lanczos", "arpack"):
         raise ParameterError(f"method must be 'auto', 'lanczos' or 'arpack', got {method!r}")

@@ -250,3 +250,11 @@ def test_sweep_stability_column_above_critical():
     frame = sweep(model, [90.0, 120.0], 2)
     by_speed = frame.groupby("velocity").stability.first()
     assert by_speed[90.0] == "stable" and by_speed[120.0] == "divergence"
+
+
+def test_divergence_refusals():
+    model = TapeModel(TapeParameters(length_ratio=1.0, spacing=WIDTH / 8))
+    for kwargs, match in (({"tol": -1.0}, "tol must be"), ({"tol": 2.0}, "tol must be"),
+                          ({"shift": float("nan")}, "shift must be")):
+        with pytest.raises(ParameterError, match=match):
+            divergence(model, **kwargs)

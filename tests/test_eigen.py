@@ -186,6 +186,12 @@ def test_supercritical_reports_divergence():
     ({"sigma": "low"}, "sigma must be 'auto'"),
     ({"tol": 2.0}, "tol must be in"),
     ({"ncv": 3}, "ncv must be in"),
+    ({"ncv": "a"}, "ncv must be None or an integer"),
+    ({"maxiter": 0}, "maxiter must be None or an integer >= 1"),
+    ({"maxiter": 2.5}, "maxiter must be None or an integer >= 1"),
+    ({"count": None}, "count must be an integer"),
+    ({"estimate": -1.0}, "estimate must be a frequency"),
+    ({"start": "x"}, "start must be the Modes"),
 ])
 def test_refusals(kwargs, match):
     args = {"velocity": 0.0, "count": 2, **kwargs}
