@@ -197,3 +197,30 @@ def test_option_refusals(rng):
 def test_count_limit_is_finite_for_large_problems():
     assert max_count(DENSE_LIMIT) == DENSE_LIMIT
     assert max_count(10**6) == max_count(10**5) < 10**3
+
+
+def test_damped_navier_frequencies_converge_second_order():
+    """All sides simply supported, V = 0, C = cW: λ = −c/2ρ ± i√(ω_mn² − (c/2ρ)²) with the
+    Navier ω_mn; the discrete damped frequencies converge to it at second order."""
+    from closed_forms import navier_frequency
+    from convergence import observed_order
+
+    from gyroshell import Grid
+
+    p = TapeParameters(edges="simply-supported", length_ratio=2.0, spacing=WIDTH / 8,
+                       foundation_stiffness=1e6)
+    exact_w = sorted(navier_frequency(p, m, n) for m in range(1, 8) for n in range(1, 8))[:3]
+    c = 0.1 * p.density * exact_w[0]
+    delta = c / (2 * p.density)
+    exact = -delta + 1j * np.sqrt(np.array(exact_w) ** 2 - delta**2)
+    grid = Grid.from_parameters(p)
+    steps, errs = [], []
+    for _ in range(3):
+        res = modes(TapeModel(p, grid), 0.0, 3, damping=c)
+        errs.append(np.abs(res.eigenvalues - exact) / np.abs(exact))
+        steps.append(grid.hx)
+        grid = grid.refined()
+    errs = np.array(errs)
+    for j in range(3):
+        assert observed_order(steps, errs[:, j]) == pytest.approx(2.0, abs=0.1)
+    assert res.decay_rate == pytest.approx(np.full(3, delta), rel=1e-9)
