@@ -121,9 +121,9 @@ class CriticalSpeeds:
 
 
 #: The default starting speed is this fraction of the beam estimate √((T + μ_beam)/ρ).
-GUESS_FRACTION = 0.99
+GUESS_FRACTION = 0.998
 #: From a supercritical start, s = V² is multiplied by this until a subcritical point.
-DESCENT_FACTOR = 0.96
+DESCENT_FACTOR = 0.99
 #: Where no extrapolated zero lies ahead (and no point above is known), s grows by this.
 ADVANCE_FACTOR = 1.004
 
