@@ -62,12 +62,12 @@ class Modes(_EigenvalueProperties):
         Relative residuals ‖Q(λ)φ‖ / ((|λ|²‖M‖ + |λ|‖G + C‖ + ‖K‖) ‖φ‖) (backward errors).
     supercritical : bool
         True if K(V) is not positive definite (V at or above the critical speed).
-    damped : bool
-        True if computed with damping (``decay_rate``, ``damping_ratio`` then mean something).
     info : dict
         Diagnostics of :func:`gyroshell.qep.gyroscopic_modes`: ``method``, ``shift`` (σ, 1/s),
         ``below_shift`` (certified number of frequencies below the shift), ``factor_time``
         and ``solve_time`` (s), ``operator_applications``, ``pair_defect``, ...
+    damped : bool
+        True if computed with damping (``decay_rate``, ``damping_ratio`` then mean something).
 
     Derived: ``omega`` (rad/s), ``frequency`` (Hz), ``period`` (s), ``growth_rate``,
     ``decay_rate`` (1/s), ``damping_ratio``, ``stability`` ("stable", "divergence",
@@ -80,8 +80,8 @@ class Modes(_EigenvalueProperties):
     vectors: np.ndarray
     residuals: np.ndarray
     supercritical: bool = False
-    damped: bool = False
     info: dict = field(default_factory=dict, compare=False)
+    damped: bool = False
 
     @property
     def fields(self) -> np.ndarray:
@@ -279,7 +279,7 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         definite=_known_definite(model, velocity), tol=tol, ncv=ncv, maxiter=maxiter,
         start=first, method=method)
     return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
-                 result.supercritical, result.damped, result.info)
+                 result.supercritical, result.info, result.damped)
 
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options
