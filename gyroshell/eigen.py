@@ -178,10 +178,13 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
     """τ >= 0, N/m, with A − τB proved positive definite; None if A itself is not.
 
     K(V) = (A − τB) + (τ + T − ρV²) B with B positive semi-definite, so K(V) is positive
-    definite whenever ρV² − T < τ: one factorization per model certifies every such speed,
-    and the eigen-solver skips factoring K(V). τ = 0 from a factorization of A; with
-    ``near_divergence`` the inertia-proved shift just below μ_min of the divergence solver
-    (a few factorizations, worth it for sweeps). Cached per model.
+    definite whenever ρV² − T < τ: one proof per model certifies every such speed, and the
+    eigen-solver skips factoring K(V). τ = 0 holds by construction when k > 0: the bending
+    part of A is a sum of Gram forms (w_xx, w_yy)ᵀ[[1, ν], [ν, 1]](w_xx, w_yy) + ... with
+    |ν| < 1 (:func:`gyroshell.operators.bending_foundation`), so A >= kW > 0; otherwise a
+    factorization of A decides. With ``near_divergence``, τ is the inertia-proved shift just
+    below μ_min of the divergence solver (a few factorizations, worth it for sweeps).
+    Cached per model.
     """
     known = _FLOORS.get(model)
     if known is not None and (known > 0 or known == -math.inf or not near_divergence):
@@ -194,6 +197,8 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
 
         tau_d, factor = safe_shift(model)
         tau = tau_d if factor is not None else None
+    if tau is None and model.params.k > 0:
+        tau = 0.0
     if tau is None:
         tau = 0.0 if factor_inertia(model.A).definite else -math.inf
     _FLOORS[model] = tau

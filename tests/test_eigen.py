@@ -222,3 +222,16 @@ def test_count_above_the_limit_is_refused_quickly():
     limit = max_count(model.size)
     with pytest.raises(ParameterError, match=rf"count must be in \[1, {limit}\]"):
         modes(model, 0.0, limit + 1)
+
+
+@pytest.mark.parametrize("edges", ["free", "simply-supported"])
+@pytest.mark.parametrize("nu", [-0.5, 0.0, 0.3, 0.49])
+def test_bending_is_positive_semidefinite_so_K_is_definite_below_string_speed(edges, nu):
+    """The stiffness floor takes A >= kW from the construction of A (Gram forms): check it."""
+    from gyroshell.inertia import factor_inertia
+
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8, edges=edges,
+                                     poisson=nu))
+    bending = model.A - sp.diags(model.params.k * model.grid.areas)
+    shift = 1e-12 * abs(bending).sum(axis=0).max()
+    assert factor_inertia(bending + shift * sp.identity(model.size)).negatives == 0
