@@ -177,8 +177,22 @@ def classify_stability(eigenvalues: np.ndarray, *, rtol: float = STABILITY_RTOL)
     *gyroscopically stabilized*, although K is indefinite). A part smaller than ``rtol``·|λ|
     counts as zero. Only the eigenvalues given are judged (for a solver's result: those
     nearest its shift).
+
+    Examples
+    --------
+    >>> classify_stability([125e3j, -125e3j])
+    'stable'
+    >>> classify_stability([2.3e4 + 0j, 1.5e4j])
+    'divergence'
+    >>> classify_stability([8e2 + 7.9e2j, 8e2 - 7.9e2j])
+    'flutter'
     """
-    lam = np.asarray(eigenvalues, dtype=complex).ravel()
+    lam = np.asarray(list(eigenvalues) if not isinstance(eigenvalues, np.ndarray)
+                     else eigenvalues, dtype=complex).ravel()
+    if lam.size == 0:
+        raise ParameterError("classify_stability needs at least one eigenvalue")
+    if not np.all(np.isfinite(lam)):
+        raise ParameterError("eigenvalues must be finite")
     mag = np.abs(lam)
     growing = lam.real > rtol * mag
     real = np.abs(lam.imag) <= rtol * mag

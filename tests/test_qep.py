@@ -224,3 +224,19 @@ def test_damped_navier_frequencies_converge_second_order():
     for j in range(3):
         assert observed_order(steps, errs[:, j]) == pytest.approx(2.0, abs=0.1)
     assert res.decay_rate == pytest.approx(np.full(3, delta), rel=1e-9)
+
+
+def test_docstring_examples():
+    import doctest
+
+    import gyroshell.qep
+
+    result = doctest.testmod(gyroshell.qep, optionflags=doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
+
+
+def test_classify_stability_refuses_empty_or_nonfinite():
+    with pytest.raises(ParameterError, match="at least one eigenvalue"):
+        classify_stability([])
+    with pytest.raises(ParameterError, match="finite"):
+        classify_stability([np.nan + 1j])
