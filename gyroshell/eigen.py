@@ -33,6 +33,7 @@ from .qep import (
     RESIDUAL_LIMIT,
     SHIFT_MARGIN,
     _EigenvalueProperties,
+    check_count,
     gyroscopic_modes,
     max_count,
 )
@@ -264,6 +265,7 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         The eigen-solver did not converge, or the residuals or the mode count failed.
     """
     velocity = check_velocity(velocity)
+    check_count(count, model.size)  # before any assembly: a refusal costs nothing
     C = damping_matrix(model, damping)
     if estimate is None:
         estimate = strip_frequency_estimate(model.params, model.grid, velocity)

@@ -282,7 +282,7 @@ def _positive_semidefinite(C: sp.csr_matrix) -> bool:
     return factor_inertia(C + eps * sp.identity(C.shape[0])).definite
 
 
-def _check_count(count: int, n: int) -> int:
+def check_count(count: int, n: int) -> int:
     """1 <= count <= the most a Krylov eigen-solver delivers in reasonable time here."""
     if isinstance(count, bool) or not isinstance(count, (int, np.integer, float)) or \
             int(count) != count:
@@ -794,7 +794,7 @@ def gyroscopic_modes(M, G, K, count: int = 6, *, sigma: complex | str | None = N
 def _gyroscopic_modes(M, G, K, count, *, sigma, C, estimate, definite, tol, ncv, maxiter,
                       start, method) -> GyroscopicModes:
     M, G, K, C = check_structure(M, G, K, C)
-    prob = _Problem(M, G, K, C, _check_count(count, M.shape[0]), _check_tol(tol),
+    prob = _Problem(M, G, K, C, check_count(count, M.shape[0]), _check_tol(tol),
                     _check_optional_int("ncv", ncv), _check_optional_int("maxiter", maxiter),
                     _check_start(start, M.shape[0]), {"operator_applications": 0})
     shift = check_shift(sigma)
