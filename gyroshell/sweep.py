@@ -87,9 +87,11 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
     progress : bool or None
         Show a tqdm progress bar on stderr; None: only if stderr is a terminal.
     continuation : bool
-        Start each solve from the previous speed's modes and certify K(V) > 0 once for the
-        model (:func:`gyroshell.eigen.stiffness_floor`) instead of at every speed.
-        The results are the same as independent solves, computed faster.
+        Start each solve from the previous speed's modes and, when several speeds lie above
+        √(T/ρ), certify K(V) > 0 once for the model (:func:`gyroshell.eigen.stiffness_floor`)
+        instead of factoring K(V) at each of them. The results are those of independent
+        solves; the saving is those factorizations (the start vectors do not shorten the
+        shift-invert iteration, whose cost is set by the clustered spectrum).
     **options
         Passed to :func:`gyroshell.eigen.modes` (``sigma``, ``tol``, ``damping``, ...).
 
@@ -113,7 +115,9 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
     if not 0.0 <= min_correlation <= 1.0:
         raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
-    if continuation and len(velocities) > 1:
+    p = model.params
+    above_string = sum(p.density * v**2 > p.tension for v in velocities)
+    if continuation and above_string >= FLOOR_WORTH_IT:
         stiffness_floor(model, near_divergence=True)
     tracker = _BranchTracker(model.mass_diagonal, min_correlation)
     rows: list[dict] = []
@@ -125,6 +129,11 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         rows.extend(_rows(res, labels, corr))
         history.append(res)
     return pd.DataFrame(rows, columns=list(COLUMNS))
+
+
+#: Speeds above √(T/ρ) from which proving the stiffness floor near divergence (a few
+#: factorizations once) pays: below √(T/ρ), K(V) > 0 holds by construction.
+FLOOR_WORTH_IT = 4
 
 
 def _continuation_options(history: list[Modes], velocity: float, enabled: bool) -> dict:
