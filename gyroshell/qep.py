@@ -785,7 +785,8 @@ def gyroscopic_modes(M, G, K, count: int = 6, *, sigma: complex | str | None = N
     ConvergenceError
         The eigen-iteration did not converge, or residuals or the certified count failed.
     """
-    with blas_threads(1):
+    # Out-of-range scales surface as non-finite results, refused in _finish; no warnings.
+    with blas_threads(1), np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         return _gyroscopic_modes(M, G, K, count, sigma=sigma, C=C, estimate=estimate,
                                  definite=definite, tol=tol, ncv=ncv, maxiter=maxiter,
                                  start=start, method=method)
@@ -997,10 +998,14 @@ def _damped(prob, shift, estimate, k_factor):
 
 def _finish(prob: _Problem, lams, vecs, *, supercritical: bool, damped: bool
             ) -> GyroscopicModes:
-    vecs = _normalize(np.asarray(vecs, dtype=complex))
-    if damped:
-        lams = quadratic_rayleigh(prob.M, prob.D, prob.K, lams, vecs)
-    res = relative_residuals(prob.M, prob.D, prob.K, lams, vecs)
+    with np.errstate(all="ignore"):  # overflow is reported below, not as a warning
+        vecs = _normalize(np.asarray(vecs, dtype=complex))
+        if damped:
+            lams = quadratic_rayleigh(prob.M, prob.D, prob.K, lams, vecs)
+        res = relative_residuals(prob.M, prob.D, prob.K, lams, vecs)
+    if not (np.all(np.isfinite(lams)) and np.all(np.isfinite(res))):
+        raise ConvergenceError("eigenvalues out of floating-point range: the matrices' "
+                               "scales (stiffness, damping, mass) are too far apart")
     prob.info["max_residual"] = float(res.max())
     if res.max() > RESIDUAL_LIMIT:
         raise ConvergenceError(

@@ -240,3 +240,11 @@ def test_classify_stability_refuses_empty_or_nonfinite():
         classify_stability([])
     with pytest.raises(ParameterError, match="finite"):
         classify_stability([np.nan + 1j])
+
+
+def test_out_of_range_damping_is_a_clean_convergence_error():
+    from gyroshell import ConvergenceError
+
+    model = TapeModel(TapeParameters(length_ratio=1.0, spacing=WIDTH / 8))
+    with pytest.raises(ConvergenceError, match="out of floating-point range"):
+        modes(model, 0.0, 2, damping=1e300)
