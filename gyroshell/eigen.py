@@ -39,7 +39,8 @@ from .qep import (
 )
 from .qep import relative_residuals as _matrix_residuals
 
-__all__ = ["DEFAULT_TOL", "RESIDUAL_LIMIT", "SHIFT_MARGIN", "Modes", "damping_matrix",
+__all__ = ["DEFAULT_TOL", "RESIDUAL_LIMIT", "SHIFT_MARGIN", "Modes", "check_speed",
+           "damping_matrix",
            "frequencies", "max_count", "modes", "relative_residuals", "stiffness_floor",
            "strip_frequency_estimate"]
 
@@ -171,6 +172,14 @@ def _check_coefficient(name: str, value, unit: str) -> float:
     return value
 
 
+def check_speed(model, velocity: float) -> float:
+    """A valid tape speed for ``model``, m/s: finite, >= 0, and ρV² representable."""
+    velocity = check_velocity(velocity)
+    if not math.isfinite(model.params.density * velocity * velocity):
+        raise ParameterError(f"velocity {velocity:g} m/s is out of range: rho V^2 overflows")
+    return velocity
+
+
 #: Per model, τ >= 0 with A − τB proved positive definite by inertia (see stiffness_floor).
 _FLOORS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
@@ -264,7 +273,7 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     ConvergenceError
         The eigen-solver did not converge, or the residuals or the mode count failed.
     """
-    velocity = check_velocity(velocity)
+    velocity = check_speed(model, velocity)
     check_count(count, model.size)  # before any assembly: a refusal costs nothing
     C = damping_matrix(model, damping)
     if estimate is None:

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from .eigen import Modes, modes, stiffness_floor
+from .eigen import Modes, check_speed, modes, stiffness_floor
 from .errors import ParameterError
 from .model import TapeModel
 from .parameters import check_velocity
@@ -115,8 +115,9 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
     if not 0.0 <= min_correlation <= 1.0:
         raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
+    velocities = [check_speed(model, v) for v in velocities]   # all refused before any work
     p = model.params
-    above_string = sum(p.density * v**2 > p.tension for v in velocities)
+    above_string = sum(p.density * v * v > p.tension for v in velocities)
     if continuation and above_string >= FLOOR_WORTH_IT:
         stiffness_floor(model, near_divergence=True)
     tracker = _BranchTracker(model.mass_diagonal, min_correlation)

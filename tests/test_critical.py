@@ -161,6 +161,9 @@ def test_cli_sweep_files(tmp_path, capsys):
     (["sweep", *SMALL, "--velocities=-5,1"], "velocity must be >= 0"),
     (["sweep", *SMALL, "--out", "/nonexistent/dir/x.csv"], "does not exist"),
     (["modes", *SMALL, "--velocity", "-3"], "velocity must be >= 0"),
+    (["modes", *SMALL, "--velocity", "1e200"], "rho V^2 overflows"),
+    (["sweep", *SMALL, "--velocities", "0,1e200", "--count", "2"], "rho V^2 overflows"),
+    (["modes", *SMALL, "--count", "51"], "count must be in [1, 50]"),
 ])
 def test_cli_user_errors(argv, match, capsys):
     assert main(argv) == 2

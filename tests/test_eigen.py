@@ -192,6 +192,7 @@ def test_supercritical_reports_divergence():
     ({"count": None}, "count must be an integer"),
     ({"estimate": -1.0}, "estimate must be a frequency"),
     ({"start": "x"}, "start must be the Modes"),
+    ({"velocity": 1e200}, "rho V\\^2 overflows"),
 ])
 def test_refusals(kwargs, match):
     args = {"velocity": 0.0, "count": 2, **kwargs}
