@@ -40,7 +40,7 @@ from .qep import (
 from .qep import relative_residuals as _matrix_residuals
 
 __all__ = ["DEFAULT_TOL", "RESIDUAL_LIMIT", "SHIFT_MARGIN", "Modes", "check_speed",
-           "damping_matrix",
+           "damping_operator",
            "frequencies", "max_count", "modes", "relative_residuals", "stiffness_floor",
            "strip_frequency_estimate"]
 
@@ -128,48 +128,32 @@ def relative_residuals(model: TapeModel, velocity: float, eigenvalues: np.ndarra
                        vectors: np.ndarray, damping=None) -> np.ndarray:
     """‖(λ²M + λ(G + C) + K)φ‖₂ / ((|λ|²‖M‖₁ + |λ|‖G + C‖₁ + ‖K‖₁) ‖φ‖₂) per pair."""
     D = model.G(velocity)
-    C = damping_matrix(model, damping)
+    C = damping_operator(model, velocity, damping)
     if C is not None:
         D = D + C
     return _matrix_residuals(_mass(model), D, model.K(velocity), np.asarray(eigenvalues),
                              np.asarray(vectors))
 
 
-def damping_matrix(model, damping) -> sp.spmatrix | None:
-    """Viscous damping matrix C, kg/s, from a damping specification (None: undamped).
+def damping_operator(model, velocity: float, damping) -> sp.spmatrix | None:
+    """C, kg/s, for ``damping`` at speed V (None: undamped), via :mod:`gyroshell.damping`.
 
-    ``damping`` is a coefficient c >= 0 in N·s/m³ (C = c W, W the control-cell areas: a
-    viscous pressure −c ∂w/∂t), or a pair (a, b) for Rayleigh damping C = a M + b K₀ with
-    a >= 0 in 1/s, b >= 0 in s and K₀ = K(0) the stiffness at rest (bending, foundation and
-    tension; the transport term is not dissipative), or any object with a
-    ``matrix(model)`` method returning C.
+    ``damping`` is a :class:`gyroshell.damping.Damping`, a viscous coefficient c >= 0 in
+    N·s/m³ (C = c W, a damping pressure c ∂w/∂t), or a pair (a, b) for Rayleigh damping
+    C = a M + b K(V) with a >= 0 in 1/s and b >= 0 in s.
     """
-    if damping is None:
-        return None
-    if hasattr(damping, "matrix"):
-        return damping.matrix(model)
+    from .damping import Damping, damping_matrix, rayleigh
+
     if isinstance(damping, (tuple, list)):
         if len(damping) != 2:
             raise ParameterError("Rayleigh damping must be a pair (a in 1/s, b in s), "
                                  f"got {damping!r}")
-        a, b = (_check_coefficient(name, v, unit) for name, v, unit in
-                (("Rayleigh a", damping[0], "1/s"), ("Rayleigh b", damping[1], "s")))
-        if a == 0 and b == 0:
-            return None
-        return (a * _mass(model) + b * model.K(0.0)).tocsr()
-    c = _check_coefficient("damping", damping, "N·s/m³")
-    if c == 0:
-        return None
-    return sp.diags(c * model.mass_diagonal / model.params.density).tocsr()
-
-
-def _check_coefficient(name: str, value, unit: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ParameterError(f"{name} must be a number >= 0 {unit}, got {value!r}")
-    value = float(value)
-    if not (math.isfinite(value) and value >= 0):
-        raise ParameterError(f"{name} must be finite and >= 0 {unit}, got {value!r}")
-    return value
+        damping = rayleigh(*damping)
+    elif damping is not None and not isinstance(damping, Damping) and (
+            isinstance(damping, bool) or not isinstance(damping, (int, float, np.number))):
+        raise ParameterError("damping must be a real number >= 0 N*s/m^3, a pair (a, b) or "
+                             f"a Damping, got {damping!r}")
+    return damping_matrix(model, velocity, damping)
 
 
 def check_speed(model, velocity: float) -> float:
@@ -242,10 +226,11 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         Shift, 1/s. ``"auto"``: i·ω_s just below the estimated lowest frequency, moved down
         until the inertia of Q(iω_s) certifies few modes below it. ``0``: one factorization
         of K, the ±iω pairs found together.
-    damping : float, (a, b) or object, optional
-        Viscous damping c, N·s/m³ (C = c W), or Rayleigh (a 1/s, b s): C = a M + b K(0).
-        See :func:`damping_matrix`. Damped eigenvalues are −δ + iω_d (``decay_rate`` δ,
-        ``damping_ratio``); the count certificate does not apply to them.
+    damping : Damping, float or (a, b), optional
+        Viscous damping c, N·s/m³ (C = c W), Rayleigh (a 1/s, b s): C = a M + b K(V), or a
+        :class:`gyroshell.damping.Damping` (see :func:`damping_operator`). Damped
+        eigenvalues are −δ + iω_d (``decay_rate`` δ, ``damping_ratio``); the count
+        certificate does not apply to them.
     tol : float
         Relative tolerance of the eigen-iteration.
     ncv, maxiter : int, optional
@@ -275,7 +260,7 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     """
     velocity = check_speed(model, velocity)
     check_count(count, model.size)  # before any assembly: a refusal costs nothing
-    C = damping_matrix(model, damping)
+    C = damping_operator(model, velocity, damping)
     if estimate is None:
         estimate = strip_frequency_estimate(model.params, model.grid, velocity)
     elif isinstance(estimate, bool) or not isinstance(estimate, (int, float)) or \

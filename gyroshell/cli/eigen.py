@@ -9,6 +9,7 @@ import time
 import numpy as np
 
 from .common import parameters_from_args, positive_int, print_json
+from .loading import add_damping_options, damping_from_args
 from .saving import add_save_option, check_save_path, save_result
 
 
@@ -19,9 +20,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                     "(lambda^2 M + lambda G + K) phi = 0 at the tape speed --velocity (m/s).")
     p.add_argument("--count", type=positive_int, default=6,
                    help="number of frequencies, >= 1 (default 6)")
-    p.add_argument("--damping", type=float, default=0.0, metavar="C",
-                   help="viscous damping coefficient c, N*s/m^3 (>= 0, default 0): damped "
-                        "frequencies, decay rates (1/s) and damping ratios")
+    add_damping_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     add_save_option(p)
     p.set_defaults(func=run_modes)
@@ -61,7 +60,8 @@ def run_modes(args: argparse.Namespace) -> int:
     check_save_path(args.save)
     model = TapeModel(params)
     t0 = time.perf_counter()
-    res = modes(model, velocity, args.count, damping=args.damping or None)
+    damping = damping_from_args(args)
+    res = modes(model, velocity, args.count, damping=None if damping.is_zero else damping)
     elapsed = time.perf_counter() - t0
     save_result(args.save, res, params)
     g = model.grid
@@ -73,7 +73,8 @@ def run_modes(args: argparse.Namespace) -> int:
         "growth_rate": res.growth_rate.tolist(),
         "decay_rate": res.decay_rate.tolist(),
         "damping_ratio": res.damping_ratio.tolist(),
-        "damping": args.damping,
+        "damping": damping.viscous,
+        "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
         "supercritical": res.supercritical,
         "stability": res.stability,
         "residual": res.residuals.tolist(),
@@ -85,8 +86,10 @@ def run_modes(args: argparse.Namespace) -> int:
         print_json(out)
         return 0
     print(f"grid: {g.nx} x {g.ny} intervals, {g.size} unknowns, {g.edges} edges; "
-          f"V = {velocity:g} m/s" + (f", damping {args.damping:g} N*s/m^3" if args.damping
-                                     else ""))
+          f"V = {velocity:g} m/s" + ("" if damping.is_zero else
+                                     f", damping c = {damping.viscous:g} N*s/m^3, Rayleigh "
+                                     f"a = {damping.mass_coefficient:g} 1/s, "
+                                     f"b = {damping.stiffness_coefficient:g} s"))
     diagnosis = stability_sentence(res)
     if diagnosis:
         print(diagnosis)
