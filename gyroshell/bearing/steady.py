@@ -1,0 +1,184 @@
+"""Steady flying state: monolithic Newton over (u, p) with a primal–dual active set for
+contact, and continuation in V when Newton cannot reach the state directly.
+
+Contact keeps the spacing at or above the roughness σ. With the contact forces λ >= 0 the
+conditions are complementary: h − σ >= 0, λ >= 0, λ (h − σ) = 0, written as the
+semismooth equation λ − max(0, λ − c (h − σ)) = 0 (c = diag K, in N/m). Its Newton
+method is the primal–dual active-set method: nodes with λ − c (h − σ) > 0 are in
+contact, their tape rows become h = σ and their λ follows from the tape equation; the
+others carry λ = 0. The active set changes only between iterations and the method stops
+when the set is settled and the step is negligible, so contact never stalls Newton the way
+a penalty with a step limiter does.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ..errors import ConvergenceError
+from .model import BearingModel
+
+#: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
+STEP_TOLERANCE = 1e-9
+#: Most Newton iterations per solve.
+MAX_ITERATIONS = 60
+#: A step may shrink p to no less than this fraction of its value (compressible film).
+PRESSURE_KEEP = 0.2
+#: ... and a free node's spacing to no less than this fraction of its value ...
+SPACING_KEEP = 0.2
+#: ... nor grow by more than this multiple of it (plus σ).
+SPACING_GROWTH = 4.0
+#: Smallest line-search step before a step is taken anyway.
+MIN_STEP = 1.0 / 256.0
+
+
+@dataclass
+class NewtonInfo:
+    """What a Newton solve did: iterations, step and residual norms per iteration, the
+    number of nodes in contact per iteration, the wall time (s) and the continuation path
+    (speeds in m/s, empty if none was needed)."""
+
+    iterations: int = 0
+    step_norms: list = field(default_factory=list)
+    residual_norms: list = field(default_factory=list)
+    contact_nodes: list = field(default_factory=list)
+    seconds: float = 0.0
+    continuation: list = field(default_factory=list)
+
+
+def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float) -> float:
+    """Largest α <= 1 keeping every free node's spacing within [h/5, 5 h + σ] (the film
+    coefficients vary like h³; nodes that would dip below σ still may, and enter the
+    contact set at the next iteration)."""
+    alpha = 1.0
+    free = ~active
+    down = free & (du < -(1 - SPACING_KEEP) * h)
+    if down.any():
+        alpha = min(alpha, float(np.min(-(1 - SPACING_KEEP) * h[down] / du[down])))
+    up = free & (du > SPACING_GROWTH * h + sigma)
+    if up.any():
+        alpha = min(alpha, float(np.min((SPACING_GROWTH * h[up] + sigma) / du[up])))
+    return alpha
+
+
+def _contact_scale(model: BearingModel) -> np.ndarray:
+    return model.stiffness_diagonal
+
+
+class _Residual:
+    """The semismooth residual [min(r_u, c (h − σ)), r_p] of one solve, scaled for the
+    merit function: tape rows by the wrap force W (T − ρV²)/R, film rows by the Couette
+    flux 6μV h p_a (compressible) or 6μV h through one face."""
+
+    def __init__(self, model: BearingModel, tension, transient) -> None:
+        self.model, self.tension, self.transient = model, tension, transient
+        self.K = model.K(tension)
+        self.c = _contact_scale(model)
+        self.sigma = model.air.roughness
+        self.film_kw = ({} if transient is None else
+                        {"phi_old": transient.phi_old, "dt": transient.dt})
+        t_wrap = max(model.effective_tension(tension) / model.params.radius, 1.0)
+        self.t_scale = t_wrap
+        self.h_scale = max(model.h_guess, self.sigma)
+        flux = 6.0 * model.air.viscosity * model.velocity * self.h_scale \
+            * model.film.x_face_length
+        if model.air.compressible:
+            flux *= model.air.ambient_pressure
+        self.row_scale = np.concatenate([1.0 / (t_wrap * model.W),
+                                         np.full(model.n_p, 1.0 / flux)])
+
+    def tape(self, u, p):
+        r_u = self.model.tape_residual(u, p, self.K, self.tension)
+        if self.transient is not None:
+            r_u = r_u + self.transient.tape_terms(u)[0]
+        return r_u
+
+    def __call__(self, z, *, jacobian: bool):
+        m = self.model
+        u, p = z[:m.n_u], z[m.n_u:]
+        r_u = self.tape(u, p)
+        r_p, J_pp, J_pu = m.film_residual(u, p, jacobian=jacobian, **self.film_kw)
+        gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.sigma)
+        active = r_u > gap
+        res = np.concatenate([np.where(active, gap, r_u), r_p])
+        if not jacobian:
+            return res, active, None
+        J_uu = self.K
+        if self.transient is not None:
+            J_uu = (self.K + self.transient.tape_terms(u)[1]).tocsr()
+        keep = sp.diags((~active).astype(float))
+        rows_u = keep @ sp.hstack([J_uu, -sp.diags(m.W) @ m.S]) \
+            + sp.hstack([sp.diags(active * self.c), sp.csr_matrix((m.n_u, m.n_p))])
+        J = sp.vstack([rows_u, sp.hstack([J_pu, J_pp])]).tocsc()
+        return res, active, J
+
+    def merit(self, res) -> float:
+        return float(np.linalg.norm(res * self.row_scale))
+
+
+def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
+           transient=None, tol: float = STEP_TOLERANCE,
+           max_iterations: int = MAX_ITERATIONS, info: NewtonInfo | None = None):
+    """Solve the coupled residual from z0 by semismooth Newton with a backtracking line
+    search on the scaled residual norm.
+
+    ``transient`` (optional) supplies the time-discrete terms of one implicit step: an
+    object with ``tape_terms(u) -> (r_extra, J_extra)`` and the film's ``phi_old``, ``dt``.
+
+    Returns (z, λ, active, info): the state, the contact forces (N; zero off contact), the
+    contact set and the iteration record. Raises ConvergenceError if Newton fails.
+    """
+    info = NewtonInfo() if info is None else info
+    n_u = model.n_u
+    F = _Residual(model, tension, transient)
+    z = np.array(z0, dtype=float)
+    res, active, J = F(z, jacobian=True)
+    merit = F.merit(res)
+    for _ in range(max_iterations):
+        try:
+            dz = -spla.splu(J, permc_spec="COLAMD").solve(res)
+        except RuntimeError as exc:  # exactly singular
+            raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
+        if not np.all(np.isfinite(dz)):
+            raise ConvergenceError("Newton: non-finite step")
+        h = z[:n_u] + model.dry_field[1:-1, :].ravel()
+        alpha = _step_limit(h, dz[:n_u], active, F.sigma)
+        if model.air.compressible:
+            p, dp = z[n_u:], dz[n_u:]
+            shrink = dp < -(1 - PRESSURE_KEEP) * p
+            if shrink.any():
+                alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink]
+                                                / dp[shrink])))
+        step = max(np.max(np.abs(dz[:n_u])) / F.h_scale,
+                   np.max(np.abs(dz[n_u:])) / F.t_scale)
+        if step < tol:       # at round-off: the merit can no longer decrease reliably
+            alpha = 1.0
+        while True:
+            trial = z + alpha * dz
+            res_t, _, _ = F(trial, jacobian=False)
+            merit_t = F.merit(res_t)
+            if (step < tol or merit_t <= (1.0 - 1e-4 * alpha) * merit
+                    or alpha < MIN_STEP):
+                break
+            alpha *= 0.5
+        z = trial
+        res, active_new, J = F(z, jacobian=True)
+        merit = F.merit(res)
+        info.iterations += 1
+        info.step_norms.append(float(alpha * step))
+        info.residual_norms.append(merit)
+        info.contact_nodes.append(int(active_new.sum()))
+        settled = np.array_equal(active_new, active)
+        active = active_new
+        if alpha == 1.0 and step < tol and settled:
+            lam = np.where(active, F.tape(z[:n_u], z[n_u:]), 0.0)
+            return z, lam, active, info
+    raise ConvergenceError(
+        f"Newton did not converge in {max_iterations} iterations "
+        f"(last relative step {info.step_norms[-1]:.3g}, scaled residual {merit:.3g})")
