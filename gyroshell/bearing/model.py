@@ -118,15 +118,38 @@ class BearingModel:
         self.f_kappa = self.tape.curvature_load(self.kappa)
         self.W = self.tape.W
         self.kappa_nodes = np.repeat(self.kappa, self.nc)
-        # Selector from pressure unknowns to tape unknowns (node id − nc).
-        tape_of_p = self.film._pattern["node_of_p"] - self.nc
-        self.S = sp.csr_matrix((np.ones(self.n_p), (tape_of_p, np.arange(self.n_p))),
-                               shape=(self.n_u, self.n_p))
+        self.pressure_load = self._pressure_load_matrix()
 
     def __repr__(self) -> str:
         kind = "infinitely wide" if self.infinitely_wide else f"width {self.params.width:g} m"
         return (f"BearingModel(V={self.velocity:g} m/s, wrap={math.degrees(self.wrap_angle):g}"
                 f" deg, {kind}, L_x={self.length:.4g} m, nx={self.nx}, ny={self.ny})")
+
+    def _pressure_load_matrix(self) -> sp.csr_matrix:
+        """L with L (p − p_a) the nodal air forces, N: the exact integral of the bilinear
+        interpolant of p − p_a over each tape node's control area.
+
+        At a free edge the control strip [0, h_y/2] then feels the pressure rising from
+        p_a at the edge, which plain nodal sampling (zero there) would miss.
+        """
+        def weights(n_nodes: int, h: float, rows: slice) -> sp.csr_matrix:
+            e = np.ones(n_nodes)
+            m = sp.diags([e[1:] / 8, 6 * e / 8, e[1:] / 8], [-1, 0, 1]).tolil()
+            m[0, :2] = [3 / 8, 1 / 8]
+            m[-1, -2:] = [1 / 8, 3 / 8]
+            return (h * m.tocsr())[rows]
+
+        ex = weights(self.nx + 1, self.hx, slice(1, self.nx))
+        ey = (sp.identity(1, format="csr") if self.infinitely_wide
+              else weights(self.ny + 1, self.params.width / self.ny, slice(None)))
+        full = sp.kron(ex, ey, format="csc")
+        return full[:, self.film._pattern["node_of_p"]].tocsr()
+
+    def at_velocity(self, velocity: float) -> BearingModel:
+        """The same tape, head and grid at another speed V, m/s (for continuation)."""
+        return BearingModel(self.params, self.air, velocity=velocity,
+                            wrap_angle=self.wrap_angle, infinitely_wide=self.infinitely_wide,
+                            span=self.span, nx=self.nx, ny=self.ny)
 
     # ----- state <-> fields ----------------------------------------------------------------
     @property
@@ -168,7 +191,7 @@ class BearingModel:
                       tension: float | None = None) -> np.ndarray:
         """K u − W (p − p_a) + (T − ρV²) W κ − f_κ (no contact force), N."""
         pa = self.air.ambient_pressure
-        return (K @ u - self.W * (self.S @ (p - pa))
+        return (K @ u - self.pressure_load @ (p - pa)
                 + self.effective_tension(tension) * self.W * self.kappa_nodes - self.f_kappa)
 
     def film_residual(self, u: np.ndarray, p: np.ndarray, *, phi_old=None, dt=None,
@@ -202,6 +225,7 @@ class BearingModel:
     def initial_state(self) -> np.ndarray:
         """A start for Newton: the flexible-foil spacing on the wrap, the wrap pressure."""
         u = np.full(self.n_u, self.h_guess)
-        p = self.air.ambient_pressure + self.effective_tension() * (
-            self.S.T @ self.kappa_nodes)
+        kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)
+        p = self.air.ambient_pressure + self.effective_tension() * kappa[
+            self.film.interior[1:-1, :]]
         return np.concatenate([u, p])

@@ -113,7 +113,7 @@ class _Residual:
         if self.transient is not None:
             J_uu = (self.K + self.transient.tape_terms(u)[1]).tocsr()
         keep = sp.diags((~active).astype(float))
-        rows_u = keep @ sp.hstack([J_uu, -sp.diags(m.W) @ m.S]) \
+        rows_u = keep @ sp.hstack([J_uu, -m.pressure_load]) \
             + sp.hstack([sp.diags(active * self.c), sp.csr_matrix((m.n_u, m.n_p))])
         J = sp.vstack([rows_u, sp.hstack([J_pu, J_pp])]).tocsc()
         return res, active, J
@@ -182,3 +182,191 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     raise ConvergenceError(
         f"Newton did not converge in {max_iterations} iterations "
         f"(last relative step {info.step_norms[-1]:.3g}, scaled residual {merit:.3g})")
+
+
+#: Continuation in V starts this many times faster (a thicker, easier film) ...
+CONTINUATION_START = 4.0
+#: ... and comes down by this factor per stage.
+CONTINUATION_FACTOR = 0.7
+
+
+@dataclass(frozen=True)
+class BearingSolution:
+    """A steady flying state.
+
+    Attributes
+    ----------
+    model : BearingModel
+    u : numpy.ndarray
+        Departure from the dry wrapped configuration at the tape unknowns, m.
+    p : numpy.ndarray
+        Film pressure at the film-interior nodes, Pa.
+    contact : numpy.ndarray
+        Contact force at the tape unknowns, N (N/m per unit width if infinitely wide).
+    info : NewtonInfo
+    """
+
+    model: BearingModel
+    u: np.ndarray
+    p: np.ndarray
+    contact: np.ndarray
+    info: NewtonInfo
+
+    @property
+    def spacing(self) -> np.ndarray:
+        """h on every node, shape (nx + 1, nc), m."""
+        return self.model.spacing_field(self.u)
+
+    @property
+    def pressure(self) -> np.ndarray:
+        """p on every node, shape (nx + 1, nc), Pa."""
+        return self.model.pressure_field(self.p)
+
+    @property
+    def x(self) -> np.ndarray:
+        """Node abscissae measured from the middle of the wrap, m (tape moves along +x)."""
+        return self.model.x - 0.5 * self.model.length
+
+    @property
+    def y(self) -> np.ndarray | None:
+        """Node ordinates across the width, m (None if infinitely wide)."""
+        return self.model.y
+
+    def _at_centre_x(self, field: np.ndarray) -> np.ndarray:
+        return np.array([np.interp(0.0, self.x, field[:, j]) for j in range(field.shape[1])])
+
+    def _at_centre_y(self, row: np.ndarray) -> float:
+        if self.model.infinitely_wide:
+            return float(row[0])
+        return float(np.interp(0.5 * self.model.params.width, self.model.y, row))
+
+    @property
+    def central_spacing(self) -> float:
+        """h in the middle of the wrap and of the width, m."""
+        return self._at_centre_y(self._at_centre_x(self.spacing))
+
+    @property
+    def central_pressure(self) -> float:
+        """p − p_a in the middle of the wrap and of the width, Pa."""
+        return self._at_centre_y(self._at_centre_x(self.pressure)) \
+            - self.model.air.ambient_pressure
+
+    @property
+    def cross_width_spacing(self) -> np.ndarray:
+        """h across the width in the middle of the wrap, m (one value if infinitely wide)."""
+        return self._at_centre_x(self.spacing)
+
+    @property
+    def minimum_spacing(self) -> float:
+        """Smallest nodal spacing, m."""
+        return float(self.spacing.min())
+
+    @property
+    def minimum_location(self) -> tuple[float, float | None]:
+        """(x, y) of the smallest spacing, m: x from the middle of the wrap (> 0 towards the
+        exit), y across the width (None if infinitely wide)."""
+        i, j = np.unravel_index(np.argmin(self.spacing), self.spacing.shape)
+        return float(self.x[i]), (None if self.model.infinitely_wide
+                                  else float(self.model.y[j]))
+
+    @property
+    def air_force(self) -> float:
+        """∫ (p − p_a) dA, N (N/m per unit width if infinitely wide)."""
+        return float(np.sum(self.model.pressure_load @ (self.p - self.model.air.ambient_pressure)))
+
+    @property
+    def contact_force(self) -> float:
+        """Total contact force of the head on the tape, N (N/m if infinitely wide)."""
+        return float(self.contact.sum())
+
+    @property
+    def contact_nodes(self) -> int:
+        """Number of tape nodes in contact."""
+        return int(np.count_nonzero(self.contact))
+
+    def summary(self) -> dict:
+        """The scalar outputs (SI), as for the CLI's JSON."""
+        m = self.model
+        x_min, y_min = self.minimum_location
+        return {
+            "central_spacing": self.central_spacing,
+            "minimum_spacing": self.minimum_spacing,
+            "minimum_x": x_min,
+            "minimum_y": y_min,
+            "central_pressure": self.central_pressure,
+            "wrap_pressure": m.effective_tension() / m.params.radius,
+            "air_force": self.air_force,
+            "contact_force": self.contact_force,
+            "contact_nodes": self.contact_nodes,
+            "newton_iterations": self.info.iterations,
+            "newton_step_norms": list(self.info.step_norms),
+            "continuation_speeds": list(self.info.continuation),
+            "seconds": self.info.seconds,
+            "velocity": m.velocity,
+            "wrap_angle": m.wrap_angle,
+            "infinitely_wide": m.infinitely_wide,
+            "width": None if m.infinitely_wide else m.params.width,
+            "tension": m.params.tension,
+            "radius": m.params.radius,
+            "viscosity": m.air.viscosity,
+            "ambient_pressure": m.air.ambient_pressure,
+            "mean_free_path": m.air.mean_free_path,
+            "compressible": m.air.compressible,
+            "roughness": m.air.roughness,
+            "length": m.length,
+            "nx": m.nx,
+            "ny": m.ny,
+            "unknowns": m.size,
+        }
+
+
+def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
+                 tension: float | None = None, progress=None) -> BearingSolution:
+    """The steady flying state of ``model``.
+
+    Newton starts from ``z0`` (default :meth:`BearingModel.initial_state`); if it fails,
+    continuation in V brings the state down from a faster, thicker film.
+
+    Parameters
+    ----------
+    model : BearingModel
+    z0 : numpy.ndarray, optional
+        Start [u (m), p (Pa)], e.g. a neighbouring solution.
+    tension : float, optional
+        Tension T, N/m, in place of the model's (continuation in T).
+    progress : callable, optional
+        Called with a one-line message per stage.
+
+    Raises
+    ------
+    ConvergenceError
+        If neither Newton nor the continuation reaches the state.
+    """
+    start = time.perf_counter()
+    info = NewtonInfo()
+    z0 = model.initial_state() if z0 is None else np.asarray(z0, dtype=float)
+    try:
+        z, lam, _, info = newton(model, z0, tension=tension, info=info)
+    except ConvergenceError:
+        z, lam, info = _continuation(model, tension, progress)
+    info.seconds = time.perf_counter() - start
+    return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
+
+
+def _continuation(model: BearingModel, tension, progress):
+    target = model.velocity
+    speeds = []
+    v = target * CONTINUATION_START
+    while v > target:
+        speeds.append(v)
+        v *= CONTINUATION_FACTOR
+    speeds.append(target)
+    info = NewtonInfo(continuation=speeds)
+    z = None
+    for v in speeds:
+        stage = model.at_velocity(v)
+        if progress is not None:
+            progress(f"continuation: V = {v:.4g} m/s")
+        z0 = stage.initial_state() if z is None else z
+        z, lam, _, info = newton(stage, z0, tension=tension, info=info)
+    return z, lam, info
