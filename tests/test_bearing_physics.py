@@ -48,3 +48,15 @@ def test_faster_tape_flies_higher_and_heavier_tension_lower():
     tense = solve_steady(flexible_model(800, params=TAPE.replace(tension=180.0),
                                         air=AirParameters())).central_spacing
     assert tense < base
+
+
+def test_tape_at_rest_lies_on_the_head():
+    """V → 0: no film; the wrap is in contact at h = σ and the head carries the tension's
+    turn (T − ρV²) θ (per unit width), less what the pinned spans take."""
+    model = flexible_model(400, params=TAPE, air=AirParameters(), velocity=1e-6)
+    sol = solve_steady(model)
+    wrap = np.abs(sol.x) < 0.45 * model.params.radius * model.wrap_angle
+    assert np.allclose(sol.spacing[wrap, 0], model.air.roughness)
+    assert sol.contact_force == pytest.approx(model.effective_tension() * model.wrap_angle,
+                                              rel=0.02)
+    assert abs(sol.air_force) < 1e-6 * sol.contact_force

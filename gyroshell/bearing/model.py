@@ -99,8 +99,10 @@ class BearingModel:
             self.nc = 1
         else:
             ny = 40 if ny is None else ny
-            if isinstance(ny, bool) or not isinstance(ny, (int, np.integer)) or ny < 8:
-                raise ParameterError(f"ny must be an integer >= 8, got {ny!r}")
+            if (isinstance(ny, bool) or not isinstance(ny, (int, np.integer)) or ny < 8
+                    or ny % 2):
+                raise ParameterError(f"ny must be an even integer >= 8 (a node on the centre "
+                                     f"line), got {ny!r}")
             self.ny = int(ny)
             self.grid = Grid(self.length, params.width, self.nx, self.ny, "free")
             self.tape = PlateOperators(params, self.grid)
@@ -144,6 +146,30 @@ class BearingModel:
               else weights(self.ny + 1, self.params.width / self.ny, slice(None)))
         full = sp.kron(ex, ey, format="csc")
         return full[:, self.film._pattern["node_of_p"]].tocsr()
+
+    @cached_property
+    def mirror(self) -> tuple[sp.csr_matrix, np.ndarray] | None:
+        """(P, rows) for states symmetric about the tape's centre line y = L_y/2: P maps
+        the unknowns of the half 0 <= y <= L_y/2 to the whole, ``rows`` picks that half's
+        equations. None for the infinitely wide tape (or an odd ny)."""
+        if self.infinitely_wide or self.ny % 2:
+            return None
+        half = self.ny // 2
+        nodes = np.arange((self.nx + 1) * self.nc).reshape(self.nx + 1, self.nc)
+        jj = np.broadcast_to(np.arange(self.nc), nodes.shape)
+        folded = nodes - jj + np.minimum(jj, self.ny - jj)       # node of the mirror image
+        blocks, rows, offset = [], [], 0
+        for node_of, n in ((np.arange(self.n_u) + self.nc, self.n_u),
+                           (self.film._pattern["node_of_p"], self.n_p)):
+            keep = jj.ravel()[node_of] <= half
+            index = np.full(nodes.size, -1)
+            index[node_of[keep]] = np.arange(int(keep.sum()))
+            cols = index[folded.ravel()[node_of]]
+            blocks.append(sp.csr_matrix((np.ones(n), (np.arange(n), cols)),
+                                        shape=(n, int(keep.sum()))))
+            rows.append(offset + np.flatnonzero(keep))
+            offset += n
+        return sp.block_diag(blocks, format="csr"), np.concatenate(rows)
 
     def at_velocity(self, velocity: float) -> BearingModel:
         """The same tape, head and grid at another speed V, m/s (for continuation)."""

@@ -118,16 +118,32 @@ class _Residual:
         J = sp.vstack([rows_u, sp.hstack([J_pu, J_pp])]).tocsc()
         return res, active, J
 
+    def solve(self, J, res) -> np.ndarray:
+        """The Newton step −J⁻¹ res; a 2-D tape, symmetric about its centre line, is solved
+        on half the width (the step stays symmetric, so it is P δ_half, P the mirror)."""
+        fold = self.model.mirror
+        if fold is not None:
+            P, rows = fold
+            J = (J[rows, :] @ P).tocsc()
+            res = res[rows]
+        try:
+            dz = -spla.splu(J, permc_spec="COLAMD").solve(res)
+        except RuntimeError as exc:  # exactly singular
+            raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
+        return dz if fold is None else fold[0] @ dz
+
     def merit(self, res) -> float:
         return float(np.linalg.norm(res * self.row_scale))
 
 
 def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
            transient=None, tol: float = STEP_TOLERANCE,
-           max_iterations: int = MAX_ITERATIONS, info: NewtonInfo | None = None):
+           max_iterations: int = MAX_ITERATIONS, info: NewtonInfo | None = None,
+           log=None):
     """Solve the coupled residual from z0 by semismooth Newton with a backtracking line
     search on the scaled residual norm.
 
+    ``log`` (optional) is called with a one-line message per iteration.
     ``transient`` (optional) supplies the time-discrete terms of one implicit step: an
     object with ``tape_terms(u) -> (r_extra, J_extra)`` and the film's ``phi_old``, ``dt``.
 
@@ -141,10 +157,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     res, active, J = F(z, jacobian=True)
     merit = F.merit(res)
     for _ in range(max_iterations):
-        try:
-            dz = -spla.splu(J, permc_spec="COLAMD").solve(res)
-        except RuntimeError as exc:  # exactly singular
-            raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
+        dz = F.solve(J, res)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
         h = z[:n_u] + model.dry_field[1:-1, :].ravel()
@@ -174,6 +187,9 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         info.step_norms.append(float(alpha * step))
         info.residual_norms.append(merit)
         info.contact_nodes.append(int(active_new.sum()))
+        if log is not None:
+            log(f"Newton {info.iterations}: step {alpha * step:.2e} (alpha {alpha:.3g}), "
+                f"residual {merit:.2e}, {int(active_new.sum())} nodes in contact")
         settled = np.array_equal(active_new, active)
         active = active_new
         if alpha == 1.0 and step < tol and settled:
@@ -321,7 +337,8 @@ class BearingSolution:
 
 
 def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
-                 tension: float | None = None, progress=None) -> BearingSolution:
+                 tension: float | None = None, progress=None,
+                 iteration_log=None) -> BearingSolution:
     """The steady flying state of ``model``.
 
     Newton starts from ``z0`` (default :meth:`BearingModel.initial_state`); if it fails,
@@ -335,7 +352,9 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     tension : float, optional
         Tension T, N/m, in place of the model's (continuation in T).
     progress : callable, optional
-        Called with a one-line message per stage.
+        Called with a one-line message per continuation stage.
+    iteration_log : callable, optional
+        Called with a one-line message per Newton iteration.
 
     Raises
     ------
@@ -346,14 +365,16 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     info = NewtonInfo()
     z0 = model.initial_state() if z0 is None else np.asarray(z0, dtype=float)
     try:
-        z, lam, _, info = newton(model, z0, tension=tension, info=info)
+        z, lam, _, info = newton(model, z0, tension=tension, info=info, log=iteration_log)
     except ConvergenceError:
-        z, lam, info = _continuation(model, tension, progress)
+        if progress is not None:
+            progress("Newton did not reach the state directly: continuation in V")
+        z, lam, info = _continuation(model, tension, progress, iteration_log)
     info.seconds = time.perf_counter() - start
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
 
 
-def _continuation(model: BearingModel, tension, progress):
+def _continuation(model: BearingModel, tension, progress, iteration_log):
     target = model.velocity
     speeds = []
     v = target * CONTINUATION_START
@@ -368,5 +389,5 @@ def _continuation(model: BearingModel, tension, progress):
         if progress is not None:
             progress(f"continuation: V = {v:.4g} m/s")
         z0 = stage.initial_state() if z is None else z
-        z, lam, _, info = newton(stage, z0, tension=tension, info=info)
+        z, lam, _, info = newton(stage, z0, tension=tension, info=info, log=iteration_log)
     return z, lam, info
