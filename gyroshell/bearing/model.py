@@ -21,16 +21,22 @@ import scipy.sparse as sp
 
 from ..errors import ParameterError
 from ..grid import Grid
-from ..parameters import TapeParameters, _check_positive
+from ..parameters import MIN_INTERVALS_ACROSS, TapeParameters, _check_positive
 from .air import AirParameters
 from .film import Film
 from .geometry import check_wrap_angle, dry_curvature, dry_gap
 from .tape import PlateOperators, StripOperators
 
-#: Spans outside the wrap, in units of the larger of the two film/bending length scales.
+#: Spans outside the wrap, in units of the larger of the film and bending lengths
+#: (infinitely wide tape; the 2-D tape uses fewer: its cost grows with the domain).
 SPAN_LENGTHS = 10.0
-#: Default x-spacing, in units of the smaller length scale.
+SPAN_LENGTHS_2D = 6.0
+#: Default x-spacing, in units of the smaller length (infinitely wide; 2-D).
 X_RESOLUTION = 1.0 / 12.0
+X_RESOLUTION_2D = 1.0 / 6.0
+#: Default y-spacing of the 2-D tape, m: resolves the free edges' boundary layer (about
+#: 0.5 mm wide on the Table 1 tape at 4 m/s), whose spacing then converges to a few %.
+Y_SPACING = 50e-6
 #: Classical flexible-foil constant, used only to size the domain and guess a start.
 _FOIL_GUESS = 0.64
 
@@ -61,12 +67,13 @@ class BearingModel:
     infinitely_wide : bool
         Infinitely wide tape (1-D, per unit width) instead of the free-edged 2-D tape.
     span : float, optional
-        Length of each tangent span in the domain, m (default: 10 times the larger of the
-        film length R ε^(1/3) and the bending length √(D/(T − ρV²))).
+        Length of each tangent span in the domain, m (default: 10 (2-D: 6) times the
+        larger of the film length R ε^(1/3) and the bending length √(D/(T − ρV²))).
     nx : int, optional
-        Intervals along x (default: spacing 1/12 of the smaller of those lengths, made even).
+        Intervals along x (default: a spacing of 1/12 (2-D: 1/6) of the smaller of those
+        lengths, made even).
     ny : int, optional
-        Intervals across the width in 2-D (even, >= 8; default 40).
+        Intervals across the width in 2-D (even, >= 8; default: a spacing near 50 µm).
     """
 
     def __init__(self, params: TapeParameters, air: AirParameters | None = None, *,
@@ -83,11 +90,13 @@ class BearingModel:
                 f"velocity must be below the string speed sqrt(T/rho) = "
                 f"{params.string_speed:.6g} m/s (the tape would not wrap), got {velocity:g}")
         h_foil, l_film, l_bend = foil_length_scales(params, self.air, self.velocity)
-        self.span = (SPAN_LENGTHS * max(l_film, l_bend) if span is None
+        spans, resolution = ((SPAN_LENGTHS, X_RESOLUTION) if self.infinitely_wide
+                             else (SPAN_LENGTHS_2D, X_RESOLUTION_2D))
+        self.span = (spans * max(l_film, l_bend) if span is None
                      else _check_positive("span", span, "m"))
         self.length = params.radius * self.wrap_angle + 2.0 * self.span
         if nx is None:
-            nx = 2 * math.ceil(0.5 * self.length / (X_RESOLUTION * min(l_film, l_bend)))
+            nx = 2 * math.ceil(0.5 * self.length / (resolution * min(l_film, l_bend)))
         if isinstance(nx, bool) or not isinstance(nx, (int, np.integer)) or nx < 8:
             raise ParameterError(f"nx must be an integer >= 8, got {nx!r}")
         self.nx = int(nx)
@@ -98,7 +107,8 @@ class BearingModel:
             self.tape = StripOperators(params, self.nx, hx)
             self.nc = 1
         else:
-            ny = 40 if ny is None else ny
+            if ny is None:
+                ny = max(MIN_INTERVALS_ACROSS, 2 * round(0.5 * params.width / Y_SPACING))
             if (isinstance(ny, bool) or not isinstance(ny, (int, np.integer)) or ny < 8
                     or ny % 2):
                 raise ParameterError(f"ny must be an even integer >= 8 (a node on the centre "
@@ -170,6 +180,24 @@ class BearingModel:
             rows.append(offset + np.flatnonzero(keep))
             offset += n
         return sp.block_diag(blocks, format="csr"), np.concatenate(rows)
+
+    def _extruded_strip_state(self) -> np.ndarray:
+        from .steady import solve_steady
+        from ..errors import ConvergenceError
+
+        strip = BearingModel(self.params, self.air, velocity=self.velocity,
+                             wrap_angle=self.wrap_angle, infinitely_wide=True,
+                             span=self.span, nx=self.nx)
+        try:
+            sol = solve_steady(strip)
+        except ConvergenceError:
+            z = strip.initial_state()
+            u1, p1 = z[:strip.n_u], z[strip.n_u:]
+        else:
+            u1, p1 = sol.u, sol.p
+        u = np.repeat(u1, self.nc)
+        P = np.repeat(strip.pressure_field(p1), self.nc, axis=1)
+        return np.concatenate([u, P[self.film.interior]])
 
     def at_velocity(self, velocity: float) -> BearingModel:
         """The same tape, head and grid at another speed V, m/s (for continuation)."""
@@ -249,7 +277,11 @@ class BearingModel:
         return float(self.film.cell_area * np.sum(p - self.air.ambient_pressure))
 
     def initial_state(self) -> np.ndarray:
-        """A start for Newton: the flexible-foil spacing on the wrap, the wrap pressure."""
+        """A start for Newton. Infinitely wide: the flexible-foil spacing and the wrap
+        pressure. 2-D: the infinitely wide tape's solution on the same x-grid, extruded
+        across the width (one cheap 1-D solve saves several 2-D Newton iterations)."""
+        if not self.infinitely_wide:
+            return self._extruded_strip_state()
         u = np.full(self.n_u, self.h_guess)
         kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)
         p = self.air.ambient_pressure + self.effective_tension() * kappa[

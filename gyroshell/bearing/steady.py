@@ -25,7 +25,7 @@ from ..errors import ConvergenceError
 from .model import BearingModel
 
 #: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
-STEP_TOLERANCE = 1e-9
+STEP_TOLERANCE = 1e-8
 #: Most Newton iterations per solve.
 MAX_ITERATIONS = 60
 #: A step may shrink p to no less than this fraction of its value (compressible film).
