@@ -92,6 +92,9 @@ class _Residual:
             flux *= model.air.ambient_pressure
         self.row_scale = np.concatenate([1.0 / (t_wrap * model.W),
                                          np.full(model.n_p, 1.0 / flux)])
+        J_uu = self.K if transient is None else self.K + transient.jacobian
+        # The tape rows [J_uu, −L] do not change within a solve: assembled once.
+        self.tape_rows = sp.hstack([J_uu, -model.pressure_load], format="csr")
 
     def tape(self, u, p):
         r_u = self.model.tape_residual(u, p, self.K, self.tension)
@@ -109,13 +112,11 @@ class _Residual:
         res = np.concatenate([np.where(active, gap, r_u), r_p])
         if not jacobian:
             return res, active, None
-        J_uu = self.K
-        if self.transient is not None:
-            J_uu = (self.K + self.transient.tape_terms(u)[1]).tocsr()
-        keep = sp.diags((~active).astype(float))
-        rows_u = keep @ sp.hstack([J_uu, -m.pressure_load]) \
-            + sp.hstack([sp.diags(active * self.c), sp.csr_matrix((m.n_u, m.n_p))])
-        J = sp.vstack([rows_u, sp.hstack([J_pu, J_pp])]).tocsc()
+        rows_u = self.tape_rows
+        if active.any():
+            rows_u = (sp.diags((~active).astype(float)) @ rows_u
+                      + sp.diags(active * self.c, shape=rows_u.shape))
+        J = sp.vstack([rows_u, sp.hstack([J_pu, J_pp], format="csr")], format="csc")
         return res, active, J
 
     def solve(self, J, res) -> np.ndarray:
