@@ -34,6 +34,10 @@ PRESSURE_KEEP = 0.2
 SPACING_KEEP = 0.2
 #: ... nor grow by more than this multiple of it (plus σ).
 SPACING_GROWTH = 4.0
+#: Below this relative step a factorization is reused (chord steps) ...
+CHORD_SWITCH = 1e-2
+#: ... while each step shrinks at least by this factor.
+CHORD_CONTRACTION = 0.1
 #: Smallest line-search step before a step is taken anyway.
 MIN_STEP = 1.0 / 256.0
 
@@ -65,6 +69,11 @@ def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float)
     if up.any():
         alpha = min(alpha, float(np.min((SPACING_GROWTH * h[up] + sigma) / du[up])))
     return alpha
+
+
+def _norm(dz: np.ndarray, n_u: int, F) -> float:
+    """max |δu|/h_scale, |δp|/(T/R): the relative size of a Newton step."""
+    return max(np.max(np.abs(dz[:n_u])) / F.h_scale, np.max(np.abs(dz[n_u:])) / F.t_scale)
 
 
 def _contact_scale(model: BearingModel) -> np.ndarray:
@@ -119,19 +128,20 @@ class _Residual:
         J = sp.vstack([rows_u, sp.hstack([J_pu, J_pp], format="csr")], format="csc")
         return res, active, J
 
-    def solve(self, J, res) -> np.ndarray:
-        """The Newton step −J⁻¹ res; a 2-D tape, symmetric about its centre line, is solved
-        on half the width (the step stays symmetric, so it is P δ_half, P the mirror)."""
+    def factor(self, J):
+        """A solver res ↦ −J⁻¹ res. A 2-D tape, symmetric about its centre line, is solved
+        on half the width (the step stays symmetric: P δ_half, P the mirror)."""
         fold = self.model.mirror
         if fold is not None:
             P, rows = fold
             J = (J[rows, :] @ P).tocsc()
-            res = res[rows]
         try:
-            dz = -spla.splu(J, permc_spec="COLAMD").solve(res)
+            lu = spla.splu(J, permc_spec="COLAMD")
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
-        return dz if fold is None else fold[0] @ dz
+        if fold is None:
+            return lambda res: -lu.solve(res)
+        return lambda res: -(P @ lu.solve(res[rows]))
 
     def merit(self, res) -> float:
         return float(np.linalg.norm(res * self.row_scale))
@@ -157,8 +167,18 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     z = np.array(z0, dtype=float)
     res, active, J = F(z, jacobian=True)
     merit = F.merit(res)
+    solver, last_step, settled = None, np.inf, False
     for _ in range(max_iterations):
-        dz = F.solve(J, res)
+        # Near the solution with a settled contact set, the last factorization is reused
+        # (a chord step) as long as it still contracts fast; else J is factored afresh.
+        dz = None
+        if solver is not None and settled and last_step < CHORD_SWITCH:
+            dz = solver(res)
+            if _norm(dz, n_u, F) > CHORD_CONTRACTION * last_step:
+                dz = None
+        if dz is None:
+            solver = F.factor(J)
+            dz = solver(res)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
         h = z[:n_u] + model.dry_field[1:-1, :].ravel()
@@ -169,8 +189,8 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
             if shrink.any():
                 alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink]
                                                 / dp[shrink])))
-        step = max(np.max(np.abs(dz[:n_u])) / F.h_scale,
-                   np.max(np.abs(dz[n_u:])) / F.t_scale)
+        step = _norm(dz, n_u, F)
+        last_step = step
         if step < tol:       # at round-off: the merit can no longer decrease reliably
             alpha = 1.0
         while True:

@@ -68,7 +68,7 @@ def plot_speed(table: pd.DataFrame):
 
 def two_dimensional(settings: Settings):
     model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, wrap_angle=WRAP,
-                         nx=settings.pick(None, 120), ny=settings.pick(None, 16))
+                         nx=settings.pick(None, 120), ny=settings.pick(None, 40))
     return solve_steady(model)
 
 
