@@ -84,8 +84,10 @@ def cross_width(solution, ax=None, **kw):
     plt = _plt()
     ax = plt.subplots(figsize=(6, 3.4))[1] if ax is None else ax
     m = solution.model
+    kw.setdefault("label", "spacing")
     ax.plot(m.y * 1e3, solution.cross_width_spacing * UM, marker=".", ms=3, **kw)
     ax.axhline(m.air.roughness * UM, color="0.5", lw=0.8, ls=":", label="roughness")
+    ax.legend(fontsize=8)
     ax.set_xlabel("y across the width (mm)")
     ax.set_ylabel("spacing at the wrap centre (µm)")
     ax.set_ylim(bottom=0)
