@@ -19,8 +19,9 @@ def register(sub, common: argparse.ArgumentParser) -> None:
         description="Steady flying state of the tape over a cylindrical head of the tape's "
                     "radius R: compressible Reynolds film with slip coupled to the shell "
                     "model, contact where the spacing reaches the roughness. Prints the "
-                    "central and minimum spacings (m). Air at 20 C by default. The tape "
-                    "options --spacing, --length-ratio, --edges and --load do not apply.")
+                    "central and minimum spacings (m). Air at 20 C by default; --velocity "
+                    "defaults to 4 m/s here and must be > 0. The tape options --spacing, "
+                    "--length-ratio, --edges and --load do not apply.")
     p.set_defaults(velocity=4.0)
     g = p.add_argument_group("air bearing (SI units)")
     g.add_argument("--wrap-angle", type=real, default=15.0,
@@ -42,9 +43,11 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     g.add_argument("--span", type=real, default=None,
                    help="length of each tangent span in the domain, m (default: automatic)")
     g.add_argument("--nx", type=positive_int, default=None,
-                   help="intervals along x (default: converged to about 1 %%)")
+                   help="intervals along x (default: spacing 1/12 (2-D: 1/6) of the film or "
+                        "bending length; central spacing converged to 0.1 %%)")
     g.add_argument("--ny", type=positive_int, default=None,
-                   help="intervals across the width, even (default: converged to about 1 %%)")
+                   help="intervals across the width, even (default: spacing about 50 um; the "
+                        "edge minimum then converged to a few %%)")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     p.add_argument("--out", metavar="DIR", default=None,
                    help="write summary.json and the spacing/pressure fields (CSV) into DIR")
