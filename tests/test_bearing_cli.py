@@ -37,11 +37,23 @@ def test_two_dimensional_json_files_and_plot(capsys, tmp_path):
 
 
 def test_incompressible_flies_a_little_higher_than_compressible(capsys):
-    base = ["bearing", "--infinitely-wide", "--json", "--mean-free-path", "0"]
+    base = ["bearing", "--velocity", "4", "--infinitely-wide", "--json",
+            "--mean-free-path", "0"]
     comp = _json(capsys, base)["central_spacing"]
     incomp = _json(capsys, base + ["--incompressible"])["central_spacing"]
     assert incomp > comp
     assert incomp == pytest.approx(comp, rel=0.1)
+
+
+def test_bearing_does_not_change_other_commands_defaults(capsys):
+    """The sub-commands share the tape options: 'static' still defaults to V = 0."""
+    out = _json(capsys, ["static", "--json"])
+    assert out["velocity"] == 0.0
+
+
+def test_velocity_is_required(capsys):
+    assert main(["bearing", "--infinitely-wide"]) == 2
+    assert "velocity must be > 0" in capsys.readouterr().err
 
 
 @pytest.mark.parametrize("argv, message", [
@@ -56,7 +68,8 @@ def test_incompressible_flies_a_little_higher_than_compressible(capsys):
 ])
 def test_bad_input_one_line_exit_2(capsys, tmp_path, argv, message):
     png = tmp_path / "never.png"
-    assert main(["bearing", "--infinitely-wide" if "--ny" not in argv else "--nx=40",
+    assert main(["bearing", "--velocity", "4",
+                 "--infinitely-wide" if "--ny" not in argv else "--nx=40",
                  *argv, "--plot", str(png)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("gyroshell: error:") and message in err[0]
@@ -72,6 +85,6 @@ def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
         raise ConvergenceError("Newton did not converge in 60 iterations")
 
     monkeypatch.setattr(steady, "newton", failing)
-    assert main(["bearing", "--infinitely-wide", "--nx", "40"]) == 2
+    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no steady flying state" in err[0]

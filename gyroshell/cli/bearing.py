@@ -20,9 +20,8 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                     "radius R: compressible Reynolds film with slip coupled to the shell "
                     "model, contact where the spacing reaches the roughness. Prints the "
                     "central and minimum spacings (m). Air at 20 C by default; --velocity "
-                    "defaults to 4 m/s here and must be > 0. The tape options --spacing, "
+                    "is required here (> 0, e.g. 4). The tape options --spacing, "
                     "--length-ratio, --edges and --load do not apply.")
-    p.set_defaults(velocity=4.0)
     g = p.add_argument_group("air bearing (SI units)")
     g.add_argument("--wrap-angle", type=real, default=15.0,
                    help="wrap angle of the tape on the head, degrees, in (0, 90] (default 15)")
@@ -65,6 +64,9 @@ def run(args: argparse.Namespace) -> int:
     from ..bearing.steady import solve_steady
     from ..errors import ConvergenceError
 
+    if args.velocity <= 0.0:
+        raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
+                        f"got {args.velocity:g}")
     params = parameters_from_args(args)
     air = AirParameters(viscosity=args.viscosity, ambient_pressure=args.ambient_pressure,
                         mean_free_path=args.mean_free_path, roughness=args.roughness,
