@@ -1,92 +1,185 @@
-"""Benchmark the quadratic eigen-solver and the critical speed on the L_x/L_y = 19 grid.
+"""Benchmark the quadratic eigen-solver, speed sweeps and the critical speed (L_x/L_y = 19).
 
-    PYTHONPATH=. python benchmarks/bench_eigen.py [--repeat 3] [--count 6] [--naive-repeat 1]
+    PYTHONPATH=. python benchmarks/bench_eigen.py [--rounds 3] [--sweep-rounds 1]
 
-Prints medians (s) of:
+Prints medians (s) over alternating rounds of:
 
-* ``modes``: the lowest ``count`` frequencies at V = 0 with :func:`gyroshell.eigen.modes`
-  (inertia-certified complex shift, one n × n factorization);
-* the naive approach: assemble the 2n × 2n linearization [[0, I], [−K, −G]] z = λ diag(I, M) z
-  and call ``scipy.sparse.linalg.eigs(k=2·count, sigma=0)`` (scipy factors the 2n pencil);
-* ``critical``: both critical-speed routes (a) and (b) with :func:`critical_speeds`.
+* ``modes`` at V = 50 m/s, 6 modes: gyroshell's default (Lanczos on the Hermitian energy
+  pencil, inertia-certified shift) and its ARPACK path, split into the factorization, the
+  substitutions and the eigen-iteration's own overhead, beside the floor (one
+  factorization plus the substitutions the converged modes needed);
+* SLEPc's PEP solver on the same matrices (TOAR, shift-and-invert at a target just below the
+  lowest frequency, MUMPS LU with the AMF ordering, tol 1e-8), run by
+  ``benchmarks/slepc_pep.py`` in its own virtual environment as a separate process (set-up
+  with the factorization and solve timed inside it); the column is skipped when that
+  environment is missing. Its interpreter: $GYROSHELL_SLEPC_PYTHON, default
+  /work/venvs/slepc/bin/python;
+* a 20-speed sweep (0-95 m/s, 6 modes) by continuation against 20 separate ``modes`` calls
+  on fresh models;
+* the critical speed (both routes).
 
-Timings on a shared machine vary: run with nothing else busy, and read the medians.
+Timings on a shared machine vary: read the medians and the ratios measured in one run.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import statistics
+import subprocess
+import sys
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from gyroshell import TapeModel, TapeParameters
 from gyroshell.critical import critical_speeds
 from gyroshell.eigen import modes
-from gyroshell.threads import blas_threads
+from gyroshell.sweep import sweep
+
+SLEPC_PYTHON = os.environ.get("GYROSHELL_SLEPC_PYTHON", "/work/venvs/slepc/bin/python")
+SLEPC_DRIVER = Path(__file__).with_name("slepc_pep.py")
 
 
-def naive(model: TapeModel, velocity: float, count: int) -> np.ndarray:
-    """Lowest ``count`` ω from eigs on the assembled 2n × 2n pencil, sigma = 0, rad/s."""
-    n = model.size
-    K, G, M = model.K(velocity), model.G(velocity), model.M
-    eye = sp.identity(n, format="csr")
-    A = sp.bmat([[None, eye], [-K, -G]], format="csc")
-    B = sp.bmat([[eye, None], [None, M]], format="csc")
-    with blas_threads(1):  # the same BLAS setting as the solver, for a fair race
-        lam = spla.eigs(A, k=2 * count, M=B, sigma=0.0, which="LM",
-                        return_eigenvectors=False)
-    w = np.sort(np.abs(lam.imag))
-    return w[::2][:count]
+def fresh_model(ratio: float) -> TapeModel:
+    model = TapeModel(TapeParameters(length_ratio=ratio))
+    model.A, model.B  # assemble outside the timings  # noqa: B018
+    return model
 
 
-def timed(fn, repeat: int):
-    times, out = [], None
-    for _ in range(repeat):
+def export(model: TapeModel, velocity: float, target: float, path: Path) -> None:
+    parts = {}
+    for name, A in (("K", model.K(velocity)), ("G", model.G(velocity)),
+                    ("M", sp.diags(model.mass_diagonal))):
+        A = sp.csr_matrix(A)
+        A.sort_indices()
+        parts.update({f"{name}_indptr": A.indptr, f"{name}_indices": A.indices,
+                      f"{name}_data": A.data})
+    np.savez(path, target=target, **parts)
+
+
+def slepc_round(path: Path, count: int) -> dict | None:
+    if not Path(SLEPC_PYTHON).exists():
+        return None
+    env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+    out = subprocess.run([SLEPC_PYTHON, str(SLEPC_DRIVER), str(path), "--nev", str(count)],
+                         capture_output=True, text=True, env=env, check=False)
+    if out.returncode != 0:
+        print(f"  SLEPc run failed: {out.stderr.strip().splitlines()[-1:]}")
+        return None
+    return json.loads(out.stdout)["rounds"][0]
+
+
+def gyroshell_round(ratio: float, velocity: float, count: int, method: str) -> dict:
+    model = fresh_model(ratio)
+    t0 = time.perf_counter()
+    res = modes(model, velocity, count, method=method)
+    total = time.perf_counter() - t0
+    info = res.info
+    subst = info.get("substitution_time")
+    ops = info["operator_applications"]
+    return {"total": total, "factor": info["factor_time"], "iteration": info["solve_time"],
+            "substitutions": subst, "ops": ops, "omega": res.omega,
+            "residual": float(res.residuals.max()), "shift": abs(info["shift"]),
+            "method": info["method"]}
+
+
+def med(rows: list[dict], key: str) -> float:
+    values = [r[key] for r in rows if r.get(key) is not None]
+    return statistics.median(values) if values else float("nan")
+
+
+def bench_modes(args) -> None:
+    velocity, count = 50.0, args.count
+    model = fresh_model(args.length_ratio)
+    print(f"grid {model.grid.nx} x {model.grid.ny}, n = {model.size} unknowns; "
+          f"V = {velocity:g} m/s, {count} modes; {args.rounds} alternating rounds")
+    ours, arpack, slepc = [], [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "matrices.npz"
+        first = gyroshell_round(args.length_ratio, velocity, count, "auto")
+        export(model, velocity, first["shift"], path)
+        for _ in range(args.rounds):
+            ours.append(gyroshell_round(args.length_ratio, velocity, count, "auto"))
+            slepc.append(slepc_round(path, count))
+            arpack.append(gyroshell_round(args.length_ratio, velocity, count, "arpack"))
+    for name, rows in (("gyroshell (Lanczos, default)", ours), ("gyroshell (ARPACK)", arpack)):
+        t = med(rows, "total")
+        fac, it = med(rows, "factor"), med(rows, "iteration")
+        ops = statistics.median(r["ops"] for r in rows)
+        line = (f"{name:30s} total {t:.3f} s = factor {fac:.3f} + iteration {it:.3f} "
+                f"({ops:.0f} solves)")
+        subst = med(rows, "substitutions")
+        if subst == subst:  # not NaN
+            line += (f"; substitutions {subst:.3f}, own overhead {it - subst:.3f}; floor "
+                     f"(factor + substitutions) {fac + subst:.3f}")
+        print(line + f"; max residual {max(r['residual'] for r in rows):.1e}")
+    if all(s is not None for s in slepc):
+        setup, solve = med(slepc, "setup"), med(slepc, "solve")
+        total = statistics.median(s["setup"] + s["solve"] for s in slepc)
+        print(f"{'SLEPc PEP (TOAR, MUMPS AMF)':30s} total {total:.3f} s = setup+factor "
+              f"{setup:.3f} + solve {solve:.3f}")
+        diff = np.max(np.abs(np.array(slepc[-1]["omega"]) - ours[-1]["omega"])
+                      / ours[-1]["omega"])
+        print(f"  SLEPc/gyroshell time ratio {total / med(ours, 'total'):.2f}; "
+              f"largest relative frequency difference {diff:.1e} (SLEPc tol 1e-8)")
+    else:
+        print(f"SLEPc: skipped (no interpreter at {SLEPC_PYTHON}, or the run failed)")
+    print(f"  omega (rad/s): {np.array2string(ours[-1]['omega'], precision=8)}")
+
+
+def bench_sweep(args) -> None:
+    speeds = np.linspace(0.0, 95.0, 20)
+    cont_times, call_times = [], []
+    for _ in range(args.sweep_rounds):
+        model = fresh_model(args.length_ratio)
         t0 = time.perf_counter()
-        out = fn()
+        frame = sweep(model, speeds, args.count, continuation=True)
+        cont_times.append(time.perf_counter() - t0)
+        t0 = time.perf_counter()
+        separate = [modes(fresh_model(args.length_ratio), v, args.count).omega for v in speeds]
+        call_times.append(time.perf_counter() - t0)
+    table = frame.pivot(index="velocity", columns="rank", values="omega").to_numpy()
+    diff = np.max(np.abs(table - np.array(separate)) / np.array(separate))
+    c, s = statistics.median(cont_times), statistics.median(call_times)
+    print(f"20-speed sweep 0-95 m/s, {args.count} modes: continuation {c:.2f} s, "
+          f"20 separate modes calls {s:.2f} s (ratio {s / c:.2f}); largest relative "
+          f"difference {diff:.1e}")
+
+
+def bench_critical(args) -> None:
+    times, result = [], None
+    for _ in range(args.sweep_rounds):
+        model = fresh_model(args.length_ratio)
+        t0 = time.perf_counter()
+        result = critical_speeds(model)
         times.append(time.perf_counter() - t0)
-    return statistics.median(times), times, out
+    i = result.info
+    print(f"critical speed (a) and (b): median {statistics.median(times):.2f} s; (a) "
+          f"{result.critical_speed:.9f} m/s in {i['critical_time']:.2f} s, {i['evaluations']} "
+          f"eigen-solves; (b) {result.divergence_speed:.9f} m/s in {i['divergence_time']:.2f} s;"
+          f" |a-b|/b = {result.relative_difference:.1e}")
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--naive-repeat", type=int, default=1)
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--sweep-rounds", type=int, default=1)
     ap.add_argument("--count", type=int, default=6)
     ap.add_argument("--length-ratio", type=float, default=19.0)
+    ap.add_argument("--skip", nargs="*", default=(), choices=("modes", "sweep", "critical"))
     args = ap.parse_args()
-
-    model = TapeModel(TapeParameters(length_ratio=args.length_ratio))
-    model.A, model.B  # assemble once, outside the timings  # noqa: B018
-    n = model.size
-    print(f"grid {model.grid.nx} x {model.grid.ny}, n = {n} unknowns, {2 * n} states")
-
-    t_fast, all_fast, res = timed(lambda: modes(model, 0.0, args.count), args.repeat)
-    print(f"modes (count={args.count}, V=0):  median {t_fast:.3f} s  "
-          f"(runs {', '.join(f'{t:.3f}' for t in all_fast)})")
-    print(f"  omega (rad/s): {np.array2string(res.omega, precision=8)}")
-    print(f"  max residual {res.residuals.max():.1e}; info: factor "
-          f"{res.info['factor_time']:.3f} s, solve {res.info['solve_time']:.3f} s, "
-          f"{res.info['operator_applications']} operator applications, ncv {res.info['ncv']}")
-
-    t_naive, all_naive, w = timed(lambda: naive(model, 0.0, args.count), args.naive_repeat)
-    print(f"naive 2n x 2n eigs(sigma=0):    median {t_naive:.3f} s  "
-          f"(runs {', '.join(f'{t:.3f}' for t in all_naive)})")
-    print(f"  omega (rad/s): {np.array2string(w, precision=8)}")
-    print(f"  largest relative difference from modes: "
-          f"{np.max(np.abs(w - res.omega) / res.omega):.1e}")
-    print(f"speed-up: {t_naive / t_fast:.1f}x")
-
-    t_crit, all_crit, c = timed(lambda: critical_speeds(model), args.repeat)
-    print(f"critical speed (a) and (b):     median {t_crit:.3f} s  "
-          f"(runs {', '.join(f'{t:.3f}' for t in all_crit)})")
-    print(f"  (a) {c.critical_speed:.9f} m/s in {c.info['critical_time']:.2f} s, "
-          f"{c.info['evaluations']} eigen-solves; (b) {c.divergence_speed:.9f} m/s in "
-          f"{c.info['divergence_time']:.2f} s; |a-b|/b = {c.relative_difference:.1e}")
+    print(f"python {sys.version.split()[0]}")
+    if "modes" not in args.skip:
+        bench_modes(args)
+    if "sweep" not in args.skip:
+        bench_sweep(args)
+    if "critical" not in args.skip:
+        bench_critical(args)
 
 
 if __name__ == "__main__":

@@ -45,10 +45,12 @@ _LAZY: dict[str, str] = {
     "CriticalSpeeds": "critical", "critical_speed_eigen": "critical",
     "critical_speeds": "critical",
     "Modes": "eigen", "frequencies": "eigen", "modes": "eigen",
+    "InertiaFactor": "inertia", "factor_inertia": "inertia",
+    "GyroscopicModes": "qep", "gyroscopic_modes": "qep",
     "plot_sweep": "sweep", "sweep": "sweep",
     # parameter studies and saved results (xarray, Dask and matplotlib load on use)
     "load": "persistence", "save": "persistence",
-    "StudyResult": "study", "classify_stability": "study", "run_study": "study",
+    "StudyResult": "study", "classify_stability": "qep", "run_study": "study",
     # damping, moving and intermittent loads, and the frequency response
     "Damping": "damping",
     "FrequencyResponse": "frf", "ReducedModel": "frf", "direct_response": "frf",

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import persistence
-from .divergence import divergence
+from .divergence import beam_mu_estimate, divergence
 from .eigen import modes
 from .errors import ConvergenceError, ParameterError
 from .model import TapeModel
@@ -38,7 +38,9 @@ PAPER_SPEED = 100.0
 def _evaluate(model: TapeModel, velocity: float, count: int, options: dict
               ) -> tuple[float, np.ndarray]:
     """f(V) (see :func:`critical_function`) and the eigenvector of the eigenvalue it uses."""
-    options = {"sigma": 0, **options}
+    # ARPACK on the linearization: near critical K(V) is nearly singular, and the energy
+    # inner product of the Lanczos path degenerates with it.
+    options = {"sigma": 0, "method": "arpack", **options}
     result = modes(model, velocity, count, **options)
     lam = result.eigenvalues
     if not result.supercritical:
@@ -61,18 +63,6 @@ def critical_function(model: TapeModel, velocity: float, *, count: int = 1,
     growing eigenvalue if found, else −|λ₀|² (still negative: K(V) is indefinite).
     """
     return _evaluate(model, velocity, count, options)[0]
-
-
-def _rayleigh_speed(model: TapeModel, phi: np.ndarray) -> float:
-    """Speed at which φᴴK(V)φ = 0, m/s: √((T + φᴴAφ/φᴴBφ)/ρ).
-
-    For the mode about to cross zero, κ = φᴴK(V)φ → 0 with λ, so this is a Newton-like step
-    for the root; being a Rayleigh quotient of A φ = μ B φ it never lies below the root.
-    """
-    p = model.params
-    c = np.conj(phi)
-    mu = float(np.real(c @ (model.A @ phi)) / np.real(c @ (model.B @ phi)))
-    return math.sqrt(max(p.tension + mu, 0.0) / p.density)
 
 
 @dataclass(frozen=True)
@@ -130,10 +120,57 @@ class CriticalSpeeds:
         return persistence.save(self, path, params=params)
 
 
-def _extrapolate_zero(points: list[tuple[float, float]]) -> float:
-    """Zero of the interpolant of (s, f) beyond the last point: quadratic through three
-    points (f ≈ a d + c d², d = s_c − s, seen in practice), else the secant; s·1.004 if
-    neither gives a zero beyond the last point."""
+#: The default starting speed is this fraction of the beam estimate √((T + μ_beam)/ρ).
+GUESS_FRACTION = 0.998
+#: From a supercritical start, s = V² is multiplied by this until a subcritical point.
+DESCENT_FACTOR = 0.99
+#: Where no extrapolated zero lies ahead (and no point above is known), s grows by this.
+ADVANCE_FACTOR = 1.004
+
+
+def default_guess(model: TapeModel) -> float:
+    """A starting speed just below critical, m/s: GUESS_FRACTION √((T + μ_beam)/ρ).
+
+    μ_beam = min_m (D a_m² + k/a_m²) over the width-uniform (beam) modes of the discrete
+    model (:func:`gyroshell.divergence.beam_mu_estimate`): exact for ν = 0 and free edges,
+    close otherwise, and positive also without tension and foundation (then D a₁²).
+    """
+    p = model.params
+    return GUESS_FRACTION * math.sqrt((p.tension + beam_mu_estimate(model)) / p.density)
+
+
+class _Counted:
+    """f(s) = critical_function at V = √s, remembered, counted and capped at ``limit``."""
+
+    def __init__(self, model: TapeModel, count: int, options: dict, limit: int) -> None:
+        self.model, self.count, self.options, self.limit = model, count, options, limit
+        self.trace: list[tuple[float, float]] = []
+        self.below: list[tuple[float, float]] = []   # (s, ω₁²) with ω₁² > 0
+        self.above = math.inf                         # smallest s with f <= 0
+
+    def __call__(self, s: float) -> float:
+        if len(self.trace) >= self.limit:
+            raise ConvergenceError(
+                f"critical speed: no bracketed zero of the lowest frequency in "
+                f"{self.limit} eigen-solves")
+        value = critical_function(self.model, math.sqrt(s), count=self.count, **self.options)
+        self.trace.append((math.sqrt(s), value))
+        if value > 0:
+            self.below.append((s, value))
+            self.below.sort()
+        else:
+            self.above = min(self.above, s)
+        return value
+
+    @property
+    def highest_below(self) -> float:
+        return self.below[-1][0]
+
+
+def _extrapolate_zero(points: list[tuple[float, float]]) -> float | None:
+    """Zero of the interpolant of (s, ω₁²) beyond the last point: quadratic through three
+    points (ω₁² ≈ a d + c d², d = s_c − s, seen in practice), else the secant; None if
+    neither has a zero beyond the last point."""
     s_last = points[-1][0]
     if len(points) == 3:
         s = np.array([q[0] for q in points]) - s_last
@@ -149,7 +186,23 @@ def _extrapolate_zero(points: list[tuple[float, float]]) -> float:
         (s1, f1), (s2, f2) = points[-2:]
         if s2 > s1 and f1 > f2:
             return s2 - f2 * (s2 - s1) / (f2 - f1)
-    return s_last * 1.004
+    return None
+
+
+def _first_subcritical(f: _Counted, s: float) -> None:
+    """Step s down by DESCENT_FACTOR from the start until ω₁² > 0 (a point below)."""
+    while f(s) <= 0:
+        s *= DESCENT_FACTOR
+
+
+def _next_trial(f: _Counted) -> float:
+    """The extrapolated zero from the last three points below, kept inside the bracket
+    (bisection of [highest below, lowest above] where it falls outside)."""
+    lo, hi = f.highest_below, f.above
+    pred = _extrapolate_zero(f.below[-3:])
+    if pred is None or pred >= hi or pred <= lo:
+        pred = 0.5 * (lo + hi) if math.isfinite(hi) else lo * ADVANCE_FACTOR
+    return pred
 
 
 def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
@@ -157,76 +210,60 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
                          **options) -> tuple[float, dict]:
     """(a) The speed where the lowest frequency reaches zero, m/s, and diagnostics.
 
-    Near the root ω₁² is a smooth, nearly linear function of s = V² (ω₁ ∝ √(V_c − V)), while
-    above it the eigenvalue nearest zero may belong to another branch. So the root is
-    approached from below by secant steps on ω₁²(s) (extrapolating its zero), each step an
-    eigen-solve; a point found above critical (f < 0) caps the bracket and the next trial is
-    the bisection in s. It stops when the extrapolated zero moves less than ``xtol`` (relative)
-    and the bracket [V_below, V_root (1 + xtol)] is confirmed by a sign change.
+    Below the root ω₁²(s), s = V², is smooth; above it the eigenvalue nearest zero may
+    belong to any of the long tape's many nearly critical branches, so values there are
+    not a continuation of ω₁² (a two-sided root finder, scipy's toms748 on f, needed more
+    than twice the eigen-solves: the values above are erratic). The root is therefore
+    approached from below by extrapolating ω₁² (:func:`_extrapolate_zero`), a point above
+    (f <= 0) only capping the bracket, with bisection where the extrapolation leaves it.
+    It stops when the extrapolated zero is within ``xtol`` (relative, in V) of the highest
+    point below and a point just above it confirms the sign change.
 
     Parameters
     ----------
     guess : float, optional
-        Starting speed, m/s; default 0.99 × the strip speed √((T + 2√(Dk))/ρ).
+        Starting speed, m/s; default :func:`default_guess`.
     xtol : float
-        Relative tolerance on V.
+        Relative tolerance on V, in (0, 0.1).
     count : int
         Eigenvalue pairs per solve (see :func:`critical_function`).
+    max_evaluations : int
+        Most eigen-solves allowed (>= 2).
 
     Raises
     ------
+    ParameterError
+        Bad guess, xtol or max_evaluations.
     ConvergenceError
         If no bracketed root is found within ``max_evaluations`` eigen-solves.
     """
-    p = model.params
-    guess = 0.99 * p.strip_critical_speed if guess is None else float(guess)
-    if not (math.isfinite(guess) and guess > 0):
-        raise ParameterError(f"guess must be a positive speed in m/s, got {guess!r}")
-    trace: list[tuple[float, float]] = []
-
-    def f(v: float) -> float:
-        if len(trace) >= max_evaluations:
-            raise ConvergenceError(
-                f"critical speed: no bracketed zero of the lowest frequency in "
-                f"{max_evaluations} eigen-solves")
-        value = critical_function(model, v, count=count, **options)
-        trace.append((v, value))
-        return value
-
-    below: list[tuple[float, float]] = []   # (s, ω₁²) with ω₁² > 0
-    above = math.inf                          # smallest s with f <= 0
-    s = guess**2
-    while True:  # a first point below critical
-        if f(math.sqrt(s)) > 0:
-            below.append((s, trace[-1][1]))
-            break
-        above = min(above, s)
-        s *= 0.96
-    s *= 1.004
-    root = None
-    while root is None:
-        if s < above:
-            value = f(math.sqrt(s))
-            if value > 0:
-                below.append((s, value))
-            else:
-                above = s
-        pred = _extrapolate_zero(sorted(below)[-3:])
-        lo = max(b for b, _ in below)
-        if pred >= above or pred <= lo:
-            pred = 0.5 * (lo + above) if math.isfinite(above) else lo * 1.004
-        if abs(pred - lo) <= 2 * xtol * pred:
-            cap = pred * (1 + 2 * xtol)
-            if cap >= above or f(math.sqrt(cap)) <= 0:
+    guess = default_guess(model) if guess is None else guess
+    if isinstance(guess, bool) or not isinstance(guess, (int, float)) or \
+            not (math.isfinite(guess) and guess > 0):
+        raise ParameterError(f"guess must be a positive finite speed in m/s, got {guess!r}")
+    if isinstance(xtol, bool) or not isinstance(xtol, (int, float)) or not 0 < xtol < 0.1:
+        raise ParameterError(f"xtol must be in (0, 0.1), got {xtol!r}")
+    if isinstance(max_evaluations, bool) or not isinstance(max_evaluations, int) or \
+            max_evaluations < 2:
+        raise ParameterError(f"max_evaluations must be an integer >= 2, got "
+                             f"{max_evaluations!r}")
+    f = _Counted(model, count, options, max_evaluations)
+    _first_subcritical(f, float(guess) ** 2)
+    s = f.highest_below * ADVANCE_FACTOR
+    while True:
+        if s < f.above:
+            f(s)
+        pred = _next_trial(f)
+        if abs(pred - f.highest_below) <= 2 * xtol * pred:
+            cap = pred * (1 + 2 * xtol)   # confirm the sign change just above
+            if cap >= f.above or f(cap) <= 0:
                 root = math.sqrt(pred)
-                above = min(above, cap)
                 break
-            below.append((cap, trace[-1][1]))
             pred = cap * (1 + 2 * xtol)
         s = pred
-    return float(root), {"evaluations": len(trace),
-                         "bracket": (math.sqrt(max(b for b, _ in below)), math.sqrt(above)),
-                         "trace": trace}
+    return root, {"evaluations": len(f.trace),
+                  "bracket": (math.sqrt(f.highest_below), math.sqrt(f.above)),
+                  "trace": f.trace}
 
 
 def critical_speeds(model: TapeModel, **options) -> CriticalSpeeds:

@@ -17,8 +17,17 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from .errors import ConvergenceError
+from .errors import ConvergenceError, ParameterError
+from .inertia import InertiaFactor, factor_inertia
 from .model import TapeModel
+from .threads import blas_threads
+
+#: Factorizations tried by :func:`safe_shift` before giving up (τ = 0).
+SHIFT_TRIES = 8
+#: The second inertia count is taken this factor above the first, for the slope.
+SLOPE_PROBE = 1.01
+#: The extrapolated μ_min is undershot by this fraction of its distance to the last count.
+SHIFT_UNDERSHOOT = 0.1
 
 
 @dataclass(frozen=True)
@@ -52,16 +61,8 @@ def beam_mu_estimate(model: TapeModel) -> float:
     return float(np.min(p.D * a2 + p.k / a2))
 
 
-def _factor_inertia(matrix) -> tuple[spla.SuperLU, int | None]:
-    """SuperLU with diagonal pivots; the number of negative pivots (None if it pivoted)."""
-    lu = spla.splu(matrix.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                   options={"SymmetricMode": True})
-    if not np.array_equal(lu.perm_r, lu.perm_c):
-        return lu, None
-    return lu, int(np.count_nonzero(lu.U.diagonal() <= 0.0))
-
-
-def _safe_shift(model: TapeModel, *, tries: int = 8) -> tuple[float, spla.SuperLU | None]:
+def safe_shift(model: TapeModel, *, tries: int = SHIFT_TRIES
+               ) -> tuple[float, InertiaFactor | None]:
     """A shift τ < μ_min close to it, proved by inertia, and the factorization of A − τB.
 
     Near the bottom of a one-parameter band μ ≈ μ_min + c (α − α*)², the number of
@@ -73,19 +74,19 @@ def _safe_shift(model: TapeModel, *, tries: int = 8) -> tuple[float, spla.SuperL
     points: list[tuple[float, int]] = []
     tau = beam_mu_estimate(model)
     for _ in range(tries):
-        lu, negative = _factor_inertia(A - tau * B)
-        if negative is None:
+        factor = factor_inertia(A - tau * B)
+        if factor.negatives is None:
             break
-        if negative == 0:
-            return tau, lu
-        points.append((tau, negative))
+        if factor.negatives == 0:
+            return tau, factor
+        points.append((tau, factor.negatives))
         if len(points) == 1:
-            tau = tau * 1.01  # a second count above, for the slope
+            tau = tau * SLOPE_PROBE  # a second count above, for the slope
             continue
         (t1, c1), (t2, c2) = sorted(points)[:2]
         if c2 > c1:
             guess = t1 - c1**2 * (t2 - t1) / (c2**2 - c1**2)
-            tau = guess - 0.1 * (t1 - guess)
+            tau = guess - SHIFT_UNDERSHOOT * (t1 - guess)
         else:
             tau = 0.5 * t1
         if tau <= 0:
@@ -100,7 +101,7 @@ def divergence(model: TapeModel, *, tol: float = 1e-12, shift: float | None = No
     Shift-invert about a shift τ just below μ_min, through one sparse factorization of
     A − τB. The μ cluster (every wavenumber near (k/D)^¼ buckles at nearly the same μ) is
     nearly flat seen from τ = 0 but well spread seen from τ ≈ μ_min. τ is extrapolated from
-    inertia counts of A − τB (see :func:`_safe_shift`), starting at the beam estimate
+    inertia counts of A − τB (see :func:`safe_shift`), starting at the beam estimate
     :func:`beam_mu_estimate`; a factorization with no negative pivot proves τ < μ_min, so
     the eigenvalue nearest τ is μ_min.
 
@@ -111,20 +112,25 @@ def divergence(model: TapeModel, *, tol: float = 1e-12, shift: float | None = No
     shift : float, optional
         τ, N/m, to use instead (must be below μ_min); 0 reproduces plain shift-invert.
     """
+    if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not 0 <= tol < 1:
+        raise ParameterError(f"tol must be in [0, 1), got {tol!r}")
+    if shift is not None and (isinstance(shift, bool) or not isinstance(shift, (int, float))
+                              or not math.isfinite(shift)):
+        raise ParameterError(f"shift must be a finite number in N/m or None, got {shift!r}")
     A, B = model.A, model.B
-    tau, lu = _safe_shift(model) if shift is None else (float(shift), None)
-    if lu is None:
-        lu = spla.splu((A - tau * B).tocsc(), permc_spec="MMD_AT_PLUS_A",
-                       diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-    opinv = spla.LinearOperator(A.shape, matvec=lu.solve, dtype=float)
+    tau, factor = safe_shift(model) if shift is None else (float(shift), None)
+    if factor is None:
+        factor = factor_inertia(A - tau * B)
+    if factor.singular:
+        raise ParameterError(f"shift {tau:g} N/m is an eigenvalue of A phi = mu B phi; "
+                             "choose another")
+    opinv = spla.LinearOperator(A.shape, matvec=factor.solve, dtype=float)
     v0 = np.random.default_rng(12345).standard_normal(A.shape[0])
-    from .threads import blas_threads
-
     try:
         with blas_threads(1):
             vals, vecs = spla.eigsh(A, k=1, M=B, sigma=tau, which="LM", tol=tol,
                                     OPinv=opinv, v0=v0)
-    except spla.ArpackNoConvergence as exc:  # pragma: no cover - ARPACK failure path
+    except (spla.ArpackNoConvergence, spla.ArpackError) as exc:
         raise ConvergenceError(f"divergence eigenvalue did not converge: {exc}") from None
     mu = float(vals[0])
     mode = vecs[:, 0] / vecs[np.argmax(np.abs(vecs[:, 0])), 0]

@@ -1,58 +1,52 @@
-"""Quadratic gyroscopic eigenproblem (λ² M + λ G(V) + K(V)) φ = 0: frequencies and modes.
+"""The tape's gyroscopic eigenproblem (λ² M + λ (G(V) + C) + K(V)) φ = 0: frequencies, modes.
 
 Below the critical speed K(V) is positive definite and, G being skew-symmetric, every
-eigenvalue is a pair ±iω (ω > 0, rad/s) with eigenvectors φ, φ̄: the tape vibrates but
-neither grows nor decays. Above it some eigenvalues leave the imaginary axis (divergence).
+undamped eigenvalue is a pair ±iω (ω > 0, rad/s) with eigenvectors φ, φ̄: the tape vibrates
+but neither grows nor decays. Above it some eigenvalues may leave the imaginary axis
+(divergence or flutter), or all stay on it (gyroscopic stabilization).
 
-Method
-------
-State-space linearization z = [φ; λφ]: A z = λ B z with A = [[0, I], [−K, −G]] and
-B = diag(I, M). ARPACK (``eigs``) runs on the shift-invert operator (A − σB)⁻¹B, applied
-through one sparse factorization of the n × n matrix Q(σ) = K + σG + σ²M:
-
-    z₁ = −Q(σ)⁻¹ (M u₂ + (G + σM) u₁),   z₂ = u₁ + σ z₁,   λ = σ + 1/θ.
-
-The automatic shift is σ = iω_s just below the bottom of the spectrum: with σ = 0 the dozens
-of long-tape modes within 0.1 % of √(k/ρ) are nearly equal in |1/λ| and converge slowly;
-measured from iω_s they are far apart. For a Hermitian Q(iω) = K − ω²M + iωG (K > 0) the
-number of negative pivots of its LDLᴴ factorization equals the number of frequencies in
-(0, ω) (each eigenvalue of Q(iω) crosses zero only downwards, with slope −(ω²m + κ)/ω < 0),
-so the factorization that serves the shift also *certifies* that no low mode was missed.
-
-The state is scaled, y = [ω_r M^½ φ; M^½ λφ], so that ARPACK's Euclidean norm is close to
-the energy norm: unscaled, the displacement part is 10⁵ times smaller than the velocity
-part, and clustered eigenvalues "converge" with errors of 10⁻⁶ while the residual test
-passes. Each eigenvalue is finally polished with the quadratic Rayleigh functional
-(the root of m λ² + g λ + κ = 0 with m = φᴴMφ, g = φᴴGφ, κ = φᴴKφ nearest to it).
+:func:`modes` is a thin layer over the matrix solver :func:`gyroshell.qep.gyroscopic_modes`
+(method, certificate and accuracy: see there). It adds what the tape knows: the automatic
+shift i·ω_s just below the bottom of the width-uniform travelling-wave band (with σ = 0
+the dozens of long-tape modes within 0.1 % of √(k/ρ) are nearly equal in |1/λ| and converge
+slowly; measured from iω_s they are far apart), the definiteness of K(V) from a bound proved
+once per model (:func:`stiffness_floor`), and the damping matrix.
 """
 
 from __future__ import annotations
 
 import math
-import time
+import weakref
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from . import persistence
-from .errors import ConvergenceError, ParameterError
+from .errors import ParameterError
 from .grid import Grid
+from .inertia import factor_inertia
 from .model import TapeModel
 from .parameters import TapeParameters, check_velocity
-from .threads import blas_threads
+from .qep import (
+    DEFAULT_TOL,
+    RESIDUAL_LIMIT,
+    SHIFT_MARGIN,
+    _EigenvalueProperties,
+    check_count,
+    gyroscopic_modes,
+    max_count,
+)
+from .qep import relative_residuals as _matrix_residuals
 
-#: Default relative tolerance of ARPACK.
-DEFAULT_TOL = 1e-10
-#: Largest accepted relative residual (backward error) of a returned eigenpair.
-RESIDUAL_LIMIT = 1e-6
-#: The automatic shift sits this fraction below the estimated lowest frequency.
-SHIFT_MARGIN = 2e-4
+__all__ = ["DEFAULT_TOL", "RESIDUAL_LIMIT", "SHIFT_MARGIN", "Modes", "check_speed",
+           "damping_operator",
+           "frequencies", "max_count", "modes", "relative_residuals", "stiffness_floor",
+           "strip_frequency_estimate"]
 
 
 @dataclass(frozen=True)
-class Modes:
+class Modes(_EigenvalueProperties):
     """Lowest eigenpairs of the gyroscopic tape at one speed.
 
     Attributes
@@ -61,18 +55,25 @@ class Modes:
     velocity : float
         Tape speed V, m/s.
     eigenvalues : numpy.ndarray
-        λ (complex, 1/s), one per pair: +iω below critical (ascending ω); above critical the
-        eigenvalues nearest zero with Re λ >= 0 (ascending |λ|).
+        λ (complex, 1/s), one per conjugate pair: +iω below critical (ascending ω); above
+        critical the eigenvalues nearest zero with Re λ >= 0 (ascending |λ|); damped:
+        −δ + iω_d (ascending ω_d).
     vectors : numpy.ndarray
         Mode shapes φ, complex, shape (n, count), largest entry 1.
     residuals : numpy.ndarray
-        Relative residuals ‖Q(λ)φ‖ / ((|λ|²‖M‖ + |λ|‖G‖ + ‖K‖) ‖φ‖) (backward errors).
+        Relative residuals ‖Q(λ)φ‖ / ((|λ|²‖M‖ + |λ|‖G + C‖ + ‖K‖) ‖φ‖) (backward errors).
     supercritical : bool
         True if K(V) is not positive definite (V at or above the critical speed).
     info : dict
-        Diagnostics: ``shift`` (σ, 1/s), ``below_shift`` (certified number of frequencies
-        below the shift), ``factor_time`` and ``solve_time`` (s), ``ncv``, ``nev``,
-        ``operator_applications``, ``attempts``, ``pair_defect`` (max |Re λ|/|λ| before cleaning).
+        Diagnostics of :func:`gyroshell.qep.gyroscopic_modes`: ``method``, ``shift`` (σ, 1/s),
+        ``below_shift`` (certified number of frequencies below the shift), ``factor_time``
+        and ``solve_time`` (s), ``operator_applications``, ``pair_defect``, ...
+    damped : bool
+        True if computed with damping (``decay_rate``, ``damping_ratio`` then mean something).
+
+    Derived: ``omega`` (rad/s), ``frequency`` (Hz), ``period`` (s), ``growth_rate``,
+    ``decay_rate`` (1/s), ``damping_ratio``, ``stability`` ("stable", "divergence",
+    "flutter").
     """
 
     grid: Grid
@@ -82,31 +83,7 @@ class Modes:
     residuals: np.ndarray
     supercritical: bool = False
     info: dict = field(default_factory=dict, compare=False)
-
-    @property
-    def count(self) -> int:
-        return len(self.eigenvalues)
-
-    @property
-    def omega(self) -> np.ndarray:
-        """Angular frequencies ω = |Im λ|, rad/s."""
-        return np.abs(self.eigenvalues.imag)
-
-    @property
-    def frequency(self) -> np.ndarray:
-        """Frequencies ω / 2π, Hz."""
-        return self.omega / (2 * np.pi)
-
-    @property
-    def period(self) -> np.ndarray:
-        """Periods 2π / ω, s (inf for a non-oscillating eigenvalue)."""
-        with np.errstate(divide="ignore"):
-            return np.where(self.omega > 0, 2 * np.pi / np.maximum(self.omega, 1e-300), np.inf)
-
-    @property
-    def growth_rate(self) -> np.ndarray:
-        """Re λ >= 0, 1/s: zero below critical, the divergence growth rate above."""
-        return np.abs(self.eigenvalues.real)
+    damped: bool = False
 
     @property
     def fields(self) -> np.ndarray:
@@ -143,123 +120,99 @@ def strip_frequency_estimate(params: TapeParameters, grid: Grid, velocity: float
     return best if best > 0 and math.isfinite(best) else 0.0
 
 
-def _norm1(matrix: sp.spmatrix) -> float:
-    return float(abs(matrix).sum(axis=0).max()) if matrix.nnz else 0.0
+def _mass(model) -> sp.dia_matrix:
+    return sp.diags(model.mass_diagonal)
 
 
 def relative_residuals(model: TapeModel, velocity: float, eigenvalues: np.ndarray,
-                       vectors: np.ndarray) -> np.ndarray:
-    """‖(λ²M + λG + K)φ‖₂ / ((|λ|²‖M‖₁ + |λ|‖G‖₁ + ‖K‖₁) ‖φ‖₂) for each pair (dimensionless)."""
-    K, G, md = model.K(velocity), model.G(velocity), model.mass_diagonal
-    nK, nG, nM = _norm1(K), _norm1(G), float(md.max())
-    out = np.empty(len(eigenvalues))
-    for j, lam in enumerate(eigenvalues):
-        phi = vectors[:, j]
-        r = lam**2 * (md * phi) + lam * (G @ phi) + K @ phi
-        scale = abs(lam) ** 2 * nM + abs(lam) * nG + nK
-        out[j] = np.linalg.norm(r) / (scale * np.linalg.norm(phi))
-    return out
+                       vectors: np.ndarray, damping=None) -> np.ndarray:
+    """‖(λ²M + λ(G + C) + K)φ‖₂ / ((|λ|²‖M‖₁ + |λ|‖G + C‖₁ + ‖K‖₁) ‖φ‖₂) per pair."""
+    D = model.G(velocity)
+    C = damping_operator(model, velocity, damping)
+    if C is not None:
+        D = D + C
+    return _matrix_residuals(_mass(model), D, model.K(velocity), np.asarray(eigenvalues),
+                             np.asarray(vectors))
 
 
-def rayleigh_polish(M: np.ndarray, G: sp.spmatrix, K: sp.spmatrix, lam: complex,
-                    phi: np.ndarray) -> complex:
-    """Root of m λ² + g λ + κ = 0 (m = φᴴMφ, g = φᴴGφ, κ = φᴴKφ) nearest to ``lam``, 1/s.
+def damping_operator(model, velocity: float, damping) -> sp.spmatrix | None:
+    """C, kg/s, for ``damping`` at speed V (None: undamped), via :mod:`gyroshell.damping`.
 
-    The quadratic Rayleigh functional: second-order accurate in the error of φ. ``M`` is the
-    mass diagonal, kg.
+    ``damping`` is a :class:`gyroshell.damping.Damping`, a viscous coefficient c >= 0 in
+    N·s/m³ (C = c W, a damping pressure c ∂w/∂t), or a pair (a, b) for Rayleigh damping
+    C = a M + b K(V) with a >= 0 in 1/s and b >= 0 in s.
     """
-    c = np.conj(phi)
-    m = float(np.real(c @ (M * phi)))
-    g = complex(c @ (G @ phi))
-    kap = complex(c @ (K @ phi))
-    disc = np.sqrt(complex(g * g - 4 * m * kap))
-    roots = ((-g + disc) / (2 * m), (-g - disc) / (2 * m))
-    return min(roots, key=lambda r: abs(r - lam))
+    from .damping import Damping, damping_matrix, rayleigh
+
+    if isinstance(damping, (tuple, list)):
+        if len(damping) != 2:
+            raise ParameterError("Rayleigh damping must be a pair (a in 1/s, b in s), "
+                                 f"got {damping!r}")
+        damping = rayleigh(*damping)
+    elif damping is not None and not isinstance(damping, Damping) and (
+            isinstance(damping, bool) or not isinstance(damping, (int, float, np.number))):
+        raise ParameterError("damping must be a real number >= 0 N*s/m^3, a pair (a, b) or "
+                             f"a Damping, got {damping!r}")
+    return damping_matrix(model, velocity, damping)
 
 
-def factor_hermitian(Q: sp.spmatrix) -> tuple[spla.SuperLU, int | None]:
-    """Factor a symmetric/Hermitian Q with diagonal pivots; return (LU, negative pivots).
+def check_speed(model, velocity: float) -> float:
+    """A valid tape speed for ``model``, m/s: finite, >= 0, and ρV² representable."""
+    velocity = check_velocity(velocity)
+    if not math.isfinite(model.params.density * velocity * velocity):
+        raise ParameterError(f"velocity {velocity:g} m/s is out of range: rho V^2 overflows")
+    return velocity
 
-    The count is the number of negative eigenvalues of Q (Sylvester's law of inertia), or
-    ``None`` if SuperLU had to pivot off the diagonal (then the count is unknown).
+
+#: Per model, τ >= 0 with A − τB proved positive definite by inertia (see stiffness_floor).
+_FLOORS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float | None:
+    """τ >= 0, N/m, with A − τB proved positive definite; None if A itself is not.
+
+    K(V) = (A − τB) + (τ + T − ρV²) B with B positive semi-definite, so K(V) is positive
+    definite whenever ρV² − T < τ: one proof per model certifies every such speed, and the
+    eigen-solver skips factoring K(V). τ = 0 holds by construction when k > 0: the bending
+    part of A is a sum of Gram forms (w_xx, w_yy)ᵀ[[1, ν], [ν, 1]](w_xx, w_yy) + ... with
+    |ν| < 1 (:func:`gyroshell.operators.bending_foundation`), so A >= kW > 0; otherwise a
+    factorization of A decides. With ``near_divergence``, τ is the inertia-proved shift just
+    below μ_min of the divergence solver (a few factorizations, worth it for sweeps).
+    Cached per model.
     """
-    lu = spla.splu(sp.csc_matrix(Q), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                   options={"SymmetricMode": True})
-    if not np.array_equal(lu.perm_r, lu.perm_c):
-        return lu, None
-    d = lu.U.diagonal()
-    if not np.all(np.isfinite(d)) or np.any(d == 0):
-        return lu, None
-    return lu, int(np.count_nonzero(np.real(d) < 0))
-
-
-def _operator(lu: spla.SuperLU, G: sp.spmatrix, md: np.ndarray, sigma: complex,
-              omega_ref: float, counter: list[int]) -> spla.LinearOperator:
-    """(A − σB)⁻¹B on the scaled state y = [ω_r M^½ φ; M^½ λφ]."""
-    n = len(md)
-    sm = np.sqrt(md)
-    dtype = complex if sigma.imag != 0 else float
-    sigma = sigma if dtype is complex else sigma.real
-
-    def matvec(y: np.ndarray) -> np.ndarray:
-        counter[0] += 1
-        y = np.asarray(y).ravel()
-        u1 = y[:n] / (omega_ref * sm)
-        u2 = y[n:] / sm
-        z1 = -lu.solve(np.ascontiguousarray(md * u2 + G @ u1 + sigma * (md * u1)))
-        z2 = u1 + sigma * z1
-        return np.concatenate([omega_ref * sm * z1, sm * z2])
-
-    return spla.LinearOperator((2 * n, 2 * n), matvec=matvec, dtype=dtype)
-
-
-def _arpack(op: spla.LinearOperator, nev: int, *, tol: float, ncv: int | None,
-            maxiter: int | None, v0: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
-    n2 = op.shape[0]
-    ncv = min(n2 - 1, max(2 * nev + 1, nev + 20)) if ncv is None else ncv
-    if not nev + 1 < ncv <= n2:
-        raise ParameterError(f"ncv must be in ({nev + 1}, {n2}] for {nev} eigenvalues, "
-                             f"got {ncv}")
-    try:
-        theta, vecs = spla.eigs(op, k=nev, which="LM", tol=tol, ncv=ncv, maxiter=maxiter,
-                                v0=v0)
-    except spla.ArpackNoConvergence as exc:
-        raise ConvergenceError(
-            f"ARPACK found only {len(exc.eigenvalues)} of {nev} eigenvalues "
-            f"(ncv={ncv}, tol={tol:g}); try a larger ncv, a looser tol or fewer modes"
-        ) from None
-    return theta, vecs, ncv
-
-
-def _check_count(count: int, n: int) -> int:
-    if isinstance(count, bool) or int(count) != count:
-        raise ParameterError(f"count must be an integer, got {count!r}")
-    count = int(count)
-    if not 1 <= count < n // 2:
-        raise ParameterError(f"count must be in [1, {n // 2 - 1}] for {n} unknowns, "
-                             f"got {count}")
-    return count
-
-
-def _check_sigma(sigma) -> complex | None:
-    if isinstance(sigma, str):
-        if sigma != "auto":
-            raise ParameterError(f"sigma must be 'auto', 0 or i*omega_s, got {sigma!r}")
+    known = _FLOORS.get(model)
+    if known is not None and (known > 0 or known == -math.inf or not near_divergence):
+        return None if known == -math.inf else known
+    if not (hasattr(model, "A") and hasattr(model, "B")):
         return None
-    try:
-        s = complex(sigma)
-    except (TypeError, ValueError):
-        raise ParameterError(f"sigma must be 'auto', 0 or i*omega_s, got {sigma!r}") from None
-    if not (math.isfinite(s.real) and math.isfinite(s.imag)) or s.real != 0 or s.imag < 0:
-        raise ParameterError(
-            f"sigma must be 0 or purely imaginary i*omega_s with omega_s >= 0 rad/s, got {s}")
-    return s
+    tau = None
+    if near_divergence:
+        from .divergence import safe_shift
+
+        tau_d, factor = safe_shift(model)
+        tau = tau_d if factor is not None else None
+    if tau is None and model.params.k > 0:
+        tau = 0.0
+    if tau is None:
+        tau = 0.0 if factor_inertia(model.A).definite else -math.inf
+    _FLOORS[model] = tau
+    return None if tau == -math.inf else tau
+
+
+def _known_definite(model, velocity: float) -> bool | None:
+    """True if the model's stiffness floor proves K(V) positive definite, else None."""
+    tau = stiffness_floor(model)
+    if tau is None:
+        return None
+    p = model.params
+    return True if p.density * velocity**2 - p.tension < tau else None
 
 
 # ----- the solver -------------------------------------------------------------------------
 def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
-          sigma: complex | str = "auto", tol: float = DEFAULT_TOL, ncv: int | None = None,
-          maxiter: int | None = None) -> Modes:
+          sigma: complex | str = "auto", damping=None, tol: float = DEFAULT_TOL,
+          ncv: int | None = None, maxiter: int | None = None, start: Modes | None = None,
+          estimate: float | None = None, method: str = "auto") -> Modes:
     """Lowest ``count`` frequencies and complex mode shapes of the tape at speed V.
 
     Parameters
@@ -268,196 +221,66 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     velocity : float
         Tape speed V, m/s (>= 0).
     count : int
-        Number of frequencies (pairs ±iω), 1 <= count < n/2.
+        Number of frequencies (pairs ±iω), 1 <= count <= :func:`max_count` (n).
     sigma : "auto", 0 or complex i·ω_s
         Shift, 1/s. ``"auto"``: i·ω_s just below the estimated lowest frequency, moved down
-        until the inertia of Q(iω_s) certifies few modes below it. ``0``: real arithmetic,
-        one factorization of K; asks ARPACK for 2·count eigenvalues (the pairs).
+        until the inertia of Q(iω_s) certifies few modes below it. ``0``: one factorization
+        of K, the ±iω pairs found together.
+    damping : Damping, float or (a, b), optional
+        Viscous damping c, N·s/m³ (C = c W), Rayleigh (a 1/s, b s): C = a M + b K(V), or a
+        :class:`gyroshell.damping.Damping` (see :func:`damping_operator`). Damped
+        eigenvalues are −δ + iω_d (``decay_rate`` δ, ``damping_ratio``); the count
+        certificate does not apply to them.
     tol : float
-        ARPACK relative tolerance.
-    ncv : int, optional
-        Krylov subspace size; default max(2·nev + 1, nev + 20).
-    maxiter : int, optional
-        ARPACK restarts; default scipy's.
+        Relative tolerance of the eigen-iteration.
+    ncv, maxiter : int, optional
+        ARPACK's Krylov basis size and restarts (giving either selects ARPACK).
+    start : Modes, optional
+        Modes at a nearby speed: their vectors start the iteration (continuation).
+    estimate : float, optional
+        Estimate of the lowest frequency, rad/s, for the automatic shift (e.g. extrapolated
+        along a sweep); default the bottom of the travelling-wave band
+        (:func:`strip_frequency_estimate`). The shift is still certified by inertia.
+    method : {"auto", "lanczos", "arpack"}
+        See :func:`gyroshell.qep.gyroscopic_modes`.
 
     Returns
     -------
     Modes
         Above the critical speed (K(V) indefinite) ``supercritical`` is True and the
-        eigenvalues nearest zero are returned, with their growth rates Re λ > 0.
+        eigenvalues nearest zero are returned; ``stability`` says whether the tape diverges,
+        flutters or is gyroscopically stable there.
 
     Raises
     ------
     ParameterError
-        Bad count, sigma, tol or ncv.
+        Bad count, sigma, tol, ncv or damping.
     ConvergenceError
-        ARPACK did not converge, or the residuals or the mode count could not be verified.
+        The eigen-solver did not converge, or the residuals or the mode count failed.
     """
-    with blas_threads(1):
-        return _modes(model, velocity, count, sigma=sigma, tol=tol, ncv=ncv, maxiter=maxiter)
-
-
-def _modes(model, velocity, count, *, sigma, tol, ncv, maxiter) -> Modes:
-    velocity = check_velocity(velocity)
-    n = model.size
-    count = _check_count(count, n)
-    shift = _check_sigma(sigma)
-    if not (isinstance(tol, (int, float)) and 0 <= tol < 1):
-        raise ParameterError(f"tol must be in [0, 1), got {tol!r}")
-    K, G, md = model.K(velocity), model.G(velocity), model.mass_diagonal
-    info: dict = {"operator_applications": 0, "attempts": 0}
-    t0 = time.perf_counter()
-    lu_k, negatives = factor_hermitian(K)
-    info["factor_time"] = time.perf_counter() - t0
-    definite = negatives == 0
-    if negatives is None:  # pivoting happened: decide definiteness from K's pivots anyway
-        definite = False
-    estimate = strip_frequency_estimate(model.params, model.grid, velocity)
-    if not definite or shift == 0:
-        lu = lu_k if negatives is not None else spla.splu(K.tocsc())
-        result = _solve_real(model, velocity, count, lu, K, G, md, estimate, info,
-                             definite=definite, tol=tol, ncv=ncv, maxiter=maxiter)
-    else:
-        omega_s = estimate * (1 - SHIFT_MARGIN) if shift is None else shift.imag
-        if omega_s <= 0:  # nothing to shift to (e.g. next to the critical speed): σ = 0
-            return _solve_real(model, velocity, count, lu_k, K, G, md, estimate, info,
-                               definite=True, tol=tol, ncv=ncv, maxiter=maxiter)
-        result = _solve_complex(model, velocity, count, K, G, md, omega_s, info,
-                                auto=shift is None, tol=tol, ncv=ncv, maxiter=maxiter)
-    return result
-
-
-def _v0(n2: int, dtype) -> np.ndarray:
-    # A fixed, generic start vector: reproducible results, no accidental orthogonality.
-    v = np.random.default_rng(12345).standard_normal(n2)
-    return v.astype(dtype)
-
-
-def _finish(model, velocity, lams, phis, info, supercritical) -> Modes:
-    phis = phis / phis[np.argmax(np.abs(phis), axis=0), np.arange(phis.shape[1])]
-    res = relative_residuals(model, velocity, lams, phis)
-    info["max_residual"] = float(res.max())
-    if res.max() > RESIDUAL_LIMIT:
-        raise ConvergenceError(
-            f"eigenpairs not accurate: largest relative residual {res.max():.2e} > "
-            f"{RESIDUAL_LIMIT:g}; try a larger ncv or a smaller tol")
-    return Modes(model.grid, velocity, lams, phis, res, supercritical, info)
-
-
-def _solve_real(model, velocity, count, lu, K, G, md, estimate, info, *, definite, tol, ncv,
-                maxiter) -> Modes:
-    """σ = 0: factor K once, ask for 2·count eigenvalues (conjugate pairs) nearest zero."""
-    n = model.size
-    omega_ref = estimate if estimate > 0 else math.sqrt(model.params.k / model.params.density
-                                                       or 1.0) or 1.0
-    counter = [0]
-    op = _operator(lu, G, md, 0j, omega_ref, counter)
-    nev = min(2 * count + 1, 2 * n - 2)
-    t0 = time.perf_counter()
-    theta, y, used = _arpack(op, nev, tol=tol, ncv=ncv, maxiter=maxiter,
-                             v0=_v0(2 * n, float))
-    info.update(solve_time=time.perf_counter() - t0, ncv=used, nev=nev, shift=0j,
-                below_shift=None, operator_applications=counter[0], attempts=1)
-    lam = 1.0 / theta
-    phi = y[:n] / (omega_ref * np.sqrt(md))[:, None]
-    lam = np.array([rayleigh_polish(md, G, K, lam[j], phi[:, j]) for j in range(len(lam))])
-    if definite:
-        scale = np.maximum(np.abs(lam), omega_ref)
-        info["pair_defect"] = float(np.max(np.abs(lam.real) / scale))
-        if info["pair_defect"] > 1e-6:
-            raise ConvergenceError(
-                f"eigenvalues are not ±iω pairs below critical (|Re λ|/|λ| = "
-                f"{info['pair_defect']:.1e}); try a larger ncv")
-        keep = np.flatnonzero(lam.imag > 0)
-        order = keep[np.argsort(lam.imag[keep])]
-        # every +iω must have its partner −iω among the results
-        partners = np.sort(-lam.imag[lam.imag < 0])
-        if len(order) < count or len(partners) < count or not np.allclose(
-                partners[:count], lam.imag[order[:count]], rtol=1e-6):
-            raise ConvergenceError("could not match the eigenvalues in ±iω pairs; "
-                                   "try a larger ncv or count")
-        sel = order[:count]
-        lams = 1j * lam.imag[sel]
-        return _finish(model, velocity, lams, phi[:, sel], info, False)
-    # supercritical: one representative per group (λ, −λ, λ̄, −λ̄), Re >= 0 and Im >= 0,
-    # taken from a found member with Re λ >= 0 (conjugated if Im λ < 0)
-    reps = np.abs(lam.real) + 1j * np.abs(lam.imag)
-    tiny = 1e-9 * np.abs(lam)
-    order = np.argsort(np.abs(reps), kind="stable")
-    chosen: list[int] = []
-    for j in order:
-        if lam[j].real < -tiny[j]:
-            continue
-        if all(abs(reps[j] - reps[i]) > 1e-8 * abs(reps[j]) for i in chosen):
-            chosen.append(int(j))
-    sel = np.array(chosen[:count], dtype=int)
-    lams = reps[sel]
-    lams = np.where(lams.real < 1e-9 * np.abs(lams), 1j * lams.imag, lams)
-    lams = np.where(lams.imag < 1e-9 * np.abs(lams), lams.real + 0j, lams)
-    phi = phi[:, sel].astype(complex)
-    flip = lam[sel].imag < 0
-    phi[:, flip] = np.conj(phi[:, flip])
-    info["growing"] = int(np.count_nonzero(lams.real > 0))
-    return _finish(model, velocity, lams, phi, info, True)
-
-
-def _solve_complex(model, velocity, count, K, G, md, omega_s, info, *, auto, tol, ncv,
-                   maxiter) -> Modes:
-    """σ = iω_s: factor the Hermitian Q(iω_s) once, certify the count below ω_s."""
-    n = model.size
-    factor_time = info["factor_time"]
-    tries = 0
-    while True:  # move an automatic shift down until few modes lie below it
-        tries += 1
-        t0 = time.perf_counter()
-        Q = (K - omega_s**2 * sp.diags(md) + 1j * omega_s * G).tocsc()
-        lu, below = factor_hermitian(Q)
-        factor_time += time.perf_counter() - t0
-        if not auto or (below is not None and below <= count):
-            break
-        if tries >= 3:  # the estimate is far off (e.g. next to critical): σ = 0 instead
-            info["factor_time"] = factor_time
-            lu_k, _ = factor_hermitian(K)
-            return _solve_real(model, velocity, count, lu_k, K, G, md, omega_s, info,
-                               definite=True, tol=tol, ncv=ncv, maxiter=maxiter)
-        omega_s *= (0.98, 0.8)[tries - 1]
-    info.update(factor_time=factor_time, shift=1j * omega_s, below_shift=below,
-                shift_tries=tries)
-    if below is None:
-        below = 0
-    sigma = 1j * omega_s
-    omega_ref = omega_s if omega_s > 0 else max(strip_frequency_estimate(
-        model.params, model.grid, velocity), 1.0)
-    extra = 2
-    t0 = time.perf_counter()
-    counter = [0]
-    for attempt in range(1, 4):  # noqa: B007 - reported in info
-        nev = min(count + below + extra, 2 * n - 2)
-        op = _operator(lu, G, md, sigma, omega_ref, counter)
-        theta, y, used = _arpack(op, nev, tol=tol, ncv=ncv, maxiter=maxiter,
-                                 v0=_v0(2 * n, complex))
-        lam = sigma + 1.0 / theta
-        phi = y[:n] / (omega_ref * np.sqrt(md))[:, None]
-        lam = np.array([rayleigh_polish(md, G, K, lam[j], phi[:, j]) for j in range(nev)])
-        pos = np.flatnonzero(lam.imag > 0)
-        pos = pos[np.argsort(lam.imag[pos])]
-        found_below = int(np.count_nonzero(lam.imag[pos] < omega_s))
-        if len(pos) >= count and found_below >= below:
-            break
-        extra = 2 * extra + (count - len(pos)) + (below - found_below)
-    else:
-        raise ConvergenceError(
-            f"found {found_below} of the {below} frequencies certified below the shift "
-            f"{omega_s:.6g} rad/s; try sigma=0 or a larger ncv")
-    info.update(solve_time=time.perf_counter() - t0, ncv=used, nev=nev, attempts=attempt,
-                operator_applications=counter[0])
-    scale = np.maximum(np.abs(lam[pos]), omega_s)
-    info["pair_defect"] = float(np.max(np.abs(lam[pos].real) / scale))
-    if info["pair_defect"] > 1e-6:
-        raise ConvergenceError(f"eigenvalues off the imaginary axis below critical "
-                               f"(|Re λ|/|λ| = {info['pair_defect']:.1e})")
-    sel = pos[:count]
-    return _finish(model, velocity, 1j * lam.imag[sel], phi[:, sel], info, False)
+    velocity = check_speed(model, velocity)
+    check_count(count, model.size)  # before any assembly: a refusal costs nothing
+    C = damping_operator(model, velocity, damping)
+    if estimate is None:
+        estimate = strip_frequency_estimate(model.params, model.grid, velocity)
+    elif isinstance(estimate, bool) or not isinstance(estimate, (int, float)) or \
+            not (math.isfinite(estimate) and estimate >= 0):
+        raise ParameterError(f"estimate must be a frequency >= 0 in rad/s, got {estimate!r}")
+    shift = None if isinstance(sigma, str) and sigma == "auto" else sigma
+    if isinstance(sigma, str) and sigma != "auto":
+        raise ParameterError(f"sigma must be 'auto', 0 or i*omega_s, got {sigma!r}")
+    first = None
+    if start is not None:
+        if not isinstance(start, Modes) or start.vectors.shape[0] != model.size:
+            raise ParameterError("start must be the Modes of the same model")
+        first = (start.eigenvalues, start.vectors)
+    result = gyroscopic_modes(
+        _mass(model), model.G(velocity), model.K(velocity), count, sigma=shift, C=C,
+        estimate=estimate if estimate > 0 else None,
+        definite=_known_definite(model, velocity), tol=tol, ncv=ncv, maxiter=maxiter,
+        start=first, method=method)
+    return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
+                 result.supercritical, result.info, result.damped)
 
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options

@@ -4,19 +4,16 @@ Newmark's method factors K_eq = M + γΔt G + βΔt² K once and then does one f
 substitution per step, so the substitution speed is what matters. K_eq is real, square and
 non-symmetric (G is skew), banded with a half-bandwidth of about 2 (n_y + 1).
 
-Measured on K_eq of the Table 1 grid at L_x/L_y = 19 (n = 32,676; medians on this 2-core
-machine, ``benchmarks/bench_newmark.py`` and a separate survey of back-ends):
+The back-ends compared (``benchmarks/bench_newmark.py`` prints the measured medians):
 
-* SuperLU, minimum degree on Aᵀ + A: the least fill (3.6 M) and a ~3.3 ms substitution;
-  scipy's default COLAMD fills 30 % more and substitutes 1.35x slower.
-* UMFPACK (scikit-umfpack) with iterative refinement off ties SuperLU; with its default
-  two refinement steps it is 3-4x slower. It needs the SuiteSparse C library to build, so it
-  is not a clean PyPI install.
-* PARDISO (MKL, through pypardiso) on one thread ties SuperLU; on two threads it
-  substitutes 1.7x faster on an idle machine but 10-40x slower when the two cores are
-  shared, and pulls in ~0.7 GB of MKL libraries.
-* LAPACK banded LU (dgbtrf/dgbtrs through scipy) factors fastest but stores the full band
-  (2.3x SuperLU's fill) and substitutes 1.1-1.7x slower.
+* SuperLU, minimum degree on Aᵀ + A: the least fill of the orderings scipy offers and the
+  fastest substitution among the always-installed back-ends (COLAMD fills more).
+* UMFPACK (scikit-umfpack), iterative refinement off: ties SuperLU; it needs the SuiteSparse
+  C library to build, so it is not a clean PyPI install.
+* PARDISO (MKL, through pypardiso) on one thread: ties SuperLU; on two threads it is fast
+  only on an idle machine and pulls in a large MKL.
+* LAPACK banded LU (dgbtrf/dgbtrs through scipy): factors fastest but stores the full band
+  and substitutes more slowly.
 
 So "auto" is SuperLU: the fastest reliable one, shipped with scipy, always available. The
 others are opt-in by name where installed, and the tests check that all agree.
@@ -179,8 +176,8 @@ BACKENDS: dict[str, Callable[..., Factorization]] = {
     "banded": BandedFactor,
 }
 
-#: Preference order of "auto" (measured; SuperLU always installed, so it always answers).
-AUTO_ORDER: tuple[str, ...] = ("superlu", "banded")
+#: What "auto" uses: SuperLU (measured fastest of the reliable ones, always installed).
+AUTO_BACKEND = "superlu"
 
 
 def available_backends() -> tuple[str, ...]:
@@ -191,7 +188,7 @@ def available_backends() -> tuple[str, ...]:
 def resolve_backend(backend: str = "auto") -> str:
     """The back-end name ``factorize`` would use; raises ParameterError if unusable."""
     if backend == "auto":
-        return next(name for name in AUTO_ORDER if BACKENDS[name].available())
+        return AUTO_BACKEND
     if backend not in BACKENDS:
         raise ParameterError(f"backend must be one of auto, {', '.join(BACKENDS)}; "
                              f"got {backend!r}")

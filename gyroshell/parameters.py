@@ -38,7 +38,11 @@ def bending_rigidity(youngs_modulus: float, thickness: float, poisson: float) ->
     E = validation.positive("youngs_modulus", youngs_modulus, "Pa")
     c = validation.positive("thickness", thickness, "m")
     nu = _check_poisson(poisson)
-    return validation.finite_scale("bending_rigidity", E * c * c * c / (12.0 * (1.0 - nu * nu)),
+    try:
+        D = E * c**3 / (12.0 * (1.0 - nu**2))
+    except OverflowError:
+        D = math.inf
+    return validation.finite_scale("bending_rigidity", D,
                                    "N*m", what="youngs_modulus, thickness, poisson")
 
 
@@ -56,8 +60,28 @@ def shell_stiffness(
     c = validation.positive("thickness", thickness, "m")
     R = validation.positive("radius", radius, "m")
     nu = _check_poisson(poisson)
-    return validation.finite_scale("foundation_stiffness", E * c / R / R / (1.0 - nu * nu),
+    try:
+        k = E * c / (R**2 * (1.0 - nu**2))
+    except ZeroDivisionError:  # R² underflowed to 0
+        k = math.inf
+    except OverflowError:  # R² overflowed: k would be 0
+        k = 0.0
+    return validation.finite_scale("foundation_stiffness", k,
                                    "N/m^3", what="youngs_modulus, thickness, radius, poisson")
+
+
+# Older private names, kept for modules that import them; gyroshell.validation is the one
+# place for these checks.
+def _check_finite(name: str, value: float) -> float:
+    return validation.real(name, value)
+
+
+def _check_positive(name: str, value: float, unit: str = "") -> float:
+    return validation.positive(name, value, unit)
+
+
+def _check_nonnegative(name: str, value: float, unit: str = "") -> float:
+    return validation.nonnegative(name, value, unit)
 
 
 def check_velocity(velocity: float) -> float:
@@ -225,7 +249,11 @@ class TapeParameters:
     def check_velocity(self, velocity: float) -> float:
         """Validate a speed V for this tape: finite, >= 0 and ρV² finite; returns it (m/s)."""
         velocity = check_velocity(velocity)
-        return validation.real("velocity", velocity, high=self.max_velocity(), unit="m/s")
+        if velocity > self.max_velocity():
+            raise ParameterError(
+                f"velocity {velocity:g} m/s is out of range: rho V^2 overflows the solvers' "
+                f"range (velocity must be <= {self.max_velocity():g} m/s)")
+        return velocity
 
     @property
     def load_pressure(self) -> float:

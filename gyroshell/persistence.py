@@ -166,7 +166,8 @@ def _modes(result, params):
     dv["residual"] = (("mode",), result.residuals, {"units": "1"})
     dv["velocity"] = ((), result.velocity, {"units": "m/s"})
     return _dataset(dv, coords, "modes", params=params, grid=result.grid, info=result.info,
-                    supercritical=int(result.supercritical))
+                    supercritical=int(result.supercritical),
+                    damped=int(getattr(result, "damped", False)))
 
 
 def _critical(result, params):
@@ -371,7 +372,8 @@ def _read_modes(ds):
     grid = _grid_from(ds.attrs)
     return Modes(grid, float(ds["velocity"]), _get(ds, "eigenvalue"),
                  grid.from_field(_get(ds, "mode_shape")), ds["residual"].values,
-                 bool(int(ds.attrs["supercritical"])), from_json(ds.attrs["info"]))
+                 bool(int(ds.attrs["supercritical"])), from_json(ds.attrs["info"]),
+                 bool(int(ds.attrs.get("damped", 0))))
 
 
 def _read_critical(ds):

@@ -12,12 +12,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.sparse.linalg as spla
 
 from . import persistence, validation
 from .divergence import divergence_speed
 from .errors import ParameterError, SupercriticalError
 from .grid import Grid
+from .inertia import factor_inertia
 from .model import TapeModel
 
 
@@ -79,11 +79,10 @@ def factor_definite(model: TapeModel, velocity: float):
         If K(V) has a non-positive pivot: V is at or above the critical speed.
     """
     velocity = _check_model(model).params.check_velocity(velocity)
-    lu = spla.splu(model.K(velocity).tocsc(), permc_spec="MMD_AT_PLUS_A",
-                   diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-    if np.array_equal(lu.perm_r, lu.perm_c):
-        # Diagonal pivots only: Sylvester's law of inertia applies to the pivots.
-        definite = bool(np.all(lu.U.diagonal() > 0.0))
+    factor = factor_inertia(model.K(velocity))
+    lu = factor.lu
+    if factor.negatives is not None or factor.singular:
+        definite = factor.definite
         v_c = None
     else:  # SuperLU had to pivot off the diagonal: decide from the divergence speed.
         v_c = divergence_speed(model)

@@ -39,7 +39,7 @@ import math
 import os
 import sys
 import time
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -63,8 +63,6 @@ STABLE, DIVERGENCE, FLUTTER = "stable", "divergence", "flutter"
 UNDETERMINED = "undetermined"
 #: Largest number of unknowns for which a point's whole spectrum is computed densely.
 DENSE_LIMIT = 700
-#: Relative size |Re λ|/|λ| (and |Im λ|/|λ|) below which a part counts as zero.
-STABILITY_RTOL = 1e-8
 #: How long to wait for a Dask scheduler to answer.
 CONNECT_TIMEOUT = "10s"
 #: Chunks per worker when chunk size is automatic (balances load against overhead).
@@ -72,40 +70,12 @@ CHUNKS_PER_WORKER = 4
 
 
 # ----- stability ---------------------------------------------------------------------------
-def classify_stability(eigenvalues: Iterable[complex], *, rtol: float = STABILITY_RTOL) -> str:
-    """``"stable"``, ``"divergence"`` or ``"flutter"`` from eigenvalues λ (1/s).
+def classify_stability(eigenvalues, *args, **kwargs):
+    """:func:`gyroshell.qep.classify_stability`, imported on first use (it loads scipy.linalg,
+    which the CLI's parser and refusals do not need)."""
+    from .qep import classify_stability as classify
 
-    A real positive eigenvalue (Re λ > 0, Im λ = 0) is divergence: the tape creeps away
-    without oscillating. A complex one with Re λ > 0 is flutter: it oscillates with growing
-    amplitude. Otherwise (all Re λ <= 0, e.g. ±iω pairs, also above the critical speed when
-    the tape is gyroscopically stabilized) it is stable. If both kinds grow, divergence is
-    reported. A part counts as zero when it is below ``rtol`` × |λ|.
-
-    The gyroscopic eigen-solver returns only the eigenvalues nearest zero, so the verdict is
-    about those modes (:func:`tape_stability` decides for the whole tape).
-
-    Examples
-    --------
-    >>> classify_stability([125e3j, -125e3j])
-    'stable'
-    >>> classify_stability([2.3e4 + 0j, 1.5e4j])
-    'divergence'
-    >>> classify_stability([8e2 + 7.9e2j, 8e2 - 7.9e2j])
-    'flutter'
-    """
-    lam = np.asarray(list(eigenvalues) if not isinstance(eigenvalues, np.ndarray)
-                     else eigenvalues, dtype=complex).ravel()
-    if lam.size == 0:
-        raise ParameterError("classify_stability needs at least one eigenvalue")
-    if not np.all(np.isfinite(lam)):
-        raise ParameterError("eigenvalues must be finite")
-    size = np.abs(lam)
-    growing = lam.real > rtol * size
-    if not growing.any():
-        return STABLE
-    if np.any(growing & (np.abs(lam.imag) <= rtol * size)):
-        return DIVERGENCE
-    return FLUTTER
+    return classify(eigenvalues, *args, **kwargs)
 
 
 def quadratic_eigenvalues(M, G, K) -> np.ndarray:
@@ -141,10 +111,10 @@ def tape_stability(model, velocity: float, eigenvalues=None) -> str:
     zero, from :func:`gyroshell.eigen.modes`) decide if one of them grows, else the answer
     is ``undetermined``: the modes nearest zero do not show a far-off growing one.
     """
-    from .eigen import factor_hermitian
+    from .inertia import factor_inertia
 
     K = model.K(velocity)
-    _, negatives = factor_hermitian(K)
+    negatives = factor_inertia(K).negatives
     if negatives is None:  # pivoting happened: count the negative eigenvalues densely
         if model.size > DENSE_LIMIT:
             negatives = -1

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from .eigen import Modes, modes
+from .eigen import Modes, check_speed, modes, stiffness_floor
 from .errors import ParameterError
 from .model import TapeModel
 from .parameters import check_velocity
@@ -30,7 +30,7 @@ if TYPE_CHECKING:  # pandas and tqdm are imported when a sweep runs: keep `impor
 
 #: Columns of the sweep DataFrame (long format, one row per speed and branch).
 COLUMNS = ("velocity", "branch", "rank", "omega", "frequency", "period", "growth_rate",
-           "residual", "correlation", "supercritical")
+           "residual", "correlation", "supercritical", "stability")
 
 
 def parse_velocities(text: str) -> list[float]:
@@ -70,8 +70,8 @@ def correlation(md: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
-          min_correlation: float = 0.5, progress: bool | None = False, **options
-          ) -> pd.DataFrame:
+          min_correlation: float = 0.5, progress: bool | None = False,
+          continuation: bool = True, **options) -> pd.DataFrame:
     """Lowest ``count`` frequencies at each speed, tracked into branches.
 
     Parameters
@@ -86,17 +86,24 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         window and another entered); take smaller speed steps to follow branches further.
     progress : bool or None
         Show a tqdm progress bar on stderr; None: only if stderr is a terminal.
+    continuation : bool
+        Start each solve from the previous speed's modes and, when several speeds lie above
+        √(T/ρ), certify K(V) > 0 once for the model (:func:`gyroshell.eigen.stiffness_floor`)
+        instead of factoring K(V) at each of them. The results are those of independent
+        solves; the saving is those factorizations (the start vectors do not shorten the
+        shift-invert iteration, whose cost is set by the clustered spectrum).
     **options
-        Passed to :func:`gyroshell.eigen.modes` (``sigma``, ``tol``, ``ncv``, ...).
+        Passed to :func:`gyroshell.eigen.modes` (``sigma``, ``tol``, ``damping``, ...).
 
     Returns
     -------
     pandas.DataFrame
         Columns :data:`COLUMNS`: ``velocity`` (m/s), ``branch`` (tracked label), ``rank``
         (position in ascending ω at that speed), ``omega`` (rad/s), ``frequency`` (Hz),
-        ``period`` (s), ``growth_rate`` (1/s, > 0 only above critical), ``residual``,
+        ``period`` (s), ``growth_rate`` (1/s, > 0 only if unstable), ``residual``,
         ``correlation`` (with the previous speed's mode of the branch; 1 at the first speed),
-        ``supercritical``.
+        ``supercritical`` (K(V) indefinite), ``stability`` ("stable", "divergence" or
+        "flutter", of the speed's computed eigenvalues).
     """
     import pandas as pd
     from tqdm import tqdm
@@ -108,36 +115,80 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
     if not 0.0 <= min_correlation <= 1.0:
         raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
-    md = model.mass_diagonal
+    velocities = [check_speed(model, v) for v in velocities]   # all refused before any work
+    p = model.params
+    above_string = sum(p.density * v * v > p.tension for v in velocities)
+    if continuation and above_string >= FLOOR_WORTH_IT:
+        stiffness_floor(model, near_divergence=True)
+    tracker = _BranchTracker(model.mass_diagonal, min_correlation)
     rows: list[dict] = []
-    previous: np.ndarray | None = None
-    labels: list[int] = []
-    next_label = 0
+    history: list[Modes] = []
     for v in tqdm(velocities, disable=not progress, desc="sweep", unit="speed"):
-        res: Modes = modes(model, v, count, **options)
-        k = res.count
+        res = modes(model, v, count,
+                    **{**_continuation_options(history, v, continuation), **options})
+        labels, corr = tracker.match(res.vectors)
+        rows.extend(_rows(res, labels, corr))
+        history.append(res)
+    return pd.DataFrame(rows, columns=list(COLUMNS))
+
+
+#: Speeds above √(T/ρ) from which proving the stiffness floor near divergence (a few
+#: factorizations once) pays: below √(T/ρ), K(V) > 0 holds by construction.
+FLOOR_WORTH_IT = 4
+
+
+def _continuation_options(history: list[Modes], velocity: float, enabled: bool) -> dict:
+    """``start`` for :func:`modes`: the previous speed's modes, if subcritical and undamped.
+
+    The shift needs no help: the bottom of the travelling-wave band that places it follows
+    the lowest frequency to within a fraction of a percent at every speed, while an
+    extrapolation of ω₁(V) from the previous speeds (ω₁ falls like V², not linearly) lands
+    above it and makes the certified shift retreat.
+    """
+    if not enabled or not history:
+        return {}
+    last = history[-1]
+    if last.supercritical or last.damped:
+        return {}
+    return {"start": last}
+
+
+class _BranchTracker:
+    """Labels modes by mass-weighted correlation with the previous speed's (Hungarian)."""
+
+    def __init__(self, md: np.ndarray, min_correlation: float) -> None:
+        self.md, self.min_correlation = md, min_correlation
+        self.previous: np.ndarray | None = None
+        self.labels: list[int] = []
+        self.next_label = 0
+
+    def match(self, vectors: np.ndarray) -> tuple[list[int], np.ndarray]:
+        k = vectors.shape[1]
         new_labels = [-1] * k
         corr_of = np.ones(k)
-        if previous is not None:
-            c = correlation(md, previous, res.vectors)
+        if self.previous is not None:
+            c = correlation(self.md, self.previous, vectors)
             for i, j in zip(*linear_sum_assignment(-c), strict=False):
-                if c[i, j] >= min_correlation:
-                    new_labels[j], corr_of[j] = labels[i], c[i, j]
+                if c[i, j] >= self.min_correlation:
+                    new_labels[j], corr_of[j] = self.labels[i], c[i, j]
                 else:
                     corr_of[j] = c[i, j]
         for j in range(k):
             if new_labels[j] < 0:  # a mode that entered the window: a new branch
-                new_labels[j], next_label = next_label, next_label + 1
-        for j in range(k):
-            rows.append({
-                "velocity": v, "branch": new_labels[j], "rank": j,
-                "omega": float(res.omega[j]), "frequency": float(res.frequency[j]),
-                "period": float(res.period[j]), "growth_rate": float(res.growth_rate[j]),
-                "residual": float(res.residuals[j]), "correlation": float(corr_of[j]),
-                "supercritical": bool(res.supercritical),
-            })
-        previous, labels = res.vectors, new_labels
-    return pd.DataFrame(rows, columns=list(COLUMNS))
+                new_labels[j], self.next_label = self.next_label, self.next_label + 1
+        self.previous, self.labels = vectors, new_labels
+        return new_labels, corr_of
+
+
+def _rows(res: Modes, labels: list[int], corr: np.ndarray) -> list[dict]:
+    stability = res.stability
+    return [{
+        "velocity": res.velocity, "branch": labels[j], "rank": j,
+        "omega": float(res.omega[j]), "frequency": float(res.frequency[j]),
+        "period": float(res.period[j]), "growth_rate": float(res.growth_rate[j]),
+        "residual": float(res.residuals[j]), "correlation": float(corr[j]),
+        "supercritical": bool(res.supercritical), "stability": stability,
+    } for j in range(res.count)]
 
 
 def plot_sweep(frame: pd.DataFrame, path=None, *, ax=None, title: str | None = None):

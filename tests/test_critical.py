@@ -129,7 +129,8 @@ def test_cli_modes_json(capsys):
 
 def test_cli_modes_text_and_supercritical(capsys):
     assert main(["modes", *SMALL, "--count", "2", "--velocity", "120"]) == 0
-    assert "supercritical" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "the tape diverges" in out and "K(V) indefinite" in out
 
 
 def test_cli_critical_json(capsys):
@@ -160,8 +161,103 @@ def test_cli_sweep_files(tmp_path, capsys):
     (["sweep", *SMALL, "--velocities=-5,1"], "velocity must be >= 0"),
     (["sweep", *SMALL, "--out", "/nonexistent/dir/x.csv"], "does not exist"),
     (["modes", *SMALL, "--velocity", "-3"], "velocity must be >= 0"),
+    (["modes", *SMALL, "--velocity", "1e200"], "rho V^2 overflows"),
+    (["sweep", *SMALL, "--velocities", "0,1e200", "--count", "2"], "rho V^2 overflows"),
+    (["modes", *SMALL, "--count", "51"], "count must be in [1, 50]"),
 ])
 def test_cli_user_errors(argv, match, capsys):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert match in err and len(err.strip().splitlines()) == 1
+
+
+# ----- no tension, no foundation: bending alone resists ------------------------------------------
+def _bending_only(ny: int) -> TapeModel:
+    p = TapeParameters(tension=0.0, foundation_stiffness=0.0, poisson=0.0, length_ratio=2.0,
+                       spacing=WIDTH / 8)
+    return TapeModel(p, Grid(p.length, p.width, 2 * ny, ny, "free"))
+
+
+def test_critical_speed_without_tension_and_foundation():
+    """T = 0, k = 0, ν = 0, free edges: K(V) = A − ρV²B with width-uniform modes sin(mπx/L):
+    μ = D α² (continuous), so V_c = (π/L_x) √(D/ρ); the discrete model has α² → a₁² =
+    (4/h²) sin²(πh/2L_x), exactly."""
+    steps, errs = [], []
+    for ny in (8, 16, 32):
+        model = _bending_only(ny)
+        p, g = model.params, model.grid
+        c = critical_speeds(model)
+        a1 = (2 / g.hx * np.sin(np.pi * g.hx / (2 * g.length))) ** 2
+        assert c.critical_speed == pytest.approx(np.sqrt(p.D * a1 / p.density), rel=1e-8)
+        assert c.relative_difference < 1e-8
+        exact = np.pi / p.length * np.sqrt(p.D / p.density)
+        steps.append(g.hx)
+        errs.append(abs(c.critical_speed - exact) / exact)
+    assert observed_order(steps, errs) == pytest.approx(2.0, abs=0.1)
+
+
+def test_cli_critical_without_tension_and_foundation(capsys):
+    assert main(["critical", *SMALL, "--tension", "0", "--foundation-stiffness", "0",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    p = TapeParameters(length_ratio=2.0)
+    beam = np.pi / p.length * np.sqrt(p.D / p.density)     # ν-free beam value, m/s
+    assert out["critical_speed"] == pytest.approx(out["divergence_speed"], rel=1e-6)
+    assert 0.5 * beam < out["critical_speed"] < 1.5 * beam
+
+
+def test_critical_refusals():
+    model = TapeModel(TapeParameters(length_ratio=1.0, spacing=WIDTH / 8))
+    for kwargs, match in (({"guess": 0.0}, "guess must be"), ({"xtol": 0.0}, "xtol must be"),
+                          ({"xtol": -1.0}, "xtol must be"),
+                          ({"max_evaluations": 0}, "max_evaluations must be")):
+        with pytest.raises(ParameterError, match=match):
+            critical_speeds(model, **kwargs)
+
+
+def test_modes_text_says_what_is_true():
+    from gyroshell.cli.eigen import stability_sentence
+    from gyroshell.qep import gyroscopic_modes
+
+    def two_dof(k1, k2, g):
+        return gyroscopic_modes(np.eye(2), np.array([[0.0, g], [-g, 0.0]]), np.diag([k1, k2]),
+                                2)
+
+    assert stability_sentence(two_dof(1.0, 4.0, 1.0)) == ""
+    assert "gyroscopically stable" in stability_sentence(two_dof(-1.0, -4.0, 4.0))
+    assert "flutters" in stability_sentence(two_dof(-1.0, -4.0, 2.0))
+    assert "diverges" in stability_sentence(two_dof(-1.0, 4.0, 1.0))
+
+
+def test_cli_modes_damped_json(capsys):
+    assert main(["modes", *SMALL, "--count", "2", "--damping", "50", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    rho = TapeParameters().density
+    assert out["decay_rate"] == pytest.approx([50 / (2 * rho)] * 2, rel=1e-9)
+    assert all(0 < z < 1 for z in out["damping_ratio"]) and out["stability"] == "stable"
+
+
+# ----- continuation ------------------------------------------------------------------------------
+def test_continuation_sweep_equals_independent_solves():
+    model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
+    speeds = np.linspace(0, 95, 8)
+    cont = sweep(model, speeds, 4, continuation=True)
+    fresh = sweep(TapeModel(model.params), speeds, 4, continuation=False)
+    assert np.allclose(cont.omega, fresh.omega, rtol=1e-10, atol=0)
+    assert (cont.branch == fresh.branch).all()
+    assert set(cont.stability) == {"stable"}
+
+
+def test_sweep_stability_column_above_critical():
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    frame = sweep(model, [90.0, 120.0], 2)
+    by_speed = frame.groupby("velocity").stability.first()
+    assert by_speed[90.0] == "stable" and by_speed[120.0] == "divergence"
+
+
+def test_divergence_refusals():
+    model = TapeModel(TapeParameters(length_ratio=1.0, spacing=WIDTH / 8))
+    for kwargs, match in (({"tol": -1.0}, "tol must be"), ({"tol": 2.0}, "tol must be"),
+                          ({"shift": float("nan")}, "shift must be")):
+        with pytest.raises(ParameterError, match=match):
+            divergence(model, **kwargs)

@@ -186,6 +186,13 @@ def test_supercritical_reports_divergence():
     ({"sigma": "low"}, "sigma must be 'auto'"),
     ({"tol": 2.0}, "tol must be in"),
     ({"ncv": 3}, "ncv must be in"),
+    ({"ncv": "a"}, "ncv must be None or an integer"),
+    ({"maxiter": 0}, "maxiter must be None or an integer >= 1"),
+    ({"maxiter": 2.5}, "maxiter must be None or an integer >= 1"),
+    ({"count": None}, "count must be an integer"),
+    ({"estimate": -1.0}, "estimate must be a frequency"),
+    ({"start": "x"}, "start must be the Modes"),
+    ({"velocity": 1e200}, "rho V\\^2 overflows"),
 ])
 def test_refusals(kwargs, match):
     args = {"velocity": 0.0, "count": 2, **kwargs}
@@ -196,3 +203,36 @@ def test_refusals(kwargs, match):
 def test_arpack_failure_is_a_convergence_error():
     with pytest.raises(ConvergenceError, match="ARPACK"):
         modes(_model(length_ratio=19.0), 0.0, 8, sigma=0, maxiter=1, ncv=20)
+
+
+@pytest.mark.parametrize("velocity", [0.0, 50.0, 95.0])
+def test_lanczos_and_arpack_agree(velocity):
+    model = _model(length_ratio=6.0)
+    lanczos = modes(model, velocity, 6, method="lanczos")
+    arpack = modes(model, velocity, 6, method="arpack")
+    assert lanczos.info["method"] == "lanczos" and arpack.info["method"] == "arpack"
+    assert np.allclose(lanczos.omega, arpack.omega, rtol=1e-10, atol=0)
+    assert lanczos.info["below_shift"] == arpack.info["below_shift"] == 0
+    assert lanczos.residuals.max() < 1e-13
+
+
+def test_count_above_the_limit_is_refused_quickly():
+    from gyroshell.eigen import max_count
+
+    model = _model(length_ratio=19.0)
+    limit = max_count(model.size)
+    with pytest.raises(ParameterError, match=rf"count must be in \[1, {limit}\]"):
+        modes(model, 0.0, limit + 1)
+
+
+@pytest.mark.parametrize("edges", ["free", "simply-supported"])
+@pytest.mark.parametrize("nu", [-0.5, 0.0, 0.3, 0.49])
+def test_bending_is_positive_semidefinite_so_K_is_definite_below_string_speed(edges, nu):
+    """The stiffness floor takes A >= kW from the construction of A (Gram forms): check it."""
+    from gyroshell.inertia import factor_inertia
+
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8, edges=edges,
+                                     poisson=nu))
+    bending = model.A - sp.diags(model.params.k * model.grid.areas)
+    shift = 1e-12 * abs(bending).sum(axis=0).max()
+    assert factor_inertia(bending + shift * sp.identity(model.size)).negatives == 0

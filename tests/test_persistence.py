@@ -59,6 +59,14 @@ def test_modes_round_trip_keeps_complex_values(model, tmp_path, velocity):
     assert back.info == res.info  # complex shift survives the JSON metadata
 
 
+def test_damped_modes_round_trip(model, tmp_path):
+    res = modes(model, 30.0, 3, damping=20.0)
+    back = gyroshell.load(res.save(tmp_path / "damped.nc"))
+    assert back.damped and res.damped
+    same_array(back.eigenvalues, res.eigenvalues)
+    same_array(back.decay_rate, res.decay_rate)
+
+
 def test_netcdf_stores_complex_as_real_and_imaginary_parts(model, tmp_path):
     res = modes(model, 120.0, 3)
     path = res.save(tmp_path / "m.nc")

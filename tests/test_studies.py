@@ -34,6 +34,7 @@ EXPECTED = {
     "observations": ("observations.csv", "observations.png"),
     "helical": ("helical_heads.csv", "helical_heads.png"),
     "frf": ("frf.csv", "frf_bode.png"),
+    "bearing": ("bearing_speed.csv", "bearing_speed.png"),
 }
 
 

@@ -21,7 +21,7 @@ from .common import ArgumentParser, UserError, common_parser
 
 #: Sub-command modules (gyroshell.cli.<name>), in help order.
 SUBCOMMANDS: tuple[str, ...] = ("static", "transient", "eigen", "frf", "study",
-                               "reproduce")
+                               "reproduce", "bearing")
 
 
 def build_parser() -> ArgumentParser:

@@ -6,8 +6,11 @@ import argparse
 import math
 import time
 
+import numpy as np
+
 from ..io import PLOT, check_outputs, transaction, write_atomic
 from .common import grid_of, parameters_from_args, parse_velocities, positive_int, print_json
+from .loading import add_damping_options, damping_from_args
 from .saving import add_save_option, check_save_path, save_result
 
 
@@ -19,6 +22,7 @@ def register(sub, common: argparse.ArgumentParser,
                     "(lambda^2 M + lambda G + K) phi = 0 at the tape speed --velocity (m/s).")
     p.add_argument("--count", type=positive_int, default=6,
                    help="number of frequencies, >= 1 (default 6)")
+    add_damping_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     add_save_option(p)
     p.set_defaults(func=run_modes)
@@ -61,7 +65,8 @@ def run_modes(args: argparse.Namespace) -> int:
     check_outputs({"--save": (args.save, None)})
     model = TapeModel(params, grid)
     t0 = time.perf_counter()
-    res = modes(model, velocity, args.count)
+    damping = damping_from_args(args)
+    res = modes(model, velocity, args.count, damping=None if damping.is_zero else damping)
     elapsed = time.perf_counter() - t0
     save_result(args.save, res, params)
     g = model.grid
@@ -71,7 +76,12 @@ def run_modes(args: argparse.Namespace) -> int:
         "frequency": res.frequency.tolist(),
         "period": [p if math.isfinite(p) else None for p in res.period.tolist()],
         "growth_rate": res.growth_rate.tolist(),
+        "decay_rate": res.decay_rate.tolist(),
+        "damping_ratio": res.damping_ratio.tolist(),
+        "damping": damping.viscous,
+        "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
         "supercritical": res.supercritical,
+        "stability": res.stability,
         "residual": res.residuals.tolist(),
         "foundation_frequency": params.foundation_frequency,
         "nx": g.nx, "ny": g.ny, "unknowns": g.unknowns, "edges": g.edges,
@@ -81,17 +91,42 @@ def run_modes(args: argparse.Namespace) -> int:
         print_json(out)
         return 0
     print(f"grid: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns, {g.edges} edges; "
-          f"V = {velocity:g} m/s")
-    if res.supercritical:
-        print("supercritical: K(V) is indefinite, the tape diverges "
-              f"({int((res.growth_rate > 0).sum())} growing eigenvalue(s) shown)")
+          f"V = {velocity:g} m/s" + ("" if damping.is_zero else
+                                     f", damping c = {damping.viscous:g} N*s/m^3, Rayleigh "
+                                     f"a = {damping.mass_coefficient:g} 1/s, "
+                                     f"b = {damping.stiffness_coefficient:g} s"))
+    diagnosis = stability_sentence(res)
+    if diagnosis:
+        print(diagnosis)
+    damped = res.damped
     print(f"{'#':>3} {'omega (rad/s)':>16} {'f (Hz)':>14} {'period (s)':>14} "
-          f"{'growth (1/s)':>13} {'residual':>9}")
+          f"{'decay (1/s)' if damped else 'growth (1/s)':>13} "
+          f"{'zeta' if damped else '':>9} {'residual':>9}")
     for i in range(res.count):
+        rate = res.decay_rate[i] if damped else res.growth_rate[i]
+        zeta = f"{res.damping_ratio[i]:9.3g}" if damped else " " * 9
         print(f"{i + 1:>3} {res.omega[i]:16.8g} {res.frequency[i]:14.8g} "
-              f"{res.period[i]:14.6e} {res.growth_rate[i]:13.6g} {res.residuals[i]:9.1e}")
+              f"{res.period[i]:14.6e} {rate:13.6g} {zeta} {res.residuals[i]:9.1e}")
     print(f"sqrt(k/rho) = {params.foundation_frequency:.8g} rad/s; solved in {elapsed:.2f} s")
     return 0
+
+
+def stability_sentence(res) -> str:
+    """One line saying what the computed eigenvalues show (empty when stable below critical)."""
+    growing = int(np.count_nonzero(res.growth_rate > 0))
+    if res.stability == "divergence":
+        real = int(np.count_nonzero((res.growth_rate > 0) & (res.omega == 0)))
+        return (f"unstable: the tape diverges (K(V) indefinite; {real} real positive "
+                f"eigenvalue(s) among those shown, largest growth rate "
+                f"{res.growth_rate.max():.6g} 1/s)")
+    if res.stability == "flutter":
+        return (f"unstable: the tape flutters ({growing} complex eigenvalue(s) with positive "
+                f"real part among those shown, largest growth rate "
+                f"{res.growth_rate.max():.6g} 1/s)")
+    if res.supercritical:
+        return ("supercritical: K(V) is indefinite, yet every eigenvalue shown is on the "
+                "imaginary axis: gyroscopically stable at this speed")
+    return ""
 
 
 def run_critical(args: argparse.Namespace) -> int:

@@ -1,0 +1,57 @@
+"""Head geometry: a cylinder of the tape's radius R, wrapped over an angle θ.
+
+Without air the tape lies on the head over the arc R θ, centred in the domain, and leaves
+along straight spans tangent to it. Its displacement w is measured from the cylinder, so
+in that dry configuration
+
+    w₀(x) = (|x − x_c| − R θ / 2)₊² / (2R),
+
+the gap between a tangent span and the cylinder in the small-slope (shallow shell)
+approximation the shell equations already make. The flying tape is w = w₀ + u, the gap
+h = w₀ + u: h = u on the wrap and h grows with the spans outside.
+
+The tape's curvature in the dry configuration, measured from flat, is
+κ = 1/R − w₀'' (1/R on the wrap, 0 on the spans): it sets both the belt-wrap load
+(T − ρV²) κ and the bending moment that a tape of finite D cannot jump at the wrap corners.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import ParameterError
+from ..parameters import _check_finite
+
+#: Largest wrap angle, rad: beyond it the shallow-shell gap w₀ is no longer a fair model.
+MAX_WRAP_ANGLE = math.radians(90.0)
+
+
+def check_wrap_angle(angle: float) -> float:
+    """Validate a wrap angle θ in rad: 0 < θ <= π/2."""
+    angle = _check_finite("wrap_angle", angle)
+    if not 0.0 < angle <= MAX_WRAP_ANGLE:
+        raise ParameterError(
+            f"wrap_angle must be in (0, {math.degrees(MAX_WRAP_ANGLE):g}] degrees, "
+            f"got {math.degrees(angle):g} degrees")
+    return angle
+
+
+def dry_gap(x: np.ndarray, length: float, radius: float, wrap_angle: float) -> np.ndarray:
+    """w₀(x), m: distance from the cylinder to the dry tape (0 on the wrap)."""
+    half = 0.5 * radius * wrap_angle
+    s = np.maximum(np.abs(np.asarray(x, dtype=float) - 0.5 * length) - half, 0.0)
+    return s * s / (2.0 * radius)
+
+
+def dry_curvature(x: np.ndarray, length: float, radius: float, wrap_angle: float
+                  ) -> np.ndarray:
+    """κ at the interior nodes of the uniform abscissae ``x``, 1/m: 1/R − δ²w₀.
+
+    The discrete second difference makes the wrap load and the bending reference exactly
+    consistent with the nodal w₀ (a node straddling a corner gets the right fraction).
+    """
+    w0 = dry_gap(x, length, radius, wrap_angle)
+    hx = x[1] - x[0]
+    return 1.0 / radius - (w0[2:] - 2.0 * w0[1:-1] + w0[:-2]) / hx**2

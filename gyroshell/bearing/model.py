@@ -1,0 +1,289 @@
+"""BearingModel: the tape (shell operators) and the air film on one grid, coupled.
+
+Unknowns z = [u, p]: the tape's departure u from the dry wrapped configuration at the
+tape's unknown nodes (m) and the film pressure p at the film-interior nodes (Pa). The
+coupled residual is
+
+    r_u = K u − W (p − p_a) + (T − ρV²) W κ − f_κ − λ          (N, or N/m per unit width)
+    r_p = Σ_faces F + 12μ A ∂φ/∂t                               (film balance)
+
+with λ the contact forces of the nodes in contact (see :mod:`.steady`). Its Jacobian is
+assembled exactly: K, the coupling −W, and the film's ∂r_p/∂p, ∂r_p/∂h.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import cached_property
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import ParameterError
+from ..grid import Grid
+from ..parameters import MIN_INTERVALS_ACROSS, TapeParameters, _check_positive
+from .air import AirParameters
+from .film import Film
+from .geometry import check_wrap_angle, dry_curvature, dry_gap
+from .tape import PlateOperators, StripOperators
+
+#: Spans outside the wrap, in units of the larger of the film and bending lengths
+#: (infinitely wide tape; the 2-D tape uses fewer: its cost grows with the domain).
+SPAN_LENGTHS = 10.0
+SPAN_LENGTHS_2D = 6.0
+#: Default x-spacing, in units of the smaller length (infinitely wide; 2-D).
+X_RESOLUTION = 1.0 / 12.0
+X_RESOLUTION_2D = 1.0 / 6.0
+#: Default y-spacing of the 2-D tape, m: resolves the free edges' boundary layer (about
+#: 0.5 mm wide on the Table 1 tape at 4 m/s), whose spacing then converges to a few %.
+Y_SPACING = 50e-6
+#: Classical flexible-foil constant, used only to size the domain and guess a start.
+_FOIL_GUESS = 0.64
+
+
+def foil_length_scales(params: TapeParameters, air: AirParameters, velocity: float
+                       ) -> tuple[float, float, float]:
+    """(h_foil, ℓ_film, ℓ_bend), m: the flexible-foil spacing scale R ε^(2/3), the entrance
+    and exit length R ε^(1/3) (ε = 6μV/(T − ρV²)) and the bending length √(D/(T − ρV²))."""
+    t_eff = params.tension - params.density * velocity**2
+    eps = 6.0 * air.viscosity * velocity / t_eff
+    r = params.radius
+    return r * eps ** (2 / 3), r * eps ** (1 / 3), math.sqrt(params.D / t_eff)
+
+
+class BearingModel:
+    """A tape flying over a cylindrical head on its self-generated air film.
+
+    Parameters
+    ----------
+    params : TapeParameters
+        The tape (E, ν, c, R, ρ, T, width, D, k overrides); its ``spacing`` and
+        ``length_ratio`` are not used: the bearing sizes its own grid.
+    air : AirParameters
+    velocity : float
+        Tape speed V, m/s (> 0, below the string speed √(T/ρ)).
+    wrap_angle : float
+        Wrap angle θ of the tape on the head, rad, in (0, π/2].
+    infinitely_wide : bool
+        Infinitely wide tape (1-D, per unit width) instead of the free-edged 2-D tape.
+    span : float, optional
+        Length of each tangent span in the domain, m (default: 10 (2-D: 6) times the
+        larger of the film length R ε^(1/3) and the bending length √(D/(T − ρV²))).
+    nx : int, optional
+        Intervals along x (default: a spacing of 1/12 (2-D: 1/6) of the smaller of those
+        lengths, made even).
+    ny : int, optional
+        Intervals across the width in 2-D (even, >= 8; default: a spacing near 50 µm).
+    """
+
+    def __init__(self, params: TapeParameters, air: AirParameters | None = None, *,
+                 velocity: float, wrap_angle: float, infinitely_wide: bool = False,
+                 span: float | None = None, nx: int | None = None, ny: int | None = None
+                 ) -> None:
+        self.params = params
+        self.air = AirParameters() if air is None else air
+        self.velocity = _check_positive("velocity", velocity, "m/s")
+        self.wrap_angle = check_wrap_angle(wrap_angle)
+        self.infinitely_wide = bool(infinitely_wide)
+        if params.tension - params.density * self.velocity**2 <= 0.0:
+            raise ParameterError(
+                f"velocity must be below the string speed sqrt(T/rho) = "
+                f"{params.string_speed:.6g} m/s (the tape would not wrap), got {velocity:g}")
+        h_foil, l_film, l_bend = foil_length_scales(params, self.air, self.velocity)
+        spans, resolution = ((SPAN_LENGTHS, X_RESOLUTION) if self.infinitely_wide
+                             else (SPAN_LENGTHS_2D, X_RESOLUTION_2D))
+        self.span = (spans * max(l_film, l_bend) if span is None
+                     else _check_positive("span", span, "m"))
+        self.length = params.radius * self.wrap_angle + 2.0 * self.span
+        if nx is None:
+            nx = 2 * math.ceil(0.5 * self.length / (resolution * min(l_film, l_bend)))
+        if isinstance(nx, bool) or not isinstance(nx, (int, np.integer)) or nx < 8:
+            raise ParameterError(f"nx must be an integer >= 8, got {nx!r}")
+        self.nx = int(nx)
+        self.h_guess = _FOIL_GUESS * h_foil
+        hx = self.length / self.nx
+        if self.infinitely_wide:
+            self.ny, self.grid = None, None
+            self.tape = StripOperators(params, self.nx, hx)
+            self.nc = 1
+        else:
+            if ny is None:
+                ny = max(MIN_INTERVALS_ACROSS, 2 * round(0.5 * params.width / Y_SPACING))
+            if (isinstance(ny, bool) or not isinstance(ny, (int, np.integer)) or ny < 8
+                    or ny % 2):
+                raise ParameterError(f"ny must be an even integer >= 8 (a node on the centre "
+                                     f"line), got {ny!r}")
+            self.ny = int(ny)
+            self.grid = Grid(self.length, params.width, self.nx, self.ny, "free")
+            self.tape = PlateOperators(params, self.grid)
+            self.nc = self.ny + 1
+        self.x = np.linspace(0.0, self.length, self.nx + 1)
+        self.y = (None if self.infinitely_wide
+                  else np.linspace(0.0, params.width, self.ny + 1))
+        self.film = Film(self.nx, self.nc, hx, None if self.infinitely_wide else
+                         params.width / self.ny, self.air, self.velocity)
+        self.n_u = self.tape.n * (1 if self.infinitely_wide else 1)
+        self.n_p = self.film.size
+        w0 = dry_gap(self.x, self.length, params.radius, self.wrap_angle)
+        self.dry_field = np.repeat(w0[:, None], self.nc, axis=1)
+        self.kappa = dry_curvature(self.x, self.length, params.radius, self.wrap_angle)
+        self.f_kappa = self.tape.curvature_load(self.kappa)
+        self.W = self.tape.W
+        self.kappa_nodes = np.repeat(self.kappa, self.nc)
+        self.pressure_load = self._pressure_load_matrix()
+
+    def __repr__(self) -> str:
+        kind = "infinitely wide" if self.infinitely_wide else f"width {self.params.width:g} m"
+        return (f"BearingModel(V={self.velocity:g} m/s, wrap={math.degrees(self.wrap_angle):g}"
+                f" deg, {kind}, L_x={self.length:.4g} m, nx={self.nx}, ny={self.ny})")
+
+    def _pressure_load_matrix(self) -> sp.csr_matrix:
+        """L with L (p − p_a) the nodal air forces, N: the exact integral of the bilinear
+        interpolant of p − p_a over each tape node's control area.
+
+        At a free edge the control strip [0, h_y/2] then feels the pressure rising from
+        p_a at the edge, which plain nodal sampling (zero there) would miss.
+        """
+        def weights(n_nodes: int, h: float, rows: slice) -> sp.csr_matrix:
+            e = np.ones(n_nodes)
+            m = sp.diags([e[1:] / 8, 6 * e / 8, e[1:] / 8], [-1, 0, 1]).tolil()
+            m[0, :2] = [3 / 8, 1 / 8]
+            m[-1, -2:] = [1 / 8, 3 / 8]
+            return (h * m.tocsr())[rows]
+
+        ex = weights(self.nx + 1, self.hx, slice(1, self.nx))
+        ey = (sp.identity(1, format="csr") if self.infinitely_wide
+              else weights(self.ny + 1, self.params.width / self.ny, slice(None)))
+        full = sp.kron(ex, ey, format="csc")
+        return full[:, self.film._pattern["node_of_p"]].tocsr()
+
+    @cached_property
+    def mirror(self) -> tuple[sp.csr_matrix, np.ndarray] | None:
+        """(P, rows) for states symmetric about the tape's centre line y = L_y/2: P maps
+        the unknowns of the half 0 <= y <= L_y/2 to the whole, ``rows`` picks that half's
+        equations. None for the infinitely wide tape (or an odd ny)."""
+        if self.infinitely_wide or self.ny % 2:
+            return None
+        half = self.ny // 2
+        nodes = np.arange((self.nx + 1) * self.nc).reshape(self.nx + 1, self.nc)
+        jj = np.broadcast_to(np.arange(self.nc), nodes.shape)
+        folded = nodes - jj + np.minimum(jj, self.ny - jj)       # node of the mirror image
+        blocks, rows, offset = [], [], 0
+        for node_of, n in ((np.arange(self.n_u) + self.nc, self.n_u),
+                           (self.film._pattern["node_of_p"], self.n_p)):
+            keep = jj.ravel()[node_of] <= half
+            index = np.full(nodes.size, -1)
+            index[node_of[keep]] = np.arange(int(keep.sum()))
+            cols = index[folded.ravel()[node_of]]
+            blocks.append(sp.csr_matrix((np.ones(n), (np.arange(n), cols)),
+                                        shape=(n, int(keep.sum()))))
+            rows.append(offset + np.flatnonzero(keep))
+            offset += n
+        return sp.block_diag(blocks, format="csr"), np.concatenate(rows)
+
+    def _extruded_strip_state(self) -> np.ndarray:
+        from .steady import solve_steady
+        from ..errors import ConvergenceError
+
+        strip = BearingModel(self.params, self.air, velocity=self.velocity,
+                             wrap_angle=self.wrap_angle, infinitely_wide=True,
+                             span=self.span, nx=self.nx)
+        try:
+            sol = solve_steady(strip)
+        except ConvergenceError:
+            z = strip.initial_state()
+            u1, p1 = z[:strip.n_u], z[strip.n_u:]
+        else:
+            u1, p1 = sol.u, sol.p
+        u = np.repeat(u1, self.nc)
+        P = np.repeat(strip.pressure_field(p1), self.nc, axis=1)
+        return np.concatenate([u, P[self.film.interior]])
+
+    def at_velocity(self, velocity: float) -> BearingModel:
+        """The same tape, head and grid at another speed V, m/s (for continuation)."""
+        return BearingModel(self.params, self.air, velocity=velocity,
+                            wrap_angle=self.wrap_angle, infinitely_wide=self.infinitely_wide,
+                            span=self.span, nx=self.nx, ny=self.ny)
+
+    # ----- state <-> fields ----------------------------------------------------------------
+    @property
+    def size(self) -> int:
+        return self.n_u + self.n_p
+
+    @property
+    def hx(self) -> float:
+        return self.length / self.nx
+
+    def effective_tension(self, tension: float | None = None) -> float:
+        """T − ρV², N/m."""
+        t = self.params.tension if tension is None else tension
+        return t - self.params.density * self.velocity**2
+
+    def spacing_field(self, u: np.ndarray) -> np.ndarray:
+        """h = w₀ + u on every node, shape (nx + 1, nc), m."""
+        H = self.dry_field.copy()
+        H[1:-1, :] += u.reshape(self.nx - 1, self.nc)
+        return H
+
+    def pressure_field(self, p: np.ndarray) -> np.ndarray:
+        """p on every node (p_a on the film boundaries), shape (nx + 1, nc), Pa."""
+        P = np.full((self.nx + 1, self.nc), self.air.ambient_pressure)
+        P[self.film.interior] = p
+        return P
+
+    @cached_property
+    def stiffness_diagonal(self) -> np.ndarray:
+        """diag K at the nominal tension, N/m: scales the contact rows."""
+        return (self.tape.A + self.effective_tension() * self.tape.B).diagonal()
+
+    def K(self, tension: float | None = None) -> sp.csr_matrix:
+        """K = A + (T − ρV²) B, N/m."""
+        return (self.tape.A + self.effective_tension(tension) * self.tape.B).tocsr()
+
+    # ----- residual and Jacobian -------------------------------------------------------------
+    def tape_residual(self, u: np.ndarray, p: np.ndarray, K: sp.spmatrix,
+                      tension: float | None = None) -> np.ndarray:
+        """K u − W (p − p_a) + (T − ρV²) W κ − f_κ (no contact force), N."""
+        pa = self.air.ambient_pressure
+        return (K @ u - self.pressure_load @ (p - pa)
+                + self.effective_tension(tension) * self.W * self.kappa_nodes - self.f_kappa)
+
+    def film_residual(self, u: np.ndarray, p: np.ndarray, *, phi_old=None, dt=None,
+                      jacobian: bool = True):
+        """Film balances and their Jacobian blocks (∂/∂p, ∂/∂u); see :class:`Film`.
+
+        Spacings below half the roughness (reachable only during Newton iterations, before
+        the contact set catches them) are floored there so that the film stays defined.
+        """
+        H = self.spacing_field(u)
+        floor = 0.5 * self.air.roughness
+        clipped = H < floor
+        Hf = np.where(clipped, floor, H)
+        r, J_p, J_h = self.film_residual_fields(self.pressure_field(p), Hf, phi_old=phi_old,
+                                                dt=dt, jacobian=jacobian)
+        if not jacobian:
+            return r, None, None
+        J_u = J_h[:, self.nc:self.nc + self.n_u]
+        free = ~clipped[1:-1, :].ravel()
+        if not free.all():
+            J_u = J_u @ sp.diags(free.astype(float))
+        return r, J_p, J_u.tocsr()
+
+    def film_residual_fields(self, P, H, **kw):
+        return self.film.residual(P, H, **kw)
+
+    def air_force(self, p: np.ndarray) -> float:
+        """∫ (p − p_a) dA over the film, N (per unit width, N/m, for the infinitely wide)."""
+        return float(self.film.cell_area * np.sum(p - self.air.ambient_pressure))
+
+    def initial_state(self) -> np.ndarray:
+        """A start for Newton. Infinitely wide: the flexible-foil spacing and the wrap
+        pressure. 2-D: the infinitely wide tape's solution on the same x-grid, extruded
+        across the width (one cheap 1-D solve saves several 2-D Newton iterations)."""
+        if not self.infinitely_wide:
+            return self._extruded_strip_state()
+        u = np.full(self.n_u, self.h_guess)
+        kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)
+        p = self.air.ambient_pressure + self.effective_tension() * kappa[
+            self.film.interior[1:-1, :]]
+        return np.concatenate([u, p])

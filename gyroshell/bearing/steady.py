@@ -1,0 +1,414 @@
+"""Steady flying state: monolithic Newton over (u, p) with a primal–dual active set for
+contact, and continuation in V when Newton cannot reach the state directly.
+
+Contact keeps the spacing at or above the roughness σ. With the contact forces λ >= 0 the
+conditions are complementary: h − σ >= 0, λ >= 0, λ (h − σ) = 0, written as the
+semismooth equation λ − max(0, λ − c (h − σ)) = 0 (c = diag K, in N/m). Its Newton
+method is the primal–dual active-set method: nodes with λ − c (h − σ) > 0 are in
+contact, their tape rows become h = σ and their λ follows from the tape equation; the
+others carry λ = 0. The active set changes only between iterations and the method stops
+when the set is settled and the step is negligible, so contact never stalls Newton the way
+a penalty with a step limiter does.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from ..errors import ConvergenceError
+from .model import BearingModel
+
+#: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
+STEP_TOLERANCE = 1e-8
+#: Most Newton iterations per solve.
+MAX_ITERATIONS = 60
+#: A step may shrink p to no less than this fraction of its value (compressible film).
+PRESSURE_KEEP = 0.2
+#: ... and a free node's spacing to no less than this fraction of its value ...
+SPACING_KEEP = 0.2
+#: ... nor grow by more than this multiple of it (plus σ).
+SPACING_GROWTH = 4.0
+#: Below this relative step a factorization is reused (chord steps) ...
+CHORD_SWITCH = 1e-2
+#: ... while each step shrinks at least by this factor.
+CHORD_CONTRACTION = 0.1
+#: Smallest line-search step before a step is taken anyway.
+MIN_STEP = 1.0 / 256.0
+
+
+@dataclass
+class NewtonInfo:
+    """What a Newton solve did: iterations, step and residual norms per iteration, the
+    number of nodes in contact per iteration, the wall time (s) and the continuation path
+    (speeds in m/s, empty if none was needed)."""
+
+    iterations: int = 0
+    step_norms: list = field(default_factory=list)
+    residual_norms: list = field(default_factory=list)
+    contact_nodes: list = field(default_factory=list)
+    seconds: float = 0.0
+    continuation: list = field(default_factory=list)
+
+
+def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float) -> float:
+    """Largest α <= 1 keeping every free node's spacing within [h/5, 5 h + σ] (the film
+    coefficients vary like h³; nodes that would dip below σ still may, and enter the
+    contact set at the next iteration)."""
+    alpha = 1.0
+    free = ~active
+    down = free & (du < -(1 - SPACING_KEEP) * h)
+    if down.any():
+        alpha = min(alpha, float(np.min(-(1 - SPACING_KEEP) * h[down] / du[down])))
+    up = free & (du > SPACING_GROWTH * h + sigma)
+    if up.any():
+        alpha = min(alpha, float(np.min((SPACING_GROWTH * h[up] + sigma) / du[up])))
+    return alpha
+
+
+def _norm(dz: np.ndarray, n_u: int, F) -> float:
+    """max |δu|/h_scale, |δp|/(T/R): the relative size of a Newton step."""
+    return max(np.max(np.abs(dz[:n_u])) / F.h_scale, np.max(np.abs(dz[n_u:])) / F.t_scale)
+
+
+def _contact_scale(model: BearingModel) -> np.ndarray:
+    return model.stiffness_diagonal
+
+
+class _Residual:
+    """The semismooth residual [min(r_u, c (h − σ)), r_p] of one solve, scaled for the
+    merit function: tape rows by the wrap force W (T − ρV²)/R, film rows by the Couette
+    flux 6μV h p_a (compressible) or 6μV h through one face."""
+
+    def __init__(self, model: BearingModel, tension, transient) -> None:
+        self.model, self.tension, self.transient = model, tension, transient
+        self.K = model.K(tension)
+        self.c = _contact_scale(model)
+        self.sigma = model.air.roughness
+        self.film_kw = ({} if transient is None else
+                        {"phi_old": transient.phi_old, "dt": transient.dt})
+        t_wrap = max(model.effective_tension(tension) / model.params.radius, 1.0)
+        self.t_scale = t_wrap
+        self.h_scale = max(model.h_guess, self.sigma)
+        flux = 6.0 * model.air.viscosity * model.velocity * self.h_scale \
+            * model.film.x_face_length
+        if model.air.compressible:
+            flux *= model.air.ambient_pressure
+        self.row_scale = np.concatenate([1.0 / (t_wrap * model.W),
+                                         np.full(model.n_p, 1.0 / flux)])
+        J_uu = self.K if transient is None else self.K + transient.jacobian
+        # The tape rows [J_uu, −L] do not change within a solve: assembled once.
+        self.tape_rows = sp.hstack([J_uu, -model.pressure_load], format="csr")
+
+    def tape(self, u, p):
+        r_u = self.model.tape_residual(u, p, self.K, self.tension)
+        if self.transient is not None:
+            r_u = r_u + self.transient.tape_terms(u)[0]
+        return r_u
+
+    def __call__(self, z, *, jacobian: bool):
+        m = self.model
+        u, p = z[:m.n_u], z[m.n_u:]
+        r_u = self.tape(u, p)
+        r_p, J_pp, J_pu = m.film_residual(u, p, jacobian=jacobian, **self.film_kw)
+        gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.sigma)
+        active = r_u > gap
+        res = np.concatenate([np.where(active, gap, r_u), r_p])
+        if not jacobian:
+            return res, active, None
+        rows_u = self.tape_rows
+        if active.any():
+            rows_u = (sp.diags((~active).astype(float)) @ rows_u
+                      + sp.diags(active * self.c, shape=rows_u.shape))
+        J = sp.vstack([rows_u, sp.hstack([J_pu, J_pp], format="csr")], format="csc")
+        return res, active, J
+
+    def factor(self, J):
+        """A solver res ↦ −J⁻¹ res. A 2-D tape, symmetric about its centre line, is solved
+        on half the width (the step stays symmetric: P δ_half, P the mirror)."""
+        fold = self.model.mirror
+        if fold is not None:
+            P, rows = fold
+            J = (J[rows, :] @ P).tocsc()
+        try:
+            lu = spla.splu(J, permc_spec="COLAMD")
+        except RuntimeError as exc:  # exactly singular
+            raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
+        if fold is None:
+            return lambda res: -lu.solve(res)
+        return lambda res: -(P @ lu.solve(res[rows]))
+
+    def merit(self, res) -> float:
+        return float(np.linalg.norm(res * self.row_scale))
+
+
+def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
+           transient=None, tol: float = STEP_TOLERANCE,
+           max_iterations: int = MAX_ITERATIONS, info: NewtonInfo | None = None,
+           log=None):
+    """Solve the coupled residual from z0 by semismooth Newton with a backtracking line
+    search on the scaled residual norm.
+
+    ``log`` (optional) is called with a one-line message per iteration.
+    ``transient`` (optional) supplies the time-discrete terms of one implicit step: an
+    object with ``tape_terms(u) -> (r_extra, J_extra)`` and the film's ``phi_old``, ``dt``.
+
+    Returns (z, λ, active, info): the state, the contact forces (N; zero off contact), the
+    contact set and the iteration record. Raises ConvergenceError if Newton fails.
+    """
+    info = NewtonInfo() if info is None else info
+    n_u = model.n_u
+    F = _Residual(model, tension, transient)
+    z = np.array(z0, dtype=float)
+    res, active, J = F(z, jacobian=True)
+    merit = F.merit(res)
+    solver, last_step, settled = None, np.inf, False
+    for _ in range(max_iterations):
+        # Near the solution with a settled contact set, the last factorization is reused
+        # (a chord step) as long as it still contracts fast; else J is factored afresh.
+        dz = None
+        if solver is not None and settled and last_step < CHORD_SWITCH:
+            dz = solver(res)
+            if _norm(dz, n_u, F) > CHORD_CONTRACTION * last_step:
+                dz = None
+        if dz is None:
+            solver = F.factor(J)
+            dz = solver(res)
+        if not np.all(np.isfinite(dz)):
+            raise ConvergenceError("Newton: non-finite step")
+        h = z[:n_u] + model.dry_field[1:-1, :].ravel()
+        alpha = _step_limit(h, dz[:n_u], active, F.sigma)
+        if model.air.compressible:
+            p, dp = z[n_u:], dz[n_u:]
+            shrink = dp < -(1 - PRESSURE_KEEP) * p
+            if shrink.any():
+                alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink]
+                                                / dp[shrink])))
+        step = _norm(dz, n_u, F)
+        last_step = step
+        if step < tol:       # at round-off: the merit can no longer decrease reliably
+            alpha = 1.0
+        while True:
+            trial = z + alpha * dz
+            res_t, _, _ = F(trial, jacobian=False)
+            merit_t = F.merit(res_t)
+            if (step < tol or merit_t <= (1.0 - 1e-4 * alpha) * merit
+                    or alpha < MIN_STEP):
+                break
+            alpha *= 0.5
+        z = trial
+        res, active_new, J = F(z, jacobian=True)
+        merit = F.merit(res)
+        info.iterations += 1
+        info.step_norms.append(float(alpha * step))
+        info.residual_norms.append(merit)
+        info.contact_nodes.append(int(active_new.sum()))
+        if log is not None:
+            log(f"Newton {info.iterations}: step {alpha * step:.2e} (alpha {alpha:.3g}), "
+                f"residual {merit:.2e}, {int(active_new.sum())} nodes in contact")
+        settled = np.array_equal(active_new, active)
+        active = active_new
+        if alpha == 1.0 and step < tol and settled:
+            lam = np.where(active, F.tape(z[:n_u], z[n_u:]), 0.0)
+            return z, lam, active, info
+    raise ConvergenceError(
+        f"Newton did not converge in {max_iterations} iterations "
+        f"(last relative step {info.step_norms[-1]:.3g}, scaled residual {merit:.3g})")
+
+
+#: Continuation in V starts this many times faster (a thicker, easier film) ...
+CONTINUATION_START = 4.0
+#: ... and comes down by this factor per stage.
+CONTINUATION_FACTOR = 0.7
+
+
+@dataclass(frozen=True)
+class BearingSolution:
+    """A steady flying state.
+
+    Attributes
+    ----------
+    model : BearingModel
+    u : numpy.ndarray
+        Departure from the dry wrapped configuration at the tape unknowns, m.
+    p : numpy.ndarray
+        Film pressure at the film-interior nodes, Pa.
+    contact : numpy.ndarray
+        Contact force at the tape unknowns, N (N/m per unit width if infinitely wide).
+    info : NewtonInfo
+    """
+
+    model: BearingModel
+    u: np.ndarray
+    p: np.ndarray
+    contact: np.ndarray
+    info: NewtonInfo
+
+    @property
+    def spacing(self) -> np.ndarray:
+        """h on every node, shape (nx + 1, nc), m."""
+        return self.model.spacing_field(self.u)
+
+    @property
+    def pressure(self) -> np.ndarray:
+        """p on every node, shape (nx + 1, nc), Pa."""
+        return self.model.pressure_field(self.p)
+
+    @property
+    def x(self) -> np.ndarray:
+        """Node abscissae measured from the middle of the wrap, m (tape moves along +x)."""
+        return self.model.x - 0.5 * self.model.length
+
+    @property
+    def y(self) -> np.ndarray | None:
+        """Node ordinates across the width, m (None if infinitely wide)."""
+        return self.model.y
+
+    def _at_centre_x(self, field: np.ndarray) -> np.ndarray:
+        return np.array([np.interp(0.0, self.x, field[:, j]) for j in range(field.shape[1])])
+
+    def _at_centre_y(self, row: np.ndarray) -> float:
+        if self.model.infinitely_wide:
+            return float(row[0])
+        return float(np.interp(0.5 * self.model.params.width, self.model.y, row))
+
+    @property
+    def central_spacing(self) -> float:
+        """h in the middle of the wrap and of the width, m."""
+        return self._at_centre_y(self._at_centre_x(self.spacing))
+
+    @property
+    def central_pressure(self) -> float:
+        """p − p_a in the middle of the wrap and of the width, Pa."""
+        return self._at_centre_y(self._at_centre_x(self.pressure)) \
+            - self.model.air.ambient_pressure
+
+    @property
+    def cross_width_spacing(self) -> np.ndarray:
+        """h across the width in the middle of the wrap, m (one value if infinitely wide)."""
+        return self._at_centre_x(self.spacing)
+
+    @property
+    def minimum_spacing(self) -> float:
+        """Smallest nodal spacing, m."""
+        return float(self.spacing.min())
+
+    @property
+    def minimum_location(self) -> tuple[float, float | None]:
+        """(x, y) of the smallest spacing, m: x from the middle of the wrap (> 0 towards the
+        exit), y across the width (None if infinitely wide)."""
+        i, j = np.unravel_index(np.argmin(self.spacing), self.spacing.shape)
+        return float(self.x[i]), (None if self.model.infinitely_wide
+                                  else float(self.model.y[j]))
+
+    @property
+    def air_force(self) -> float:
+        """∫ (p − p_a) dA, N (N/m per unit width if infinitely wide)."""
+        return float(np.sum(self.model.pressure_load @ (self.p - self.model.air.ambient_pressure)))
+
+    @property
+    def contact_force(self) -> float:
+        """Total contact force of the head on the tape, N (N/m if infinitely wide)."""
+        return float(self.contact.sum())
+
+    @property
+    def contact_nodes(self) -> int:
+        """Number of tape nodes in contact."""
+        return int(np.count_nonzero(self.contact))
+
+    def summary(self) -> dict:
+        """The scalar outputs (SI), as for the CLI's JSON."""
+        m = self.model
+        x_min, y_min = self.minimum_location
+        return {
+            "central_spacing": self.central_spacing,
+            "minimum_spacing": self.minimum_spacing,
+            "minimum_x": x_min,
+            "minimum_y": y_min,
+            "central_pressure": self.central_pressure,
+            "wrap_pressure": m.effective_tension() / m.params.radius,
+            "air_force": self.air_force,
+            "contact_force": self.contact_force,
+            "contact_nodes": self.contact_nodes,
+            "newton_iterations": self.info.iterations,
+            "newton_step_norms": list(self.info.step_norms),
+            "continuation_speeds": list(self.info.continuation),
+            "seconds": self.info.seconds,
+            "velocity": m.velocity,
+            "wrap_angle": m.wrap_angle,
+            "infinitely_wide": m.infinitely_wide,
+            "width": None if m.infinitely_wide else m.params.width,
+            "tension": m.params.tension,
+            "radius": m.params.radius,
+            "viscosity": m.air.viscosity,
+            "ambient_pressure": m.air.ambient_pressure,
+            "mean_free_path": m.air.mean_free_path,
+            "compressible": m.air.compressible,
+            "roughness": m.air.roughness,
+            "length": m.length,
+            "nx": m.nx,
+            "ny": m.ny,
+            "unknowns": m.size,
+        }
+
+
+def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
+                 tension: float | None = None, progress=None,
+                 iteration_log=None) -> BearingSolution:
+    """The steady flying state of ``model``.
+
+    Newton starts from ``z0`` (default :meth:`BearingModel.initial_state`); if it fails,
+    continuation in V brings the state down from a faster, thicker film.
+
+    Parameters
+    ----------
+    model : BearingModel
+    z0 : numpy.ndarray, optional
+        Start [u (m), p (Pa)], e.g. a neighbouring solution.
+    tension : float, optional
+        Tension T, N/m, in place of the model's (continuation in T).
+    progress : callable, optional
+        Called with a one-line message per continuation stage.
+    iteration_log : callable, optional
+        Called with a one-line message per Newton iteration.
+
+    Raises
+    ------
+    ConvergenceError
+        If neither Newton nor the continuation reaches the state.
+    """
+    start = time.perf_counter()
+    info = NewtonInfo()
+    z0 = model.initial_state() if z0 is None else np.asarray(z0, dtype=float)
+    try:
+        z, lam, _, info = newton(model, z0, tension=tension, info=info, log=iteration_log)
+    except ConvergenceError:
+        if progress is not None:
+            progress("Newton did not reach the state directly: continuation in V")
+        z, lam, info = _continuation(model, tension, progress, iteration_log)
+    info.seconds = time.perf_counter() - start
+    return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
+
+
+def _continuation(model: BearingModel, tension, progress, iteration_log):
+    target = model.velocity
+    speeds = []
+    v = target * CONTINUATION_START
+    while v > target:
+        speeds.append(v)
+        v *= CONTINUATION_FACTOR
+    speeds.append(target)
+    info = NewtonInfo(continuation=speeds)
+    z = None
+    for v in speeds:
+        stage = model.at_velocity(v)
+        if progress is not None:
+            progress(f"continuation: V = {v:.4g} m/s")
+        z0 = stage.initial_state() if z is None else z
+        z, lam, _, info = newton(stage, z0, tension=tension, info=info, log=iteration_log)
+    return z, lam, info

@@ -1,0 +1,64 @@
+"""The free-edged 2-D tape: its centre tends to the infinitely wide tape as it widens, its
+edges come closer to the head, the edge spacing converges under refinement, and contact
+is handled by the active set (Newton converges with the edges touching down)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from convergence import observed_order
+from gyroshell import TapeParameters
+from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.steady import solve_steady
+
+WRAP = math.radians(15.0)
+SPAN = 2e-3
+
+
+def _solve(width=None, nx=100, ny=None, **tape):
+    params = TapeParameters(**({} if width is None else {"width": width}), **tape)
+    model = BearingModel(params, AirParameters(), velocity=4.0, wrap_angle=WRAP, nx=nx,
+                         ny=ny, span=SPAN, infinitely_wide=width is None)
+    return solve_steady(model)
+
+
+def test_centre_tends_to_the_infinitely_wide_tape():
+    wide = _solve().central_spacing
+    gaps = [abs(_solve(w, ny=n).central_spacing - wide) / wide
+            for w, n in ((3e-3, 12), (6e-3, 24), (12e-3, 48))]
+    assert gaps[0] > gaps[1] > gaps[2]
+    assert gaps[2] < 5e-3
+
+
+def test_edges_fly_lower_and_the_minimum_sits_at_an_edge_near_the_exit():
+    sol = _solve(3e-3, ny=30)
+    across = sol.cross_width_spacing
+    assert across[0] < 0.5 * across[len(across) // 2]
+    assert np.allclose(across, across[::-1], rtol=1e-9)          # symmetric
+    x_min, y_min = sol.minimum_location
+    half_wrap = 0.5 * sol.model.params.radius * WRAP
+    assert y_min in (0.0, sol.model.params.width)
+    assert 0.5 * half_wrap < x_min < 1.5 * half_wrap
+
+
+def test_edge_spacing_converges_under_refinement():
+    nys = [30, 60, 120]
+    edge = np.array([_solve(3e-3, ny=n).cross_width_spacing[0] for n in nys])
+    order = observed_order(1.0 / np.array(nys[:-1]), np.abs(np.diff(edge)))
+    assert order > 1.5
+    assert abs(edge[-1] - edge[-2]) < 0.06 * edge[-1]
+
+
+def test_contact_set_converges_without_stalling():
+    """A coarse grid leaves the edge rows unsupported: they touch down and Newton's active
+    set settles; the contact force balances what the air cannot carry."""
+    sol = _solve(6.35e-3, nx=80, ny=16, foundation_stiffness=0.0)
+    assert sol.contact_nodes > 0 and sol.contact_force > 0
+    assert sol.info.iterations < 40
+    assert sol.minimum_spacing == pytest.approx(sol.model.air.roughness, rel=1e-9)
+    touching = sol.spacing <= sol.model.air.roughness * (1 + 1e-9)
+    assert touching[:, 0].any() and not touching[:, sol.model.ny // 2].any()
+    assert np.all(sol.contact >= 0.0)

@@ -1,0 +1,90 @@
+"""`gyroshell bearing`: JSON keys, files, refusals with one line and exit code 2."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from gyroshell.cli import main
+
+
+def _json(capsys, argv):
+    assert main(argv) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_infinitely_wide_json(capsys):
+    out = _json(capsys, ["bearing", "--velocity", "4", "--wrap-angle", "15",
+                         "--infinitely-wide", "--json"])
+    assert 1e-6 < out["minimum_spacing"] < out["central_spacing"] < 5e-6
+    assert out["contact_force"] == 0.0 and out["newton_iterations"] >= 2
+    assert out["minimum_x"] > 0                              # at the exit
+    assert out["central_pressure"] > out["wrap_pressure"] > 0
+
+
+def test_two_dimensional_json_files_and_plot(capsys, tmp_path):
+    png = tmp_path / "b.png"
+    out = _json(capsys, ["bearing", "--velocity", "4", "--wrap-angle", "15", "--nx", "80",
+                         "--ny", "10", "--json", "--out", str(tmp_path / "run"),
+                         "--plot", str(png)])
+    assert out["ny"] == 10 and out["minimum_y"] is not None
+    assert out["minimum_spacing"] < out["central_spacing"]
+    assert png.stat().st_size > 10_000
+    saved = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert saved["central_spacing"] == out["central_spacing"]
+    assert (tmp_path / "run" / "fields.csv").stat().st_size > 0
+
+
+def test_incompressible_flies_a_little_higher_than_compressible(capsys):
+    base = ["bearing", "--velocity", "4", "--infinitely-wide", "--json",
+            "--mean-free-path", "0"]
+    comp = _json(capsys, base)["central_spacing"]
+    incomp = _json(capsys, base + ["--incompressible"])["central_spacing"]
+    assert incomp > comp
+    assert incomp == pytest.approx(comp, rel=0.1)
+
+
+def test_bearing_does_not_change_other_commands_defaults(capsys):
+    """The sub-commands share the tape options: 'static' still defaults to V = 0."""
+    out = _json(capsys, ["static", "--json"])
+    assert out["velocity"] == 0.0
+
+
+def test_velocity_is_required(capsys):
+    assert main(["bearing", "--infinitely-wide"]) == 2
+    assert "velocity must be > 0" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--velocity", "0"], "velocity must be > 0"),
+    (["--velocity", "-3"], "velocity must be > 0"),
+    (["--velocity", "90"], "string speed"),
+    (["--wrap-angle", "0"], "wrap_angle must be in"),
+    (["--wrap-angle", "120"], "wrap_angle must be in"),
+    (["--viscosity", "-1"], "viscosity must be > 0"),
+    (["--mean-free-path=-1e-9"], "mean_free_path must be >= 0"),
+    (["--ny", "9"], "ny must be an even integer"),
+])
+def test_bad_input_one_line_exit_2(capsys, tmp_path, argv, message):
+    png = tmp_path / "never.png"
+    assert main(["bearing", "--velocity", "4",
+                 "--infinitely-wide" if "--ny" not in argv else "--nx=40",
+                 *argv, "--plot", str(png)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("gyroshell: error:") and message in err[0]
+    assert not png.exists()
+
+
+def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
+    """When neither Newton nor the continuation converges: one line, exit 2."""
+    from gyroshell.bearing import steady
+    from gyroshell.errors import ConvergenceError
+
+    def failing(*args, **kwargs):
+        raise ConvergenceError("Newton did not converge in 60 iterations")
+
+    monkeypatch.setattr(steady, "newton", failing)
+    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no steady flying state" in err[0]

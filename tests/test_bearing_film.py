@@ -1,0 +1,117 @@
+"""The discrete film and the coupled system: exact Jacobian, conservation, plateau."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from bearing_cases import flexible_model
+from gyroshell import TapeParameters
+from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.film import bernoulli
+from gyroshell.bearing.steady import _Residual, solve_steady
+
+AIRS = {
+    "compressible-slip": AirParameters(),
+    "compressible": AirParameters(mean_free_path=0.0),
+    "incompressible-slip": AirParameters(compressible=False),
+}
+
+
+def test_bernoulli_function_and_derivative():
+    z = np.array([-30.0, -1.0, -0.04, -1e-9, 0.0, 1e-9, 0.03, 0.5, 7.0, 700.0])
+    b, db = bernoulli(z)
+    zs = np.where(z == 0, 1.0, z)
+    exact = np.where(z == 0, 1.0, zs / np.expm1(zs))
+    assert np.allclose(b[:-1], exact[:-1], rtol=1e-13)
+    assert 0.0 <= b[-1] < 1e-250
+    eps = 1e-6
+    fd = (bernoulli(z[:-1] + eps)[0] - bernoulli(z[:-1] - eps)[0]) / (2 * eps)
+    assert np.allclose(db[:-1], fd, rtol=1e-7, atol=1e-9)
+    assert np.allclose(bernoulli(-z[:-1])[0] - b[:-1], z[:-1], atol=1e-12)  # B(−z) = B(z) + z
+
+
+def _model(air, infinitely_wide, nx=60, ny=8):
+    return BearingModel(TapeParameters(), air, velocity=4.0, wrap_angle=math.radians(15),
+                        infinitely_wide=infinitely_wide, nx=nx, ny=None if infinitely_wide else ny)
+
+
+@pytest.mark.parametrize("air", AIRS.values(), ids=AIRS.keys())
+@pytest.mark.parametrize("wide", [True, False], ids=["1-D", "2-D"])
+def test_jacobian_matches_finite_differences(air, wide, rng):
+    model = _model(air, wide)
+    F = _Residual(model, None, None)
+    z = model.initial_state()
+    z[:model.n_u] *= 1 + 0.3 * rng.random(model.n_u)
+    z[model.n_u:] += 2000.0 * rng.random(model.n_p)
+    res, active, J = F(z, jacobian=True)
+    assert not active.any()
+    direction = np.concatenate([model.h_guess * rng.standard_normal(model.n_u),
+                                1000.0 * rng.standard_normal(model.n_p)])
+    eps = 1e-6
+    fd = (F(z + eps * direction, jacobian=False)[0]
+          - F(z - eps * direction, jacobian=False)[0]) / (2 * eps)
+    assert np.allclose(J @ direction, fd, rtol=1e-6, atol=1e-7 * np.abs(fd).max())
+
+
+@pytest.mark.parametrize("air", AIRS.values(), ids=AIRS.keys())
+def test_fluxes_balance_to_round_off_1d(air):
+    """Steady and one-dimensional: every face carries the same flux."""
+    model = flexible_model(800, air=air, params=TapeParameters())
+    sol = solve_steady(model)
+    faces = model.film.fluxes(sol.pressure, sol.spacing)[0]
+    flux = faces.flux[:, 0]
+    # The net flux is a small difference of Poiseuille and Couette terms: round-off is
+    # measured against the largest single term.
+    term = np.max(np.abs(faces.d_pl[:, 0] * sol.pressure[:-1, 0]))
+    assert np.ptp(flux) < 1e-9 * term
+    assert np.ptp(flux) < 1e-6 * abs(flux.mean())
+
+
+def test_fluxes_balance_to_round_off_2d():
+    """What enters at x = 0 leaves at x = L_x or through the two free edges."""
+    model = _model(AirParameters(), False, nx=80, ny=12)
+    sol = solve_steady(model)
+    fx, fy = model.film.fluxes(sol.pressure, sol.spacing)
+    hy = model.params.width / model.ny
+    inflow = hy * fx.flux[0, 1:-1].sum()
+    outflow = (hy * fx.flux[-1, 1:-1].sum()
+               - model.hx * fy.flux[1:-1, 0].sum() + model.hx * fy.flux[1:-1, -1].sum())
+    # Faces touching the edge rows belong to the edge nodes' (pinned) balance.
+    outflow += hy * (fx.flux[1:-1, 0] - fx.flux[:-2, 0]).sum() * 0
+    r, _, _ = model.film.residual(sol.pressure, sol.spacing, jacobian=False)
+    assert abs(r.sum()) < 1e-10 * abs(inflow)
+    assert r.sum() == pytest.approx(
+        (fx.flux[-1, 1:-1].sum() - fx.flux[0, 1:-1].sum()) * hy
+        + model.hx * (fy.flux[1:-1, -1].sum() - fy.flux[1:-1, 0].sum()),
+        abs=1e-10 * abs(inflow))
+    assert inflow > 0 and outflow > 0
+
+
+def test_central_plateau_balances_the_wrap():
+    """On the wrap, p − p_a = (T − ρV²)/R + k h for a flexible tape."""
+    params = TapeParameters(bending_rigidity=1e-12)
+    model = flexible_model(1600, params=params, air=AirParameters(), velocity=12.0)
+    sol = solve_steady(model)
+    expected = model.effective_tension() / params.radius + params.k * sol.central_spacing
+    assert sol.central_pressure == pytest.approx(expected, rel=1e-4)
+    # ... and the transport's centrifugal part is really there: (T − ρV²)/R, not T/R.
+    assert abs(sol.central_pressure - params.tension / params.radius
+               - params.k * sol.central_spacing) > 100 * abs(sol.central_pressure - expected)
+
+
+def test_air_force_is_tension_turn_plus_end_reactions_1d():
+    """Global balance of a flexible strip: ∫ (p − p_a) dx equals the tension turned through
+    the wrap, (T − ρV²) Σ W κ ≈ (T − ρV²) θ, plus the pinned ends' reactions
+    (T − ρV²)(u₁ + u_n)/Δx."""
+    model = flexible_model(1600, params=TapeParameters(bending_rigidity=1e-12,
+                                                       foundation_stiffness=0.0),
+                           air=AirParameters())
+    sol = solve_steady(model)
+    assert sol.contact_force == 0.0
+    turn = float(np.sum(model.W * model.kappa_nodes))
+    assert turn == pytest.approx(model.wrap_angle, rel=1e-6)
+    ends = (sol.u[0] + sol.u[-1]) / model.hx
+    assert sol.air_force == pytest.approx(model.effective_tension() * (turn + ends), rel=1e-6)

@@ -1,0 +1,70 @@
+"""Transient flight: it settles onto the steady state, and a tension step moves it to the
+new steady spacing."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from gyroshell import TapeParameters
+from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.steady import BearingSolution, solve_steady
+from gyroshell.bearing.transient import march, tension_step
+from gyroshell.errors import ParameterError
+
+
+#: Newmark with numerical damping of the grid-scale ringing (unconditionally stable).
+DAMPED = {"beta": 0.3025, "gamma": 0.6}
+
+
+@pytest.fixture(scope="module")
+def model():
+    return BearingModel(TapeParameters(), AirParameters(), velocity=4.0,
+                        wrap_angle=math.radians(15), infinitely_wide=True, nx=160)
+
+
+def test_tension_step_moves_to_the_new_steady_spacing(model):
+    before = solve_steady(model)
+    after = solve_steady(model, tension=120.0)
+    run = march(before, dt=1e-5, steps=400, tension=tension_step(90.0, 120.0),
+                record_every=50, **DAMPED)
+    assert run.central_spacing[0] == pytest.approx(before.central_spacing, rel=1e-12)
+    assert run.central_spacing[-1] == pytest.approx(after.central_spacing, rel=1e-3)
+    assert np.allclose(run.centreline[-1], after.spacing[:, 0],
+                       atol=1e-3 * after.central_spacing)
+    assert after.central_spacing < before.central_spacing   # pulled closer to the head
+
+
+def test_disturbed_tape_settles_back(model):
+    steady = solve_steady(model)
+    bump = 0.3 * steady.central_spacing * np.exp(-((steady.x[1:-1] / 1e-3) ** 2))
+    start = BearingSolution(model, steady.u + bump, steady.p, steady.contact, steady.info)
+    run = march(start, dt=1e-5, steps=400, record_every=50, **DAMPED)
+    assert abs(run.central_spacing[1] / steady.central_spacing - 1) > 1e-2
+    assert run.central_spacing[-1] == pytest.approx(steady.central_spacing, rel=1e-3)
+    assert run.final.p == pytest.approx(steady.p, rel=1e-5)
+
+
+def test_refuses_unstable_newmark_parameters(model):
+    with pytest.raises(ParameterError, match="beta, gamma"):
+        march(solve_steady(model), dt=1e-6, steps=1, beta=0.1, gamma=0.5)
+
+
+def test_load_crossing_the_head_presses_the_tape_down_where_it_passes(model):
+    """A narrow pad of 2 kPa sweeping along x at 2 m/s: the spacing below it drops while it
+    crosses the wrap, and the tape flies at its steady spacing again once it has left."""
+    steady = solve_steady(model)
+    x = steady.x[1:-1]
+    speed, width = 2.0, 0.3e-3
+    start = -3e-3
+
+    def pad(t):
+        centre = start + speed * t
+        return -2000.0 * model.W * np.exp(-(((x - centre) / width) ** 2))
+
+    run = march(steady, dt=1e-5, steps=500, moving_load=pad, record_every=10, **DAMPED)
+    at_centre = np.argmin(np.abs(run.t - (0.0 - start) / speed))
+    assert run.central_spacing[at_centre] < 0.97 * steady.central_spacing
+    assert run.central_spacing[-1] == pytest.approx(steady.central_spacing, rel=2e-3)
