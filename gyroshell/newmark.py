@@ -35,7 +35,7 @@ from dataclasses import asdict
 
 import numpy as np
 
-from . import budget
+from . import budget, validation
 from .damping import Damping, as_damping
 from .errors import ConvergenceError, ParameterError
 from .factorization import factorize
@@ -153,8 +153,10 @@ class Newmark:
                  blas_threads: int | None = 1) -> None:
         self.model = model
         self.velocity = check_velocity(velocity)
-        self.dt = _check_real("dt", dt, positive=True)
         self.beta = _check_real("beta", beta, positive=True)
+        self.K = model.K(self.velocity)
+        self.dt = validation.time_step(_check_real("dt", dt, positive=True), self.beta,
+                                       stiffness_scale=float(abs(self.K.diagonal()).max()))
         self.gamma = _check_real("gamma", gamma)
         self.damping = as_damping(damping)
         if not 2.0 * self.beta >= self.gamma >= 0.5:
@@ -162,7 +164,6 @@ class Newmark:
                 f"Newmark beta={self.beta:g}, gamma={self.gamma:g} lie outside the "
                 "unconditionally stable region 2*beta >= gamma >= 1/2: the march is stable "
                 "only for small enough dt", NewmarkStabilityWarning, stacklevel=2)
-        self.K = model.K(self.velocity)
         self.G = model.G(self.velocity).tocsr()
         self.C = None if self.damping.is_zero else self.damping.matrix(model, self.velocity)
         #: G + C, the velocity-proportional operator, kg/s.

@@ -26,6 +26,9 @@ class TestValidation:
         ({"beta": 0.0}, "beta must be > 0"),
         ({"gamma": float("inf")}, "gamma must be finite"),
         ({"backend": "magic"}, "backend must be one of auto, superlu"),
+        # beta dt^2 underflows (the corrector divides by it) or overflows K_eq
+        ({"dt": 1e-170}, "dt 1e-170 s is too small"),
+        ({"dt": 1e160}, "dt 1e[+]160 s is too large"),
     ])
     def test_bad_arguments_raise_parameter_error(self, small, kwargs, match):
         args = {"dt": 1e-6, "steps": 3} | kwargs
