@@ -8,12 +8,28 @@ contact, and strongly coupled transients by Newmark's method. Plots in :mod:`.pl
 
 from __future__ import annotations
 
-from .air import AirParameters
-from .geometry import check_wrap_angle
-from .model import BearingModel
-from .steady import BearingSolution, NewtonInfo, solve_steady
-from .transient import BearingTransient, march, tension_harmonic, tension_step
+import importlib
 
-__all__ = ["AirParameters", "BearingModel", "BearingSolution", "BearingTransient",
-           "NewtonInfo", "check_wrap_angle", "march", "solve_steady", "tension_harmonic",
-           "tension_step"]
+#: public name -> submodule; imported on first use so that registering the ``bearing``
+#: sub-command (which reads the air defaults) does not load scipy for ``gyroshell --help``.
+_LAZY = {
+    "AirParameters": "air", "check_wrap_angle": "geometry", "BearingModel": "model",
+    "BearingSolution": "steady", "NewtonInfo": "steady", "solve_steady": "steady",
+    "BearingTransient": "transient", "march": "transient", "tension_harmonic": "transient",
+    "tension_step": "transient",
+}
+
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
