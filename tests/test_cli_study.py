@@ -88,7 +88,7 @@ def test_transient_save(tmp_path, capsys):
     (["--vary", "tension=80", "--compute", "nothing"], "compute must be one or more"),
     (["--vary", "thickness=-1", "--compute", "modes"], "thickness must be > 0"),
     (["--vary", "tension=80", "--compute", "modes", "--out", "/nope/s.csv"],
-     "output folder does not exist"),
+     "--out /nope/s.csv: folder /nope does not exist"),
     (["--vary", "tension=80", "--compute", "modes", "--out", "s.txt"], "--out: use a .csv"),
     (["--vary", "tension=80", "--vary", "velocity=1", "--compute", "critical", "--plot",
       "m.png"], "add --compute modes"),

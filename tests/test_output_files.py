@@ -62,6 +62,16 @@ BAD_OUTPUTS = [
     ("transient into a read-only folder", [*TRANSIENT, "--out", "ro/h.csv"], "read-only"),
     ("snapshots parent is a file", [*TRANSIENT, "--snapshot-every", "5", "--snapshots",
                                     "afile/s.npz"], "afile is a file"),
+    ("frf plot into a read-only folder",
+     ["frf", *COARSE, "--frequencies", "0:1e5:3", "--plot", "ro/f.png"], "read-only"),
+    ("frf same file twice", ["frf", *COARSE, "--frequencies", "0:1e5:3", "--out", "f.png",
+                             "--plot", "f.png"], "name the same file"),
+    ("study out and save the same file",
+     ["study", *COARSE, "--vary", "tension=80,90", "--compute", "modes", "--out", "s.csv",
+      "--save", "./s.csv"], "name the same file"),
+    ("study cache parent is a file",
+     ["study", *COARSE, "--vary", "tension=80,90", "--compute", "modes", "--cache",
+      "afile/c.jsonl"], "afile is a file"),
     ("reproduce into a file", ["reproduce", "fig2", "--quick", "--out", "afile"],
      "--out afile: is a file, not a folder"),
     ("reproduce into a read-only folder", ["reproduce", "fig2", "--quick", "--out", "ro/r"],
@@ -145,6 +155,22 @@ def test_sweep_whose_plot_fails_leaves_no_csv(cli, tmp_path, monkeypatch):
     assert run.code == 2
     assert run.error_lines == [f"gyroshell: error: [Errno 28] cannot write {png}: "
                                "No space left on device"]
+    assert listing(tmp_path) == []
+
+
+@pytest.mark.parametrize("argv", [
+    ["frf", *COARSE, "--frequencies", "0:1e5:3"],
+    ["study", *COARSE, "--vary", "tension=80,90", "--compute", "static"],
+], ids=["frf", "study"])
+def test_run_whose_plot_fails_leaves_no_table(cli, tmp_path, monkeypatch, argv):
+    import matplotlib.figure
+
+    def disk_full(self, fname, *args, **kwargs):
+        raise OSError(28, "No space left on device", os.fspath(fname))
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", disk_full)
+    run = cli([*argv, "--out", tmp_path / "t.csv", "--plot", tmp_path / "t.png"])
+    assert run.code == 2 and len(run.error_lines) == 1 and "cannot write" in run.err
     assert listing(tmp_path) == []
 
 

@@ -44,19 +44,12 @@ def register(sub, common: argparse.ArgumentParser) -> None:
 
 
 def _check_outputs(out: str | None, plot: str | None) -> None:
-    """Fail before computing if an output could never be written."""
-    for path in (out, plot):
-        if path is None:
-            continue
-        folder = Path(path).parent
-        if not folder.is_dir():
-            raise FileNotFoundError(f"output folder does not exist: {folder}")
-        if Path(path).is_dir():
-            raise IsADirectoryError(f"output is a directory: {path}")
+    """Fail before computing if an output could never be written (or two are one file)."""
+    from ..io import PLOT, check_outputs
+
     if plot is not None and Path(plot).suffix.lower() != ".png":
         raise UserError(f"--plot must be a .png file, got {plot}")
-    if out is not None and plot is not None and Path(out).resolve() == Path(plot).resolve():
-        raise UserError("--out and --plot must be different files")
+    check_outputs({"--out": (out, None), "--plot": (plot, PLOT)})
 
 
 def run(args: argparse.Namespace) -> int:
@@ -75,10 +68,13 @@ def run(args: argparse.Namespace) -> int:
                                 method=args.method, tol=args.tol, max_points=args.max_points,
                                 progress=False if args.quiet else None)
     elapsed = time.perf_counter() - start
-    if args.out is not None:
-        result.to_csv(args.out)
-    if args.plot is not None:
-        _plot(result, params, damping, args.plot)
+    from ..io import transaction
+
+    with transaction():  # both files, or neither
+        if args.out is not None:
+            result.to_csv(args.out)
+        if args.plot is not None:
+            _plot(result, params, damping, args.plot)
     info = result.info
     out = {
         "velocity": velocity, "omega": result.omega.tolist(),

@@ -16,17 +16,13 @@ def check_save_path(path: str | None) -> None:
     """Fail before computing if the result could never be written there."""
     if path is None:
         return
+    from ..io import check_output
     from ..persistence import NETCDF_SUFFIXES, TABLE_SUFFIXES
     from .common import UserError
 
-    target = Path(path)
-    if target.suffix.lower() not in NETCDF_SUFFIXES + TABLE_SUFFIXES:
+    if Path(path).suffix.lower() not in NETCDF_SUFFIXES + TABLE_SUFFIXES:
         raise UserError(f"--save: use a .nc file (or .csv/.parquet for tables), got {path}")
-    folder = target.parent
-    if str(folder) and not folder.is_dir():
-        raise FileNotFoundError(f"output folder does not exist: {folder}")
-    if target.is_dir():
-        raise IsADirectoryError(f"output is a directory: {path}")
+    check_output(path, option="--save")
 
 
 def save_result(path: str | None, result, params) -> None:

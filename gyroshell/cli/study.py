@@ -130,16 +130,25 @@ def parse_vary(specs: list[str]) -> dict[str, list]:
     return vary
 
 
-def _check_output(path: str | None, suffixes: tuple[str, ...], flag: str) -> None:
-    if path is None:
-        return
-    target = Path(path)
-    if target.suffix.lower() not in suffixes:
-        raise UserError(f"{flag}: use a {' or '.join(suffixes)} file, got {path}")
-    if str(target.parent) and not target.parent.is_dir():
-        raise FileNotFoundError(f"output folder does not exist: {target.parent}")
-    if target.is_dir():
-        raise IsADirectoryError(f"output is a directory: {path}")
+def _check_outputs(outputs: dict[str, tuple[str | None, tuple[str, ...]]]) -> None:
+    """Refuse, before computing, a wrong suffix, an unwritable path or one file named twice;
+    ``outputs`` maps each option to (path or None, allowed suffixes)."""
+    from ..io import PLOT, check_outputs
+
+    for flag, (path, suffixes) in outputs.items():
+        if path is not None and Path(path).suffix.lower() not in suffixes:
+            raise UserError(f"{flag}: use a {' or '.join(suffixes)} file, got {path}")
+    check_outputs({flag: (path, PLOT if flag == "--plot" else None)
+                   for flag, (path, _suffixes) in outputs.items()})
+
+
+def _save_plot(path: str, ax) -> None:
+    from ..io import write_atomic
+    from ..plot import pyplot
+
+    plt = pyplot(path=path)
+    write_atomic(path, lambda tmp: ax.figure.savefig(tmp, dpi=120), option="--plot")
+    plt.close(ax.figure)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -150,10 +159,13 @@ def run(args: argparse.Namespace) -> int:
     velocity = check_velocity(args.velocity)
     vary = parse_vary(args.vary)
     compute = [c.strip() for item in args.compute for c in item.split(",") if c.strip()]
-    _check_output(args.out, (".csv", ".parquet"), "--out")
-    _check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
-    _check_output(args.cache, (".jsonl",), "--cache")
+    from ..persistence import NETCDF_SUFFIXES, TABLE_SUFFIXES
+
     check_save_path(args.save)
+    _check_outputs({"--out": (args.out, (".csv", ".parquet")),
+                    "--plot": (args.plot, (".png", ".pdf", ".svg")),
+                    "--cache": (args.cache, (".jsonl",)),
+                    "--save": (args.save, NETCDF_SUFFIXES + TABLE_SUFFIXES)})
     if args.plot and len(vary) > 2:
         raise UserError("--plot needs one or two varied parameters")
     if args.plot and len(vary) == 2 and not {"modes", "period"} & set(compute):
@@ -162,17 +174,14 @@ def run(args: argparse.Namespace) -> int:
     result = run_study(params, vary=vary, compute=compute, velocity=velocity,
                        count=args.count, workers=args.workers, scheduler=args.scheduler,
                        cache=args.cache, progress=False if args.quiet else None)
-    for path in (args.out, args.save):
-        if path is not None:
-            result.save(path)
-    if args.plot:
-        from ..io import write_atomic
-        from ..plot import pyplot
+    from ..io import transaction
 
-        plt = pyplot(path=args.plot)
-        ax = result.plot()
-        write_atomic(args.plot, lambda tmp: ax.figure.savefig(tmp, dpi=120))
-        plt.close(ax.figure)
+    with transaction():  # every output of the run, or none
+        for path in (args.out, args.save):
+            if path is not None:
+                result.save(path)
+        if args.plot:
+            _save_plot(args.plot, result.plot())
     info = result.info
     failed = len(result.failed)
     if args.out is None:
@@ -201,20 +210,17 @@ def run_campbell(args: argparse.Namespace) -> int:
     if args.circumference is not None and not (math.isfinite(args.circumference)
                                                and args.circumference > 0):
         raise UserError(f"--circumference must be > 0 m, got {args.circumference:g}")
-    _check_output(args.out, (".csv", ".parquet", ".nc"), "--out")
-    _check_output(args.plot, (".png", ".pdf", ".svg"), "--plot")
+    _check_outputs({"--out": (args.out, (".csv", ".parquet", ".nc")),
+                    "--plot": (args.plot, (".png", ".pdf", ".svg"))})
     min_mac = MIN_MAC if args.min_mac is None else args.min_mac
     d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac, progress=None)
-    if args.out:
-        d.save(args.out)
-    if args.plot:
-        from ..io import write_atomic
-        from ..plot import pyplot
+    from ..io import transaction
 
-        plt = pyplot(path=args.plot)
-        ax = d.plot(circumference=args.circumference, orders=orders)
-        write_atomic(args.plot, lambda tmp: ax.figure.savefig(tmp, dpi=120))
-        plt.close(ax.figure)
+    with transaction():  # both files, or neither
+        if args.out:
+            d.save(args.out)
+        if args.plot:
+            _save_plot(args.plot, d.plot(circumference=args.circumference, orders=orders))
     links = d.frame["mac"].dropna()
     print(f"{d.frame['branch'].nunique()} branches over {len(velocities)} speeds; MAC of "
           f"the links: min {links.min():.3f}, median {links.median():.3f}"
