@@ -26,6 +26,41 @@ def small():
     return TapeModel(TapeParameters(length_ratio=2, spacing=WIDTH / 8))
 
 
+class WidthUniformModel:
+    """The tape restricted to width-uniform fields w(x) ⊗ 1 (an exact invariant subspace for
+    ν = 0 with free edges); duck-types what the eigen-solvers need from a TapeModel."""
+
+    def __init__(self, model) -> None:
+        import scipy.sparse as sp
+
+        g = model.grid
+        self.full, self.params, self.grid = model, model.params, g
+        self.P = sp.kron(sp.identity(g.n_lines), np.ones((g.n_across, 1)), format="csr")
+        self.size = g.n_lines
+        self.mass_diagonal = self.P.T @ model.mass_diagonal
+
+    def K(self, v):
+        return (self.P.T @ self.full.K(v) @ self.P).tocsr()
+
+    def G(self, v):
+        return (self.P.T @ self.full.G(v) @ self.P).tocsr()
+
+    @property
+    def M(self):
+        import scipy.sparse as sp
+
+        return sp.diags(self.mass_diagonal)
+
+
+def moving_string(nx: int) -> WidthUniformModel:
+    """An axially moving string (k = 0, D -> 0, ν = 0) of L_x = 2 L_y with nx intervals."""
+    from gyroshell import Grid, TapeModel, TapeParameters
+
+    p = TapeParameters(foundation_stiffness=0.0, bending_rigidity=1e-14, poisson=0.0,
+                       length_ratio=2.0, spacing=WIDTH / 8)
+    return WidthUniformModel(TapeModel(p, Grid(p.length, p.width, nx, 8, "free")))
+
+
 @dataclass(frozen=True)
 class CliRun:
     """What one command line did: exit code, stdout, stderr."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import pytest
-import scipy.sparse as sp
+from conftest import WidthUniformModel
 
 from gyroshell import Grid, TapeModel, TapeParameters
 from gyroshell.campbell import _crossings_and_veerings, campbell, mac
@@ -64,27 +64,10 @@ def test_branches_keep_their_shape_and_cross_only_other_shapes():
     assert d.critical_speed is None
 
 
-class WidthUniform:
-    """Width-uniform fields w(x) ⊗ 1 (exact subspace for ν = 0, free edges)."""
-
-    def __init__(self, model: TapeModel) -> None:
-        g = model.grid
-        self.full, self.params, self.grid = model, model.params, g
-        self.P = sp.kron(sp.identity(g.n_lines), np.ones((g.n_across, 1)), format="csr")
-        self.size = g.n_lines
-        self.mass_diagonal = self.P.T @ model.mass_diagonal
-
-    def K(self, v):
-        return (self.P.T @ self.full.K(v) @ self.P).tocsr()
-
-    def G(self, v):
-        return (self.P.T @ self.full.G(v) @ self.P).tocsr()
-
-
 def test_string_branches_and_resonances_match_closed_forms():
     p = TapeParameters(foundation_stiffness=0.0, bending_rigidity=1e-14, poisson=0.0,
                        length_ratio=2.0, spacing=WIDTH / 8)
-    model = WidthUniform(TapeModel(p, Grid(p.length, p.width, 200, 8, "free")))
+    model = WidthUniformModel(TapeModel(p, Grid(p.length, p.width, 200, 8, "free")))
     c, L = p.string_speed, p.length
     speeds = np.linspace(0.0, 0.9 * c, 91)
     d = campbell(model, speeds, 3, critical_speed=c)

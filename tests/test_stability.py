@@ -23,10 +23,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import scipy.linalg as la
-import scipy.sparse as sp
+from conftest import moving_string
 from convergence import observed_order
 
-from gyroshell import Grid, TapeModel, TapeParameters, classify_stability, divergence_speed, modes
+from gyroshell import TapeModel, TapeParameters, classify_stability, divergence_speed, modes
 from gyroshell.errors import ParameterError
 from gyroshell.study import tape_stability
 
@@ -97,42 +97,15 @@ def test_classifier_on_explicit_eigenvalues():
 
 
 # ----- the moving string beyond √(T/ρ) -------------------------------------------------------
-class WidthUniform:
-    """Width-uniform fields w(x) ⊗ 1: an exact invariant subspace for ν = 0, free edges."""
-
-    def __init__(self, model: TapeModel) -> None:
-        g = model.grid
-        self.full, self.params, self.grid = model, model.params, g
-        self.P = sp.kron(sp.identity(g.n_lines), np.ones((g.n_across, 1)), format="csr")
-        self.size = g.n_lines
-        self.mass_diagonal = self.P.T @ model.mass_diagonal
-
-    def K(self, v):
-        return (self.P.T @ self.full.K(v) @ self.P).tocsr()
-
-    def G(self, v):
-        return (self.P.T @ self.full.G(v) @ self.P).tocsr()
-
-    @property
-    def M(self):
-        return sp.diags(self.mass_diagonal)
-
-
-def string(nx: int) -> WidthUniform:
-    p = TapeParameters(foundation_stiffness=0.0, bending_rigidity=1e-14, poisson=0.0,
-                       length_ratio=2.0, spacing=WIDTH / 8)
-    return WidthUniform(TapeModel(p, Grid(p.length, p.width, nx, 8, "free")))
-
-
 @pytest.mark.parametrize("ratio", [1.2, 1.5])
 def test_string_beyond_string_speed_keeps_imaginary_spectrum(ratio):
-    p = string(16).params
+    p = moving_string(16).params
     c, L = p.string_speed, p.length
     V = ratio * c
     exact = np.array([n * np.pi * (V**2 - c**2) / (c * L) for n in (1, 2, 3)])
     steps, errs = [], []
     for nx in (32, 64, 128):
-        res = modes(string(nx), V, 3)
+        res = modes(moving_string(nx), V, 3)
         assert res.supercritical  # K(V) is negative definite here ...
         assert classify_stability(res.eigenvalues) == "stable"  # ... yet no growth
         errs.append(np.abs(np.sort(res.omega) - exact) / exact)
@@ -167,7 +140,7 @@ def test_odd_morse_index_just_above_divergence_diverges():
 
 @pytest.mark.parametrize("nx", [16, 32])  # 15 and 31 unknowns: K(V) has an odd index
 def test_discrete_string_beyond_string_speed_diverges_at_grid_scale(nx):
-    s = string(nx)
+    s = moving_string(nx)
     V = 1.2 * s.params.string_speed
     assert np.all(np.linalg.eigvalsh(s.K(V).toarray()) < 0)
     assert tape_stability(s, V) == "divergence"
@@ -176,16 +149,16 @@ def test_discrete_string_beyond_string_speed_diverges_at_grid_scale(nx):
 
 
 def test_discrete_string_growth_rate_scales_with_one_over_h():
-    V = 1.2 * string(16).params.string_speed
+    V = 1.2 * moving_string(16).params.string_speed
     rates, steps = [], []
     for nx in (16, 32, 64):
-        s = string(nx)
+        s = moving_string(nx)
         lam = quadratic_eigenvalues(s.M.toarray(), s.G(V).toarray(), s.K(V).toarray())
         rates.append(lam.real.max())
         steps.append(s.params.length / nx)
     assert observed_order(steps, rates) == pytest.approx(-1.0, abs=0.05)
     # with an even number of unknowns the grid-scale pairs flutter instead
-    s = string(17)
+    s = moving_string(17)
     assert tape_stability(s, V) == "flutter"
 
 
