@@ -458,34 +458,47 @@ SHIFT_RETREAT = (0.98, 0.8)
 class _EnergyOperator:
     """T = (H − ω_s L)⁻¹ L and the energy inner product on z = [λφ; φ] (module notes).
 
-    G and K are cast to complex once (a real sparse matrix times a complex vector casts its
-    entries at every product), and a diagonal M is applied as a vector.
+    The real G and K multiply a complex vector as an (n, 2) real array (its real and
+    imaginary parts side by side): one pass over the matrix, in real arithmetic, instead of
+    a complex copy of the matrix; a diagonal M is applied as a vector. Work arrays are
+    allocated once.
     """
 
-    def __init__(self, prob: _Problem, omega_s: float, factor: InertiaFactor) -> None:
-        self.G = prob.G.astype(complex)
-        self.K = prob.K.astype(complex)
+    def __init__(self, prob: _Problem, omega_s: float, factor) -> None:
+        self.G = prob.G.tocsr()
+        self.K = prob.K.tocsr()
         self.md = prob.M.diagonal() if _is_diagonal(prob.M) else None
-        self.M = prob.M.astype(complex)
+        self.M = prob.M.tocsr()
         self.omega_s, self.factor, self.n = omega_s, factor, prob.n
         self.applications = 0
         self.solve_time = 0.0
+        self._rhs = np.empty(prob.n, dtype=complex)
+
+    @staticmethod
+    def _real_product(A: sp.csr_matrix, u: np.ndarray) -> np.ndarray:
+        """A u for a real sparse A and a complex vector u, in real arithmetic."""
+        u = np.ascontiguousarray(u)
+        return (A @ u.view(float).reshape(-1, 2)).view(complex).ravel()
 
     def mass(self, u: np.ndarray) -> np.ndarray:
-        return self.md * u if self.md is not None else self.M @ u
+        return self.md * u if self.md is not None else self._real_product(self.M, u)
 
     def apply(self, z: np.ndarray) -> np.ndarray:
         self.applications += 1
         n, ws = self.n, self.omega_s
         u1, u2 = z[:n], z[n:]
-        rhs = self.mass(u1 + (1j * ws) * u2) + self.G @ u2
+        rhs = self._rhs
+        np.multiply(u2, 1j * ws, out=rhs)
+        rhs += u1
+        rhs = self.mass(rhs)
+        rhs += self._real_product(self.G, u2)
         t0 = time.perf_counter()
         b = self.factor.solve(rhs)
         self.solve_time += time.perf_counter() - t0
         out = np.empty(2 * n, dtype=complex)
-        out[n:] = b
-        out[n:] *= -1j
-        out[:n] = u2 + ws * out[n:]
+        np.multiply(b, -1j, out=out[n:])
+        out[:n] = u2
+        out[:n] += ws * out[n:]
         out[:n] *= 1j
         return out
 
@@ -494,7 +507,7 @@ class _EnergyOperator:
         n = self.n
         out = np.empty(2 * n, dtype=complex)
         out[:n] = self.mass(z[:n])
-        out[n:] = self.K @ z[n:]
+        out[n:] = self._real_product(self.K, z[n:])
         return out
 
 
@@ -504,23 +517,26 @@ def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: floa
 
     ``wanted(theta)`` ranks Ritz values (larger first). Returns (θ, Ritz vectors as
     columns, restarts) for the ``nev`` best once each residual |β sₘ| <= tol·|θ|, or None if
-    not converged within LANCZOS_RESTARTS restarts. The basis is stored by rows; a
-    Gram-Schmidt pass costs one application of L (sparse, cheaper than updating a stored
-    image of the basis) and two matrix-vector products with the basis.
+    not converged within LANCZOS_RESTARTS restarts. The basis is stored by rows in a
+    preallocated array. A step costs one application of T, one of L and one classical
+    Gram-Schmidt pass (two matrix-vector products with the basis); the new vector's norm
+    follows from Pythagoras, ‖w − Vh‖² = ‖w‖² − ‖h‖², and a second pass (with a second
+    application of L) is made only when the first cancelled most of w (DGKS).
     """
     n2 = len(start)
     m = min(max(2 * nev + LANCZOS_EXTRA, LANCZOS_MIN_BASIS), n2 - 1)
     V = np.empty((m + 1, n2), dtype=complex)
     H = np.zeros((m + 1, m), dtype=complex)
 
-    def put(j: int, w: np.ndarray, Lw: np.ndarray) -> float:
-        norm = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
+    def energy(w: np.ndarray, Lw: np.ndarray) -> float:
+        return math.sqrt(max(np.vdot(w, Lw).real, 0.0))
+
+    def put(j: int, w: np.ndarray, norm: float) -> None:
         if norm > 0:
-            V[j] = w / norm
-        return norm
+            np.multiply(w, 1.0 / norm, out=V[j])
 
     v = start.astype(complex)
-    put(0, v, op.weight(v))
+    put(0, v, energy(v, op.weight(v)))
 
     def ritz(size: int):
         Hs = H[:size, :size]
@@ -535,23 +551,26 @@ def _lanczos(op: _EnergyOperator, start: np.ndarray, wanted, nev: int, tol: floa
         for j in range(kept, m):
             w = op.apply(V[j])
             Lw = op.weight(w)
-            size = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
+            size = energy(w, Lw)
+            basis = V[: j + 1]
+            beta = 0.0
             for _ in range(2):  # classical Gram-Schmidt, repeated if it cancelled (DGKS)
-                h = np.conj(V[: j + 1] @ np.conj(Lw))
-                w -= h @ V[: j + 1]
-                Lw = op.weight(w)
+                h = np.conj(basis @ np.conj(Lw))
+                w -= h @ basis
                 H[: j + 1, j] += h
-                left = math.sqrt(max(np.vdot(w, Lw).real, 0.0))
-                if left > REORTHOGONALIZE * size:
+                left2 = size * size - float(np.vdot(h, h).real)
+                if left2 > (REORTHOGONALIZE * size) ** 2:
+                    beta = math.sqrt(left2)
                     break
-                size = left
-            beta = put(j + 1, w, Lw)
+                Lw = op.weight(w)
+                size = beta = energy(w, Lw)
+            put(j + 1, w, beta)
             H[j + 1, j] = beta
             if beta == 0.0:  # an invariant subspace: continue from a fresh direction
                 w = _random_start(n2, complex)
                 for _ in range(2):
-                    w -= np.conj(V[: j + 1] @ np.conj(op.weight(w))) @ V[: j + 1]
-                put(j + 1, w, op.weight(w))
+                    w -= np.conj(basis @ np.conj(op.weight(w))) @ basis
+                put(j + 1, w, energy(w, op.weight(w)))
             if j + 1 >= nev + EXTRA_EIGENVALUES or j == m - 1:
                 theta, S, order, done = ritz(j + 1)
                 if done:
