@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from .eigen import Modes, check_speed, modes, stiffness_floor
+from .eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
 from .errors import ParameterError
 from .model import TapeModel
 from .parameters import check_velocity
@@ -87,11 +87,13 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
     progress : bool or None
         Show a tqdm progress bar on stderr; None: only if stderr is a terminal.
     continuation : bool
-        Start each solve from the previous speed's modes and, when several speeds lie above
-        √(T/ρ), certify K(V) > 0 once for the model (:func:`gyroshell.eigen.stiffness_floor`)
-        instead of factoring K(V) at each of them. The results are those of independent
-        solves; the saving is those factorizations (the start vectors do not shorten the
-        shift-invert iteration, whose cost is set by the clustered spectrum).
+        Move the shift with the tracked lowest frequency (extrapolated from the previous
+        speeds, see :func:`_continuation_options`), start each solve from the previous
+        speed's modes and, when several speeds lie above √(T/ρ), certify K(V) > 0 once for
+        the model (:func:`gyroshell.eigen.stiffness_floor`) instead of factoring K(V) at each
+        of them. The results are those of independent solves (to round-off); the saving is
+        Lanczos steps (a shift close below ω₁ separates the clustered long-tape frequencies)
+        and those factorizations.
     **options
         Passed to :func:`gyroshell.eigen.modes` (``sigma``, ``tol``, ``damping``, ...).
 
@@ -125,7 +127,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
     history: list[Modes] = []
     for v in tqdm(velocities, disable=not progress, desc="sweep", unit="speed"):
         res = modes(model, v, count,
-                    **{**_continuation_options(history, v, continuation), **options})
+                    **{**_continuation_options(model, history, v, continuation), **options})
         labels, corr = tracker.match(res.vectors)
         rows.extend(_rows(res, labels, corr))
         history.append(res)
@@ -137,20 +139,54 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
 FLOOR_WORTH_IT = 4
 
 
-def _continuation_options(history: list[Modes], velocity: float, enabled: bool) -> dict:
-    """``start`` for :func:`modes`: the previous speed's modes, if subcritical and undamped.
+def _continuation_options(model: TapeModel, history: list[Modes], velocity: float,
+                          enabled: bool) -> dict:
+    """``start`` and ``estimate`` for :func:`modes` from the previous speeds' modes.
 
-    The shift needs no help: the bottom of the travelling-wave band that places it follows
-    the lowest frequency to within a fraction of a percent at every speed, while an
-    extrapolation of ω₁(V) from the previous speeds (ω₁ falls like V², not linearly) lands
-    above it and makes the certified shift retreat.
+    The shift is moved with the tracked lowest frequency: ω₁ at the new speed is
+    extrapolated from the last (up to three) subcritical undamped speeds by the polynomial
+    in V² through them (ω₁ falls like V² from V = 0), lowered by twice the error the same
+    extrapolation made at the previous speed (at least :data:`TRACK_MARGIN`), and never
+    below the bottom of the travelling-wave band that :func:`modes` would use. A shift that
+    close to ω₁ separates the
+    clustered long-tape frequencies better than the bottom of the travelling-wave band
+    (fewer Lanczos steps); it is still certified by the inertia of Q(iω_s), and an
+    overshoot only adds the frequencies below it to those computed.
     """
     if not enabled or not history:
         return {}
     last = history[-1]
     if last.supercritical or last.damped:
         return {}
-    return {"start": last}
+    options: dict = {"start": last}
+    track = [h for h in history[-4:] if not (h.supercritical or h.damped)]
+    if len(track) >= 2 and len(track) == min(len(history), 4):
+        guess = _extrapolate(track[-3:], velocity)
+        if len(track) >= 3:
+            seen = _extrapolate(track[-4:-1], track[-1].velocity)
+            error = abs(seen - track[-1].omega[0]) / track[-1].omega[0]
+        else:
+            error = TRACK_FIRST_ERROR
+        guess *= 1 - max(2 * error, TRACK_MARGIN)
+        guess = max(guess, strip_frequency_estimate(model.params, model.grid, velocity))
+        if math.isfinite(guess) and guess > 0:
+            options["estimate"] = guess
+    return options
+
+
+#: Least relative margin below the extrapolated lowest frequency.
+TRACK_MARGIN = 1e-4
+#: Assumed relative error of the first (linear) extrapolation.
+TRACK_FIRST_ERROR = 5e-3
+
+
+def _extrapolate(points: list[Modes], velocity: float) -> float:
+    """ω₁ at ``velocity``, rad/s: the polynomial in V² through the points' (V², ω₁)."""
+    v = np.array([p.velocity for p in points]) ** 2
+    w = np.array([p.omega[0] for p in points])
+    if len(np.unique(v)) < len(v):
+        return float(w[-1])
+    return float(np.polyval(np.polyfit(v, w, len(v) - 1), velocity**2))
 
 
 class _BranchTracker:

@@ -261,3 +261,33 @@ def test_divergence_refusals():
                           ({"shift": float("nan")}, "shift must be")):
         with pytest.raises(ParameterError, match=match):
             divergence(model, **kwargs)
+
+
+def test_continuation_shift_extrapolates_omega1_in_v_squared():
+    """ω₁ = a − b V² + c V⁴ is reproduced exactly from three speeds (the polynomial in V²)."""
+    from types import SimpleNamespace
+
+    from gyroshell.sweep import _extrapolate
+
+    def omega1(v):
+        return 1.25e5 - 3.0 * v**2 - 2e-4 * v**4
+
+    points = [SimpleNamespace(velocity=v, omega=np.array([omega1(v)])) for v in (40, 45, 50)]
+    assert _extrapolate(points, 55.0) == pytest.approx(omega1(55.0), rel=1e-12)
+    assert _extrapolate(points[1:], 55.0) == pytest.approx(
+        omega1(50) + (omega1(50) - omega1(45)) * (55**2 - 50**2) / (50**2 - 45**2), rel=1e-12)
+
+
+def test_continuation_shift_is_certified_and_close_below_omega1():
+    model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
+    from gyroshell.eigen import modes
+    from gyroshell.sweep import _continuation_options
+
+    history = [modes(model, v, 4) for v in (40.0, 45.0, 50.0)]
+    options = _continuation_options(model, history, 55.0, True)
+    exact = modes(model, 55.0, 4)
+    assert options["start"] is history[-1]
+    assert 0.99 * exact.omega[0] < options["estimate"] < exact.omega[0]
+    tracked = modes(model, 55.0, 4, **options)
+    assert tracked.info["below_shift"] == 0
+    assert np.allclose(tracked.omega, exact.omega, rtol=1e-10, atol=0)
