@@ -464,7 +464,7 @@ class _EnergyOperator:
     allocated once.
     """
 
-    def __init__(self, prob: _Problem, omega_s: float, factor) -> None:
+    def __init__(self, prob: _Problem, omega_s: float, factor: InertiaFactor) -> None:
         self.G = prob.G.tocsr()
         self.K = prob.K.tocsr()
         self.md = prob.M.diagonal() if _is_diagonal(prob.M) else None
