@@ -345,6 +345,19 @@ def check_shift(sigma) -> complex | None:
 
 
 # ----- shared numerical pieces -------------------------------------------------------------
+def _product(A, X: np.ndarray) -> np.ndarray:
+    """A X; a real sparse A times complex X as a real product on X's real and imaginary
+    parts side by side (no complex copy of A)."""
+    X = np.asarray(X)
+    if not (sp.issparse(A) and np.iscomplexobj(X) and X.dtype == np.complex128
+            and not np.iscomplexobj(A.data) and A.dtype == np.float64):
+        return A @ X
+    X = np.ascontiguousarray(X)
+    shape = X.shape
+    out = sp.csr_matrix(A) @ X.view(float).reshape(shape[0], -1)
+    return np.ascontiguousarray(out).view(complex).reshape(shape)
+
+
 def relative_residuals(M, D, K, eigenvalues: np.ndarray, vectors: np.ndarray) -> np.ndarray:
     """‖(λ²M + λD + K)φ‖₂ / ((|λ|²‖M‖₁ + |λ|‖D‖₁ + ‖K‖₁) ‖φ‖₂) per column (dimensionless).
 
@@ -352,7 +365,7 @@ def relative_residuals(M, D, K, eigenvalues: np.ndarray, vectors: np.ndarray) ->
     """
     lam = np.asarray(eigenvalues)
     phi = np.asarray(vectors)
-    r = (M @ phi) * lam**2 + (D @ phi) * lam + K @ phi
+    r = _product(M, phi) * lam**2 + _product(D, phi) * lam + _product(K, phi)
     scale = np.abs(lam) ** 2 * _norm1(sp.csr_matrix(M)) + np.abs(lam) * _norm1(
         sp.csr_matrix(D)) + _norm1(sp.csr_matrix(K))
     return np.linalg.norm(r, axis=0) / (scale * np.linalg.norm(phi, axis=0))
@@ -366,9 +379,9 @@ def quadratic_rayleigh(M, D, K, eigenvalues: np.ndarray, vectors: np.ndarray) ->
     """
     phi = np.asarray(vectors)
     c = phi.conj()
-    m = np.einsum("ij,ij->j", c, M @ phi)
-    g = np.einsum("ij,ij->j", c, D @ phi)
-    kap = np.einsum("ij,ij->j", c, K @ phi)
+    m = np.einsum("ij,ij->j", c, _product(M, phi))
+    g = np.einsum("ij,ij->j", c, _product(D, phi))
+    kap = np.einsum("ij,ij->j", c, _product(K, phi))
     disc = np.sqrt(g * g - 4 * m * kap + 0j)
     r1, r2 = (-g + disc) / (2 * m), (-g - disc) / (2 * m)
     lam = np.asarray(eigenvalues)
