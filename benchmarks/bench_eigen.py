@@ -96,7 +96,7 @@ def med(rows: list[dict], key: str) -> float:
 def bench_modes(args) -> None:
     velocity, count = 50.0, args.count
     model = fresh_model(args.length_ratio)
-    print(f"grid {model.grid.nx} x {model.grid.ny}, n = {model.size} unknowns; "
+    print(f"grid {model.grid.nx} x {model.grid.ny}, n = {model.unknowns} unknowns; "
           f"V = {velocity:g} m/s, {count} modes; {args.rounds} alternating rounds")
     ours, arpack, slepc = [], [], []
     with tempfile.TemporaryDirectory() as tmp:

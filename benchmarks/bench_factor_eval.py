@@ -107,7 +107,7 @@ def timed(f, repeat=1):
 
 def block_krylov_solves(model, velocity, factor, omega_s, p, reference, tol=1e-14, nev=6):
     """Solves a block Krylov method (block size p) needs for ``nev`` Ritz pairs of T."""
-    n = model.size
+    n = model.unknowns
     md = model.mass_diagonal
     K, G = model.K(velocity).tocsr(), model.G(velocity).tocsr()
 
