@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 from closed_forms import navier_frequency
+from conftest import moving_string
 from convergence import observed_order
 
 from gyroshell import ConvergenceError, Grid, ParameterError, TapeModel, TapeParameters
@@ -65,32 +66,8 @@ class TestNavier:
 
 
 # ----- moving string (Wickert & Mote 1990) --------------------------------------------------
-class WidthUniformModel:
-    """The tape restricted to width-uniform fields w(x) ⊗ 1 (an exact invariant subspace for
-    ν = 0 with free edges); duck-types what :func:`modes` needs from a TapeModel."""
-
-    def __init__(self, model: TapeModel) -> None:
-        g = model.grid
-        self.full, self.params, self.grid = model, model.params, g
-        self.P = sp.kron(sp.identity(g.n_lines), np.ones((g.n_across, 1)), format="csr")
-        self.size = g.n_lines
-        self.mass_diagonal = self.P.T @ model.mass_diagonal
-
-    def K(self, v):
-        return (self.P.T @ self.full.K(v) @ self.P).tocsr()
-
-    def G(self, v):
-        return (self.P.T @ self.full.G(v) @ self.P).tocsr()
-
-
-def _string_model(nx: int) -> WidthUniformModel:
-    p = TapeParameters(foundation_stiffness=0.0, bending_rigidity=1e-14, poisson=0.0,
-                       length_ratio=2.0, spacing=WIDTH / 8)
-    return WidthUniformModel(TapeModel(p, Grid(p.length, p.width, nx, 8, "free")))
-
-
 def test_width_uniform_subspace_is_invariant():
-    red = _string_model(16)
+    red = moving_string(16)
     full, P = red.full, red.P
     md = full.mass_diagonal
     for op, op_r in ((full.K(30.0), red.K(30.0)), (full.G(30.0), red.G(30.0))):
@@ -101,13 +78,13 @@ def test_width_uniform_subspace_is_invariant():
 
 
 def test_moving_string_second_order():
-    p = _string_model(16).params
+    p = moving_string(16).params
     c, L = p.string_speed, p.length
     V = 0.5 * c
     exact = np.array([n * np.pi * c * (1 - V**2 / c**2) / L for n in (1, 2, 3)])
     steps, errs = [], []
     for nx in (32, 64, 128):
-        red = _string_model(nx)
+        red = moving_string(nx)
         res = modes(red, V, 3)
         errs.append(np.abs(res.omega - exact) / exact)
         steps.append(L / nx)
