@@ -71,14 +71,16 @@ def check_steps(steps: int) -> int:
     return int(steps)
 
 
-def check_force(force, size: int, name: str = "force") -> np.ndarray:
-    """Validate a nodal force vector (N): finite, shape (size,)."""
+def check_force(force, size: int, name: str = "force", unit: str = "N") -> np.ndarray:
+    """Validate a vector over the unknowns (a nodal force in N by default): finite, shape
+    (size,)."""
     try:
         out = np.asarray(force, dtype=float)
     except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a finite vector of length {size} (N)") from None
+        raise ParameterError(f"{name} must be a finite vector of length {size} ({unit})"
+                             ) from None
     if out.shape != (size,) or not np.all(np.isfinite(out)):
-        raise ParameterError(f"{name} must be a finite vector of length {size} (N), got "
+        raise ParameterError(f"{name} must be a finite vector of length {size} ({unit}), got "
                              f"shape {out.shape}" + ("" if out.shape != (size,) else
                                                      " with non-finite entries"))
     return out
@@ -199,11 +201,11 @@ class Newmark:
         """vᵀCv, W: the power the damping takes out (0 without damping)."""
         return 0.0 if self.C is None else float(np.dot(v, self.C @ v))
 
-    def _state(self, vector, name: str) -> np.ndarray:
-        n = self.model.size
+    def _state(self, vector, name: str, unit: str) -> np.ndarray:
+        n = self.model.unknowns
         if vector is None:
             return np.zeros(n)
-        return check_force(vector, n, name).copy()  # a copy: the march writes into it
+        return check_force(vector, n, name, unit).copy()  # a copy: the march writes into it
 
     def _prepare_load(self, load, force, profile, times: np.ndarray):
         """The run's F(t): moving heads, or f(t) F with F the model's load or ``force``."""
@@ -276,7 +278,7 @@ class Newmark:
         budget.check_transient(grid.nx, grid.ny, grid.edges, steps)
         times = t0 + self.dt * np.arange(steps + 1)
         loads = self._prepare_load(load, force, profile, times)
-        w, v = self._state(w0, "w0"), self._state(v0, "v0")
+        w, v = self._state(w0, "w0", "m"), self._state(v0, "v0", "m/s")
         force0 = loads.vector(0)
         a = self.initial_acceleration(w, v, force0)
         recorder = Recorder(self.model.grid, steps, self.dt, t0, snapshot_times=snapshot_times,
