@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
+from . import budget
 from .eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
 from .errors import ParameterError
 from .model import TapeModel
@@ -33,25 +34,42 @@ COLUMNS = ("velocity", "branch", "rank", "omega", "frequency", "period", "growth
            "residual", "correlation", "supercritical", "stability")
 
 
-def parse_velocities(text: str) -> list[float]:
-    """Speeds from ``"start:stop:step"`` (stop included) or ``"v1,v2,..."``, m/s."""
+def parse_velocities(text: str, *, option: str = "velocities") -> list[float]:
+    """Speeds, m/s, from ``"start:stop:step"`` (stop included) or ``"v1,v2,..."``.
+
+    The number of speeds is checked against :data:`gyroshell.budget.MAX_SWEEP_SPEEDS`
+    before the list is built, so ``0:100:1e-12`` is refused at once.
+
+    Raises
+    ------
+    ParameterError
+        For a malformed or non-finite entry, a step <= 0, stop < start, a negative speed, or
+        too many speeds.
+    """
     text = text.strip()
+    form = f"{option} must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
+    parts = text.split(":") if ":" in text else [t for t in text.split(",") if t.strip()]
     try:
-        if ":" in text:
-            parts = [float(t) for t in text.split(":")]
-            if len(parts) != 3:
-                raise ValueError
-            start, stop, step = parts
-            if not step > 0 or stop < start:
-                raise ParameterError(
-                    f"velocities {text!r}: need step > 0 and stop >= start (m/s)")
-            n = int(math.floor((stop - start) / step + 1e-9)) + 1
-            return [start + i * step for i in range(n)]
-        return [float(t) for t in text.split(",") if t.strip()]
+        numbers = [float(t) for t in parts]
     except ValueError:
-        raise ParameterError(
-            f"velocities must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
-        ) from None
+        raise ParameterError(form) from None
+    if not numbers or (":" in text and len(numbers) != 3):
+        raise ParameterError(form)
+    for number in numbers:
+        if not math.isfinite(number):
+            raise ParameterError(f"{option} {text!r}: every number must be finite (m/s)")
+    if ":" not in text:
+        budget.check_sweep_length(len(numbers), what=f"{option} {text[:40]!r}")
+        velocities = numbers
+    else:
+        start, stop, step = numbers
+        if not step > 0 or stop < start:
+            raise ParameterError(f"{option} {text!r}: need step > 0 and stop >= start (m/s)")
+        count = math.floor((stop - start) / step + 1e-9) + 1 \
+            if math.isfinite((stop - start) / step) else math.inf
+        budget.check_sweep_length(count, what=f"{option} {text!r}")
+        velocities = [start + i * step for i in range(int(count))]
+    return [check_velocity(v) for v in velocities]
 
 
 def check_velocities(velocities: Iterable[float]) -> list[float]:

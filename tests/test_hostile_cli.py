@@ -22,6 +22,10 @@ REFUSALS = [
      "200001 full fields"),
     ("velocities 0:100:1e-12", ["sweep", *COARSE, "--velocities", "0:100:1e-12"],
      "gives 1e+14 speeds, more than the limit 10000"),
+    ("campbell velocities 0:100:1e-12", ["campbell", *COARSE, "--velocities", "0:100:1e-12"],
+     "--velocities '0:100:1e-12' gives 1e+14 speeds"),
+    ("campbell velocities 0:inf:10", ["campbell", *COARSE, "--velocities", "0:inf:10"],
+     "every number must be finite"),
     ("length ratio 1e-6", ["critical", "--length-ratio", "1e-6"],
      "length_ratio must leave at least 8 intervals along the length"),
     # 2. numbers at the edges

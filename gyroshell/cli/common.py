@@ -8,9 +8,7 @@ import math
 import re
 import sys
 
-from .. import budget
-from ..errors import ParameterError
-from ..parameters import EDGE_CHOICES, TapeParameters, check_velocity
+from ..parameters import EDGE_CHOICES, TapeParameters
 
 #: Option values that are negative numbers (``-1e-4``, ``-.5``, ``-inf``): argparse's own
 #: pattern misses exponents, so ``--spacing -1e-4`` would be taken for an option.
@@ -65,41 +63,10 @@ def positive_int(text: str) -> int:
 
 
 def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
-    """Speeds, m/s, from ``"start:stop:step"`` (stop included) or ``"v1,v2,..."``.
+    """Speeds, m/s, from an option's text: :func:`gyroshell.sweep.parse_velocities`."""
+    from ..sweep import parse_velocities as parse
 
-    The number of speeds is checked against :data:`gyroshell.budget.MAX_SWEEP_SPEEDS`
-    before the list is built, so ``0:100:1e-12`` is refused at once.
-
-    Raises
-    ------
-    ParameterError
-        For a malformed or non-finite entry, a step <= 0, stop < start, a negative speed, or
-        too many speeds.
-    """
-    text = text.strip()
-    form = f"{option} must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
-    parts = text.split(":") if ":" in text else [t for t in text.split(",") if t.strip()]
-    try:
-        numbers = [float(t) for t in parts]
-    except ValueError:
-        raise ParameterError(form) from None
-    if not numbers or (":" in text and len(numbers) != 3):
-        raise ParameterError(form)
-    for number in numbers:
-        if not math.isfinite(number):
-            raise ParameterError(f"{option} {text!r}: every number must be finite (m/s)")
-    if ":" not in text:
-        budget.check_sweep_length(len(numbers), what=f"{option} {text[:40]!r}")
-        velocities = numbers
-    else:
-        start, stop, step = numbers
-        if not step > 0 or stop < start:
-            raise ParameterError(f"{option} {text!r}: need step > 0 and stop >= start (m/s)")
-        count = math.floor((stop - start) / step + 1e-9) + 1 \
-            if math.isfinite((stop - start) / step) else math.inf
-        budget.check_sweep_length(count, what=f"{option} {text!r}")
-        velocities = [start + i * step for i in range(int(count))]
-    return [check_velocity(v) for v in velocities]
+    return parse(text, option=option)
 
 
 #: (flag, TapeParameters field, help) for the physical overrides.

@@ -199,7 +199,8 @@ def run_campbell(args: argparse.Namespace) -> int:
 
     from ..campbell import MIN_MAC, campbell
     from ..model import TapeModel
-    from ..sweep import check_velocities, parse_velocities
+    from ..sweep import check_velocities
+    from .common import parse_velocities
 
     params = parameters_from_args(args)
     velocities = check_velocities(parse_velocities(args.velocities))
