@@ -47,6 +47,8 @@ MAX_FACTOR_ENTRIES = 2**31 - 1
 BYTES_PER_STEP = 25
 #: Longest speed list a sweep accepts (one eigen-solve each).
 MAX_SWEEP_SPEEDS = 10_000
+#: Most points one parameter study may hold (each is at least one solve).
+MAX_STUDY_POINTS = 100_000
 
 
 def memory_limit() -> float:
@@ -207,4 +209,14 @@ def check_sweep_length(count: float, *, what: str = "velocities") -> int:
         raise ParameterError(
             f"{what} gives {count:.4g} speeds, more than the limit {MAX_SWEEP_SPEEDS} per "
             "sweep (one eigen-solve each); use a larger step")
+    return int(count)
+
+
+def check_study_points(count: float, *, what: str = "the study") -> int:
+    """Refuse a parameter study with more than :data:`MAX_STUDY_POINTS` points; returns
+    count."""
+    if not count <= MAX_STUDY_POINTS:
+        raise ParameterError(
+            f"{what} has {count:.4g} points, more than the limit {MAX_STUDY_POINTS} per "
+            "study (one or more solves each); use fewer values")
     return int(count)

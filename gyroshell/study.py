@@ -46,6 +46,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from . import budget
 from .errors import ParameterError
 from .parameters import TapeParameters, check_velocity
 
@@ -157,6 +158,7 @@ def grid_points(vary: Mapping[str, Sequence]) -> list[dict]:
         if not vals:
             raise ParameterError(f"{name} needs at least one value")
         values.append(vals)
+    budget.check_study_points(math.prod(len(v) for v in values))
     return [dict(zip(names, combo, strict=True)) for combo in itertools.product(*values)]
 
 

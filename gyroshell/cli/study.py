@@ -80,6 +80,7 @@ def parse_values(name: str, text: str) -> list:
     ``20um`` / ``"20 um"``; words for ``edges``)."""
     import numpy as np
 
+    from ..budget import check_study_points
     from ..config import QUANTITIES, parse_quantity
     from .common import real
 
@@ -98,6 +99,7 @@ def parse_values(name: str, text: str) -> list:
                             "an integer") from None
         if num < 1:
             raise UserError(f"--vary {name}={text}: NUM must be >= 1")
+        check_study_points(num, what=f"--vary {name}={text}")
         return [float(v) for v in np.linspace(start, stop, num)]
     items = [item.strip() for item in text.split(",")]
     if name.replace("-", "_") == "edges":
