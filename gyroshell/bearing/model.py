@@ -37,6 +37,9 @@ X_RESOLUTION_2D = 1.0 / 6.0
 #: Default y-spacing of the 2-D tape, m: resolves the free edges' boundary layer (about
 #: 0.5 mm wide on the Table 1 tape at 4 m/s), whose spacing then converges to a few %.
 Y_SPACING = 50e-6
+#: A 2-D tape with at least this many unknowns starts Newton from its solution on a grid
+#: twice as coarse (recursively), interpolated; smaller ones from the infinitely wide tape.
+COARSE_START_MIN_UNKNOWNS = 20_000
 #: Classical flexible-foil constant, used only to size the domain and guess a start.
 _FOIL_GUESS = 0.64
 
@@ -181,6 +184,34 @@ class BearingModel:
             offset += n
         return sp.block_diag(blocks, format="csr"), np.concatenate(rows)
 
+    def _coarse_state(self) -> np.ndarray | None:
+        """The steady state on the grid twice as coarse in x and y, interpolated
+        (bilinearly) onto this grid; None if that grid would be too coarse or Newton fails
+        there. Most of Newton's iterations move the free edges down from the infinitely
+        wide start; on the coarse grid they cost a fraction of a fine-grid factorization."""
+        from scipy.interpolate import RegularGridInterpolator
+
+        from ..errors import ConvergenceError
+        from .steady import solve_steady
+
+        nx, ny = self.nx // 2 + (self.nx // 2) % 2, self.ny // 2 + (self.ny // 2) % 2
+        if self.size < COARSE_START_MIN_UNKNOWNS or ny < 8 or nx < 8:
+            return None
+        coarse = BearingModel(self.params, self.air, velocity=self.velocity,
+                              wrap_angle=self.wrap_angle, span=self.span, nx=nx, ny=ny)
+        try:
+            sol = solve_steady(coarse)
+        except ConvergenceError:
+            return None
+        X, Y = np.meshgrid(self.x, self.y, indexing="ij")
+        pts = np.column_stack([X.ravel(), Y.ravel()])
+        fields = []
+        for f in (sol.spacing - coarse.dry_field, sol.pressure):
+            fields.append(RegularGridInterpolator((coarse.x, coarse.y), f)(pts)
+                          .reshape(X.shape))
+        u = fields[0][1:-1, :].ravel()
+        return np.concatenate([u, fields[1][self.film.interior]])
+
     def _extruded_strip_state(self) -> np.ndarray:
         from .steady import solve_steady
         from ..errors import ConvergenceError
@@ -281,7 +312,8 @@ class BearingModel:
         pressure. 2-D: the infinitely wide tape's solution on the same x-grid, extruded
         across the width (one cheap 1-D solve saves several 2-D Newton iterations)."""
         if not self.infinitely_wide:
-            return self._extruded_strip_state()
+            z = self._coarse_state()
+            return self._extruded_strip_state() if z is None else z
         u = np.full(self.n_u, self.h_guess)
         kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)
         p = self.air.ambient_pressure + self.effective_tension() * kappa[
