@@ -11,7 +11,7 @@ import pytest
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.steady import BearingSolution, solve_steady
-from gyroshell.bearing.transient import march, tension_step
+from gyroshell.bearing.transient import march, tension_harmonic, tension_step
 from gyroshell.errors import ParameterError
 
 
@@ -68,3 +68,36 @@ def test_load_crossing_the_head_presses_the_tape_down_where_it_passes(model):
     at_centre = np.argmin(np.abs(run.t - (0.0 - start) / speed))
     assert run.central_spacing[at_centre] < 0.97 * steady.central_spacing
     assert run.central_spacing[-1] == pytest.approx(steady.central_spacing, rel=2e-3)
+
+
+def _harmonic_fit(run, frequency, skip):
+    """Mean, amplitude and phase of h_c(t) ≈ a + b sin ωt + c cos ωt after ``skip`` s."""
+    keep = run.t >= skip
+    wt = 2 * np.pi * frequency * run.t[keep]
+    basis = np.column_stack([np.ones_like(wt), np.sin(wt), np.cos(wt)])
+    a, b, c = np.linalg.lstsq(basis, run.central_spacing[keep], rcond=None)[0]
+    return a, math.hypot(b, c), math.atan2(c, b)
+
+
+def test_slow_harmonic_tension_follows_the_steady_sensitivity(model):
+    """T = 90 + 2 sin ωt N/m, slow against the film's settling time: the central spacing
+    swings by |dh/dT| ΔT (dh/dT from two steady solves, a central difference), in
+    antiphase (more tension, closer flight), lagging by ωτ: halving f halves the lag and
+    brings the amplitude closer to the quasi-static one."""
+    d_tension = 2.0
+    steady = solve_steady(model)
+    slope = (solve_steady(model, tension=90.0 + d_tension).central_spacing
+             - solve_steady(model, tension=90.0 - d_tension).central_spacing) / (2 * d_tension)
+    assert slope < 0
+    fits = []
+    for f in (40.0, 20.0):
+        run = march(steady, dt=0.01 / f, steps=200,
+                    tension=tension_harmonic(90.0, d_tension, f), **DAMPED)
+        fits.append(_harmonic_fit(run, f, skip=1.0 / f))
+    ratios = [amp / abs(slope * d_tension) for _, amp, _ in fits]
+    lags = [math.pi - phase for _, _, phase in fits]
+    assert abs(ratios[1] - 1) < abs(ratios[0] - 1) < 0.03
+    assert abs(ratios[1] - 1) < 0.01
+    assert 0 < lags[1] < lags[0] < 0.5
+    assert lags[0] / lags[1] == pytest.approx(2.0, rel=0.1)
+    assert fits[1][0] == pytest.approx(steady.central_spacing, rel=1e-3)
