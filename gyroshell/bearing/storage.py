@@ -1,0 +1,87 @@
+"""Saving and loading steady bearing states through :mod:`gyroshell.persistence`.
+
+A :class:`~gyroshell.bearing.steady.BearingSolution` becomes an xarray Dataset with the
+spacing, departure u, pressure and contact-force fields on the (x, y) nodes, the scalar outputs of
+:meth:`~gyroshell.bearing.steady.BearingSolution.summary` and everything needed to rebuild
+the model (tape parameters, air, speed, wrap, span, grid), so that :func:`load` returns a
+solution equal to the saved one. Needs the ``io`` extra (xarray, h5netcdf).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from pathlib import Path
+
+import numpy as np
+
+from .. import persistence
+from ..errors import ParameterError
+from .air import AirParameters
+from .model import BearingModel
+from .steady import BearingSolution, NewtonInfo
+
+KIND = "bearing"
+
+
+def to_xarray(sol: BearingSolution):
+    """The steady state as an :class:`xarray.Dataset`: ``spacing`` and ``departure``
+    (m), ``pressure`` (Pa) and ``contact`` (N, N/m if infinitely wide) on dimensions (x, y), x from the middle
+    of the wrap (m); the summary, air and model settings as attributes."""
+    m = sol.model
+    y = np.zeros(1) if m.infinitely_wide else m.y
+    def nodal(values):                 # tape unknowns -> every node (0 at the span ends)
+        out = np.zeros((m.nx + 1, m.nc))
+        out[1:-1, :] = values.reshape(m.nx - 1, m.nc)
+        return out
+    coords = {"x": ("x", sol.x, {"units": "m", "long_name": "from the middle of the wrap"}),
+              "y": ("y", y, {"units": "m", "long_name": "across the tape"})}
+    data = {"spacing": (("x", "y"), sol.spacing, {"units": "m"}),
+            "pressure": (("x", "y"), sol.pressure, {"units": "Pa"}),
+            "departure": (("x", "y"), nodal(sol.u),
+                          {"units": "m", "long_name": "from the dry wrapped configuration"}),
+            "contact": (("x", "y"), nodal(sol.contact), {"units": "N"})}
+    summary = {k: v for k, v in sol.summary().items() if k != "newton_step_norms"}
+    model = {"velocity": m.velocity, "wrap_angle": m.wrap_angle,
+             "infinitely_wide": m.infinitely_wide, "span": m.span, "nx": m.nx, "ny": m.ny}
+    return persistence._dataset(
+        data, coords, KIND, params=m.params, info=dataclasses.asdict(sol.info),
+        air=dataclasses.asdict(m.air), model=model, summary=summary)
+
+
+def save(sol: BearingSolution, path: str | os.PathLike[str]) -> Path:
+    """Write ``sol`` to a NetCDF file (``.nc``), whole or not at all. Returns the path."""
+    from ..io import atomic_path
+
+    path = Path(path)
+    if path.suffix.lower() not in persistence.NETCDF_SUFFIXES:
+        raise ParameterError(f"a bearing state is saved as NetCDF "
+                             f"({', '.join(persistence.NETCDF_SUFFIXES)}), got {path.name!r}")
+    ds = to_xarray(sol)
+    engine = persistence._engine()
+    with atomic_path(path) as tmp:
+        ds.to_netcdf(tmp, engine=engine)
+    return path
+
+
+def load(path: str | os.PathLike[str]) -> BearingSolution:
+    """Read a state written by :func:`save`: the model is rebuilt from the stored
+    settings and the unknowns taken from the stored fields."""
+    import xarray as xr
+
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no such file: {path}")
+    with xr.open_dataset(path, engine=persistence._engine()) as ds:
+        ds = ds.load()
+    if ds.attrs.get("gyroshell_type") != KIND:
+        raise ParameterError(f"{path} is not a saved bearing state (gyroshell_type "
+                             f"{ds.attrs.get('gyroshell_type')!r})")
+    a = ds.attrs
+    settings = persistence.from_json(a["model"])
+    model = BearingModel(persistence._params_from(a),
+                         AirParameters(**persistence.from_json(a["air"])), **settings)
+    U, P, C = (ds[k].values for k in ("departure", "pressure", "contact"))
+    info = NewtonInfo(**persistence.from_json(a["info"]))
+    return BearingSolution(model, U[1:-1, :].ravel(), P[model.film.interior],
+                           C[1:-1, :].ravel(), info)
