@@ -40,6 +40,11 @@ Y_SPACING = 50e-6
 #: A 2-D tape with at least this many unknowns starts Newton from its solution on a grid
 #: twice as coarse (recursively), interpolated; smaller ones from the infinitely wide tape.
 COARSE_START_MIN_UNKNOWNS = 20_000
+#: ... unless that grid would be coarser than this across (m): an under-resolved free-edge
+#: row falsely touches down and the coarse solve would lead Newton astray ...
+COARSE_START_MAX_Y_SPACING = 110e-6
+#: ... or Newton there needs more than this many iterations.
+COARSE_START_MAX_ITERATIONS = 25
 #: Classical flexible-foil constant, used only to size the domain and guess a start.
 _FOIL_GUESS = 0.64
 
@@ -192,17 +197,20 @@ class BearingModel:
         from scipy.interpolate import RegularGridInterpolator
 
         from ..errors import ConvergenceError
-        from .steady import solve_steady
+        from .steady import BearingSolution, newton
 
         nx, ny = self.nx // 2 + (self.nx // 2) % 2, self.ny // 2 + (self.ny // 2) % 2
-        if self.size < COARSE_START_MIN_UNKNOWNS or ny < 8 or nx < 8:
+        if (self.size < COARSE_START_MIN_UNKNOWNS or ny < 8 or nx < 8
+                or self.params.width / ny > COARSE_START_MAX_Y_SPACING):
             return None
         coarse = BearingModel(self.params, self.air, velocity=self.velocity,
                               wrap_angle=self.wrap_angle, span=self.span, nx=nx, ny=ny)
-        try:
-            sol = solve_steady(coarse)
+        try:   # plain Newton: a coarse grid that fails falls back at once, no continuation
+            z, lam, _, info = newton(coarse, coarse.initial_state(),
+                                     max_iterations=COARSE_START_MAX_ITERATIONS)
         except ConvergenceError:
             return None
+        sol = BearingSolution(coarse, z[:coarse.n_u], z[coarse.n_u:], lam, info)
         X, Y = np.meshgrid(self.x, self.y, indexing="ij")
         pts = np.column_stack([X.ravel(), Y.ravel()])
         fields = []
