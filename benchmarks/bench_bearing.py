@@ -100,8 +100,9 @@ def main(argv: list[str] | None = None) -> int:
                 times.setdefault("2-D baseline", []).append(t_old)
                 times.setdefault("ratio", []).append(t_old / times["2-D steady"][-1])
             its = {"1-D steady": s1.info.iterations, "2-D steady": s2.info.iterations}
-            print(f"round {r + 1}: " + ", ".join(f"{k} {v[-1]:.3f} s" for k, v in times.items()),
-                  flush=True)
+            print(f"round {r + 1}: " + ", ".join(
+                f"{k} {v[-1]:.3f}" + ("" if k == "ratio" else " s") for k, v in times.items()),
+                flush=True)
     med = {k: statistics.median(v) for k, v in times.items()}
     print("\nmedians over", args.rounds, "rounds:")
     for k, v in med.items():
