@@ -35,7 +35,7 @@ SPACING_KEEP = 0.2
 #: ... nor grow by more than this multiple of it (plus σ).
 SPACING_GROWTH = 4.0
 #: Below this relative step a factorization is reused (chord steps) ...
-CHORD_SWITCH = 1e-2
+CHORD_SWITCH = 5e-2
 #: ... while each step shrinks at least by this factor.
 CHORD_CONTRACTION = 0.1
 #: Smallest line-search step before a step is taken anyway.
