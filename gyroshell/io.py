@@ -355,3 +355,27 @@ def termination_signals() -> Iterator[None]:
     finally:
         for signum, handler in previous.items():
             signal.signal(signum, handler)
+
+
+@contextmanager
+def folder_transaction(folder: str | os.PathLike[str]) -> Iterator[Path]:
+    """:func:`transaction` for a run that writes into ``folder``: creates it (and missing
+    parents); if the block raises, no file is moved in and the folders it created are
+    removed again (deepest first, while empty)."""
+    folder = Path(folder)
+    created = []
+    probe = folder
+    while not probe.exists() and probe != probe.parent:
+        created.append(probe)
+        probe = probe.parent
+    try:
+        with transaction():
+            folder.mkdir(parents=True, exist_ok=True)
+            yield folder
+    except BaseException:
+        for made in created:
+            try:
+                made.rmdir()
+            except OSError:
+                break
+        raise

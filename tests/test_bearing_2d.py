@@ -8,8 +8,8 @@ import math
 
 import numpy as np
 import pytest
-
 from convergence import observed_order
+
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.steady import solve_steady

@@ -8,9 +8,9 @@ import math
 
 import numpy as np
 import pytest
-
 from bearing_cases import classical_foil_constants, flexible_model, foil_scale
 from convergence import observed_order
+
 from gyroshell.bearing.steady import solve_steady
 
 

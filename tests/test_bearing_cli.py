@@ -62,8 +62,10 @@ def test_velocity_is_required(capsys):
     (["--velocity", "90"], "string speed"),
     (["--wrap-angle", "0"], "wrap_angle must be in"),
     (["--wrap-angle", "120"], "wrap_angle must be in"),
-    (["--viscosity", "-1"], "viscosity must be > 0"),
-    (["--mean-free-path=-1e-9"], "mean_free_path must be >= 0"),
+    (["--viscosity", "-1"], "viscosity must be in [1e-07, 1000] Pa*s"),
+    (["--mean-free-path=-1e-9"], "mean_free_path must be in [0, 0.001] m"),
+    (["--ambient-pressure", "1e-300"], "ambient_pressure must be in [100, 1e+09] Pa"),
+    (["--velocity", "1e-9", "--infinitely-wide"], "needs 498480 intervals, more than the limit"),
     (["--ny", "9"], "ny must be an even integer"),
 ])
 def test_bad_input_one_line_exit_2(capsys, tmp_path, argv, message):
@@ -88,3 +90,26 @@ def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
     assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no steady flying state" in err[0]
+
+
+def test_out_that_is_a_file_is_refused_before_solving(capsys, tmp_path):
+    afile = tmp_path / "afile"
+    afile.write_text("mine")
+    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--out", str(afile)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "is a file, not a folder" in err[0]
+    assert afile.read_text() == "mine"
+
+
+def test_failing_plot_leaves_no_out_folder(capsys, tmp_path, monkeypatch):
+    import matplotlib.figure
+
+    def disk_full(self, fname, *args, **kwargs):
+        raise OSError(28, "No space left on device", str(fname))
+
+    monkeypatch.setattr(matplotlib.figure.Figure, "savefig", disk_full)
+    out, png = tmp_path / "new" / "run", tmp_path / "b.png"
+    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--out", str(out),
+                 "--plot", str(png)]) == 2
+    assert "cannot write" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == []

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 import pytest
-
 from bearing_cases import flexible_model
+
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.film import bernoulli

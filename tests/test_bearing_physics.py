@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
-
 from bearing_cases import flexible_model
+
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import AirParameters
 from gyroshell.bearing.steady import solve_steady
 
 TAPE = TapeParameters()

@@ -83,6 +83,8 @@ BAD_OUTPUTS = [
 def test_bad_output_refused_before_computing(cli, workdir, monkeypatch, case, argv, match):
     import gyroshell.eigen
     import gyroshell.newmark
+    import gyroshell.study  # noqa: F401 - bound to the real engines before the patch
+    import gyroshell.sweep  # noqa: F401
 
     def must_not_run(*args, **kwargs):
         raise AssertionError("computed before checking the outputs")

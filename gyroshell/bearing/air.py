@@ -10,8 +10,15 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from .. import validation
 from ..errors import ParameterError
-from ..parameters import _check_nonnegative, _check_positive
+
+#: Accepted ranges (SI): wide around air at 20 °C, narrow enough that the film's scales stay
+#: inside double precision (p_a 1e-300 Pa overflowed the slip factor 6 λ p_a / (p h)).
+VISCOSITY_RANGE = (1e-7, 1e3)          # Pa·s
+AMBIENT_PRESSURE_RANGE = (1e2, 1e9)    # Pa
+MEAN_FREE_PATH_MAX = 1e-3              # m
+ROUGHNESS_RANGE = (1e-12, 1e-4)        # m
 
 #: Dynamic viscosity of air at 20 °C, Pa·s.
 AIR_VISCOSITY = 1.81e-5
@@ -52,12 +59,13 @@ class AirParameters:
 
     def __post_init__(self) -> None:
         put = object.__setattr__
-        put(self, "viscosity", _check_positive("viscosity", self.viscosity, "Pa*s"))
-        put(self, "ambient_pressure",
-            _check_positive("ambient_pressure", self.ambient_pressure, "Pa"))
-        put(self, "mean_free_path",
-            _check_nonnegative("mean_free_path", self.mean_free_path, "m"))
-        put(self, "roughness", _check_positive("roughness", self.roughness, "m"))
+        for name, (low, high), unit in (("viscosity", VISCOSITY_RANGE, "Pa*s"),
+                                        ("ambient_pressure", AMBIENT_PRESSURE_RANGE, "Pa"),
+                                        ("roughness", ROUGHNESS_RANGE, "m")):
+            put(self, name, validation.real(name, getattr(self, name), low=low, high=high,
+                                            unit=unit))
+        put(self, "mean_free_path", validation.real(
+            "mean_free_path", self.mean_free_path, low=0.0, high=MEAN_FREE_PATH_MAX, unit="m"))
         if not isinstance(self.compressible, bool):
             raise ParameterError(f"compressible must be True or False, got {self.compressible!r}")
 

@@ -32,6 +32,9 @@ from .tape import PlateOperators, StripOperators
 SPAN_LENGTHS = 10.0
 SPAN_LENGTHS_2D = 6.0
 #: Default x-spacing, in units of the smaller length (infinitely wide; 2-D).
+#: Most intervals along the tape (an automatic grid past this means a film far shorter
+#: than the wrap: a speed so low that the tape lies on the head).
+MAX_INTERVALS_ALONG = 50_000
 X_RESOLUTION = 1.0 / 12.0
 X_RESOLUTION_2D = 1.0 / 6.0
 #: Default y-spacing of the 2-D tape, m: resolves the free edges' boundary layer (about
@@ -105,8 +108,17 @@ class BearingModel:
         self.length = params.radius * self.wrap_angle + 2.0 * self.span
         if nx is None:
             nx = 2 * math.ceil(0.5 * self.length / (resolution * min(l_film, l_bend)))
-        if isinstance(nx, bool) or not isinstance(nx, (int, np.integer)) or nx < 8:
-            raise ParameterError(f"nx must be an integer >= 8, got {nx!r}")
+            if nx > MAX_INTERVALS_ALONG:
+                raise ParameterError(
+                    f"velocity {self.velocity:g} m/s gives a film only "
+                    f"{min(l_film, l_bend):.3g} m long: resolving it over the "
+                    f"{self.length:.3g} m domain needs {nx} intervals, more than the limit "
+                    f"{MAX_INTERVALS_ALONG}; use a higher velocity (the tape is then in "
+                    "contact with the head anyway) or set nx")
+        if (isinstance(nx, bool) or not isinstance(nx, (int, np.integer))
+                or not 8 <= nx <= MAX_INTERVALS_ALONG):
+            raise ParameterError(f"nx must be an integer in [8, {MAX_INTERVALS_ALONG}], "
+                                 f"got {nx!r}")
         self.nx = int(nx)
         self.h_guess = _FOIL_GUESS * h_foil
         hx = self.length / self.nx
@@ -221,8 +233,8 @@ class BearingModel:
         return np.concatenate([u, fields[1][self.film.interior]])
 
     def _extruded_strip_state(self) -> np.ndarray:
-        from .steady import solve_steady
         from ..errors import ConvergenceError
+        from .steady import solve_steady
 
         strip = BearingModel(self.params, self.air, velocity=self.velocity,
                              wrap_angle=self.wrap_angle, infinitely_wide=True,

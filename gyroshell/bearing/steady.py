@@ -13,7 +13,6 @@ a penalty with a step limiter does.
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import dataclass, field
 

@@ -20,8 +20,7 @@ import scipy.sparse as sp
 
 from .. import operators
 from ..grid import Grid
-from ..operators import _forward_difference, _second_difference, _y_second_difference, \
-    _y_selector
+from ..operators import _forward_difference, _second_difference, _y_second_difference, _y_selector
 from ..parameters import TapeParameters
 
 

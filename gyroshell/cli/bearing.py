@@ -64,6 +64,7 @@ def run(args: argparse.Namespace) -> int:
     from ..bearing import AirParameters, BearingModel
     from ..bearing.steady import solve_steady
     from ..errors import ConvergenceError
+    from ..io import PLOT, check_output_folder, check_outputs, folder_transaction, transaction
 
     if args.velocity <= 0.0:
         raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
@@ -72,12 +73,10 @@ def run(args: argparse.Namespace) -> int:
     air = AirParameters(viscosity=args.viscosity, ambient_pressure=args.ambient_pressure,
                         mean_free_path=args.mean_free_path, roughness=args.roughness,
                         compressible=not args.incompressible)
-    if args.plot is not None:
-        folder = Path(args.plot).parent
-        if not folder.is_dir():
-            raise UserError(f"output folder does not exist: {folder}")
-        if Path(args.plot).suffix.lower() != ".png":
-            raise UserError(f"--plot must name a .png file, got {args.plot!r}")
+    if args.plot is not None and Path(args.plot).suffix.lower() != ".png":
+        raise UserError(f"--plot must name a .png file, got {args.plot!r}")
+    check_outputs({"--plot": (args.plot, PLOT)})
+    out = None if args.out is None else check_output_folder(args.out, option="--out")
     model = BearingModel(params, air, velocity=args.velocity,
                          wrap_angle=math.radians(args.wrap_angle),
                          infinitely_wide=args.infinitely_wide, span=args.span, nx=args.nx,
@@ -92,13 +91,15 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(f"no steady flying state reached for this input: {exc}") from None
     summary = sol.summary()
     summary["wrap_angle_degrees"] = args.wrap_angle
-    if args.out is not None:
-        _write_out(Path(args.out), sol, summary)
-    if args.plot is not None:
-        from ..bearing.plots import overview
-        from ..reproduce._common import save_figure
+    # every output, or none (and no folder this run created)
+    with transaction() if out is None else folder_transaction(out):
+        if out is not None:
+            _write_out(out, sol, summary)
+        if args.plot is not None:
+            from ..bearing.plots import overview
+            from ..reproduce._common import save_figure
 
-        save_figure(overview(sol), Path(args.plot))
+            save_figure(overview(sol), Path(args.plot))
     if args.json:
         print_json(summary)
     else:
@@ -120,7 +121,6 @@ def _write_out(out: Path, sol, summary: dict) -> None:
 
     from ..io import write_atomic
 
-    out.mkdir(parents=True, exist_ok=True)
     m = sol.model
     y = np.zeros(1) if m.infinitely_wide else m.y
     X, Y = np.meshgrid(sol.x, y, indexing="ij")

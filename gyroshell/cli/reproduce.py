@@ -28,37 +28,19 @@ def register(sub, common: argparse.ArgumentParser,
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import check_output_folder, transaction
+    from ..io import check_output_folder, folder_transaction
     from ..reproduce import Settings, run_studies
 
     out = check_output_folder(args.out, option="--out")
     settings = Settings(quick=args.quick, progress=False if args.quiet else None)
     start = time.perf_counter()
     log = None if args.quiet else (lambda msg: print(msg, flush=True))
-    created = _missing_folders(out)
-    try:
-        with transaction():  # every file of the run, or none
-            written = run_studies(args.studies, out, settings, log=log)
-    except BaseException:
-        for folder in created:  # folders this run made, deepest first, if still empty
-            try:
-                folder.rmdir()
-            except OSError:
-                break
-        raise
+    with folder_transaction(out):  # every file of the run, or none (and no new folder)
+        written = run_studies(args.studies, out, settings, log=log)
     if not args.quiet:
         n = sum(len(v) for v in written.values())
         print(f"wrote {n} files to {out} in {time.perf_counter() - start:.1f} s")
     return 0
-
-
-def _missing_folders(folder):
-    """``folder`` and its ancestors that do not exist yet, deepest first."""
-    missing = []
-    while not folder.exists() and folder != folder.parent:
-        missing.append(folder)
-        folder = folder.parent
-    return missing
 
 
 def script(name: str, argv: list[str] | None = None) -> int:
