@@ -26,8 +26,9 @@ KIND = "bearing"
 
 def to_xarray(sol: BearingSolution):
     """The steady state as an :class:`xarray.Dataset`: ``spacing`` and ``departure``
-    (m), ``pressure`` (Pa) and ``contact`` (N, N/m if infinitely wide) on dimensions (x, y), x from the middle
-    of the wrap (m); the summary, air and model settings as attributes."""
+    (m), ``pressure`` (Pa) and ``contact`` (N, N/m if infinitely wide) on dimensions
+    (x, y), x from the middle of the wrap (m); the summary, air and model settings as
+    attributes."""
     m = sol.model
     y = np.zeros(1) if m.infinitely_wide else m.y
     def nodal(values):                 # tape unknowns -> every node (0 at the span ends)
