@@ -19,7 +19,9 @@ import pandas as pd
 from ..model import TapeModel
 from ..moving_load import drum_heads
 from ..newmark import march
+from ..plot import wireframe
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._wireframes import snapshot_axes
 
 #: Tape speed V, m/s.
 TAPE_SPEED = 10.0
@@ -125,33 +127,21 @@ def plot_histories(history: pd.DataFrame, contacts: pd.DataFrame, path: Path) ->
 def plot_wireframes(snaps: pd.DataFrame, history: pd.DataFrame, path: Path) -> Path:
     plt = pyplot()
     times = list(dict.fromkeys(snaps["t"]))
-    first = snaps[snaps["t"] == times[0]]
-    nx1, ny1 = first["x"].nunique(), first["y"].nunique()
-    X = first["x"].to_numpy().reshape(nx1, ny1) * 1e3
-    Y = first["y"].to_numpy().reshape(nx1, ny1) * 1e3
-    zmax = snaps["w"].abs().max() * 1e9
-    stride = max(1, nx1 // 80)
+    x, y = snapshot_axes(snaps)
+    zmax = snaps["w"].abs().max()
     fig = plt.figure(figsize=(12, 6.5))
     t_all = history["t"].to_numpy()
     for i, t in enumerate(times):
-        W = snaps[snaps["t"] == t]["w"].to_numpy().reshape(nx1, ny1) * 1e9
-        ax = fig.add_subplot(2, 3, i + 1, projection="3d")
-        ax.plot_wireframe(X, Y, W, rstride=stride, cstride=max(1, ny1 // 20), lw=0.4,
-                          color="k")
+        W = snaps[snaps["t"] == t]["w"].to_numpy().reshape(len(x), len(y))
+        ax = wireframe(x, y, W, ax=fig.add_subplot(2, 3, i + 1, projection="3d"),
+                       title=f"t = {t * 1e6:.0f} µs", zmax=zmax, zmin=-zmax,
+                       cstride=max(1, len(y) // 20), elev=30, zoom=1.25)
         n = int(np.argmin(np.abs(t_all - t)))
         for k in range(HEADS):
             if history[f"contact_head{k}"].iloc[n] > 0:
                 ax.scatter([history[f"x_head{k}"].iloc[n] * 1e3],
-                           [history[f"y_head{k}"].iloc[n] * 1e3], [zmax], color=f"C{k}",
-                           s=25, label=f"head {k + 1}")
-        ax.set_zlim(-zmax, zmax)
-        ax.set_box_aspect((4, 1.3, 1.2), zoom=1.25)
-        ax.view_init(elev=30, azim=-62)
-        ax.set_title(f"t = {t * 1e6:.0f} µs", fontsize=10, pad=-2)
-        ax.set_xlabel("x (mm)", fontsize=7, labelpad=-4)
-        ax.set_ylabel("y (mm)", fontsize=7, labelpad=-6)
-        ax.set_zlabel("w (nm)", fontsize=7, labelpad=-6)
-        ax.tick_params(labelsize=6, pad=-2)
+                           [history[f"y_head{k}"].iloc[n] * 1e3], [zmax * 1e9],
+                           color=f"C{k}", s=25, label=f"head {k + 1}")
     fig.suptitle("Helical scan: the tape under a two-head drum (dots: heads in contact; "
                  "tape moves toward +x)", fontsize=12)
     fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.92, wspace=0.0, hspace=0.05)
