@@ -7,10 +7,10 @@
   excitation lines ω = n·2πV/ℓ and the critical speed;
 * :func:`stability_map` - stable / divergence / flutter over two varied parameters;
 * :func:`study_lines` - a computed quantity against one varied parameter;
-* :func:`load_point_history`, :func:`wireframe`, :func:`waterfall`,
-  :func:`period_vs_velocity`, :func:`bode` - the drawings of ``gyroshell reproduce``
-  (load-point histories, 3-D wire frames, centre-line waterfalls, period against speed,
-  frequency response), from arrays or results;
+* :func:`load_point_history`, :func:`head_histories`, :func:`wireframe`, :func:`waterfall`,
+  :func:`period_vs_velocity`, :func:`spectra`, :func:`bode` - the drawings of ``gyroshell reproduce``
+  (load-point and moving-head histories, 3-D wire frames, centre-line waterfalls, period against speed,
+  stacked spectra, frequency response), from arrays or results;
 * :func:`animate_mode`, :func:`animate_transient` - GIF animations (matplotlib + Pillow).
 
 matplotlib is imported when a function is called, never at ``import gyroshell``. Without
@@ -469,6 +469,57 @@ def waterfall(times, x, lines, *, ax=None, gap: float | None = None,
     return ax
 
 
+def head_histories(times, w_heads, contact, *, axes=None):
+    """Contact envelopes and the displacement under each moving head while in contact.
+
+    Parameters
+    ----------
+    times : array_like
+        Times, s (drawn in µs), length n.
+    w_heads : array_like
+        Displacement under each head, m (drawn in nm), shape (n, heads)
+        (``TransientResult.head_displacements``).
+    contact : array_like
+        Contact envelope of each head, 0..1, shape (n, heads) (``head.envelope(times)``);
+        w is drawn only where it is positive.
+    axes : sequence of matplotlib.axes.Axes, optional
+        heads + 1 Axes: the envelopes, then one per head; a new figure if None.
+
+    Returns
+    -------
+    numpy.ndarray of matplotlib.axes.Axes
+    """
+    t = _vector(times, "times")
+    w = np.asarray(w_heads, dtype=float).reshape(len(t), -1)
+    env = np.asarray(contact, dtype=float).reshape(len(t), -1)
+    if w.shape != env.shape:
+        raise ParameterError(f"w_heads and contact must have one column per head, shapes "
+                             f"{w.shape} and {env.shape}")
+    heads = w.shape[1]
+    if axes is None:
+        plt = pyplot()
+        _, axes = plt.subplots(heads + 1, 1, figsize=(9.0, 7.5), sharex=True,
+                               gridspec_kw={"height_ratios": [1] + [2] * heads})
+    axes = np.asarray(axes).ravel()
+    if axes.size != heads + 1:
+        raise ParameterError(f"axes must hold heads + 1 = {heads + 1} Axes, got {axes.size}")
+    t_us = t * 1e6
+    for k in range(heads):
+        axes[0].plot(t_us, env[:, k], lw=1.2, label=f"head {k + 1}")
+        ax = axes[k + 1]
+        ax.plot(t_us, np.where(env[:, k] > 0, w[:, k] * 1e9, np.nan), lw=1.1,
+                color=f"C{k}", label="w under the head while in contact (spacing variation)")
+        ax.axhline(0, color="k", lw=0.5)
+        ax.set_ylabel("w under head (nm)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("contact")
+    axes[0].legend(fontsize=8, loc="upper right", ncol=2)
+    axes[1].legend(fontsize=8, loc="lower right")
+    axes[0].set_title("contact envelopes", fontsize=9)
+    axes[-1].set_xlabel("time t (µs)")
+    return axes
+
+
 def period_vs_velocity(velocity, period_eigen, *, transient_edge=None, transient=None,
                        critical_speed: float | None = None, ax=None,
                        title: str | None = None):
@@ -524,6 +575,69 @@ def period_vs_velocity(velocity, period_eigen, *, transient_edge=None, transient
         ax.set_title(title, fontsize=10)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8, loc="upper left")
+    return ax
+
+
+def spectra(labels, omegas, amplitudes, *, omega_ref=None, ax=None, xmax: float | None = None,
+            spacing: float = 1.1, title: str | None = None):
+    """Amplitude spectra stacked one above the other, each normalized to its peak.
+
+    Parameters
+    ----------
+    labels : sequence of str or float
+        One label per spectrum (a number is written as a speed, ``"50 m/s"``).
+    omegas : sequence of array_like
+        Angular frequencies of each spectrum, rad/s (lengths may differ).
+    amplitudes : sequence of array_like
+        Amplitudes at ``omegas`` (any unit: each curve is divided by its maximum).
+    omega_ref : array_like, optional
+        One reference angular frequency per spectrum, rad/s (e.g. ω₁(V) from the
+        eigen-solver): the curves are drawn against ω/ω_ref with a dashed line at 1.
+        Without it they are drawn against ω in rad/s.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw; a new figure if None.
+    xmax : float, optional
+        Right end of the horizontal axis (in ω/ω_ref or rad/s); labels are written there.
+    spacing : float
+        Vertical offset between successive spectra (normalized units).
+    title : str, optional
+        Axes title.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    labels = list(labels)
+    omegas, amplitudes = list(omegas), list(amplitudes)
+    if not (len(labels) == len(omegas) == len(amplitudes)) or not labels:
+        raise ParameterError("labels, omegas and amplitudes need one entry per spectrum")
+    ref = None if omega_ref is None else _vector(omega_ref, "omega_ref")
+    if ref is not None and (ref.shape != (len(labels),) or np.any(ref <= 0)):
+        raise ParameterError("omega_ref needs one positive value (rad/s) per spectrum")
+    ax = _axes(ax)
+    right = xmax
+    for k, (lab, om, amp) in enumerate(zip(labels, omegas, amplitudes, strict=True)):
+        om, amp = _vector(om, "omegas"), np.abs(_vector(amp, "amplitudes"))
+        if om.shape != amp.shape:
+            raise ParameterError(f"spectrum {k}: omegas and amplitudes differ in length")
+        xs = om / ref[k] if ref is not None else om
+        top = float(amp.max()) or 1.0
+        ax.plot(xs, amp / top + spacing * k, color=f"C{k % 10}", lw=0.8)
+        text = f"{lab:g} m/s" if isinstance(lab, (int, float, np.number)) else str(lab)
+        at = right if right is not None else float(xs.max())
+        ax.text(at * (1 + 1 / 60), spacing * k + 0.1, text, fontsize=8)
+    if ref is not None:
+        ax.axvline(1.0, color="k", lw=0.7, ls="--", label="ω₁ from the eigen-solver")
+        ax.set_xlabel("ω / ω₁(V)")
+        ax.legend(fontsize=8, loc="upper left")
+    else:
+        ax.set_xlabel("angular frequency ω (rad/s)")
+    if right is not None:
+        ax.set_xlim(0, right)
+    ax.set_ylabel("amplitude spectrum (normalized, offset)")
+    ax.set_yticks([])
+    if title:
+        ax.set_title(title, fontsize=10)
     return ax
 
 

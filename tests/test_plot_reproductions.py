@@ -126,3 +126,43 @@ def test_bode_of_a_frequency_response():
     axes = gplot.bode(res)
     np.testing.assert_allclose(axes[0].lines[0].get_ydata(), res.amplitude[:, 0])
     np.testing.assert_allclose(axes[1].lines[0].get_ydata(), res.phase[:, 0])
+
+
+def test_spectra_are_normalized_stacked_and_scaled_by_their_reference():
+    om = np.linspace(0.0, 3e4, 31)
+    amps = [np.exp(-((om - 1e4) / 2e3) ** 2) * 5.0, np.exp(-((om - 2e4) / 2e3) ** 2)]
+    fig, ax = plt.subplots()
+    out = gplot.spectra([0.0, 50.0], [om, om], amps, omega_ref=[1e4, 2e4], ax=ax, xmax=3.0)
+    assert out is ax
+    curves = ax.lines[:2]
+    for k, c in enumerate(curves):
+        # each peak is at ω/ω_ref = 1 and at height 1 above its offset 1.1 k
+        assert c.get_xdata()[np.argmax(c.get_ydata())] == pytest.approx(1.0)
+        assert c.get_ydata().max() == pytest.approx(1.0 + 1.1 * k)
+    assert len(ax.lines) == 3 and ax.get_xlabel() == "ω / ω₁(V)"
+    assert [t.get_text() for t in ax.texts] == ["0 m/s", "50 m/s"]
+    plain = gplot.spectra(["a"], [om], [amps[0]])
+    assert plain.get_xlabel() == "angular frequency ω (rad/s)" and len(plain.lines) == 1
+    with pytest.raises(ParameterError, match="one positive value"):
+        gplot.spectra(["a"], [om], [amps[0]], omega_ref=[0.0])
+    with pytest.raises(ParameterError, match="one entry per spectrum"):
+        gplot.spectra(["a", "b"], [om], [amps[0]])
+
+
+def test_head_histories_draw_w_only_while_in_contact():
+    t = np.linspace(0.0, 1e-3, 101)
+    contact = np.column_stack([(t < 5e-4).astype(float), (t >= 5e-4).astype(float)])
+    w = np.column_stack([1e-9 * np.ones_like(t), -2e-9 * np.ones_like(t)])
+    axes = gplot.head_histories(t, w, contact)
+    assert len(axes) == 3 and all(isinstance(a, Axes) for a in axes)
+    assert len(axes[0].lines) == 2                          # one envelope per head
+    for k in (0, 1):
+        y = axes[k + 1].lines[0].get_ydata()
+        np.testing.assert_array_equal(np.isnan(y), contact[:, k] == 0)
+        np.testing.assert_allclose(y[contact[:, k] > 0], w[contact[:, k] > 0, k] * 1e9)
+        assert axes[k + 1].get_ylabel() == "w under head (nm)"
+    assert axes[-1].get_xlabel() == "time t (µs)"
+    with pytest.raises(ParameterError, match="heads \\+ 1"):
+        gplot.head_histories(t, w, contact, axes=plt.subplots(2, 1)[1])
+    with pytest.raises(ParameterError, match="one column per head"):
+        gplot.head_histories(t, w, contact[:, :1])

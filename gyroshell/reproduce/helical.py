@@ -19,7 +19,7 @@ import pandas as pd
 from ..model import TapeModel
 from ..moving_load import drum_heads
 from ..newmark import march
-from ..plot import wireframe
+from ..plot import head_histories, wireframe
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 from ._wireframes import snapshot_axes
 
@@ -96,28 +96,16 @@ def plot_histories(history: pd.DataFrame, contacts: pd.DataFrame, path: Path) ->
     plt = pyplot()
     fig, axes = plt.subplots(HEADS + 1, 1, figsize=(9, 7.5), sharex=True,
                              gridspec_kw={"height_ratios": [1] + [2] * HEADS})
-    t_us = history["t"].to_numpy() * 1e6
+    head_histories(history["t"],
+                   history[[f"w_head{k}" for k in range(HEADS)]].to_numpy(),
+                   history[[f"contact_head{k}" for k in range(HEADS)]].to_numpy(), axes=axes)
     for k in range(HEADS):
-        axes[0].plot(t_us, history[f"contact_head{k}"], lw=1.2, label=f"head {k + 1}")
-        ax = axes[k + 1]
-        w = history[f"w_head{k}"].to_numpy() * 1e9
-        on = history[f"contact_head{k}"].to_numpy() > 0
-        ax.plot(t_us, np.where(on, w, np.nan), lw=1.1, color=f"C{k}",
-                label="w under the head while in contact (spacing variation)")
-        ax.axhline(0, color="k", lw=0.5)
         stats = contacts[contacts["head"] == k]
         if len(stats):
             last = stats.iloc[-1]
-            ax.text(0.01, 0.95, f"head {k + 1}, last full contact: mean {last.mean_w * 1e9:.3g}"
-                    f" nm, range {last.range_w * 1e9:.3g} nm", transform=ax.transAxes,
-                    va="top", fontsize=9)
-        ax.set_ylabel("w under head (nm)")
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("contact")
-    axes[0].legend(fontsize=8, loc="upper right", ncol=2)
-    axes[1].legend(fontsize=8, loc="lower right")
-    axes[0].set_title("contact envelopes", fontsize=9)
-    axes[-1].set_xlabel("time t (µs)")
+            axes[k + 1].text(0.01, 0.95, f"head {k + 1}, last full contact: mean "
+                             f"{last.mean_w * 1e9:.3g} nm, range {last.range_w * 1e9:.3g} nm",
+                             transform=axes[k + 1].transAxes, va="top", fontsize=9)
     fig.suptitle(f"Helical scan: two-head drum, head speed {HEAD_SPEED:g} m/s on an oblique "
                  f"track, tape V = {TAPE_SPEED:g} m/s, c = {DAMPING:g} N·s/m³", fontsize=11)
     fig.tight_layout()

@@ -38,6 +38,7 @@ from ..eigen import modes
 from ..model import TapeModel
 from ..newmark import march
 from ..plot import period_vs_velocity
+from ..plot import spectra as plot_spectra
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
 VELOCITIES = (0.0, 25.0, 50.0, 75.0, 90.0, 95.0, 100.0)
@@ -80,17 +81,12 @@ def plot(table: pd.DataFrame, spectra: pd.DataFrame, path: Path,
                        transient_edge=table["period_transient_edge"],
                        transient=table["period_transient"], critical_speed=v_crit, ax=ax,
                        title="Dominant period against tape speed, L_x/L_y = 19")
-    for k, (v, sp) in enumerate(spectra.groupby("velocity")):
-        w1 = table.loc[table["velocity"] == v, "omega_eigen"].iloc[0]
-        bx.plot(sp["omega"] / w1, sp["amplitude"] + 1.1 * k, color=f"C{k % 10}", lw=0.8)
-        bx.text(3.05, 1.1 * k + 0.1, f"{v:g} m/s", fontsize=8)
-    bx.axvline(1.0, color="k", lw=0.7, ls="--", label="ω₁ from the eigen-solver")
-    bx.set_xlim(0, 3.0)
-    bx.set_xlabel("ω / ω₁(V)")
+    groups = list(spectra.groupby("velocity"))
+    omega_1 = [table.loc[table["velocity"] == v, "omega_eigen"].iloc[0] for v, _ in groups]
+    plot_spectra([v for v, _ in groups], [sp["omega"] for _, sp in groups],
+                 [sp["amplitude"] for _, sp in groups], omega_ref=omega_1, ax=bx, xmax=3.0,
+                 title="Spectra start at ω₁: nothing below the lowest eigenfrequency")
     bx.set_ylabel("load-point amplitude spectrum (normalized, offset by speed)")
-    bx.set_yticks([])
-    bx.set_title("Spectra start at ω₁: nothing below the lowest eigenfrequency", fontsize=10)
-    bx.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
     return save_figure(fig, path)
 
