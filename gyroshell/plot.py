@@ -7,10 +7,11 @@
   excitation lines ω = n·2πV/ℓ and the critical speed;
 * :func:`stability_map` - stable / divergence / flutter over two varied parameters;
 * :func:`study_lines` - a computed quantity against one varied parameter;
-* :func:`load_point_history`, :func:`head_histories`, :func:`wireframe`, :func:`waterfall`,
-  :func:`period_vs_velocity`, :func:`spectra`, :func:`bode` - the drawings of ``gyroshell reproduce``
-  (load-point and moving-head histories, 3-D wire frames, centre-line waterfalls, period against speed,
-  stacked spectra, frequency response), from arrays or results;
+* :func:`load_point_history`, :func:`head_histories`, :func:`wireframe`,
+  :func:`waterfall`, :func:`period_vs_velocity`, :func:`spectra`, :func:`bode` - the
+  drawings of ``gyroshell reproduce`` (load-point and moving-head histories, 3-D wire
+  frames, centre-line waterfalls, period against speed, stacked spectra, frequency
+  response), from arrays or results, so a notebook redraws them from its own runs;
 * :func:`animate_mode`, :func:`animate_transient` - GIF animations (matplotlib + Pillow).
 
 matplotlib is imported when a function is called, never at ``import gyroshell``. Without
