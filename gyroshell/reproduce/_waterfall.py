@@ -13,6 +13,7 @@ import pandas as pd
 
 from ..model import TapeModel
 from ..newmark import march
+from ..plot import waterfall
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
 #: Centre-line times, s: every 32 µs up to 800 µs (the paper labels a panel 736 µs).
@@ -35,25 +36,12 @@ def plot(table: pd.DataFrame, velocity: float, title: str, path: Path,
          x0: float | None = None) -> Path:
     plt = pyplot()
     times = np.array(sorted(table["t"].unique()))
-    wmax = table["w"].abs().max()
-    gap = 0.55 * wmax
+    x = table[table["t"] == times[0]]["x"].to_numpy()
+    lines = np.array([table[table["t"] == t]["w"].to_numpy() for t in times])
     fig, ax = plt.subplots(figsize=(9, 10))
-    for k, t in enumerate(times):
-        line = table[table["t"] == t]
-        ax.plot(line["x"] * 1e3, line["w"] + k * gap, color="k", lw=0.7)
-        ax.text(line["x"].max() * 1e3 * 1.01, k * gap, f"{t * 1e6:.0f}", fontsize=7,
-                va="center")
-    if x0 is not None:
-        ax.axvline(x0 * 1e3, color="C3", lw=0.6, ls=":", label="load point")
-        ax.legend(loc="upper left", fontsize=8)
-    ax.set_xlabel("x (mm)   (tape moves left → right)")
-    ax.set_ylabel(f"w + offset (each curve raised {gap * 1e9:.3g} nm per 32 µs)")
-    ax.set_yticks([])
-    ax.text(1.0, 1.0, "t (µs)", transform=ax.transAxes, fontsize=8, ha="left", va="bottom")
-    ax.set_title(f"{title}: centre-line (y = L_y/2) wave action, V = {velocity:g} m/s, "
-                 "L_x/L_y = 19", fontsize=11)
-    for side in ("top", "right", "left"):
-        ax.spines[side].set_visible(False)
+    waterfall(times, x, lines, ax=ax, load_point=x0,
+              title=f"{title}: centre-line (y = L_y/2) wave action, V = {velocity:g} m/s, "
+                    "L_x/L_y = 19")
     fig.tight_layout()
     return save_figure(fig, path)
 

@@ -14,6 +14,7 @@ import pandas as pd
 
 from ..model import TapeModel
 from ..newmark import march
+from ..plot import wireframe
 from ..static import solve_static
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
@@ -39,32 +40,26 @@ def compute(settings: Settings, velocity: float) -> pd.DataFrame:
 def plot(table: pd.DataFrame, velocity: float, title: str, path: Path) -> Path:
     plt = pyplot()
     times = list(dict.fromkeys(table["t"]))
-    first = table[table["t"] == times[0]]
-    nx1 = first["x"].nunique()
-    ny1 = first["y"].nunique()
-    X = first["x"].to_numpy().reshape(nx1, ny1) * 1e3
-    Y = first["y"].to_numpy().reshape(nx1, ny1) * 1e3
-    zmax = table["w"].abs().max() * 1e9
-    stride = max(1, nx1 // 80)
+    x, y = snapshot_axes(table)
+    zmax = table["w"].abs().max()
     fig = plt.figure(figsize=(12, 8.5))
     for k, t in enumerate(times):
-        W = table[table["t"] == t]["w"].to_numpy().reshape(nx1, ny1) * 1e9
-        ax = fig.add_subplot(3, 3, k + 1, projection="3d")
-        ax.plot_wireframe(X, Y, W, rstride=stride, cstride=2, lw=0.4, color="k")
-        ax.set_zlim(-0.6 * zmax, zmax)
-        ax.set_box_aspect((4, 1.3, 1.2), zoom=1.3)
-        ax.view_init(elev=28, azim=-62)
+        W = table[table["t"] == t]["w"].to_numpy().reshape(len(x), len(y))
         label = "t = ∞ (static)" if np.isinf(t) else f"t = {t * 1e6:.0f} µs"
-        ax.set_title(label, fontsize=10, pad=-2)
-        ax.set_xlabel("x (mm)", fontsize=7, labelpad=-4)
-        ax.set_ylabel("y (mm)", fontsize=7, labelpad=-6)
-        ax.set_zlabel("w (nm)", fontsize=7, labelpad=-6)
-        ax.tick_params(labelsize=6, pad=-2)
+        wireframe(x, y, W, ax=fig.add_subplot(3, 3, k + 1, projection="3d"), title=label,
+                  zmax=zmax)
     motion = " (tape moves toward +x)" if velocity > 0 else ""
     fig.suptitle(f"{title}: wave propagation after a step load, V = {velocity:g} m/s, "
                  f"L_x/L_y = 4{motion}", fontsize=12)
     fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.93, wspace=0.0, hspace=0.05)
     return save_figure(fig, path)
+
+
+def snapshot_axes(table: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+    """Node coordinates x, y (m) of a long snapshot table (t, x, y, w; x-major order)."""
+    first = table[table["t"] == table["t"].iloc[0]]
+    nx1, ny1 = first["x"].nunique(), first["y"].nunique()
+    return first["x"].to_numpy()[::ny1], first["y"].to_numpy()[:ny1]
 
 
 def run_figure(out: Path, settings: Settings, name: str, velocity: float) -> list[Path]:

@@ -16,6 +16,7 @@ import pandas as pd
 
 from ..model import TapeModel
 from ..newmark import march
+from ..plot import load_point_history
 from ..static import solve_static
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
@@ -51,17 +52,11 @@ def plot(history: pd.DataFrame, steady: pd.DataFrame, path: Path) -> Path:
     for ax, v in zip(axes, speeds, strict=False):
         h = history[history["velocity"] == v]
         s = steady[steady["velocity"] == v].iloc[0]
-        t_us = h["t"].to_numpy() * 1e6
-        ax.plot(t_us, h["w_nondim"], lw=0.9, color="C0", label="transient (Newmark, β=1/4)")
-        ax.axhline(s["w_static_nondim"], color="C3", lw=0.8, ls="--")
-        ax.plot([t_us[-1]], [s["w_static_nondim"]], "o", color="C3", ms=7,
-                label="steady state (static solver)", clip_on=False)
-        ax.set_ylabel("w k / P₀")
-        ax.text(0.01, 0.9, f"V = {v:g} m/s", transform=ax.transAxes, va="top",
-                fontweight="bold")
-        ax.grid(alpha=0.3)
+        load_point_history(h["t"], h["w_nondim"], steady=s["w_static_nondim"], ylabel="w k / P₀",
+                           velocity=v, ax=ax)
+    for ax in axes[:-1]:
+        ax.set_xlabel("")
     axes[0].legend(loc="lower right", fontsize=8)
-    axes[-1].set_xlabel("time t (µs)")
     fig.suptitle("Fig. 2: load-point displacement after a step load, L_x/L_y = 19", y=0.995)
     fig.tight_layout()
     return save_figure(fig, path)

@@ -17,6 +17,7 @@ import pandas as pd
 from ..eigen import modes
 from ..frf import frequency_response
 from ..model import TapeModel
+from ..plot import bode
 from ._common import Settings, pyplot, save_csv, save_figure
 
 VELOCITIES = (0.0, 50.0, 90.0)
@@ -50,17 +51,9 @@ def plot(table: pd.DataFrame, found: pd.DataFrame, path: Path) -> Path:
     fig, ax = plt.subplots(2, 1, sharex=True, figsize=(9, 7))
     for i, v in enumerate(VELOCITIES):
         rows = table[table["velocity"] == v]
-        om = rows["omega"].to_numpy() / 1e3
-        ax[0].semilogy(om, rows["amplitude"], lw=1.0, color=f"C{i}", label=f"V = {v:g} m/s")
-        ax[1].plot(om, rows["phase"], lw=1.0, color=f"C{i}")
-        for w in found[found["velocity"] == v]["omega"]:
-            ax[0].axvline(w / 1e3, color=f"C{i}", lw=0.6, ls=":", alpha=0.8)
-    ax[0].set_ylabel("load-point amplitude |W| (m)")
-    ax[1].set_ylabel("phase (rad)")
-    ax[1].set_xlabel("angular frequency ω (10³ rad/s)")
+        bode(rows["omega"], rows["amplitude"], rows["phase"], axes=ax, color=f"C{i}",
+             label=f"V = {v:g} m/s", mode_omegas=found[found["velocity"] == v]["omega"])
     ax[0].legend(title="dotted: eigen-solver ω_j", fontsize=9)
-    for a in ax:
-        a.grid(alpha=0.3)
     worst = table["error_estimate"].max()
     ax[0].set_title(f"Frequency response at the load point, L_x/L_y = 4, c = {DAMPING:g} N·s/m³"
                     f" (reduced model, estimated error ≤ {worst:.0e})", fontsize=10)

@@ -19,7 +19,9 @@ import pandas as pd
 from ..model import TapeModel
 from ..moving_load import drum_heads
 from ..newmark import march
+from ..plot import head_histories, wireframe
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._wireframes import snapshot_axes
 
 #: Tape speed V, m/s.
 TAPE_SPEED = 10.0
@@ -94,28 +96,16 @@ def plot_histories(history: pd.DataFrame, contacts: pd.DataFrame, path: Path) ->
     plt = pyplot()
     fig, axes = plt.subplots(HEADS + 1, 1, figsize=(9, 7.5), sharex=True,
                              gridspec_kw={"height_ratios": [1] + [2] * HEADS})
-    t_us = history["t"].to_numpy() * 1e6
+    head_histories(history["t"],
+                   history[[f"w_head{k}" for k in range(HEADS)]].to_numpy(),
+                   history[[f"contact_head{k}" for k in range(HEADS)]].to_numpy(), axes=axes)
     for k in range(HEADS):
-        axes[0].plot(t_us, history[f"contact_head{k}"], lw=1.2, label=f"head {k + 1}")
-        ax = axes[k + 1]
-        w = history[f"w_head{k}"].to_numpy() * 1e9
-        on = history[f"contact_head{k}"].to_numpy() > 0
-        ax.plot(t_us, np.where(on, w, np.nan), lw=1.1, color=f"C{k}",
-                label="w under the head while in contact (spacing variation)")
-        ax.axhline(0, color="k", lw=0.5)
         stats = contacts[contacts["head"] == k]
         if len(stats):
             last = stats.iloc[-1]
-            ax.text(0.01, 0.95, f"head {k + 1}, last full contact: mean {last.mean_w * 1e9:.3g}"
-                    f" nm, range {last.range_w * 1e9:.3g} nm", transform=ax.transAxes,
-                    va="top", fontsize=9)
-        ax.set_ylabel("w under head (nm)")
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("contact")
-    axes[0].legend(fontsize=8, loc="upper right", ncol=2)
-    axes[1].legend(fontsize=8, loc="lower right")
-    axes[0].set_title("contact envelopes", fontsize=9)
-    axes[-1].set_xlabel("time t (µs)")
+            axes[k + 1].text(0.01, 0.95, f"head {k + 1}, last full contact: mean "
+                             f"{last.mean_w * 1e9:.3g} nm, range {last.range_w * 1e9:.3g} nm",
+                             transform=axes[k + 1].transAxes, va="top", fontsize=9)
     fig.suptitle(f"Helical scan: two-head drum, head speed {HEAD_SPEED:g} m/s on an oblique "
                  f"track, tape V = {TAPE_SPEED:g} m/s, c = {DAMPING:g} N·s/m³", fontsize=11)
     fig.tight_layout()
@@ -125,33 +115,21 @@ def plot_histories(history: pd.DataFrame, contacts: pd.DataFrame, path: Path) ->
 def plot_wireframes(snaps: pd.DataFrame, history: pd.DataFrame, path: Path) -> Path:
     plt = pyplot()
     times = list(dict.fromkeys(snaps["t"]))
-    first = snaps[snaps["t"] == times[0]]
-    nx1, ny1 = first["x"].nunique(), first["y"].nunique()
-    X = first["x"].to_numpy().reshape(nx1, ny1) * 1e3
-    Y = first["y"].to_numpy().reshape(nx1, ny1) * 1e3
-    zmax = snaps["w"].abs().max() * 1e9
-    stride = max(1, nx1 // 80)
+    x, y = snapshot_axes(snaps)
+    zmax = snaps["w"].abs().max()
     fig = plt.figure(figsize=(12, 6.5))
     t_all = history["t"].to_numpy()
     for i, t in enumerate(times):
-        W = snaps[snaps["t"] == t]["w"].to_numpy().reshape(nx1, ny1) * 1e9
-        ax = fig.add_subplot(2, 3, i + 1, projection="3d")
-        ax.plot_wireframe(X, Y, W, rstride=stride, cstride=max(1, ny1 // 20), lw=0.4,
-                          color="k")
+        W = snaps[snaps["t"] == t]["w"].to_numpy().reshape(len(x), len(y))
+        ax = wireframe(x, y, W, ax=fig.add_subplot(2, 3, i + 1, projection="3d"),
+                       title=f"t = {t * 1e6:.0f} µs", zmax=zmax, zmin=-zmax,
+                       cstride=max(1, len(y) // 20), elev=30, zoom=1.25)
         n = int(np.argmin(np.abs(t_all - t)))
         for k in range(HEADS):
             if history[f"contact_head{k}"].iloc[n] > 0:
                 ax.scatter([history[f"x_head{k}"].iloc[n] * 1e3],
-                           [history[f"y_head{k}"].iloc[n] * 1e3], [zmax], color=f"C{k}",
-                           s=25, label=f"head {k + 1}")
-        ax.set_zlim(-zmax, zmax)
-        ax.set_box_aspect((4, 1.3, 1.2), zoom=1.25)
-        ax.view_init(elev=30, azim=-62)
-        ax.set_title(f"t = {t * 1e6:.0f} µs", fontsize=10, pad=-2)
-        ax.set_xlabel("x (mm)", fontsize=7, labelpad=-4)
-        ax.set_ylabel("y (mm)", fontsize=7, labelpad=-6)
-        ax.set_zlabel("w (nm)", fontsize=7, labelpad=-6)
-        ax.tick_params(labelsize=6, pad=-2)
+                           [history[f"y_head{k}"].iloc[n] * 1e3], [zmax * 1e9],
+                           color=f"C{k}", s=25, label=f"head {k + 1}")
     fig.suptitle("Helical scan: the tape under a two-head drum (dots: heads in contact; "
                  "tape moves toward +x)", fontsize=12)
     fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.92, wspace=0.0, hspace=0.05)

@@ -37,6 +37,8 @@ from ..analysis import amplitude_spectrum, dominant_period
 from ..eigen import modes
 from ..model import TapeModel
 from ..newmark import march
+from ..plot import period_vs_velocity
+from ..plot import spectra as plot_spectra
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
 VELOCITIES = (0.0, 25.0, 50.0, 75.0, 90.0, 95.0, 100.0)
@@ -75,33 +77,16 @@ def plot(table: pd.DataFrame, spectra: pd.DataFrame, path: Path,
          v_crit: float | None = None) -> Path:
     plt = pyplot()
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5), gridspec_kw={"width_ratios": [1, 1]})
-    ax.semilogy(table["velocity"], table["period_eigen"] * 1e6, "-", color="C0", lw=1.2,
-                marker="s", ms=5, label="2π/ω₁ (gyroscopic eigen-solver)")
-    ax.semilogy(table["velocity"], table["period_transient_edge"] * 1e6, "o", color="C2",
-                mfc="none", ms=10, mew=1.5, label="transient: lowest spectral peak (band edge)")
-    ax.semilogy(table["velocity"], table["period_transient"] * 1e6, "x", color="C3", ms=8,
-                mew=1.5, label="transient: tallest spectral peak")
-    v0 = table["period_eigen"].iloc[0]
-    ax.axhline(v0 * 1e6, color="0.6", lw=0.7, ls=":")
-    ax.text(1, v0 * 1e6 * 1.08, "2π√(ρ/k) ≈ 50 µs", color="0.4", fontsize=8)
-    if v_crit is not None:
-        ax.axvline(v_crit, color="k", lw=0.7, ls="--", label=f"critical speed {v_crit:.2f} m/s")
-    ax.set_xlabel("tape speed V (m/s)")
-    ax.set_ylabel("period of the load-point displacement (µs)")
-    ax.set_title("Dominant period against tape speed, L_x/L_y = 19", fontsize=10)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8, loc="upper left")
-    for k, (v, sp) in enumerate(spectra.groupby("velocity")):
-        w1 = table.loc[table["velocity"] == v, "omega_eigen"].iloc[0]
-        bx.plot(sp["omega"] / w1, sp["amplitude"] + 1.1 * k, color=f"C{k % 10}", lw=0.8)
-        bx.text(3.05, 1.1 * k + 0.1, f"{v:g} m/s", fontsize=8)
-    bx.axvline(1.0, color="k", lw=0.7, ls="--", label="ω₁ from the eigen-solver")
-    bx.set_xlim(0, 3.0)
-    bx.set_xlabel("ω / ω₁(V)")
+    period_vs_velocity(table["velocity"], table["period_eigen"],
+                       transient_edge=table["period_transient_edge"],
+                       transient=table["period_transient"], critical_speed=v_crit, ax=ax,
+                       title="Dominant period against tape speed, L_x/L_y = 19")
+    groups = list(spectra.groupby("velocity"))
+    omega_1 = [table.loc[table["velocity"] == v, "omega_eigen"].iloc[0] for v, _ in groups]
+    plot_spectra([v for v, _ in groups], [sp["omega"] for _, sp in groups],
+                 [sp["amplitude"] for _, sp in groups], omega_ref=omega_1, ax=bx, xmax=3.0,
+                 title="Spectra start at ω₁: nothing below the lowest eigenfrequency")
     bx.set_ylabel("load-point amplitude spectrum (normalized, offset by speed)")
-    bx.set_yticks([])
-    bx.set_title("Spectra start at ω₁: nothing below the lowest eigenfrequency", fontsize=10)
-    bx.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
     return save_figure(fig, path)
 
