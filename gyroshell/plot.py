@@ -418,6 +418,83 @@ def wireframe(x, y, w, *, ax=None, title: str | None = None, zmax: float | None 
     return ax
 
 
+def edge_reflection(times, tape, reference, *, t_edge: float, t_reflection: float,
+                    ax=None):
+    """Load-point histories of a tape and of a wider reference tape, with the instants the
+    front reaches the free edge and its reflection returns to the load (seed paper, §4).
+
+    Parameters
+    ----------
+    times : array_like
+        Times, s (drawn in µs).
+    tape, reference : array_like
+        Load-point displacement of the tape and of the wider reference, m (drawn in nm),
+        same length as ``times``.
+    t_edge, t_reflection : float
+        Arrival of the front at the free edge and of its reflection at the load point, s.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw; a new figure if None.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    t = _vector(times, "times")
+    series = {}
+    for name, values in (("tape", tape), ("reference", reference)):
+        series[name] = _vector(values, name)
+        if series[name].shape != t.shape:
+            raise ParameterError(f"{name} must have the shape of times {t.shape}, "
+                                 f"got {series[name].shape}")
+    ax = _axes(ax)
+    ax.plot(t * 1e6, series["tape"] * 1e9, label="tape, width L_y (free edges)")
+    ax.plot(t * 1e6, series["reference"] * 1e9, "--", label="reference, wider tape")
+    ax.axvline(t_edge * 1e6, color="C2", lw=0.8, ls=":",
+               label=f"front reaches the free edge: {t_edge * 1e6:.1f} µs")
+    ax.axvline(t_reflection * 1e6, color="C3", lw=0.8,
+               label=f"edge reflection back at the load: {t_reflection * 1e6:.1f} µs")
+    ax.set_xlabel("time t (µs)")
+    ax.set_ylabel("load-point displacement w (nm)")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return ax
+
+
+def wave_fronts(table, *, speeds: dict | None = None, ax=None):
+    """Distance of the apparent wave fronts from the load against time, downstream (solid)
+    and upstream (dashed), one colour per tape speed.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Columns ``velocity`` (m/s), ``t`` (s, drawn in µs), ``downstream`` and
+        ``upstream`` (m, drawn in mm).
+    speeds : dict, optional
+        {(velocity, "downstream" or "upstream"): apparent front speed, m/s} for the legend.
+    ax : matplotlib.axes.Axes, optional
+        Where to draw; a new figure if None.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    missing = {"velocity", "t", "downstream", "upstream"} - set(getattr(table, "columns", ()))
+    if missing:
+        raise ParameterError(f"table needs the columns {sorted(missing)}")
+    ax = _axes(ax)
+    for k, (v, ft) in enumerate(table.groupby("velocity")):
+        for side, ls in (("downstream", "-"), ("upstream", "--")):
+            speed = None if speeds is None else speeds.get((v, side))
+            extra = "" if speed is None else f" ({speed:.0f} m/s)"
+            ax.plot(ft["t"] * 1e6, ft[side] * 1e3, ls, color=f"C{k}", marker=".",
+                    label=f"V = {v:g} m/s, {side}{extra}")
+    ax.set_xlabel("time t (µs)")
+    ax.set_ylabel("front distance from the load (mm)")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return ax
+
+
 def waterfall(times, x, lines, *, ax=None, gap: float | None = None,
               load_point: float | None = None, title: str | None = None):
     """Centre-line displacements at a series of times, each raised by its rank (waterfall).

@@ -166,3 +166,31 @@ def test_head_histories_draw_w_only_while_in_contact():
         gplot.head_histories(t, w, contact, axes=plt.subplots(2, 1)[1])
     with pytest.raises(ParameterError, match="one column per head"):
         gplot.head_histories(t, w, contact[:, :1])
+
+
+def test_edge_reflection_draws_both_histories_and_the_two_instants():
+    fig, ax = plt.subplots()
+    assert gplot.edge_reflection(T, W, 0.5 * W, t_edge=20e-6, t_reflection=45e-6, ax=ax) is ax
+    tape, reference, edge, back = ax.lines
+    np.testing.assert_allclose(tape.get_xdata(), T * 1e6)           # µs
+    np.testing.assert_allclose(reference.get_ydata(), 0.5 * W * 1e9)  # nm
+    assert list(edge.get_xdata()) == [20.0, 20.0] and list(back.get_xdata()) == [45.0, 45.0]
+    assert ax.get_xlabel() == "time t (µs)" and ax.get_ylabel().endswith("(nm)")
+    with pytest.raises(ParameterError, match="reference must have the shape of times"):
+        gplot.edge_reflection(T, W, W[:-1], t_edge=1e-6, t_reflection=2e-6)
+
+
+def test_wave_fronts_one_colour_per_speed_two_sides():
+    import pandas as pd
+
+    t = np.array([20e-6, 40e-6, 60e-6])
+    table = pd.concat([pd.DataFrame({"velocity": v, "t": t, "downstream": (100 + v) * t,
+                                     "upstream": (100 - v) * t}) for v in (0.0, 50.0)])
+    ax = gplot.wave_fronts(table, speeds={(50.0, "downstream"): 150.0})
+    assert len(ax.lines) == 4
+    np.testing.assert_allclose(ax.lines[2].get_ydata(), 150 * t * 1e3)   # mm
+    assert ax.lines[0].get_color() == ax.lines[1].get_color() != ax.lines[2].get_color()
+    assert "(150 m/s)" in ax.lines[2].get_label()
+    assert ax.get_ylabel() == "front distance from the load (mm)"
+    with pytest.raises(ParameterError, match="table needs the columns"):
+        gplot.wave_fronts(table.drop(columns="upstream"))

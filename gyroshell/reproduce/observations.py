@@ -129,29 +129,19 @@ def compute(settings: Settings):
 
 
 def plot(refl: dict, front_table: pd.DataFrame, path: Path) -> Path:
+    from .. import plot as gplot
+
     plt = pyplot()
     fig, (a, b) = plt.subplots(1, 2, figsize=(12, 4.5))
-    t_us = refl["t"] * 1e6
-    a.plot(t_us, refl["narrow"] * 1e9, label="tape, width L_y (free edges)")
-    a.plot(t_us, refl["wide"] * 1e9, "--", label="reference, width ~4 L_y")
-    a.axvline(refl["t_edge"] * 1e6, color="C2", lw=0.8, ls=":",
-              label=f"front reaches the free edge: {refl['t_edge'] * 1e6:.1f} µs")
-    a.axvline(refl["t_reflection"] * 1e6, color="C3", lw=0.8,
-              label=f"edge reflection back at the load: {refl['t_reflection'] * 1e6:.1f} µs")
-    a.set_xlabel("time t (µs)")
-    a.set_ylabel("load-point displacement w (nm)")
-    a.set_title("Reflection from the free edges (V = 0, L_x/L_y = 4)", fontsize=10)
+    gplot.edge_reflection(refl["t"], refl["narrow"], refl["wide"], t_edge=refl["t_edge"],
+                          t_reflection=refl["t_reflection"], ax=a)
+    a.lines[1].set_label("reference, width ~4 L_y")
     a.legend(fontsize=8)
-    a.grid(alpha=0.3)
-    for k, (v, ft) in enumerate(front_table.groupby("velocity")):
-        for side, ls in (("downstream", "-"), ("upstream", "--")):
-            b.plot(ft["t"] * 1e6, ft[side] * 1e3, ls, color=f"C{k}", marker=".",
-                   label=f"V = {v:g} m/s, {side} ({front_speed(ft, side):.0f} m/s)")
-    b.set_xlabel("time t (µs)")
-    b.set_ylabel("front distance from the load (mm)")
+    a.set_title("Reflection from the free edges (V = 0, L_x/L_y = 4)", fontsize=10)
+    speeds = {(v, side): front_speed(ft, side)
+              for v, ft in front_table.groupby("velocity") for side in ("downstream", "upstream")}
+    gplot.wave_fronts(front_table, speeds=speeds, ax=b)
     b.set_title("Apparent wave fronts on the centre line (L_x/L_y = 19)", fontsize=10)
-    b.legend(fontsize=8)
-    b.grid(alpha=0.3)
     fig.tight_layout()
     return save_figure(fig, path)
 
