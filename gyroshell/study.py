@@ -571,10 +571,16 @@ def _execute(todo, record: Callable, base_fields, velocity, compute, count, *, w
         for chunk in _chunks(todo, size):
             record(_evaluate_chunk(*args, chunk, compute, count))
         return "serial", size
+    import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
 
     size = chunk_size or max(1, math.ceil(len(todo) / (workers * CHUNKS_PER_WORKER)))
-    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker) as pool:
+    # Not fork: the parent may hold BLAS or Dask threads, and a forked child can deadlock
+    # on their locks (Python 3.12+ warns). A fork server starts workers from a clean process.
+    methods = multiprocessing.get_all_start_methods()
+    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker,
+                             mp_context=context) as pool:
         futures = [pool.submit(_evaluate_chunk, *args, chunk, compute, count)
                    for chunk in _chunks(todo, size)]
         try:

@@ -56,7 +56,8 @@ def test_stability_boundary_of_gyroscopic_stabilization():
 def blocks(ks, gs):
     """Many decoupled 2-DOF systems (n = 2 × blocks), sparse: the sparse solver's test."""
     parts = [two_dof(k1, k2, g) for (k1, k2), g in zip(ks, gs, strict=True)]
-    M, G, K = (sp.block_diag([p[i] for p in parts], format="csr") for i in range(3))
+    M, G, K = (sp.block_diag([sp.csr_matrix(p[i]) for p in parts], format="csr")
+               for i in range(3))
     exact = np.concatenate([two_dof_eigenvalues(k1, k2, g)
                             for (k1, k2), g in zip(ks, gs, strict=True)])
     return M, G, K, exact
