@@ -62,7 +62,6 @@ def run_modes(args: argparse.Namespace) -> int:
     from ..model import TapeModel
 
     check_save_path(args.save)
-    check_outputs({"--save": (args.save, None)})
     model = TapeModel(params, grid)
     t0 = time.perf_counter()
     damping = damping_from_args(args)

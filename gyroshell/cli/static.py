@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 
-from ..io import check_outputs
 from .common import grid_of, parameters_from_args, print_json
 from .saving import add_save_option, check_save_path, save_result
 
@@ -29,7 +28,6 @@ def run(args: argparse.Namespace) -> int:
     from ..static import solve_static
 
     check_save_path(args.save)
-    check_outputs({"--save": (args.save, None)})
     model = TapeModel(params, grid)
     sol = solve_static(model, velocity)
     save_result(args.save, sol, params)
