@@ -279,15 +279,34 @@ def test_signal_during_write_leaves_no_file(tmp_path, signum, code, message):
     assert listing(tmp_path) == ["s.npz"] and old.read_bytes() == b"an earlier run"
 
 
-def test_sigterm_during_computation_exits_cleanly(tmp_path):
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "gyroshell", "sweep", *map(str, COARSE), "--velocities",
-         "0:100:0.02", "--out", "s.csv"], cwd=tmp_path, stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE, text=True)
-    try:
-        import time
+#: A sweep that says when its first eigen-solve starts, i.e. once the CLI's signal handlers
+#: are in place (a fixed sleep raced with a cold start: imports can take longer than it).
+ANNOUNCED_SWEEP = textwrap.dedent("""
+    import importlib
+    import sys
+    from gyroshell.cli import main
 
-        time.sleep(2.0)
+    sweep = importlib.import_module("gyroshell.sweep")   # the module, not the function
+
+    original, started = sweep.modes, []
+
+    def announced(*args, **kwargs):
+        if not started:
+            started.append(True)
+            print("computing", flush=True)
+        return original(*args, **kwargs)
+
+    sweep.modes = announced
+    sys.exit(main(sys.argv[1:]))
+""")
+
+
+def test_sigterm_during_computation_exits_cleanly(tmp_path):
+    argv = ["sweep", *map(str, COARSE), "--velocities", "0:100:0.02", "--out", "s.csv"]
+    proc = subprocess.Popen([sys.executable, "-c", ANNOUNCED_SWEEP, *argv], cwd=tmp_path,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline() == "computing\n"
         proc.send_signal(signal.SIGTERM)
         _, err = proc.communicate(timeout=60)
     finally:
