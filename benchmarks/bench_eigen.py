@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 
-from gyroshell import TapeModel, TapeParameters
+from gyroshell import TapeModel, TapeParameters, cholesky
 from gyroshell.critical import critical_speeds
 from gyroshell.eigen import modes
 from gyroshell.sweep import sweep
@@ -74,10 +74,11 @@ def slepc_round(path: Path, count: int) -> dict | None:
     return json.loads(out.stdout)["rounds"][0]
 
 
-def gyroshell_round(ratio: float, velocity: float, count: int, method: str) -> dict:
+def gyroshell_round(ratio: float, velocity: float, count: int, method: str,
+                    factorization: str = "auto") -> dict:
     model = fresh_model(ratio)
     t0 = time.perf_counter()
-    res = modes(model, velocity, count, method=method)
+    res = modes(model, velocity, count, method=method, factorization=factorization)
     total = time.perf_counter() - t0
     info = res.info
     subst = info.get("substitution_time")
@@ -85,7 +86,7 @@ def gyroshell_round(ratio: float, velocity: float, count: int, method: str) -> d
     return {"total": total, "factor": info["factor_time"], "iteration": info["solve_time"],
             "substitutions": subst, "ops": ops, "omega": res.omega,
             "residual": float(res.residuals.max()), "shift": abs(info["shift"]),
-            "method": info["method"]}
+            "method": info["method"], "factorization": info.get("factorization")}
 
 
 def med(rows: list[dict], key: str) -> float:
@@ -98,7 +99,7 @@ def bench_modes(args) -> None:
     model = fresh_model(args.length_ratio)
     print(f"grid {model.grid.nx} x {model.grid.ny}, n = {model.unknowns} unknowns; "
           f"V = {velocity:g} m/s, {count} modes; {args.rounds} alternating rounds")
-    ours, arpack, slepc = [], [], []
+    ours, superlu, arpack, slepc = [], [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "matrices.npz"
         first = gyroshell_round(args.length_ratio, velocity, count, "auto")
@@ -106,8 +107,14 @@ def bench_modes(args) -> None:
         for _ in range(args.rounds):
             ours.append(gyroshell_round(args.length_ratio, velocity, count, "auto"))
             slepc.append(slepc_round(path, count))
+            superlu.append(gyroshell_round(args.length_ratio, velocity, count, "auto",
+                                           "superlu"))
             arpack.append(gyroshell_round(args.length_ratio, velocity, count, "arpack"))
-    for name, rows in (("gyroshell (Lanczos, default)", ours), ("gyroshell (ARPACK)", arpack)):
+    print(f"default factorization: {ours[0]['factorization']} "
+          f"(cvxopt {'installed' if cholesky.available() else 'not installed'})")
+    for name, rows in (("gyroshell (Lanczos, default)", ours),
+                       ("gyroshell (Lanczos, SuperLU)", superlu),
+                       ("gyroshell (ARPACK, default)", arpack)):
         t = med(rows, "total")
         fac, it = med(rows, "factor"), med(rows, "iteration")
         ops = statistics.median(r["ops"] for r in rows)
@@ -125,7 +132,8 @@ def bench_modes(args) -> None:
               f"{setup:.3f} + solve {solve:.3f}")
         diff = np.max(np.abs(np.array(slepc[-1]["omega"]) - ours[-1]["omega"])
                       / ours[-1]["omega"])
-        print(f"  SLEPc/gyroshell time ratio {total / med(ours, 'total'):.2f}; "
+        print(f"  SLEPc/gyroshell time ratio {total / med(ours, 'total'):.2f} (SuperLU path "
+              f"{total / med(superlu, 'total'):.2f}); "
               f"largest relative frequency difference {diff:.1e} (SLEPc tol 1e-8)")
     else:
         print(f"SLEPc: skipped (no interpreter at {SLEPC_PYTHON}, or the run failed)")

@@ -34,6 +34,7 @@ from .qep import (
     SHIFT_MARGIN,
     _EigenvalueProperties,
     check_count,
+    check_factorization,
     gyroscopic_modes,
     max_count,
 )
@@ -212,7 +213,8 @@ def _known_definite(model, velocity: float) -> bool | None:
 def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
           sigma: complex | str = "auto", damping=None, tol: float = DEFAULT_TOL,
           ncv: int | None = None, maxiter: int | None = None, start: Modes | None = None,
-          estimate: float | None = None, method: str = "auto") -> Modes:
+          estimate: float | None = None, method: str = "auto",
+          factorization: str = "auto") -> Modes:
     """Lowest ``count`` frequencies and complex mode shapes of the tape at speed V.
 
     Parameters
@@ -243,6 +245,10 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         (:func:`strip_frequency_estimate`). The shift is still certified by inertia.
     method : {"auto", "lanczos", "arpack"}
         See :func:`gyroshell.qep.gyroscopic_modes`.
+    factorization : {"auto", "cholmod", "superlu"}
+        Sparse factorization of the shift matrix (see
+        :func:`gyroshell.qep.gyroscopic_modes`): "auto" is CHOLMOD's Cholesky where cvxopt
+        is installed (the ``fast`` extra), else SuperLU.
 
     Returns
     -------
@@ -259,7 +265,9 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         The eigen-solver did not converge, or the residuals or the mode count failed.
     """
     velocity = check_speed(model, velocity)
-    check_count(count, model.size)  # before any assembly: a refusal costs nothing
+    # before any assembly: a refusal costs nothing
+    check_count(count, model.unknowns)
+    factorization = check_factorization(factorization)
     C = damping_operator(model, velocity, damping)
     if estimate is None:
         estimate = strip_frequency_estimate(model.params, model.grid, velocity)
@@ -271,14 +279,14 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         raise ParameterError(f"sigma must be 'auto', 0 or i*omega_s, got {sigma!r}")
     first = None
     if start is not None:
-        if not isinstance(start, Modes) or start.vectors.shape[0] != model.size:
+        if not isinstance(start, Modes) or start.vectors.shape[0] != model.unknowns:
             raise ParameterError("start must be the Modes of the same model")
         first = (start.eigenvalues, start.vectors)
     result = gyroscopic_modes(
         _mass(model), model.G(velocity), model.K(velocity), count, sigma=shift, C=C,
         estimate=estimate if estimate > 0 else None,
         definite=_known_definite(model, velocity), tol=tol, ncv=ncv, maxiter=maxiter,
-        start=first, method=method)
+        start=first, method=method, factorization=factorization)
     return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
                  result.supercritical, result.info, result.damped)
 

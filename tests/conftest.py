@@ -36,7 +36,7 @@ class WidthUniformModel:
         g = model.grid
         self.full, self.params, self.grid = model, model.params, g
         self.P = sp.kron(sp.identity(g.n_lines), np.ones((g.n_across, 1)), format="csr")
-        self.size = g.n_lines
+        self.unknowns = self.size = g.n_lines
         self.mass_diagonal = self.P.T @ model.mass_diagonal
 
     def K(self, v):
@@ -113,6 +113,19 @@ def _strict_floats_and_closed_figures():
     import matplotlib.pyplot as plt
 
     plt.close("all")
+
+
+@pytest.fixture(params=["cholmod", "superlu"])
+def every_factorization(request, monkeypatch):
+    """Run a test once per eigen-solver factorization back-end: "auto" resolves to each
+    (CHOLMOD through cvxopt, in the test extra; SuperLU, pure scipy)."""
+    from gyroshell import cholesky, qep
+
+    if request.param == "cholmod" and not cholesky.available():
+        pytest.skip("cvxopt (CHOLMOD) is not installed")
+    monkeypatch.setattr(qep, "_resolve_factorization",
+                        lambda f: request.param if f == "auto" else f)
+    return request.param
 
 
 @pytest.fixture

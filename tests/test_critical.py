@@ -19,6 +19,9 @@ from gyroshell.critical import (
 from gyroshell.divergence import beam_mu_estimate, divergence
 from gyroshell.sweep import parse_velocities, plot_sweep, sweep
 
+# Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
+pytestmark = pytest.mark.usefixtures("every_factorization")
+
 WIDTH = TapeParameters().width
 SMALL = ["--spacing", str(WIDTH / 8), "--length-ratio", "2"]
 

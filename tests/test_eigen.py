@@ -14,6 +14,9 @@ from convergence import observed_order
 from gyroshell import ConvergenceError, Grid, ParameterError, TapeModel, TapeParameters
 from gyroshell.eigen import modes, relative_residuals
 
+# Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
+pytestmark = pytest.mark.usefixtures("every_factorization")
+
 WIDTH = TapeParameters().width
 
 

@@ -10,6 +10,9 @@ from convergence import observed_order
 
 from gyroshell import TapeModel, TapeParameters
 
+# Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
+pytestmark = pytest.mark.usefixtures("every_factorization")
+
 WIDTH = 6.35e-3
 COUNT = 6
 

@@ -12,6 +12,9 @@ from gyroshell import ParameterError, TapeModel, TapeParameters
 from gyroshell.eigen import modes
 from gyroshell.qep import DENSE_LIMIT, classify_stability, gyroscopic_modes, max_count
 
+# Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
+pytestmark = pytest.mark.usefixtures("every_factorization")
+
 WIDTH = TapeParameters().width
 
 

@@ -30,6 +30,9 @@ from gyroshell import TapeModel, TapeParameters, classify_stability, divergence_
 from gyroshell.errors import ParameterError
 from gyroshell.study import tape_stability
 
+# Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
+pytestmark = pytest.mark.usefixtures("every_factorization")
+
 WIDTH = 6.35e-3
 
 

@@ -58,7 +58,7 @@ def plot(table: pd.DataFrame, velocity: float, title: str, path: Path) -> Path:
 def snapshot_axes(table: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     """Node coordinates x, y (m) of a long snapshot table (t, x, y, w; x-major order)."""
     first = table[table["t"] == table["t"].iloc[0]]
-    nx1, ny1 = first["x"].nunique(), first["y"].nunique()
+    ny1 = first["y"].nunique()
     return first["x"].to_numpy()[::ny1], first["y"].to_numpy()[:ny1]
 
 
