@@ -15,7 +15,7 @@ Prints medians (s) over alternating rounds of:
   environment is missing. Its interpreter: $GYROSHELL_SLEPC_PYTHON, default
   /work/venvs/slepc/bin/python;
 * a 20-speed sweep (0-95 m/s, 6 modes) by continuation against 20 separate ``modes`` calls
-  on fresh models;
+  on fresh models, and the continued sweep split over 2 local processes (``workers=2``);
 * the critical speed (both routes).
 
 Timings on a shared machine vary: read the medians and the ratios measured in one run.
@@ -142,7 +142,7 @@ def bench_modes(args) -> None:
 
 def bench_sweep(args) -> None:
     speeds = np.linspace(0.0, 95.0, 20)
-    cont_times, call_times = [], []
+    cont_times, call_times, par_times = [], [], []
 
     def continuation():
         model = fresh_model(args.length_ratio)
@@ -157,11 +157,20 @@ def bench_sweep(args) -> None:
         call_times.append(time.perf_counter() - t0)
         return out
 
+    def parallel():
+        model = fresh_model(args.length_ratio)
+        t0 = time.perf_counter()
+        frame = sweep(model, speeds, args.count, continuation=True, workers=2)
+        par_times.append(time.perf_counter() - t0)
+        return frame
+
     for k in range(args.sweep_rounds):  # alternate which goes first
         if k % 2:
             calls = separate()
             frame = continuation()
+            pframe = parallel()
         else:
+            pframe = parallel()
             frame = continuation()
             calls = separate()
     table = frame.pivot(index="velocity", columns="rank", values="omega").to_numpy()
@@ -173,6 +182,12 @@ def bench_sweep(args) -> None:
           f"rounds: continuation {c:.2f} s, 20 separate modes calls {s:.2f} s ({solves} "
           f"solves; ratio separate/continuation {s / c:.2f}); largest relative frequency "
           f"difference {diff:.1e}")
+    p = statistics.median(par_times)
+    pdiff = np.max(np.abs(pframe.omega.to_numpy() - frame.omega.to_numpy())
+                   / frame.omega.to_numpy())
+    print(f"  the same sweep on 2 local processes (workers=2): {p:.2f} s (ratio "
+          f"separate/parallel {s / p:.2f}, continuation/parallel {c / p:.2f}); largest "
+          f"relative difference from one process {pdiff:.1e}")
 
 
 def bench_critical(args) -> None:

@@ -89,7 +89,7 @@ def correlation(md: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
           min_correlation: float = 0.5, progress: bool | None = False,
-          continuation: bool = True, **options) -> pd.DataFrame:
+          continuation: bool = True, workers: int = 1, **options) -> pd.DataFrame:
     """Lowest ``count`` frequencies at each speed, tracked into branches.
 
     Parameters
@@ -112,6 +112,11 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         of them. The results are those of independent solves (to round-off); the saving is
         Lanczos steps (a shift close below ω₁ separates the clustered long-tape frequencies)
         and those factorizations.
+    workers : int
+        Local processes (>= 1). With more than one, the speeds are split into that many
+        contiguous runs, each solved with continuation in its own process, and the branches
+        are tracked across them afterwards; the frequencies are the same as on one process
+        (to round-off: each run starts its continuation afresh).
     **options
         Passed to :func:`gyroshell.eigen.modes` (``sigma``, ``tol``, ``damping``, ...).
 
@@ -136,20 +141,68 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
     if not 0.0 <= min_correlation <= 1.0:
         raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
     velocities = [check_speed(model, v) for v in velocities]   # all refused before any work
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
+    workers = min(int(workers), len(velocities))
+    bar = tqdm(total=len(velocities), disable=not progress, desc="sweep", unit="speed")
+    with bar:
+        if workers == 1:
+            results = _solve_run(model, velocities, count, continuation, options, bar.update)
+        else:
+            results = _solve_parallel(model, velocities, count, continuation, options,
+                                      workers, bar.update)
+    tracker = _BranchTracker(model.mass_diagonal, min_correlation)
+    rows: list[dict] = []
+    for res in results:
+        labels, corr = tracker.match(res.vectors)
+        rows.extend(_rows(res, labels, corr))
+    return pd.DataFrame(rows, columns=list(COLUMNS))
+
+
+def _solve_run(model: TapeModel, velocities: list[float], count: int, continuation: bool,
+               options: dict, done=None) -> list[Modes]:
+    """Modes at consecutive speeds, each continued from the previous ones."""
     p = model.params
     above_string = sum(p.density * v * v > p.tension for v in velocities)
     if continuation and above_string >= FLOOR_WORTH_IT:
         stiffness_floor(model, near_divergence=True)
-    tracker = _BranchTracker(model.mass_diagonal, min_correlation)
-    rows: list[dict] = []
     history: list[Modes] = []
-    for v in tqdm(velocities, disable=not progress, desc="sweep", unit="speed"):
-        res = modes(model, v, count,
-                    **{**_continuation_options(model, history, v, continuation), **options})
-        labels, corr = tracker.match(res.vectors)
-        rows.extend(_rows(res, labels, corr))
-        history.append(res)
-    return pd.DataFrame(rows, columns=list(COLUMNS))
+    for v in velocities:
+        history.append(modes(model, v, count, **{
+            **_continuation_options(model, history, v, continuation), **options}))
+        if done is not None:
+            done(1)
+    return history
+
+
+def _solve_parallel(model: TapeModel, velocities: list[float], count: int,
+                    continuation: bool, options: dict, workers: int, done) -> list[Modes]:
+    """Contiguous runs of speeds on ``workers`` local processes (fork server: the parent
+    may hold BLAS threads), results in the order of the speeds."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+
+    from .study import _init_worker
+
+    bounds = np.linspace(0, len(velocities), workers + 1).round().astype(int)
+    runs = [velocities[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
+    methods = multiprocessing.get_all_start_methods()
+    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
+    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker,
+                             mp_context=context) as pool:
+        futures = [pool.submit(_solve_run, model, run, count, continuation, options)
+                   for run in runs]
+        try:
+            results: list[Modes] = []
+            for fut in futures:
+                part = fut.result()
+                done(len(part))
+                results.extend(part)
+        except BaseException:
+            for fut in futures:
+                fut.cancel()
+            raise
+    return results
 
 
 #: Speeds above √(T/ρ) from which proving the stiffness floor near divergence (a few

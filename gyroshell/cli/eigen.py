@@ -48,6 +48,9 @@ def register(sub, common: argparse.ArgumentParser,
                         "finite, >= 0, at most 10000 of them (default 0:100:10)")
     p.add_argument("--count", type=positive_int, default=6,
                    help="frequencies per speed, >= 1 (default 6)")
+    p.add_argument("--workers", type=positive_int, default=1,
+                   help="local processes, >= 1: the speeds are split into that many "
+                        "contiguous runs, each continued in its own process (default 1)")
     p.add_argument("--out", metavar="FILE.csv", help="write the table as CSV")
     p.add_argument("--plot", metavar="FILE.png", help="write omega (rad/s) against V (m/s)")
     add_save_option(p)
@@ -174,7 +177,7 @@ def run_sweep(args: argparse.Namespace) -> int:
 
     check_save_path(args.save)
     model = TapeModel(params, grid)
-    frame = sweep(model, velocities, args.count, progress=None)
+    frame = sweep(model, velocities, args.count, progress=None, workers=args.workers)
     with transaction():
         save_result(args.save, frame, params)
         if args.out:
