@@ -22,10 +22,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from . import persistence
+from . import cholesky, persistence
 from .errors import ParameterError
 from .grid import Grid
 from .inertia import factor_inertia
+from .mirror import mirror_split
 from .model import TapeModel
 from .parameters import TapeParameters, check_velocity
 from .qep import (
@@ -33,6 +34,8 @@ from .qep import (
     RESIDUAL_LIMIT,
     SHIFT_MARGIN,
     _EigenvalueProperties,
+    _normalize,
+    _resolve_factorization,
     check_count,
     check_factorization,
     gyroscopic_modes,
@@ -214,7 +217,7 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
           sigma: complex | str = "auto", damping=None, tol: float = DEFAULT_TOL,
           ncv: int | None = None, maxiter: int | None = None, start: Modes | None = None,
           estimate: float | None = None, method: str = "auto",
-          factorization: str = "auto") -> Modes:
+          factorization: str = "auto", symmetry: bool = True) -> Modes:
     """Lowest ``count`` frequencies and complex mode shapes of the tape at speed V.
 
     Parameters
@@ -249,6 +252,12 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         Sparse factorization of the shift matrix (see
         :func:`gyroshell.qep.gyroscopic_modes`): "auto" is CHOLMOD's Cholesky where cvxopt
         is installed (the ``fast`` extra), else SuperLU.
+    symmetry : bool
+        Use the tape's mirror symmetry about its centre line (same edges on both sides,
+        :mod:`gyroshell.mirror`) below critical without damping: the symmetric half's
+        ``count`` lowest frequencies, the antisymmetric half's below the highest of them
+        (counted by inertia), each on half the unknowns. The same modes as the full problem
+        (to round-off); False solves the full problem.
 
     Returns
     -------
@@ -282,6 +291,16 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         if not isinstance(start, Modes) or start.vectors.shape[0] != model.unknowns:
             raise ParameterError("start must be the Modes of the same model")
         first = (start.eigenvalues, start.vectors)
+    if not isinstance(symmetry, bool):
+        raise ParameterError(f"symmetry must be True or False, got {symmetry!r}")
+    if symmetry and C is None and shift is None and method in ("auto", "lanczos") \
+            and ncv is None and maxiter is None and _known_definite(model, velocity):
+        split = mirror_split(model)
+        if split is not None and count <= max_count(split.antisymmetric.shape[1]):
+            result = _mirror_modes(model, split, velocity, count, first, estimate,
+                                   tol=tol, method=method, factorization=factorization)
+            if result is not None:
+                return result
     result = gyroscopic_modes(
         _mass(model), model.G(velocity), model.K(velocity), count, sigma=shift, C=C,
         estimate=estimate if estimate > 0 else None,
@@ -289,6 +308,63 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         start=first, method=method, factorization=factorization)
     return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
                  result.supercritical, result.info, result.damped)
+
+
+def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, estimate,
+                  **options) -> Modes | None:
+    """The lowest ``count`` modes of a mirror-symmetric tape below critical, from its halves.
+
+    The symmetric half gives its ``count`` lowest frequencies, up to ω̄; the inertia of the
+    antisymmetric half's Q_a(iω̄) counts its frequencies below ω̄ (Sylvester, K_a > 0), and
+    exactly that many are computed there (often none: the width-uniform travelling waves
+    are symmetric). The union holds the ``count`` lowest of the whole tape. None if the
+    count is not available (SuperLU pivoted off the diagonal): the full problem is solved.
+    """
+    halves = {}
+    for which in ("symmetric", "antisymmetric"):
+        M, G, K = split.matrices(model, velocity, which)
+        first = None if start is None else (start[0], split.half(which).T @ start[1])
+        halves[which] = (M, G, K, first)
+    M, G, K, first = halves["symmetric"]
+    sym = gyroscopic_modes(M, G, K, count, estimate=estimate if estimate > 0 else None,
+                           definite=True, start=first, **options)
+    omega_bar = float(sym.omega[-1])
+    M, G, K, first = halves["antisymmetric"]
+    below = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
+                         options.get("factorization", "auto"))
+    if below is None:
+        return None
+    parts = [(sym, split.symmetric)]
+    if below:
+        anti = gyroscopic_modes(M, G, K, below, estimate=estimate if estimate > 0 else None,
+                                definite=True, start=first, **options)
+        if np.any(anti.omega >= omega_bar):   # the count and the solve disagree
+            return None
+        parts.append((anti, split.antisymmetric))
+    lam = np.concatenate([r.eigenvalues for r, _ in parts])
+    vecs = np.hstack([P @ r.vectors for r, P in parts])
+    order = np.argsort(np.abs(lam.imag), kind="stable")[:count]
+    lam, vecs = lam[order], _normalize(vecs[:, order])
+    res = relative_residuals(model, velocity, lam, vecs)
+    info = dict(sym.info)
+    for key in ("factor_time", "solve_time", "substitution_time", "operator_applications"):
+        info[key] = sum(r.info.get(key, 0) or 0 for r, _ in parts)
+    info.update(max_residual=float(res.max()), mirror={
+        "symmetric": int(np.count_nonzero(order < sym.count)),
+        "antisymmetric": int(np.count_nonzero(order >= sym.count)),
+        "antisymmetric_below": below, "count_frequency": omega_bar})
+    return Modes(model.grid, velocity, lam, vecs, res, False, info, False)
+
+
+def _count_below(Q: sp.spmatrix, factorization: str) -> int | None:
+    """Negative eigenvalues of the Hermitian Q: 0 if CHOLMOD's Cholesky succeeds (where
+    selected), else SuperLU's pivot count (None if it pivoted off the diagonal)."""
+    if _resolve_factorization(factorization) == "cholmod":
+        factor = cholesky.cholesky(Q)
+        if factor is not None:
+            factor.release()
+            return 0
+    return factor_inertia(Q).negatives
 
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options

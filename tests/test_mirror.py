@@ -1,0 +1,85 @@
+"""The tape's mirror symmetry about its centre line (gyroshell.mirror): the reflection
+commutes with the operators, the two halves are an orthogonal splitting, and the eigen-solver
+on the halves returns the full problem's modes, each symmetric or antisymmetric as the
+Navier modes sin(mπx/L_x) sin(nπy/L_y) are for odd and even n."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+from closed_forms import navier_frequency
+from conftest import moving_string
+
+from gyroshell import ParameterError, TapeModel, TapeParameters
+from gyroshell.eigen import modes
+from gyroshell.mirror import _reflection, mirror_split
+
+pytestmark = pytest.mark.usefixtures("every_factorization")
+
+WIDTH = 6.35e-3
+
+
+@pytest.mark.parametrize("edges", ["free", "simply-supported"])
+def test_reflection_commutes_and_the_halves_split_orthogonally(edges):
+    model = TapeModel(TapeParameters(edges=edges, length_ratio=2.0, spacing=WIDTH / 9))
+    split = mirror_split(model)
+    assert split is not None
+    g = model.grid
+    R, _, _ = _reflection(g.n_lines, g.n_across)
+    for A in (model.K(40.0), model.G(40.0), sp.diags(model.mass_diagonal, format="csr")):
+        assert abs(R @ A @ R - A).max() <= 1e-13 * abs(A).max()
+    P = sp.hstack([split.symmetric, split.antisymmetric]).toarray()
+    assert P.shape == (model.unknowns, model.unknowns)
+    assert np.allclose(P.T @ P, np.eye(model.unknowns), atol=1e-14)
+    assert np.allclose(R @ split.symmetric.toarray(), split.symmetric.toarray())
+    assert np.allclose(R @ split.antisymmetric.toarray(), -split.antisymmetric.toarray())
+    M_s, G_s, K_s = split.matrices(model, 40.0, "symmetric")
+    assert np.allclose(K_s.toarray(), (split.symmetric.T @ model.K(40.0) @ split.symmetric)
+                       .toarray(), rtol=0, atol=1e-9 * abs(K_s).max())
+    assert abs(G_s + G_s.T).max() == 0
+    assert (M_s - sp.diags(M_s.diagonal())).count_nonzero() == 0
+
+
+def test_navier_modes_split_by_the_parity_of_n():
+    """All sides simply supported at V = 0: ω_mn closed form; n odd is symmetric about the
+    centre line, n even antisymmetric; the half-width solves find each in its half."""
+    p = TapeParameters(edges="simply-supported", length_ratio=2.0, spacing=WIDTH / 24,
+                       foundation_stiffness=1.0e6)
+    model = TapeModel(p)
+    pairs = sorted((navier_frequency(p, m, n), n) for m in range(1, 12) for n in range(1, 6))
+    res = modes(model, 0.0, 6)
+    assert res.info["mirror"]["antisymmetric"] > 0          # both halves contribute
+    g = model.grid
+    R, _, _ = _reflection(g.n_lines, g.n_across)
+    for omega, phi, (exact, n) in zip(res.omega, res.vectors.T, pairs[:6], strict=True):
+        assert omega == pytest.approx(exact, rel=1e-2)      # O(h²) from the closed form
+        parity = 1 if n % 2 else -1
+        assert np.linalg.norm(R @ phi - parity * phi) < 1e-10 * np.linalg.norm(phi)
+
+
+@pytest.mark.parametrize("velocity", [0.0, 50.0, 90.0])
+def test_halves_give_the_full_problem(velocity):
+    model = TapeModel(TapeParameters(length_ratio=4.0))
+    for count in (1, 6, 9):
+        split = modes(model, velocity, count)
+        full = modes(model, velocity, count, symmetry=False)
+        assert "mirror" not in full.info
+        if velocity < 80:  # K(V) > 0 proved by the stiffness floor without a factorization
+            assert split.info["mirror"]["symmetric"] + split.info["mirror"][
+                "antisymmetric"] == count
+        assert np.max(np.abs(split.omega - full.omega) / full.omega) < 1e-10
+        assert split.residuals.max() < 1e-14
+        corr = np.abs(np.sum(split.vectors.conj() * full.vectors, axis=0)) / (
+            np.linalg.norm(split.vectors, axis=0) * np.linalg.norm(full.vectors, axis=0))
+        assert np.all(corr > 1 - 1e-8)                         # the same mode shapes
+
+
+def test_models_without_the_symmetry_use_the_full_problem():
+    string = moving_string(16)                 # a duck-typed width-uniform model
+    assert mirror_split(string) is None
+    res = modes(string, 10.0, 3)
+    assert "mirror" not in res.info
+    with pytest.raises(ParameterError, match="symmetry must be True or False"):
+        modes(TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8)), 0.0, 2,
+              symmetry="yes")
