@@ -4,8 +4,10 @@
 
 Prints medians (s) over alternating rounds of:
 
-* ``modes`` at V = 50 m/s, 6 modes: gyroshell's default (Lanczos on the Hermitian energy
-  pencil, inertia-certified shift) and its ARPACK path, split into the factorization, the
+* ``modes`` at V = 50 m/s, 6 modes: gyroshell's default (the mirror-symmetric halves,
+  Lanczos on the Hermitian energy pencil, inertia-certified shift, CHOLMOD where cvxopt is
+  installed), the full problem with the default factorization and with SuperLU, and the
+  ARPACK path, split into the factorization, the
   substitutions and the eigen-iteration's own overhead, beside the floor (one
   factorization plus the substitutions the converged modes needed);
 * SLEPc's PEP solver on the same matrices (TOAR, shift-and-invert at a target just below the
@@ -75,10 +77,11 @@ def slepc_round(path: Path, count: int) -> dict | None:
 
 
 def gyroshell_round(ratio: float, velocity: float, count: int, method: str,
-                    factorization: str = "auto") -> dict:
+                    factorization: str = "auto", symmetry: bool = True) -> dict:
     model = fresh_model(ratio)
     t0 = time.perf_counter()
-    res = modes(model, velocity, count, method=method, factorization=factorization)
+    res = modes(model, velocity, count, method=method, factorization=factorization,
+                symmetry=symmetry)
     total = time.perf_counter() - t0
     info = res.info
     subst = info.get("substitution_time")
@@ -86,7 +89,8 @@ def gyroshell_round(ratio: float, velocity: float, count: int, method: str,
     return {"total": total, "factor": info["factor_time"], "iteration": info["solve_time"],
             "substitutions": subst, "ops": ops, "omega": res.omega,
             "residual": float(res.residuals.max()), "shift": abs(info["shift"]),
-            "method": info["method"], "factorization": info.get("factorization")}
+            "method": info["method"], "factorization": info.get("factorization"),
+            "mirror": info.get("mirror")}
 
 
 def med(rows: list[dict], key: str) -> float:
@@ -99,22 +103,26 @@ def bench_modes(args) -> None:
     model = fresh_model(args.length_ratio)
     print(f"grid {model.grid.nx} x {model.grid.ny}, n = {model.unknowns} unknowns; "
           f"V = {velocity:g} m/s, {count} modes; {args.rounds} alternating rounds")
-    ours, superlu, arpack, slepc = [], [], [], []
+    ours, full, superlu, arpack, slepc = [], [], [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "matrices.npz"
-        first = gyroshell_round(args.length_ratio, velocity, count, "auto")
+        first = gyroshell_round(args.length_ratio, velocity, count, "auto", symmetry=False)
         export(model, velocity, first["shift"], path)
         for _ in range(args.rounds):
             ours.append(gyroshell_round(args.length_ratio, velocity, count, "auto"))
             slepc.append(slepc_round(path, count))
+            full.append(gyroshell_round(args.length_ratio, velocity, count, "auto",
+                                        symmetry=False))
             superlu.append(gyroshell_round(args.length_ratio, velocity, count, "auto",
-                                           "superlu"))
+                                           "superlu", symmetry=False))
             arpack.append(gyroshell_round(args.length_ratio, velocity, count, "arpack"))
     print(f"default factorization: {ours[0]['factorization']} "
-          f"(cvxopt {'installed' if cholesky.available() else 'not installed'})")
-    for name, rows in (("gyroshell (Lanczos, default)", ours),
-                       ("gyroshell (Lanczos, SuperLU)", superlu),
-                       ("gyroshell (ARPACK, default)", arpack)):
+          f"(cvxopt {'installed' if cholesky.available() else 'not installed'}); default "
+          f"split into halves: {ours[0]['mirror']} (its solves are half-size)")
+    for name, rows in (("gyroshell default (halves)", ours),
+                       ("gyroshell full problem", full),
+                       ("gyroshell full, SuperLU", superlu),
+                       ("gyroshell ARPACK, full", arpack)):
         t = med(rows, "total")
         fac, it = med(rows, "factor"), med(rows, "iteration")
         ops = statistics.median(r["ops"] for r in rows)
@@ -132,7 +140,8 @@ def bench_modes(args) -> None:
               f"{setup:.3f} + solve {solve:.3f}")
         diff = np.max(np.abs(np.array(slepc[-1]["omega"]) - ours[-1]["omega"])
                       / ours[-1]["omega"])
-        print(f"  SLEPc/gyroshell time ratio {total / med(ours, 'total'):.2f} (SuperLU path "
+        print(f"  SLEPc/gyroshell time ratio {total / med(ours, 'total'):.2f} (full problem "
+              f"{total / med(full, 'total'):.2f}, full with SuperLU "
               f"{total / med(superlu, 'total'):.2f}); "
               f"largest relative frequency difference {diff:.1e} (SLEPc tol 1e-8)")
     else:

@@ -357,13 +357,12 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
 
 
 def _count_below(Q: sp.spmatrix, factorization: str) -> int | None:
-    """Negative eigenvalues of the Hermitian Q: 0 if CHOLMOD's Cholesky succeeds (where
-    selected), else SuperLU's pivot count (None if it pivoted off the diagonal)."""
+    """Negative eigenvalues of the Hermitian Q: CHOLMOD's LDLᴴ count (where selected), else
+    (or if it has no answer) SuperLU's pivot count; None if neither is available."""
     if _resolve_factorization(factorization) == "cholmod":
-        factor = cholesky.cholesky(Q)
-        if factor is not None:
-            factor.release()
-            return 0
+        count = cholesky.negative_count(Q)
+        if count is not None:
+            return count
     return factor_inertia(Q).negatives
 
 

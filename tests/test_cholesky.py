@@ -119,3 +119,17 @@ def test_factorization_refusals(monkeypatch):
         modes(model, 10.0, 2, factorization="cholmod")
     assert qep._resolve_factorization("auto") == "superlu"
     assert modes(model, 10.0, 2).info["factorization"] == "superlu"
+
+
+def test_negative_count_is_sylvesters_inertia(rng):
+    """CHOLMOD's LDLᴴ count equals SuperLU's pivot count and, for the Laplacian, the number
+    of its eigenvalues 2(2 − cos(iπ/31) − cos(jπ/31)) below the shift."""
+    lam = np.sort([2 * (2 - np.cos(i * np.pi / 31) - np.cos(j * np.pi / 31))
+                   for i in range(1, 31) for j in range(1, 31)])
+    L = laplacian_2d(30)
+    for shift in (0.01, 0.3, 1.1, 2.5):
+        assert cholesky.negative_count(L - shift * sp.identity(900)) == np.count_nonzero(
+            lam < shift)
+    for shift in (-1.0, 0.5, 1.0, 2.0):
+        A = hermitian(20, shift, rng)
+        assert cholesky.negative_count(A) == factor_inertia(A).negatives
