@@ -23,11 +23,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import persistence
+from . import cholesky, persistence
 from .divergence import beam_mu_estimate, divergence
-from .eigen import modes
+from .eigen import check_speed, modes
 from .errors import ConvergenceError, ParameterError
+from .inertia import factor_inertia
+from .mirror import mirror_split
 from .model import TapeModel
+from .qep import gyroscopic_modes
 
 #: Sundaram & Benson (1989/1990), all sides simply supported shell, m/s (quoted by the paper).
 SUNDARAM_BENSON_SPEED = 111.0
@@ -41,7 +44,11 @@ def _evaluate(model: TapeModel, velocity: float, count: int, options: dict
     # ARPACK on the linearization: near critical K(V) is nearly singular, and the energy
     # inner product of the Lanczos path degenerates with it.
     options = {"sigma": 0, "method": "arpack", **options}
-    result = modes(model, velocity, count, **options)
+    return _f_of(modes(model, velocity, count, **options))
+
+
+def _f_of(result) -> tuple[float, np.ndarray]:
+    """f and the vector it uses, from the eigenvalues nearest zero of one solve."""
     lam = result.eigenvalues
     if not result.supercritical:
         return float(result.omega[0] ** 2), result.vectors[:, 0]
@@ -49,6 +56,51 @@ def _evaluate(model: TapeModel, velocity: float, count: int, options: dict
     if lam[j].real > 0:
         return float(-(lam[j].real ** 2)), result.vectors[:, j]
     return float(-abs(lam[0]) ** 2), result.vectors[:, 0]
+
+
+#: Options of ``modes`` under which the root search may use the mirror-symmetric halves.
+_HALF_OPTIONS = {"factorization", "tol"}
+
+
+class _HalfCritical:
+    """f on the mirror-symmetric half (:mod:`gyroshell.mirror`) that reaches zero first.
+
+    The two halves' frequencies together are the tape's, so f = min(f_s, f_a). The first
+    evaluation computes both and keeps the half with the smaller f; later evaluations solve
+    only that half while the other half's K_h(V) is proved positive definite (a Cholesky,
+    or SuperLU's inertia): its frequencies are then all real and nonzero, so the kept
+    half's f has the same zero as the tape's (its value can exceed the tape's ω₁² far below
+    the root, where the other half holds the lowest frequency). If the other half's K_h is
+    not definite, both are computed again and the choice is renewed.
+    """
+
+    def __init__(self, model: TapeModel, split, count: int, options: dict) -> None:
+        self.model, self.split, self.count = model, split, count
+        self.options = {"sigma": 0, "method": "arpack", **options}
+        self.which: str | None = None
+
+    def _half(self, which: str, velocity: float) -> float:
+        M, G, K = self.split.matrices(self.model, velocity, which)
+        result = gyroscopic_modes(M, G, K, self.count, **self.options)
+        return _f_of(result)[0]
+
+    def _definite(self, which: str, velocity: float) -> bool:
+        K = self.split.matrices(self.model, velocity, which)[2]
+        if cholesky.available() and self.options.get("factorization") != "superlu":
+            factor = cholesky.cholesky(K)
+            if factor is not None:
+                factor.release()
+                return True
+        return factor_inertia(K).definite
+
+    def __call__(self, velocity: float) -> float:
+        if self.which is not None:
+            other = "antisymmetric" if self.which == "symmetric" else "symmetric"
+            if self._definite(other, velocity):
+                return self._half(self.which, velocity)
+        values = {w: self._half(w, velocity) for w in ("symmetric", "antisymmetric")}
+        self.which = min(values, key=values.get)
+        return values[self.which]
 
 
 def critical_function(model: TapeModel, velocity: float, *, count: int = 1,
@@ -144,6 +196,8 @@ class _Counted:
 
     def __init__(self, model: TapeModel, count: int, options: dict, limit: int) -> None:
         self.model, self.count, self.options, self.limit = model, count, options, limit
+        split = mirror_split(model) if set(options) <= _HALF_OPTIONS else None
+        self.half = None if split is None else _HalfCritical(model, split, count, options)
         self.trace: list[tuple[float, float]] = []
         self.below: list[tuple[float, float]] = []   # (s, ω₁²) with ω₁² > 0
         self.above = math.inf                         # smallest s with f <= 0
@@ -153,7 +207,9 @@ class _Counted:
             raise ConvergenceError(
                 f"critical speed: no bracketed zero of the lowest frequency in "
                 f"{self.limit} eigen-solves")
-        value = critical_function(self.model, math.sqrt(s), count=self.count, **self.options)
+        velocity = check_speed(self.model, math.sqrt(s))
+        value = self.half(velocity) if self.half is not None else critical_function(
+            self.model, velocity, count=self.count, **self.options)
         self.trace.append((math.sqrt(s), value))
         if value > 0:
             self.below.append((s, value))

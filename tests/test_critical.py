@@ -294,3 +294,24 @@ def test_continuation_shift_is_certified_and_close_below_omega1():
     tracked = modes(model, 55.0, 4, **options)
     assert tracked.info["below_shift"] == 0
     assert np.allclose(tracked.omega, exact.omega, rtol=1e-10, atol=0)
+
+
+# ----- the mirror-symmetric halves in the root search -------------------------------------
+def test_halves_give_the_full_critical_function_and_speed(monkeypatch):
+    import gyroshell.critical as crit
+    from gyroshell.critical import _HalfCritical, critical_function, critical_speed_eigen
+    from gyroshell.mirror import mirror_split
+
+    model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
+    half = _HalfCritical(model, mirror_split(model), 1, {})
+    for v in (60.0, 95.0, 99.5):                 # below critical: ω₁² of the tape
+        assert half(v) == pytest.approx(critical_function(model, v), rel=1e-9)
+        half.which = None                          # both halves again at the next speed
+    for v in (102.0, 105.0):                     # above (V_c = 101.02): negative, erratic
+        assert half(v) < 0 and critical_function(model, v) < 0
+        half.which = None
+    v_half, info = critical_speed_eigen(model)
+    monkeypatch.setattr(crit, "mirror_split", lambda m: None)
+    v_full, _ = critical_speed_eigen(TapeModel(model.params))
+    assert v_half == pytest.approx(v_full, rel=1e-9)
+    assert info["evaluations"] <= 12
