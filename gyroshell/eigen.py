@@ -297,10 +297,15 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
             and ncv is None and maxiter is None and _known_definite(model, velocity):
         split = mirror_split(model)
         if split is not None and count <= max_count(split.antisymmetric.shape[1]):
-            result = _mirror_modes(model, split, velocity, count, first, estimate,
-                                   tol=tol, method=method, factorization=factorization)
-            if result is not None:
-                return result
+            # a previous speed's split (continuation) says how many are symmetric
+            hint = (start.info.get("mirror") or {}).get("symmetric") if start else None
+            guess = count if hint is None else min(count, hint + MIRROR_HINT_MARGIN)
+            for symmetric in dict.fromkeys((guess, count)):
+                result = _mirror_modes(model, split, velocity, count, first, estimate,
+                                       symmetric, tol=tol, method=method,
+                                       factorization=factorization)
+                if result is not None:
+                    return result
     result = gyroscopic_modes(
         _mass(model), model.G(velocity), model.K(velocity), count, sigma=shift, C=C,
         estimate=estimate if estimate > 0 else None,
@@ -310,15 +315,21 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
                  result.supercritical, result.info, result.damped)
 
 
+#: Symmetric modes asked for beyond the previous speed's number (continuation).
+MIRROR_HINT_MARGIN = 1
+
+
 def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, estimate,
-                  **options) -> Modes | None:
+                  symmetric: int, **options) -> Modes | None:
     """The lowest ``count`` modes of a mirror-symmetric tape below critical, from its halves.
 
-    The symmetric half gives its ``count`` lowest frequencies, up to ω̄; the inertia of the
-    antisymmetric half's Q_a(iω̄) counts its frequencies below ω̄ (Sylvester, K_a > 0), and
-    exactly that many are computed there (often none: the width-uniform travelling waves
-    are symmetric). The union holds the ``count`` lowest of the whole tape. None if the
-    count is not available (SuperLU pivoted off the diagonal): the full problem is solved.
+    The symmetric half gives its ``symmetric`` lowest frequencies, up to ω̄; the inertia of
+    the antisymmetric half's Q_a(iω̄) counts its frequencies below ω̄ (Sylvester, K_a > 0),
+    and that many (at most ``count``) are computed there (often none: the width-uniform
+    travelling waves are symmetric). Every frequency below ω̄ is then known; if they are at
+    least ``count`` (always when ``symmetric`` = ``count``), the ``count`` lowest of the
+    tape are among them. None if they are fewer, or if the count is not available (SuperLU
+    pivoted off the diagonal): the caller asks for more or solves the full problem.
     """
     halves = {}
     for which in ("symmetric", "antisymmetric"):
@@ -326,17 +337,18 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
         first = None if start is None else (start[0], split.half(which).T @ start[1])
         halves[which] = (M, G, K, first)
     M, G, K, first = halves["symmetric"]
-    sym = gyroscopic_modes(M, G, K, count, estimate=estimate if estimate > 0 else None,
+    sym = gyroscopic_modes(M, G, K, symmetric, estimate=estimate if estimate > 0 else None,
                            definite=True, start=first, **options)
     omega_bar = float(sym.omega[-1])
     M, G, K, first = halves["antisymmetric"]
     below = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
                          options.get("factorization", "auto"))
-    if below is None:
+    if below is None or symmetric + below < count:
         return None
     parts = [(sym, split.symmetric)]
     if below:
-        anti = gyroscopic_modes(M, G, K, below, estimate=estimate if estimate > 0 else None,
+        anti = gyroscopic_modes(M, G, K, min(below, count),
+                                estimate=estimate if estimate > 0 else None,
                                 definite=True, start=first, **options)
         if np.any(anti.omega >= omega_bar):   # the count and the solve disagree
             return None

@@ -83,3 +83,18 @@ def test_models_without_the_symmetry_use_the_full_problem():
     with pytest.raises(ParameterError, match="symmetry must be True or False"):
         modes(TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8)), 0.0, 2,
               symmetry="yes")
+
+
+def test_a_previous_speeds_split_guides_the_next_and_a_wrong_guess_is_caught():
+    """Continuation asks the symmetric half for one more mode than the previous speed had;
+    if that and the counted antisymmetric ones do not reach ``count``, it asks again."""
+    model = TapeModel(TapeParameters(length_ratio=4.0))
+    previous = modes(model, 45.0, 6)
+    full = modes(model, 50.0, 6, symmetry=False)
+    guided = modes(model, 50.0, 6, start=previous)
+    assert np.max(np.abs(guided.omega - full.omega) / full.omega) < 1e-10
+    info = dict(previous.info, mirror=dict(previous.info["mirror"], symmetric=0))
+    wrong = modes(model, 50.0, 6, start=type(previous)(
+        previous.grid, previous.velocity, previous.eigenvalues, previous.vectors,
+        previous.residuals, False, info, False))
+    assert np.max(np.abs(wrong.omega - full.omega) / full.omega) < 1e-10
