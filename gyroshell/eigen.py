@@ -10,7 +10,11 @@ but neither grows nor decays. Above it some eigenvalues may leave the imaginary 
 shift i·ω_s just below the bottom of the width-uniform travelling-wave band (with σ = 0
 the dozens of long-tape modes within 0.1 % of √(k/ρ) are nearly equal in |1/λ| and converge
 slowly; measured from iω_s they are far apart), the definiteness of K(V) from a bound proved
-once per model (:func:`stiffness_floor`), and the damping matrix.
+once per model (:func:`stiffness_floor`), the damping matrix, and the tape's mirror symmetry
+about its centre line (:mod:`gyroshell.mirror`): below critical and undamped, the symmetric
+and antisymmetric modes are computed on two problems of half the size, the antisymmetric
+ones only as many as the inertia of their half counts below the symmetric ones
+(:func:`_mirror_modes`).
 """
 
 from __future__ import annotations
