@@ -126,13 +126,14 @@ class _EigenvalueProperties:
     @property
     def decay_rate(self) -> np.ndarray:
         """−Re λ, 1/s: positive for damped modes, zero undamped, negative if growing."""
-        return -self.eigenvalues.real
+        return -self.eigenvalues.real + 0.0   # + 0.0: no negative zero for undamped modes
 
     @property
     def damping_ratio(self) -> np.ndarray:
         """ζ = −Re λ / |λ| (dimensionless; 0 undamped, 1 critically damped)."""
         mag = np.abs(self.eigenvalues)
-        return np.where(mag > 0, -self.eigenvalues.real / np.where(mag > 0, mag, 1.0), 0.0)
+        return np.where(mag > 0, -self.eigenvalues.real / np.where(mag > 0, mag, 1.0), 0.0
+                        ) + 0.0
 
     @property
     def stability(self) -> str:
