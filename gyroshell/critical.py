@@ -26,7 +26,7 @@ import numpy as np
 from . import cholesky, persistence
 from .divergence import beam_mu_estimate, divergence
 from .eigen import check_speed, modes
-from .errors import ConvergenceError, ParameterError
+from .errors import ConvergenceError, ParameterError, SingularError
 from .inertia import factor_inertia
 from .mirror import mirror_split
 from .model import TapeModel
@@ -44,7 +44,10 @@ def _evaluate(model: TapeModel, velocity: float, count: int, options: dict
     # ARPACK on the linearization: near critical K(V) is nearly singular, and the energy
     # inner product of the Lanczos path degenerates with it.
     options = {"sigma": 0, "method": "arpack", **options}
-    return _f_of(modes(model, velocity, count, **options))
+    try:
+        return _f_of(modes(model, velocity, count, **options))
+    except SingularError:  # K(V) exactly singular: λ = 0, V is the critical speed
+        return 0.0, np.zeros(model.unknowns)
 
 
 def _f_of(result) -> tuple[float, np.ndarray]:
@@ -81,7 +84,10 @@ class _HalfCritical:
 
     def _half(self, which: str, velocity: float) -> float:
         M, G, K = self.split.matrices(self.model, velocity, which)
-        result = gyroscopic_modes(M, G, K, self.count, **self.options)
+        try:
+            result = gyroscopic_modes(M, G, K, self.count, **self.options)
+        except SingularError:  # K_h(V) exactly singular: λ = 0, this is the root
+            return 0.0
         return _f_of(result)[0]
 
     def _definite(self, which: str, velocity: float) -> bool:

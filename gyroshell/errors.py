@@ -30,5 +30,10 @@ class SupercriticalError(ParameterError):
         self.critical_speed = critical_speed
 
 
+class SingularError(ParameterError):
+    """A matrix that must be inverted is exactly singular: the system is at a critical
+    point (an eigenvalue λ = 0, or the shift is an eigenvalue)."""
+
+
 class ConvergenceError(RuntimeError):
     """A numerical method failed to converge or a solution blew up."""

@@ -51,7 +51,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from . import cholesky as _cholesky
-from .errors import ConvergenceError, ParameterError
+from .errors import ConvergenceError, ParameterError, SingularError
 from .inertia import InertiaFactor, factor_inertia
 from .threads import blas_threads
 
@@ -1013,7 +1013,7 @@ def _omega_ref(prob: _Problem, estimate: float | None) -> float:
 
 def _require_solvable(factor: InertiaFactor, what: str) -> None:
     if factor is None or factor.singular:
-        raise ParameterError(f"{what} is singular: λ = 0 is an eigenvalue (the system is "
+        raise SingularError(f"{what} is singular: λ = 0 is an eigenvalue (the system is "
                              "exactly at a critical point); change a parameter slightly")
 
 

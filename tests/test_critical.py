@@ -315,3 +315,22 @@ def test_halves_give_the_full_critical_function_and_speed(monkeypatch):
     v_full, _ = critical_speed_eigen(TapeModel(model.params))
     assert v_half == pytest.approx(v_full, rel=1e-9)
     assert info["evaluations"] <= 12
+
+
+def test_an_exactly_singular_stiffness_is_the_root(monkeypatch):
+    """If an evaluation lands on V_c to working precision (K(V) exactly singular), f = 0
+    there instead of an error: the root search brackets it like any f <= 0."""
+    import gyroshell.critical as crit
+    from gyroshell.errors import SingularError
+    from gyroshell.mirror import mirror_split
+
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+
+    def singular(*args, **kwargs):
+        raise SingularError("K is singular")
+
+    half = crit._HalfCritical(model, mirror_split(model), 1, {})
+    monkeypatch.setattr(crit, "gyroscopic_modes", singular)
+    assert half(80.0) == 0.0
+    monkeypatch.setattr(crit, "modes", singular)
+    assert crit.critical_function(model, 80.0) == 0.0
