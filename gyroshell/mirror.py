@@ -43,18 +43,18 @@ class MirrorSplit:
     _A: tuple
     _B: tuple
     _M: tuple
+    _G1: tuple
 
     def half(self, which: str) -> sp.csr_matrix:
         return self.symmetric if which == "symmetric" else self.antisymmetric
 
     def matrices(self, model, velocity: float, which: str
                  ) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-        """(M_h, G_h(V), K_h(V)) of one half: K_h = A_h + (T − ρV²) B_h as in the model."""
+        """(M_h, G_h(V), K_h(V)) of one half: K_h = A_h + (T − ρV²) B_h as in the model,
+        G_h(V) = V G_h(1 m/s) (G is linear in V), projected once per model."""
         k = 0 if which == "symmetric" else 1
-        P = self.half(which)
         K = (self._A[k] + model.effective_tension(velocity) * self._B[k]).tocsr()
-        G = (P.T @ model.G(velocity) @ P).tocsr()
-        return self._M[k], G, K
+        return self._M[k], (model.params.check_velocity(velocity) * self._G1[k]).tocsr(), K
 
 
 def _reflection(n_lines: int, n_across: int) -> tuple[sp.csr_matrix, sp.csr_matrix,
@@ -103,7 +103,8 @@ def mirror_split(model) -> MirrorSplit | None:
             and getattr(model, "unknowns", None) == grid.n_lines * grid.n_across:
         R, Ps, Pa = _reflection(grid.n_lines, grid.n_across)
         M = sp.diags(model.mass_diagonal, format="csr")
-        if all(_invariant(R, X) for X in (model.A, model.B, M, model.G(1.0))):
+        G1 = model.G(1.0)
+        if all(_invariant(R, X) for X in (model.A, model.B, M, G1)):
             def project(P, X):
                 return (P.T @ X @ P).tocsr()
             split = MirrorSplit(
@@ -111,7 +112,8 @@ def mirror_split(model) -> MirrorSplit | None:
                 (project(Ps, model.A), project(Pa, model.A)),
                 (project(Ps, model.B), project(Pa, model.B)),
                 (sp.diags((Ps.T @ M @ Ps).diagonal(), format="csr"),
-                 sp.diags((Pa.T @ M @ Pa).diagonal(), format="csr")))
+                 sp.diags((Pa.T @ M @ Pa).diagonal(), format="csr")),
+                (project(Ps, G1), project(Pa, G1)))
     try:
         _SPLITS[model] = split
     except TypeError:  # not weak-referenceable: no cache
