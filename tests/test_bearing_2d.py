@@ -18,10 +18,10 @@ WRAP = math.radians(15.0)
 SPAN = 2e-3
 
 
-def _solve(width=None, nx=100, ny=None, **tape):
+def _solve(width=None, nx=100, ny=None, grading=None, **tape):
     params = TapeParameters(**({} if width is None else {"width": width}), **tape)
     model = BearingModel(params, AirParameters(), velocity=4.0, wrap_angle=WRAP, nx=nx,
-                         ny=ny, span=SPAN, infinitely_wide=width is None)
+                         ny=ny, span=SPAN, infinitely_wide=width is None, grading=grading)
     return solve_steady(model)
 
 
@@ -55,7 +55,7 @@ def test_edge_spacing_converges_under_refinement():
 def test_contact_set_converges_without_stalling():
     """A coarse grid leaves the edge rows unsupported: they touch down and Newton's active
     set settles; the contact force balances what the air cannot carry."""
-    sol = _solve(6.35e-3, nx=80, ny=16, foundation_stiffness=0.0)
+    sol = _solve(6.35e-3, nx=80, ny=16, grading="uniform", foundation_stiffness=0.0)
     assert sol.contact_nodes > 0 and sol.contact_force > 0
     assert sol.info.iterations < 40
     assert sol.minimum_spacing == pytest.approx(sol.model.air.roughness, rel=1e-9)

@@ -107,7 +107,8 @@ def test_disturbed_2d_tape_settles_back_onto_the_2d_steady_state():
     roughness height, so the contact set rides along): a bump across the whole width
     decays and the march ends on the 2-D steady state, spacing, pressure and contact."""
     model = BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
-                         wrap_angle=math.radians(15), nx=60, ny=16, span=2e-3)
+                         wrap_angle=math.radians(15), nx=60, ny=16, span=2e-3,
+                         grading="uniform")
     steady = solve_steady(model)
     x = steady.x[1:-1]
     bump = 0.3 * steady.central_spacing * np.repeat(np.exp(-((x / 1e-3) ** 2)), model.nc)
