@@ -139,14 +139,15 @@ UNIFORM = Grading()
 
 
 def intervals_for(length: float, finest: float, grading: LineGrading | None) -> int:
-    """Even number of intervals putting the finest spacing (at the refinement centres) at
-    about ``finest`` (m)."""
+    """Number of intervals, a multiple of 4 (the grid twice as coarse is then nested and
+    has a middle node), putting the finest spacing (at the refinement centres) at about
+    ``finest`` (m)."""
     if grading is None:
         n = length / finest
     else:
         peak = float(np.max(grading.density(np.array(grading.centres))))
         n = float(grading.cumulative(length)) / (finest * peak)
-    return max(2, 2 * math.ceil(0.5 * n - 1e-9))
+    return max(4, 4 * round(0.25 * n))
 
 
 def dual_widths(t: np.ndarray) -> np.ndarray:
