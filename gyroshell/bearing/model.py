@@ -14,19 +14,18 @@ assembled exactly: K, the coupling −W, and the film's ∂r_p/∂p, ∂r_p/∂h
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
-
-from dataclasses import replace
 
 from ..errors import ParameterError
 from ..parameters import MIN_INTERVALS_ACROSS, TapeParameters, _check_positive
 from .air import AirParameters
 from .film import Film
 from .geometry import check_wrap_angle, dry_curvature, dry_gap
-from .mesh import UNIFORM, Grading, intervals_for, line_nodes, symmetric_line_nodes
+from .mesh import UNIFORM, Grading, intervals_for, symmetric_line_nodes
 from .tape import PlateOperators, StripOperators
 
 #: Spans outside the wrap, in units of the larger of the film and bending lengths

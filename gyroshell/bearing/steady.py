@@ -353,6 +353,9 @@ class BearingSolution:
             "length": m.length,
             "nx": m.nx,
             "ny": m.ny,
+            "graded": m.graded,
+            "finest_x_spacing": float(np.diff(m.x).min()),
+            "finest_y_spacing": None if m.infinitely_wide else float(np.diff(m.y).min()),
             "unknowns": m.size,
         }
 
