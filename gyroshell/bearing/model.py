@@ -46,8 +46,8 @@ Y_SPACING = 50e-6
 DEFAULT_GRADING = Grading(x_ratio=4.0, x_width=None, y_ratio=10.0, y_width=0.4e-3)
 #: ... with these spacings at the corners (in units of the smaller of the film and bending
 #: lengths) and at the edges (m).
-X_RESOLUTION_GRADED = 1.0 / 12.0
-Y_EDGE_SPACING = 15e-6
+X_RESOLUTION_GRADED = 1.0 / 15.0
+Y_EDGE_SPACING = 12e-6
 #: Width of the refined zones about the wrap corners, in units of the larger of the film
 #: and bending lengths (when the grading leaves it unset).
 X_GRADING_WIDTH = 1.5
