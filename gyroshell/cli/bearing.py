@@ -42,14 +42,14 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     g.add_argument("--span", type=real, default=None,
                    help="length of each tangent span in the domain, m (default: automatic)")
     g.add_argument("--nx", type=positive_int, default=None,
-                   help="intervals along x (default: 2-D, a spacing of 1/12 of the film or "
+                   help="intervals along x (default: 2-D, a spacing of 1/15 of the film or "
                         "bending length at the wrap corners, graded to 4x coarser along the "
                         "spans; infinitely wide or --uniform, a uniform 1/12 (2-D: 1/6) of it)")
     g.add_argument("--ny", type=positive_int, default=None,
-                   help="intervals across the width, even (default: graded, about 15 um at "
+                   help="intervals across the width, even (default: graded, about 12 um at "
                         "the free edges and 10x coarser in the middle; the edge minimum is "
-                        "then converged to about 1 %%, see docs/bearing.md; --uniform: "
-                        "about 50 um everywhere)")
+                        "then within about 0.6 %% of its converged value, see "
+                        "docs/bearing.md; --uniform: about 50 um everywhere)")
     g.add_argument("--uniform", action="store_true",
                    help="uniform grid each way instead of the 2-D grid graded towards the "
                         "free edges and the wrap corners (the counts --nx/--ny then set "
