@@ -40,8 +40,7 @@ def test_disturbed_tape_settles_back(model):
     steady = solve_steady(model)
     bump = 0.3 * steady.central_spacing * np.exp(-((steady.x[1:-1] / 1e-3) ** 2))
     start = BearingSolution(model, steady.u + bump, steady.p, steady.contact, steady.info)
-    # on the graded grid the flying edge rows near the exit corner settle last
-    run = march(start, dt=1e-5, steps=400 if grading else 600, record_every=50, **DAMPED)
+    run = march(start, dt=1e-5, steps=400, record_every=50, **DAMPED)
     assert abs(run.central_spacing[1] / steady.central_spacing - 1) > 1e-2
     assert run.central_spacing[-1] == pytest.approx(steady.central_spacing, rel=1e-3)
     assert run.final.p == pytest.approx(steady.p, rel=1e-5)
