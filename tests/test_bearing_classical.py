@@ -8,9 +8,11 @@ import math
 
 import numpy as np
 import pytest
-from bearing_cases import classical_foil_constants, flexible_model, foil_scale
+from bearing_cases import (CLASSICAL_AIR, FLEXIBLE, WRAP, classical_foil_constants,
+                           flexible_model, foil_scale)
 from convergence import observed_order
 
+from gyroshell.bearing import BearingModel, Grading
 from gyroshell.bearing.steady import solve_steady
 
 
@@ -78,10 +80,6 @@ def test_classical_constants_on_a_graded_strip(constants):
     """The strip's grid graded 4× towards the wrap corners (the film's entrance and exit
     constrictions): half the intervals of the uniform 3200 give both classical constants
     as closely."""
-    from bearing_cases import CLASSICAL_AIR, FLEXIBLE, WRAP
-
-    from gyroshell.bearing import BearingModel, Grading
-
     C, h_min = constants
     model = BearingModel(FLEXIBLE, CLASSICAL_AIR, velocity=4.0, wrap_angle=WRAP,
                          infinitely_wide=True, nx=1600, grading=Grading(x_ratio=4.0))
