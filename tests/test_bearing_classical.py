@@ -8,8 +8,14 @@ import math
 
 import numpy as np
 import pytest
-from bearing_cases import (CLASSICAL_AIR, FLEXIBLE, WRAP, classical_foil_constants,
-                           flexible_model, foil_scale)
+from bearing_cases import (
+    CLASSICAL_AIR,
+    FLEXIBLE,
+    WRAP,
+    classical_foil_constants,
+    flexible_model,
+    foil_scale,
+)
 from convergence import observed_order
 
 from gyroshell.bearing import BearingModel, Grading
