@@ -1,12 +1,15 @@
 """Benchmark the steady air-bearing solves (Table 1 tape, V = 4 m/s, 15° wrap, air at 20 °C).
 
     PYTHONPATH=. python benchmarks/bench_bearing.py [--rounds 3] [--width 12.65e-3]
-        [--baseline DIR]
+        [--uniform] [--baseline DIR]
 
 Prints medians (s) over alternating rounds of:
 
 * the infinitely wide (1-D) steady solve on its default grid;
-* the 2-D steady solve of a ``--width`` wide tape on its default grid;
+* the 2-D steady solve of a ``--width`` wide tape on its default grid (graded towards the
+  free edges and the wrap corners; its counts and finest spacings are printed);
+* with ``--uniform``, the same tape on the uniform grid of the earlier default (about 30 µm
+  along, 50 µm across), in the same rounds;
 
 with Newton's iteration counts, and as a same-run baseline one sparse LU of the 2-D
 coupled Jacobian (half width, as Newton factors it). ``--baseline DIR`` also times, in the
@@ -25,6 +28,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import scipy.sparse.linalg as spla
 
 from gyroshell import TapeParameters
@@ -72,6 +76,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--width", type=float, default=12.65e-3, help="2-D tape width, m")
+    parser.add_argument("--uniform", action="store_true",
+                        help="also time the uniform grid (the earlier default)")
     parser.add_argument("--baseline", metavar="DIR",
                         help="source tree whose 2-D solve is timed alongside (subprocess)")
     args = parser.parse_args(argv)
@@ -80,9 +86,15 @@ def main(argv: list[str] | None = None) -> int:
                          infinitely_wide=True)
     plate = BearingModel(TapeParameters(width=args.width), AirParameters(), velocity=4.0,
                          wrap_angle=wrap)
+    uniform = (BearingModel(TapeParameters(width=args.width), AirParameters(), velocity=4.0,
+                            wrap_angle=wrap, grading="uniform") if args.uniform else None)
     print(f"1-D: {strip!r}, {strip.size} unknowns")
-    print(f"2-D: {plate!r}, {plate.size} unknowns ({plate.size // 2 + plate.nx} solved, "
-          "half width)")
+    for name, m in (("2-D", plate), ("2-D uniform", uniform)):
+        if m is not None:
+            print(f"{name}: {m!r}, {m.size} unknowns ({len(m.mirror[1])} solved, half "
+                  f"width); spacing {1e6 * np.diff(m.x).min():.1f}-"
+                  f"{1e6 * np.diff(m.x).max():.1f} um along, "
+                  f"{1e6 * np.diff(m.y).min():.1f}-{1e6 * np.diff(m.y).max():.1f} um across")
     times = {"1-D steady": [], "2-D steady": [], "2-D one LU": []}
     its = {}
     with blas_threads(1):
@@ -95,11 +107,17 @@ def main(argv: list[str] | None = None) -> int:
             s2 = solve_steady(plate)
             times["2-D steady"].append(time.perf_counter() - start)
             times["2-D one LU"].append(one_lu(plate))
+            if uniform is not None:
+                start = time.perf_counter()
+                s3 = solve_steady(uniform)
+                times.setdefault("2-D uniform", []).append(time.perf_counter() - start)
             if args.baseline:
                 t_old, its_old, hc_old, hmin_old = baseline_2d(args.baseline, args.width)
                 times.setdefault("2-D baseline", []).append(t_old)
                 times.setdefault("ratio", []).append(t_old / times["2-D steady"][-1])
             its = {"1-D steady": s1.info.iterations, "2-D steady": s2.info.iterations}
+            if uniform is not None:
+                its["2-D uniform"] = s3.info.iterations
             print(f"round {r + 1}: " + ", ".join(
                 f"{k} {v[-1]:.3f}" + ("" if k == "ratio" else " s") for k, v in times.items()),
                 flush=True)
@@ -116,6 +134,9 @@ def main(argv: list[str] | None = None) -> int:
     print(f"\n1-D: h_c = {s1.central_spacing:.5e} m, h_min = {s1.minimum_spacing:.5e} m")
     print(f"2-D: h_c = {s2.central_spacing:.5e} m, h_min = {s2.minimum_spacing:.5e} m at "
           f"{s2.minimum_location}, contact nodes {s2.contact_nodes}")
+    if uniform is not None:
+        print(f"2-D uniform: h_c = {s3.central_spacing:.5e} m, h_min = "
+              f"{s3.minimum_spacing:.5e} m at {s3.minimum_location}")
     return 0
 
 

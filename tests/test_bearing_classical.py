@@ -8,9 +8,17 @@ import math
 
 import numpy as np
 import pytest
-from bearing_cases import classical_foil_constants, flexible_model, foil_scale
+from bearing_cases import (
+    CLASSICAL_AIR,
+    FLEXIBLE,
+    WRAP,
+    classical_foil_constants,
+    flexible_model,
+    foil_scale,
+)
 from convergence import observed_order
 
+from gyroshell.bearing import BearingModel, Grading
 from gyroshell.bearing.steady import solve_steady
 
 
@@ -72,3 +80,16 @@ def test_second_order_convergence_real_tape_compressible():
     h = np.array([spacing(n) for n in nxs])
     order = observed_order(1.0 / np.array(nxs[:-1]), np.abs(np.diff(h)))
     assert order == pytest.approx(2.0, abs=0.3)
+
+
+def test_classical_constants_on_a_graded_strip(constants):
+    """The strip's grid graded 4× towards the wrap corners (the film's entrance and exit
+    constrictions): half the intervals of the uniform 3200 give both classical constants
+    as closely."""
+    C, h_min = constants
+    model = BearingModel(FLEXIBLE, CLASSICAL_AIR, velocity=4.0, wrap_angle=WRAP,
+                         infinitely_wide=True, nx=1600, grading=Grading(x_ratio=4.0))
+    assert model.graded and np.ptp(np.diff(model.x)) > 0.5 * np.diff(model.x).max()
+    sol = solve_steady(model)
+    assert sol.central_spacing / foil_scale(model) == pytest.approx(C, rel=3e-3)
+    assert sol.minimum_spacing / sol.central_spacing == pytest.approx(h_min, rel=2e-3)

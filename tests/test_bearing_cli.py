@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
+import pandas as pd
 import pytest
 
 from gyroshell.cli import main
@@ -34,6 +36,18 @@ def test_two_dimensional_json_files_and_plot(capsys, tmp_path):
     saved = json.loads((tmp_path / "run" / "summary.json").read_text())
     assert saved["central_spacing"] == out["central_spacing"]
     assert (tmp_path / "run" / "fields.csv").stat().st_size > 0
+    # the default 2-D grid is graded: finer at the free edges than in the middle
+    assert out["graded"] and out["finest_y_spacing"] < 0.5 * 6.35e-3 / 10
+    ys = np.unique(pd.read_csv(tmp_path / "run" / "fields.csv")["y_m"].to_numpy())
+    assert len(ys) == 11 and np.diff(ys)[0] < 0.5 * np.diff(ys)[4]
+
+
+def test_uniform_grid_option(capsys):
+    out = _json(capsys, ["bearing", "--velocity", "4", "--nx", "80", "--ny", "10",
+                         "--uniform", "--json"])
+    assert not out["graded"]
+    assert out["finest_y_spacing"] == pytest.approx(6.35e-3 / 10, rel=1e-12)
+    assert out["finest_x_spacing"] == pytest.approx(out["length"] / 80, rel=1e-12)
 
 
 def test_incompressible_flies_a_little_higher_than_compressible(capsys):

@@ -11,6 +11,7 @@ from bearing_cases import flexible_model
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.film import bernoulli
+from gyroshell.bearing.mesh import Grading
 from gyroshell.bearing.steady import _Residual, solve_steady
 
 AIRS = {
@@ -33,15 +34,26 @@ def test_bernoulli_function_and_derivative():
     assert np.allclose(bernoulli(-z[:-1])[0] - b[:-1], z[:-1], atol=1e-12)  # B(−z) = B(z) + z
 
 
-def _model(air, infinitely_wide, nx=60, ny=8):
+def _model(air, infinitely_wide, nx=60, ny=8, grading=None):
     return BearingModel(TapeParameters(), air, velocity=4.0, wrap_angle=math.radians(15),
-                        infinitely_wide=infinitely_wide, nx=nx, ny=None if infinitely_wide else ny)
+                        infinitely_wide=infinitely_wide, nx=nx,
+                        ny=None if infinitely_wide else ny, grading=grading)
+
+
+GRADED = Grading(x_ratio=4.0, y_ratio=6.0, y_width=0.4e-3)
 
 
 @pytest.mark.parametrize("air", AIRS.values(), ids=AIRS.keys())
-@pytest.mark.parametrize("wide", [True, False], ids=["1-D", "2-D"])
-def test_jacobian_matches_finite_differences(air, wide, rng):
-    model = _model(air, wide)
+@pytest.mark.parametrize("wide, grading", [(True, "uniform"), (False, "uniform"),
+                                           (True, GRADED), (False, GRADED)],
+                         ids=["1-D", "2-D", "1-D-graded", "2-D-graded"])
+def test_jacobian_matches_finite_differences(air, wide, grading, rng):
+    """Newton's Jacobian is exact: against central differences of the residual, on
+    uniform and graded grids."""
+    model = _model(air, wide, grading=grading)
+    if grading is GRADED:
+        assert np.ptp(np.diff(model.x)) > 0.5 * np.diff(model.x).max()
+        assert wide or np.ptp(np.diff(model.y)) > 0.5 * np.diff(model.y).max()
     F = _Residual(model, None, None)
     z = model.initial_state()
     z[:model.n_u] *= 1 + 0.3 * rng.random(model.n_u)
@@ -70,24 +82,36 @@ def test_fluxes_balance_to_round_off_1d(air):
     assert np.ptp(flux) < 1e-6 * abs(flux.mean())
 
 
-def test_fluxes_balance_to_round_off_2d():
-    """What enters at x = 0 leaves at x = L_x or through the two free edges."""
-    model = _model(AirParameters(), False, nx=80, ny=12)
+def _boundary_outflow(film, P, H):
+    """Net flux out of the film's interior control volumes through their outer faces,
+    each face flux times its own face length (the control width across or along)."""
+    fx, fy = film.fluxes(P, H)
+    wx, wy = film.x_widths, film.y_widths
+    return ((fx.flux[-1, 1:-1] - fx.flux[0, 1:-1]) @ wy[1:-1]
+            + (fy.flux[1:-1, -1] - fy.flux[1:-1, 0]) @ wx[1:-1]), fx.flux[0, 1:-1] @ wy[1:-1]
+
+
+@pytest.mark.parametrize("grading", ["uniform", None], ids=["uniform", "graded"])
+def test_fluxes_balance_to_round_off_2d(grading, rng):
+    """Conservation: the node balances of any fields sum to the net outflow through the
+    film's boundary (every inner face flux cancels), on uniform and graded grids alike;
+    in the steady state what enters at x = 0 leaves at x = L_x or through the edges."""
+    model = _model(AirParameters(), False, nx=80, ny=12, grading=grading)
+    assert model.graded == (grading is None)
     sol = solve_steady(model)
-    fx, fy = model.film.fluxes(sol.pressure, sol.spacing)
-    hy = model.params.width / model.ny
-    inflow = hy * fx.flux[0, 1:-1].sum()
-    outflow = (hy * fx.flux[-1, 1:-1].sum()
-               - model.hx * fy.flux[1:-1, 0].sum() + model.hx * fy.flux[1:-1, -1].sum())
-    # Faces touching the edge rows belong to the edge nodes' (pinned) balance.
-    outflow += hy * (fx.flux[1:-1, 0] - fx.flux[:-2, 0]).sum() * 0
+    for P, H in ((sol.pressure, sol.spacing),
+                 (sol.pressure * (1 + 0.1 * rng.random(sol.pressure.shape)),
+                  sol.spacing * (1 + 0.5 * rng.random(sol.spacing.shape)))):
+        r, _, _ = model.film.residual(P, H, jacobian=False)
+        net, inflow = _boundary_outflow(model.film, P, H)
+        terms = np.abs(model.film.fluxes(P, H)[0].flux).max() * model.params.width
+        assert r.sum() == pytest.approx(net, abs=1e-13 * terms)
     r, _, _ = model.film.residual(sol.pressure, sol.spacing, jacobian=False)
-    assert abs(r.sum()) < 1e-10 * abs(inflow)
-    assert r.sum() == pytest.approx(
-        (fx.flux[-1, 1:-1].sum() - fx.flux[0, 1:-1].sum()) * hy
-        + model.hx * (fy.flux[1:-1, -1].sum() - fy.flux[1:-1, 0].sum()),
-        abs=1e-10 * abs(inflow))
-    assert inflow > 0 and outflow > 0
+    net, inflow = _boundary_outflow(model.film, sol.pressure, sol.spacing)
+    assert inflow > 0 and abs(net) < 1e-10 * inflow
+    # the graded film's control volumes tile the tape exactly
+    assert model.film.cell_area.sum() == pytest.approx(model.length * model.params.width,
+                                                       rel=1e-14)
 
 
 def test_central_plateau_balances_the_wrap():

@@ -37,6 +37,12 @@ def test_round_trip_is_exact_and_still_steady(tmp_path, wide):
     assert np.max(np.abs((res * scale)[back.model.n_u:])) < 1e-6
     ds = to_xarray(sol)
     assert ds["spacing"].attrs["units"] == "m" and ds.sizes["x"] == model.nx + 1
+    # the node coordinates are stored as they are (graded in 2-D by default)
+    assert np.array_equal(ds["x"].values, sol.x)
+    assert back.model.grading == model.grading and np.array_equal(back.model.x, model.x)
+    if not wide:
+        assert model.graded and np.array_equal(ds["y"].values, model.y)
+        assert np.ptp(np.diff(model.y)) > 0.3 * np.diff(model.y).max()
 
 
 def test_refuses_other_suffixes_and_files(tmp_path):

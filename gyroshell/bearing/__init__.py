@@ -16,7 +16,7 @@ _LAZY = {
     "AirParameters": "air", "check_wrap_angle": "geometry", "BearingModel": "model",
     "BearingSolution": "steady", "NewtonInfo": "steady", "solve_steady": "steady",
     "BearingTransient": "transient", "march": "transient", "tension_harmonic": "transient",
-    "tension_step": "transient",
+    "tension_step": "transient", "Grading": "mesh",
 }
 
 __all__ = sorted(_LAZY)

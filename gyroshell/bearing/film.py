@@ -22,6 +22,11 @@ so the scheme stays monotone at any bearing number. Incompressible Couette terms
 only (a source in p) and are taken at the face centre. Face values of p and h are nodal
 averages. p = p_a is imposed on every film boundary (the ends of the domain and, in 2-D,
 the tape's lateral edges).
+
+The grid may be graded (:mod:`.mesh`): each face's flux uses its own node distance, each
+x-face has the length of its node's control width across (and each y-face the control
+width along), and each control volume is the product of its node's widths; the fluxes
+still balance exactly, whatever the spacing.
 """
 
 from __future__ import annotations
@@ -100,6 +105,14 @@ def face_fluxes(pl, pr, hl, hr, spacing: float, velocity: float, air: AirParamet
     return FaceFluxes(flux, d_pl, d_pr, d_h)
 
 
+def _dual(h: np.ndarray) -> np.ndarray:
+    """Control widths of the nodes between intervals h (half intervals at the ends)."""
+    w = np.empty(len(h) + 1)
+    w[0], w[-1] = 0.5 * h[0], 0.5 * h[-1]
+    w[1:-1] = 0.5 * (h[:-1] + h[1:])
+    return w
+
+
 class Film:
     """The discrete Reynolds equation on an (nx + 1) × nc node array.
 
@@ -110,10 +123,11 @@ class Film:
     nc : int
         Node columns across the width: 1 for an infinitely wide tape, ny + 1 in 2-D (the
         columns j = 0, ny are the tape's free edges, film boundaries).
-    hx : float
-        Node spacing along x, m.
-    hy : float or None
-        Node spacing across y, m; ``None`` for the infinitely wide tape (per unit width).
+    hx : float or numpy.ndarray
+        Node spacing along x, m: one value, or the nx intervals of a graded grid.
+    hy : float, numpy.ndarray or None
+        Node spacing across y, m (one value or the ny intervals); ``None`` for the
+        infinitely wide tape (per unit width).
     air : AirParameters
     velocity : float
         Tape speed V, m/s.
@@ -127,7 +141,10 @@ class Film:
 
     def __init__(self, nx: int, nc: int, hx: float, hy: float | None, air: AirParameters,
                  velocity: float) -> None:
-        self.nx, self.nc, self.hx, self.hy = nx, nc, hx, hy
+        self.nx, self.nc = nx, nc
+        self.hx = np.broadcast_to(np.asarray(hx, dtype=float), (nx,)).copy()
+        self.hy = (None if hy is None
+                   else np.broadcast_to(np.asarray(hy, dtype=float), (nc - 1,)).copy())
         self.air, self.velocity = air, velocity
         shape = (nx + 1, nc)
         interior = np.zeros(shape, dtype=bool)
@@ -140,9 +157,13 @@ class Film:
         pid[interior] = np.arange(int(interior.sum()))
         self.pressure_index = pid
         self.size = int(interior.sum())
-        #: Face length of x-faces and control area of a node (m or m², per unit width in 1-D)
-        self.x_face_length = 1.0 if hy is None else hy
-        self.cell_area = hx if hy is None else hx * hy
+        #: Control widths of the nodes along x and (2-D) across y, m
+        self.x_widths = _dual(self.hx)
+        self.y_widths = np.ones(1) if hy is None else _dual(self.hy)
+        #: Length of the x-faces of each node column (m; 1 per unit width in 1-D) and the
+        #: control area of every node (m², m per unit width in 1-D), shape (nx + 1, nc)
+        self.x_face_length = self.y_widths
+        self.cell_area = np.outer(self.x_widths, self.y_widths)
         self._pattern = self._build_pattern()
 
     # ----- sparsity pattern, computed once --------------------------------------------
@@ -195,10 +216,11 @@ class Film:
     def fluxes(self, P: np.ndarray, H: np.ndarray) -> list[FaceFluxes]:
         """Face fluxes of nodal fields P (Pa) and H (m), shape (nx + 1, nc): x-faces first,
         then (2-D) y-faces; each per unit face length."""
-        out = [face_fluxes(P[:-1], P[1:], H[:-1], H[1:], self.hx, self.velocity, self.air)]
+        out = [face_fluxes(P[:-1], P[1:], H[:-1], H[1:], self.hx[:, None], self.velocity,
+                           self.air)]
         if self.nc > 1:
-            out.append(face_fluxes(P[:, :-1], P[:, 1:], H[:, :-1], H[:, 1:], self.hy, 0.0,
-                                   self.air))
+            out.append(face_fluxes(P[:, :-1], P[:, 1:], H[:, :-1], H[:, 1:],
+                                   self.hy[None, :], 0.0, self.air))
         return out
 
     def transported(self, P: np.ndarray, H: np.ndarray) -> np.ndarray:
@@ -217,7 +239,7 @@ class Film:
         J_h : scipy.sparse.csr_matrix, (size, (nx + 1) nc), or None
             ∂r/∂h over every node (row-major node numbering).
         """
-        lengths = [self.x_face_length, self.hx]
+        lengths = [self.y_widths[None, :], self.x_widths[:, None]]
         R = np.zeros((self.nx + 1, self.nc))
         fl = self.fluxes(P, H)
         vals_p, vals_h = [], []
@@ -238,13 +260,13 @@ class Film:
         sq_p = np.zeros(self.size)
         sq_h = np.zeros(self.size)
         if dt is not None:
-            s = 12.0 * self.air.viscosity * self.cell_area / dt
+            s = 12.0 * self.air.viscosity * self.cell_area[self.interior] / dt
             phi = self.transported(P, H)
             r = r + s * (phi - phi_old)[self.interior]
             if self.air.compressible:
                 sq_p, sq_h = s * H[self.interior], s * P[self.interior]
             else:
-                sq_h = np.full(self.size, s)
+                sq_h = s
         if not jacobian:
             return r, None, None
         pat = self._pattern

@@ -47,11 +47,15 @@ def dry_gap(x: np.ndarray, length: float, radius: float, wrap_angle: float) -> n
 
 def dry_curvature(x: np.ndarray, length: float, radius: float, wrap_angle: float
                   ) -> np.ndarray:
-    """κ at the interior nodes of the uniform abscissae ``x``, 1/m: 1/R − δ²w₀.
+    """κ at the interior nodes of the abscissae ``x`` (uniform or graded), 1/m: 1/R − δ²w₀.
 
-    The discrete second difference makes the wrap load and the bending reference exactly
-    consistent with the nodal w₀ (a node straddling a corner gets the right fraction).
+    The discrete second difference (the one of the tape's operators,
+    δ²w_i = [(w_{i+1} − w_i)/h_i − (w_i − w_{i−1})/h_{i−1}] / ((h_{i−1} + h_i)/2)) makes
+    the wrap load and the bending reference exactly consistent with the nodal w₀ (a node
+    straddling a corner gets the right fraction).
     """
+    x = np.asarray(x, dtype=float)
     w0 = dry_gap(x, length, radius, wrap_angle)
-    hx = x[1] - x[0]
-    return 1.0 / radius - (w0[2:] - 2.0 * w0[1:-1] + w0[:-2]) / hx**2
+    h = np.diff(x)
+    slope = np.diff(w0) / h
+    return 1.0 / radius - np.diff(slope) / (0.5 * (h[:-1] + h[1:]))

@@ -14,17 +14,18 @@ assembled exactly: K, the coupling −W, and the film's ∂r_p/∂p, ∂r_p/∂h
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..errors import ParameterError
-from ..grid import Grid
 from ..parameters import MIN_INTERVALS_ACROSS, TapeParameters, _check_positive
 from .air import AirParameters
 from .film import Film
 from .geometry import check_wrap_angle, dry_curvature, dry_gap
+from .mesh import UNIFORM, Grading, intervals_for, symmetric_line_nodes
 from .tape import PlateOperators, StripOperators
 
 #: Spans outside the wrap, in units of the larger of the film and bending lengths
@@ -37,13 +38,25 @@ SPAN_LENGTHS_2D = 6.0
 MAX_INTERVALS_ALONG = 50_000
 X_RESOLUTION = 1.0 / 12.0
 X_RESOLUTION_2D = 1.0 / 6.0
-#: Default y-spacing of the 2-D tape, m: resolves the free edges' boundary layer (about
-#: 0.5 mm wide on the Table 1 tape at 4 m/s), whose spacing then converges to a few %.
+#: Default y-spacing of the uniform 2-D tape, m: resolves the free edges' boundary layer
+#: (about 0.5 mm wide on the Table 1 tape at 4 m/s), whose spacing then converges to a few %.
 Y_SPACING = 50e-6
+#: The default 2-D grid is graded (see :mod:`.mesh`): this much finer at the wrap corners
+#: than far along the spans, and at the free edges than in the middle of the width ...
+DEFAULT_GRADING = Grading(x_ratio=4.0, x_width=None, y_ratio=10.0, y_width=0.4e-3)
+#: ... with these spacings at the corners (in units of the smaller of the film and bending
+#: lengths) and at the edges (m). Chosen by a refinement study (docs/bearing.md): on the
+#: Table 1 tape at 4 m/s and 15° (12 µm both) the edge minimum is 0.55 % below its
+#: Richardson value and the 12.65 mm tape solves in ~12 s.
+X_RESOLUTION_GRADED = 1.0 / 15.0
+Y_EDGE_SPACING = 12e-6
+#: Width of the refined zones about the wrap corners, in units of the larger of the film
+#: and bending lengths (when the grading leaves it unset).
+X_GRADING_WIDTH = 1.5
 #: A 2-D tape with at least this many unknowns starts Newton from its solution on a grid
 #: twice as coarse (recursively), interpolated; smaller ones from the infinitely wide tape.
 COARSE_START_MIN_UNKNOWNS = 20_000
-#: ... unless that grid would be coarser than this across (m): an under-resolved free-edge
+#: ... unless that grid would be coarser than this at the edges (m): an under-resolved free-edge
 #: row falsely touches down and the coarse solve would lead Newton astray ...
 COARSE_START_MAX_Y_SPACING = 110e-6
 #: ... or Newton there needs more than this many iterations.
@@ -81,16 +94,23 @@ class BearingModel:
         Length of each tangent span in the domain, m (default: 10 (2-D: 6) times the
         larger of the film length R ε^(1/3) and the bending length √(D/(T − ρV²))).
     nx : int, optional
-        Intervals along x (default: a spacing of 1/12 (2-D: 1/6) of the smaller of those
-        lengths, made even).
+        Intervals along x (default: on the graded 2-D grid a spacing of 1/15 of the
+        smaller of those lengths at the wrap corners, a multiple of 4; on a uniform grid
+        1/12 (2-D: 1/6) of it, made even).
     ny : int, optional
-        Intervals across the width in 2-D (even, >= 8; default: a spacing near 50 µm).
+        Intervals across the width in 2-D (even, >= 8; default: an edge spacing near
+        12 µm on the graded grid, a multiple of 4; a spacing near 50 µm on a uniform one).
+    grading : Grading or "uniform", optional
+        How the grid is graded (:class:`gyroshell.bearing.mesh.Grading`). Default: the
+        2-D tape's grid is graded towards the free edges and the wrap corners
+        (:data:`DEFAULT_GRADING`), the infinitely wide tape's is uniform. ``"uniform"``:
+        uniform each way. A grading given to an infinitely wide tape grades its x-grid.
     """
 
     def __init__(self, params: TapeParameters, air: AirParameters | None = None, *,
                  velocity: float, wrap_angle: float, infinitely_wide: bool = False,
-                 span: float | None = None, nx: int | None = None, ny: int | None = None
-                 ) -> None:
+                 span: float | None = None, nx: int | None = None, ny: int | None = None,
+                 grading: Grading | str | None = None) -> None:
         self.params = params
         self.air = AirParameters() if air is None else air
         self.velocity = _check_positive("velocity", velocity, "m/s")
@@ -106,8 +126,26 @@ class BearingModel:
         self.span = (spans * max(l_film, l_bend) if span is None
                      else _check_positive("span", span, "m"))
         self.length = params.radius * self.wrap_angle + 2.0 * self.span
+        if grading is None:
+            grading = UNIFORM if self.infinitely_wide else DEFAULT_GRADING
+        elif isinstance(grading, str):
+            if grading != "uniform":
+                raise ParameterError(f"grading must be a Grading or 'uniform', got {grading!r}")
+            grading = UNIFORM
+        elif not isinstance(grading, Grading):
+            raise ParameterError(f"grading must be a Grading or 'uniform', got {grading!r}")
+        if grading.x_width is None:
+            grading = replace(grading, x_width=X_GRADING_WIDTH * max(l_film, l_bend))
+        self.grading = grading
+        half_wrap = 0.5 * params.radius * self.wrap_angle
+        x_line = grading.x_line(self.length, (0.5 * self.length - half_wrap,
+                                              0.5 * self.length + half_wrap))
         if nx is None:
-            nx = 2 * math.ceil(0.5 * self.length / (resolution * min(l_film, l_bend)))
+            if x_line is None:
+                nx = 2 * math.ceil(0.5 * self.length / (resolution * min(l_film, l_bend)))
+            else:
+                nx = intervals_for(self.length, X_RESOLUTION_GRADED * min(l_film, l_bend),
+                                   x_line)
             if nx > MAX_INTERVALS_ALONG:
                 raise ParameterError(
                     f"velocity {self.velocity:g} m/s gives a film only "
@@ -121,28 +159,29 @@ class BearingModel:
                                  f"got {nx!r}")
         self.nx = int(nx)
         self.h_guess = _FOIL_GUESS * h_foil
-        hx = self.length / self.nx
+        self.x = symmetric_line_nodes(self.length, self.nx, x_line)
         if self.infinitely_wide:
-            self.ny, self.grid = None, None
-            self.tape = StripOperators(params, self.nx, hx)
+            self.ny, self.y = None, None
+            self.tape = StripOperators(params, self.x)
             self.nc = 1
         else:
+            y_line = grading.y_line(params.width)
             if ny is None:
-                ny = max(MIN_INTERVALS_ACROSS, 2 * round(0.5 * params.width / Y_SPACING))
+                ny = max(MIN_INTERVALS_ACROSS,
+                         2 * round(0.5 * params.width / Y_SPACING) if y_line is None
+                         else intervals_for(params.width, Y_EDGE_SPACING, y_line))
             if (isinstance(ny, bool) or not isinstance(ny, (int, np.integer)) or ny < 8
                     or ny % 2):
                 raise ParameterError(f"ny must be an even integer >= 8 (a node on the centre "
                                      f"line), got {ny!r}")
             self.ny = int(ny)
-            self.grid = Grid(self.length, params.width, self.nx, self.ny, "free")
-            self.tape = PlateOperators(params, self.grid)
+            self.y = symmetric_line_nodes(params.width, self.ny, y_line)
+            self.tape = PlateOperators(params, self.x, self.y)
             self.nc = self.ny + 1
-        self.x = np.linspace(0.0, self.length, self.nx + 1)
-        self.y = (None if self.infinitely_wide
-                  else np.linspace(0.0, params.width, self.ny + 1))
-        self.film = Film(self.nx, self.nc, hx, None if self.infinitely_wide else
-                         params.width / self.ny, self.air, self.velocity)
-        self.n_u = self.tape.n * (1 if self.infinitely_wide else 1)
+        self.film = Film(self.nx, self.nc, np.diff(self.x),
+                         None if self.infinitely_wide else np.diff(self.y), self.air,
+                         self.velocity)
+        self.n_u = self.tape.n
         self.n_p = self.film.size
         w0 = dry_gap(self.x, self.length, params.radius, self.wrap_angle)
         self.dry_field = np.repeat(w0[:, None], self.nc, axis=1)
@@ -154,8 +193,9 @@ class BearingModel:
 
     def __repr__(self) -> str:
         kind = "infinitely wide" if self.infinitely_wide else f"width {self.params.width:g} m"
+        grid = "graded" if self.graded else "uniform"
         return (f"BearingModel(V={self.velocity:g} m/s, wrap={math.degrees(self.wrap_angle):g}"
-                f" deg, {kind}, L_x={self.length:.4g} m, nx={self.nx}, ny={self.ny})")
+                f" deg, {kind}, L_x={self.length:.4g} m, nx={self.nx}, ny={self.ny}, {grid})")
 
     def _pressure_load_matrix(self) -> sp.csr_matrix:
         """L with L (p − p_a) the nodal air forces, N: the exact integral of the bilinear
@@ -164,16 +204,19 @@ class BearingModel:
         At a free edge the control strip [0, h_y/2] then feels the pressure rising from
         p_a at the edge, which plain nodal sampling (zero there) would miss.
         """
-        def weights(n_nodes: int, h: float, rows: slice) -> sp.csr_matrix:
-            e = np.ones(n_nodes)
-            m = sp.diags([e[1:] / 8, 6 * e / 8, e[1:] / 8], [-1, 0, 1]).tolil()
-            m[0, :2] = [3 / 8, 1 / 8]
-            m[-1, -2:] = [1 / 8, 3 / 8]
-            return (h * m.tocsr())[rows]
+        def weights(t: np.ndarray, rows: slice) -> sp.csr_matrix:
+            # ∫ of the hat functions over [t_i − h_{i−1}/2, t_i + h_i/2]: h/8, 3h/8 per side
+            h = np.diff(t)
+            n = len(t)
+            main = np.zeros(n)
+            main[:-1] += 3 * h / 8
+            main[1:] += 3 * h / 8
+            m = sp.diags([h / 8, main, h / 8], [-1, 0, 1], format="csr")
+            return m[rows]
 
-        ex = weights(self.nx + 1, self.hx, slice(1, self.nx))
+        ex = weights(self.x, slice(1, self.nx))
         ey = (sp.identity(1, format="csr") if self.infinitely_wide
-              else weights(self.ny + 1, self.params.width / self.ny, slice(None)))
+              else weights(self.y, slice(None)))
         full = sp.kron(ex, ey, format="csc")
         return full[:, self.film._pattern["node_of_p"]].tocsr()
 
@@ -212,11 +255,13 @@ class BearingModel:
         from .steady import BearingSolution, newton
 
         nx, ny = self.nx // 2 + (self.nx // 2) % 2, self.ny // 2 + (self.ny // 2) % 2
-        if (self.size < COARSE_START_MIN_UNKNOWNS or ny < 8 or nx < 8
-                or self.params.width / ny > COARSE_START_MAX_Y_SPACING):
+        if self.size < COARSE_START_MIN_UNKNOWNS or ny < 8 or nx < 8:
             return None
         coarse = BearingModel(self.params, self.air, velocity=self.velocity,
-                              wrap_angle=self.wrap_angle, span=self.span, nx=nx, ny=ny)
+                              wrap_angle=self.wrap_angle, span=self.span, nx=nx, ny=ny,
+                              grading=self.grading)
+        if coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
+            return None
         try:   # plain Newton: a coarse grid that fails falls back at once, no continuation
             z, lam, _, info = newton(coarse, coarse.initial_state(),
                                      max_iterations=COARSE_START_MAX_ITERATIONS)
@@ -238,7 +283,7 @@ class BearingModel:
 
         strip = BearingModel(self.params, self.air, velocity=self.velocity,
                              wrap_angle=self.wrap_angle, infinitely_wide=True,
-                             span=self.span, nx=self.nx)
+                             span=self.span, nx=self.nx, grading=self.grading)
         try:
             sol = solve_steady(strip)
         except ConvergenceError:
@@ -254,7 +299,7 @@ class BearingModel:
         """The same tape, head and grid at another speed V, m/s (for continuation)."""
         return BearingModel(self.params, self.air, velocity=velocity,
                             wrap_angle=self.wrap_angle, infinitely_wide=self.infinitely_wide,
-                            span=self.span, nx=self.nx, ny=self.ny)
+                            span=self.span, nx=self.nx, ny=self.ny, grading=self.grading)
 
     # ----- state <-> fields ----------------------------------------------------------------
     @property
@@ -263,7 +308,14 @@ class BearingModel:
 
     @property
     def hx(self) -> float:
+        """Mean x-spacing L_x/nx, m (the spacing of a uniform grid; see :attr:`x`)."""
         return self.length / self.nx
+
+    @property
+    def graded(self) -> bool:
+        """Whether the grid is graded (non-uniform) in x or y."""
+        return not (self.grading.x_ratio == 1.0
+                    and (self.infinitely_wide or self.grading.y_ratio == 1.0))
 
     def effective_tension(self, tension: float | None = None) -> float:
         """T − ρV², N/m."""
@@ -325,7 +377,8 @@ class BearingModel:
 
     def air_force(self, p: np.ndarray) -> float:
         """∫ (p − p_a) dA over the film, N (per unit width, N/m, for the infinitely wide)."""
-        return float(self.film.cell_area * np.sum(p - self.air.ambient_pressure))
+        area = self.film.cell_area[self.film.interior]
+        return float(np.sum(area * (p - self.air.ambient_pressure)))
 
     def initial_state(self) -> np.ndarray:
         """A start for Newton. Infinitely wide: the flexible-foil spacing and the wrap

@@ -94,12 +94,13 @@ class _Residual:
         t_wrap = max(model.effective_tension(tension) / model.params.radius, 1.0)
         self.t_scale = t_wrap
         self.h_scale = max(model.h_guess, self.sigma)
-        flux = 6.0 * model.air.viscosity * model.velocity * self.h_scale \
-            * model.film.x_face_length
+        film = model.film
+        # the Couette flux through each pressure node's x-face (its control width across)
+        flux = (6.0 * model.air.viscosity * model.velocity * self.h_scale
+                * film.x_face_length[np.nonzero(film.interior)[1]])
         if model.air.compressible:
             flux *= model.air.ambient_pressure
-        self.row_scale = np.concatenate([1.0 / (t_wrap * model.W),
-                                         np.full(model.n_p, 1.0 / flux)])
+        self.row_scale = np.concatenate([1.0 / (t_wrap * model.W), 1.0 / flux])
         J_uu = self.K if transient is None else self.K + transient.jacobian
         # The tape rows [J_uu, −L] do not change within a solve: assembled once.
         self.tape_rows = sp.hstack([J_uu, -model.pressure_load], format="csr")
@@ -352,6 +353,9 @@ class BearingSolution:
             "length": m.length,
             "nx": m.nx,
             "ny": m.ny,
+            "graded": m.graded,
+            "finest_x_spacing": float(np.diff(m.x).min()),
+            "finest_y_spacing": None if m.infinitely_wide else float(np.diff(m.y).min()),
             "unknowns": m.size,
         }
 

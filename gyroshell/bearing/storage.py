@@ -1,10 +1,12 @@
 """Saving and loading steady bearing states through :mod:`gyroshell.persistence`.
 
 A :class:`~gyroshell.bearing.steady.BearingSolution` becomes an xarray Dataset with the
-spacing, departure u, pressure and contact-force fields on the (x, y) nodes, the scalar outputs of
+spacing, departure u, pressure and contact-force fields on the (x, y) nodes (their
+coordinates, uniform or graded, as the dataset's coordinates), the scalar outputs of
 :meth:`~gyroshell.bearing.steady.BearingSolution.summary` and everything needed to rebuild
-the model (tape parameters, air, speed, wrap, span, grid), so that :func:`load` returns a
-solution equal to the saved one. Needs the ``io`` extra (xarray, h5netcdf).
+the model (tape parameters, air, speed, wrap, span, grid counts and grading), so that
+:func:`load` returns a solution equal to the saved one; it checks that the rebuilt grid's
+nodes are the stored coordinates. Needs the ``io`` extra (xarray, h5netcdf).
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import numpy as np
 from .. import persistence
 from ..errors import ParameterError
 from .air import AirParameters
+from .mesh import Grading
 from .model import BearingModel
 from .steady import BearingSolution, NewtonInfo
 
@@ -44,7 +47,8 @@ def to_xarray(sol: BearingSolution):
             "contact": (("x", "y"), nodal(sol.contact), {"units": "N"})}
     summary = {k: v for k, v in sol.summary().items() if k != "newton_step_norms"}
     model = {"velocity": m.velocity, "wrap_angle": m.wrap_angle,
-             "infinitely_wide": m.infinitely_wide, "span": m.span, "nx": m.nx, "ny": m.ny}
+             "infinitely_wide": m.infinitely_wide, "span": m.span, "nx": m.nx, "ny": m.ny,
+             "grading": m.grading.as_dict()}
     return persistence._dataset(
         data, coords, KIND, params=m.params, info=dataclasses.asdict(sol.info),
         air=dataclasses.asdict(m.air), model=model, summary=summary)
@@ -80,8 +84,17 @@ def load(path: str | os.PathLike[str]) -> BearingSolution:
                              f"{ds.attrs.get('gyroshell_type')!r})")
     a = ds.attrs
     settings = persistence.from_json(a["model"])
+    # files written before graded grids: uniform
+    settings["grading"] = Grading(**settings.get("grading", {}))
     model = BearingModel(persistence._params_from(a),
                          AirParameters(**persistence.from_json(a["air"])), **settings)
+    stored_y = ds["y"].values
+    if not (np.allclose(ds["x"].values, model.x - 0.5 * model.length, rtol=0,
+                        atol=1e-12 * model.length)
+            and (model.infinitely_wide or np.allclose(stored_y, model.y, rtol=0,
+                                                      atol=1e-12 * model.params.width))):
+        raise ParameterError(f"{path}: the stored node coordinates do not match the grid "
+                             "rebuilt from its settings")
     U, P, C = (ds[k].values for k in ("departure", "pressure", "contact"))
     info = NewtonInfo(**persistence.from_json(a["info"]))
     return BearingSolution(model, U[1:-1, :].ravel(), P[model.film.interior],

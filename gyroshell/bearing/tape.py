@@ -1,5 +1,5 @@
-"""The tape side of the bearing: the shell operators of :mod:`gyroshell.operators` on the
-bearing's grid, the infinitely wide strip, and the loads of the wrapped configuration.
+"""The tape's operators on the bearing's grid, the infinitely wide strip, and the loads of
+the wrapped configuration.
 
 The tape obeys the seed paper's shell equation with the load
 P = (p − p_a) − (T − ρV²)/R: the paper's Eq. 2 writes the belt-wrap pressure as T/R and
@@ -11,6 +11,16 @@ here. Written for u = w − w₀ (see :mod:`.geometry`), the equation reads
 with f_κ the bending reference load of the dry curvature κ, λ the contact forces and the
 foundation term k acting on u (the tape's hoop stiffness resists departures from the
 wrapped configuration only).
+
+The grid is a tensor product of node lines x_i, y_j, uniform or graded (:mod:`.mesh`).
+The operators are those of :mod:`gyroshell.operators`, written for non-uniform spacing
+from the same discrete energies: second differences
+δ²w_i = [(w_{i+1} − w_i)/h_i − (w_i − w_{i−1})/h_{i−1}] / w_i (w_i the node's
+control width, half the two neighbouring intervals), first differences and the twist on
+the intervals and cells, each term weighted by its own length or area. A, B are therefore
+symmetric for any spacing, G = 2ρV W C_x is skew (W C_x is ρV times the antisymmetric
+shift, whatever the spacing) and on a uniform grid every matrix equals the core one. On a
+smoothly graded grid the second difference is second-order accurate.
 """
 
 from __future__ import annotations
@@ -18,70 +28,128 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from .. import operators
 from ..grid import Grid
-from ..operators import _forward_difference, _second_difference, _y_second_difference, _y_selector
 from ..parameters import TapeParameters
+from .mesh import dual_widths
+
+
+def second_difference(t: np.ndarray, dirichlet: bool = True) -> sp.csr_matrix:
+    """δ² at the interior nodes of the line t, acting on its interior nodes (``dirichlet``,
+    zero end values: square) or on all its nodes, 1/m²."""
+    h = np.diff(t)
+    w = dual_widths(t)[1:-1]
+    lo, hi = 1.0 / (h[:-1] * w), 1.0 / (h[1:] * w)
+    n = len(t) - 2
+    full = sp.diags([lo, -(lo + hi), hi], [0, 1, 2], shape=(n, n + 2), format="csr")
+    return full[:, 1:-1].tocsr() if dirichlet else full
+
+
+def forward_difference(t: np.ndarray, dirichlet: bool) -> sp.csr_matrix:
+    """δ⁺ from the nodes t to the interval midpoints, 1/m (``dirichlet``: on the interior
+    nodes only, end values zero)."""
+    h = np.diff(t)
+    full = sp.diags([-1.0 / h, 1.0 / h], [0, 1], shape=(len(h), len(t)), format="csr")
+    return full[:, 1:-1].tocsr() if dirichlet else full
+
+
+def _half_shift(n: int) -> sp.csr_matrix:
+    """½ (S⁺ − S⁻): W C_x for any spacing (the central difference times the control width,
+    whose 2 w_i = x_{i+1} − x_{i−1} cancels)."""
+    e = np.ones(n - 1)
+    return (0.5 * sp.diags([-e, e], [-1, 1], shape=(n, n))).tocsr()
+
+
+def _gram(op: sp.spmatrix, weights: np.ndarray) -> sp.csr_matrix:
+    return (op.T @ sp.diags(weights) @ op).tocsr()
 
 
 class StripOperators:
     """A, B, M, G and the nodal widths W of an infinitely wide tape (per unit width).
 
     The plate in cylindrical bending (w_yy = 0): bending rigidity D, foundation k,
-    membrane ∫ w_x² dx, mass ρ; unknowns at the interior nodes i = 1..nx−1.
+    membrane ∫ w_x² dx, mass ρ; unknowns at the interior nodes i = 1..nx−1 of the node
+    abscissae ``x`` (m, uniform or graded).
     """
 
-    def __init__(self, params: TapeParameters, nx: int, hx: float) -> None:
-        self.hx, self.n = hx, nx - 1
-        self.lxx = _second_difference(self.n, hx)
-        dx = _forward_difference(nx + 1, hx, dirichlet=True)
-        self.A = (params.D * hx * (self.lxx.T @ self.lxx)
-                  + params.k * hx * sp.identity(self.n)).tocsr()
-        self.B = (hx * (dx.T @ dx)).tocsr()
-        self.W = np.full(self.n, hx)
+    def __init__(self, params: TapeParameters, x: np.ndarray) -> None:
+        x = np.asarray(x, dtype=float)
+        self.x, self.n = x, len(x) - 2
+        self.W = dual_widths(x)[1:-1]
+        self.lxx = second_difference(x)
+        dx = forward_difference(x, dirichlet=True)
+        self.A = (params.D * _gram(self.lxx, self.W)
+                  + params.k * sp.diags(self.W)).tocsr()
+        self.B = _gram(dx, np.diff(x))
         self.M = sp.diags(params.density * self.W)
         self.params = params
 
     def G(self, velocity: float) -> sp.csr_matrix:
-        e = np.ones(self.n - 1)
-        cx = sp.diags([-e, e], [-1, 1], shape=(self.n, self.n)) / (2 * self.hx)
-        return (2 * self.params.density * velocity * self.hx * cx).tocsr()
+        return (2 * self.params.density * velocity * _half_shift(self.n)).tocsr()
 
     def curvature_load(self, kappa: np.ndarray) -> np.ndarray:
-        """f_κ = D Δx δ²ᵀ κ, N/m: the bending force of the reference curvature κ (1/m)."""
-        return self.params.D * self.hx * (self.lxx.T @ kappa)
+        """f_κ = D δ²ᵀ W κ, N/m: the bending force of the reference curvature κ (1/m)."""
+        return self.params.D * (self.lxx.T @ (self.W * kappa))
 
 
 class PlateOperators:
-    """A, B, M, G (from :mod:`gyroshell.operators`) and W on the bearing's 2-D grid."""
+    """A, B, M, G and W of the free-edged plate on the tensor grid ``x`` × ``y`` (m).
 
-    def __init__(self, params: TapeParameters, grid: Grid) -> None:
-        self.grid, self.params = grid, params
-        self.A = operators.bending_foundation(grid, params)
-        self.B = operators.membrane(grid)
-        self.M = operators.mass(grid, params)
-        self.W = grid.areas
-        self.n = grid.size
+    Unknowns: the interior x-lines i = 1..nx−1, every node across (j fastest), as in
+    :class:`gyroshell.grid.Grid` with free edges. The bending energy is that of
+    :func:`gyroshell.operators.bending_foundation`: D/2 Σ W [w_xx² + w_yy² + 2ν w_xx w_yy]
+    at the interior nodes, D/2 Σ W (1 − ν²) w_xx² at the edge nodes (the edge moment M_y
+    is zero: free-edge conditions as natural boundary conditions), D (1 − ν) Σ a w_xy²
+    over the cells (a their areas), plus k/2 Σ W w².
+    """
+
+    def __init__(self, params: TapeParameters, x, y=None) -> None:
+        if isinstance(x, Grid):
+            if not x.free_edges:
+                raise ValueError("the bearing's plate has free edges")
+            x, y = x.x, x.y
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        self.x, self.y, self.params = x, y, params
+        D, nu = params.D, params.poisson
+        nl, ny = len(x) - 2, len(y) - 1
+        wx, wy = dual_widths(x)[1:-1], dual_widths(y)
+        self.n = nl * (ny + 1)
+        self.wx, self.wy = wx, wy
+        self.W = np.kron(wx, wy)
+        lxx = second_difference(x)
+        ix = sp.identity(nl, format="csr")
+        inner = sp.identity(ny + 1, format="csr")[1:-1]
+        edge = sp.identity(ny + 1, format="csr")[[0, ny]]
+        self._dxx = sp.kron(lxx, inner, format="csr")
+        self._dyy = sp.kron(ix, second_difference(y, dirichlet=False), format="csr")
+        self._dxx_edge = sp.kron(lxx, edge, format="csr")
+        self._w_inner = np.kron(wx, wy[1:-1])
+        self._w_edge = np.kron(wx, wy[[0, ny]])
+        dxx, dyy = self._dxx, self._dyy
+        bend = (dxx.T @ sp.diags(self._w_inner) @ (dxx + nu * dyy)
+                + dyy.T @ sp.diags(self._w_inner) @ (dyy + nu * dxx)
+                + (1 - nu**2) * _gram(self._dxx_edge, self._w_edge))
+        dxy = sp.kron(forward_difference(x, dirichlet=True),
+                      forward_difference(y, dirichlet=False), format="csr")
+        bend = bend + 2 * (1 - nu) * _gram(dxy, np.kron(np.diff(x), np.diff(y)))
+        self.A = (D * bend + sp.diags(params.k * self.W)).tocsr()
+        self.B = sp.kron(_gram(forward_difference(x, dirichlet=True), np.diff(x)),
+                         sp.diags(wy)).tocsr()
+        self.M = sp.diags(params.density * self.W)
 
     def G(self, velocity: float) -> sp.csr_matrix:
-        return operators.gyroscopic(self.grid, self.params, velocity)
+        return (2 * self.params.density * velocity
+                * sp.kron(_half_shift(len(self.x) - 2), sp.diags(self.wy))).tocsr()
 
     def curvature_load(self, kappa: np.ndarray) -> np.ndarray:
         """f_κ, N: gradient of the bending energy's cross terms with a reference curvature
         κ(x) (1/m, at the interior x-nodes) in w_xx, uniform across the width.
 
-        The bending energy of :func:`gyroshell.operators.bending_foundation` with w_xx
-        replaced by w_xx − κ; the part linear in u is −f_κ·u.
+        The bending energy above with w_xx replaced by w_xx − κ; the part linear in u is
+        −f_κ·u. It includes ν κ w_yy (the Poisson moment) and the free-edge term.
         """
-        g, p = self.grid, self.params
-        area = g.hx * g.hy
-        ny = g.ny
-        lxx = _second_difference(g.n_lines, g.hx)
-        ix = sp.identity(g.n_lines, format="csr")
-        k_int = np.repeat(kappa, ny - 1)
-        dxx = sp.kron(lxx, _y_selector(g, np.arange(1, ny)))
-        dyy = sp.kron(ix, _y_second_difference(g))
-        f = area * (dxx.T @ k_int + p.poisson * (dyy.T @ k_int))
-        dxx_edge = sp.kron(lxx, _y_selector(g, np.array([0, ny])))
-        f += (1 - p.poisson**2) * 0.5 * area * (dxx_edge.T @ np.repeat(kappa, 2))
+        p = self.params
+        ny = len(self.y) - 1
+        k_int = self._w_inner * np.repeat(kappa, ny - 1)
+        f = self._dxx.T @ k_int + p.poisson * (self._dyy.T @ k_int)
+        f += (1 - p.poisson**2) * (self._dxx_edge.T @ (self._w_edge * np.repeat(kappa, 2)))
         return p.D * f

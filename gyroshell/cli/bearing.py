@@ -42,12 +42,18 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     g.add_argument("--span", type=real, default=None,
                    help="length of each tangent span in the domain, m (default: automatic)")
     g.add_argument("--nx", type=positive_int, default=None,
-                   help="intervals along x (default: spacing 1/12 (2-D: 1/6) of the film or "
-                        "bending length; central spacing converged to 0.1 %%)")
+                   help="intervals along x (default: 2-D, a spacing of 1/15 of the film or "
+                        "bending length at the wrap corners, graded to 4x coarser along the "
+                        "spans; infinitely wide or --uniform, a uniform 1/12 (2-D: 1/6) of it)")
     g.add_argument("--ny", type=positive_int, default=None,
-                   help="intervals across the width, even (default: spacing about 50 um; the "
-                        "edge minimum then about 7 %% low; --nx 2x and --ny 2x "
-                        "bring it to ~1.6 %%, see docs/bearing.md)")
+                   help="intervals across the width, even (default: graded, about 12 um at "
+                        "the free edges and 10x coarser in the middle; the edge minimum is "
+                        "then within about 0.6 %% of its converged value, see "
+                        "docs/bearing.md; --uniform: about 50 um everywhere)")
+    g.add_argument("--uniform", action="store_true",
+                   help="uniform grid each way instead of the 2-D grid graded towards the "
+                        "free edges and the wrap corners (the counts --nx/--ny then set "
+                        "uniform spacings)")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     p.add_argument("--out", metavar="DIR", default=None,
                    help="write summary.json and the spacing/pressure fields (CSV) into DIR")
@@ -80,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
     model = BearingModel(params, air, velocity=args.velocity,
                          wrap_angle=math.radians(args.wrap_angle),
                          infinitely_wide=args.infinitely_wide, span=args.span, nx=args.nx,
-                         ny=args.ny)
+                         ny=args.ny, grading="uniform" if args.uniform else None)
     show = sys.stderr.isatty()
     if show:
         _progress(f"gyroshell bearing: {model.size} unknowns ({model!r})")
