@@ -1,5 +1,6 @@
 """Steady flying state: monolithic Newton over (u, p) with a primal–dual active set for
-contact, and continuation in V when Newton cannot reach the state directly.
+contact; pseudo-transient continuation, then continuation in V, when Newton cannot reach
+the state directly.
 
 Contact keeps the spacing at or above the roughness σ. With the contact forces λ >= 0 the
 conditions are complementary: h − σ >= 0, λ >= 0, λ (h − σ) = 0, written as the
@@ -37,15 +38,24 @@ SPACING_GROWTH = 4.0
 CHORD_SWITCH = 5e-2
 #: ... while each step shrinks at least by this factor.
 CHORD_CONTRACTION = 0.1
+#: Newton steps below this relative size are taken in full (the quadratic regime: the
+#: scaled residual may already sit at its round-off floor, where a line search only stalls).
+FULL_STEP = 1e-5
 #: Smallest line-search step before a step is taken anyway.
 MIN_STEP = 1.0 / 256.0
+#: Newton has stagnated when, over this many iterations, the scaled residual has not halved
+#: and no line-search step reached STAGNATION_STEP (the start is outside Newton's basin:
+#: pseudo-time or continuation takes over).
+STAGNATION_WINDOW = 10
+STAGNATION_STEP = 0.5
 
 
 @dataclass
 class NewtonInfo:
     """What a Newton solve did: iterations, step and residual norms per iteration, the
-    number of nodes in contact per iteration, the wall time (s) and the continuation path
-    (speeds in m/s, empty if none was needed)."""
+    number of nodes in contact per iteration, the wall time (s), the pseudo-time steps
+    taken (dimensionless, :func:`pseudo_transient`; empty if Newton reached the state
+    directly) and the continuation path (speeds in m/s, empty if none was needed)."""
 
     iterations: int = 0
     step_norms: list = field(default_factory=list)
@@ -53,21 +63,31 @@ class NewtonInfo:
     contact_nodes: list = field(default_factory=list)
     seconds: float = 0.0
     continuation: list = field(default_factory=list)
+    pseudo_time: list = field(default_factory=list)
 
 
 def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float) -> float:
     """Largest α <= 1 keeping every free node's spacing within [h/5, 5 h + σ] (the film
-    coefficients vary like h³; nodes that would dip below σ still may, and enter the
-    contact set at the next iteration)."""
+    coefficients vary like h³). Nodes whose full step would take them below σ are exempt:
+    the step is projected onto h >= σ (:func:`_project`) and they enter the contact set at
+    the next iteration, all at once instead of a few per damped step."""
     alpha = 1.0
     free = ~active
-    down = free & (du < -(1 - SPACING_KEEP) * h)
+    down = free & (du < -(1 - SPACING_KEEP) * h) & (h + du > sigma)
     if down.any():
         alpha = min(alpha, float(np.min(-(1 - SPACING_KEEP) * h[down] / du[down])))
     up = free & (du > SPACING_GROWTH * h + sigma)
     if up.any():
         alpha = min(alpha, float(np.min((SPACING_GROWTH * h[up] + sigma) / du[up])))
     return alpha
+
+
+def _project(z: np.ndarray, model: BearingModel, sigma: float) -> np.ndarray:
+    """z with every spacing raised to at least σ (the feasible set of the contact)."""
+    n_u = model.n_u
+    floor = sigma - model.dry_field[1:-1, :].ravel()
+    z[:n_u] = np.maximum(z[:n_u], floor)
+    return z
 
 
 def _norm(dz: np.ndarray, n_u: int, F) -> float:
@@ -111,13 +131,17 @@ class _Residual:
             r_u = r_u + self.transient.tape_terms(u)[0]
         return r_u
 
-    def __call__(self, z, *, jacobian: bool):
+    def __call__(self, z, *, jacobian: bool, force=None):
+        """(residual, contact set, Jacobian or None). ``force``: nodes put in the contact
+        set whatever their residual (the nodes a Newton step predicts below σ)."""
         m = self.model
         u, p = z[:m.n_u], z[m.n_u:]
         r_u = self.tape(u, p)
         r_p, J_pp, J_pu = m.film_residual(u, p, jacobian=jacobian, **self.film_kw)
         gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.sigma)
         active = r_u > gap
+        if force is not None:
+            active = active | force
         res = np.concatenate([np.where(active, gap, r_u), r_p])
         if not jacobian:
             return res, active, None
@@ -147,6 +171,30 @@ class _Residual:
         return float(np.linalg.norm(res * self.row_scale))
 
 
+def _line_search(F, model, z, dz, h, active, merit, tol):
+    """Backtracking from the largest admissible step (:func:`_step_limit`, and p kept
+    above a fifth of itself) on the scaled residual, each trial projected onto h >= σ.
+    Returns (α, relative step size, trial state, trial merit)."""
+    n_u = model.n_u
+    alpha = _step_limit(h, dz[:n_u], active, F.sigma)
+    if model.air.compressible:
+        p, dp = z[n_u:], dz[n_u:]
+        shrink = dp < -(1 - PRESSURE_KEEP) * p
+        if shrink.any():
+            alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink] / dp[shrink])))
+    step = _norm(dz, n_u, F)
+    full = step < max(tol, FULL_STEP)
+    if full:     # near round-off the merit can no longer decrease reliably: full steps
+        alpha = 1.0
+    while True:
+        trial = _project(z + alpha * dz, model, F.sigma)
+        res_t, _, _ = F(trial, jacobian=False)
+        merit_t = F.merit(res_t)
+        if full or merit_t <= (1.0 - 1e-4 * alpha) * merit or alpha < MIN_STEP:
+            return alpha, step, trial, merit_t
+        alpha *= 0.5
+
+
 def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
            transient=None, tol: float = STEP_TOLERANCE,
            max_iterations: int = MAX_ITERATIONS, info: NewtonInfo | None = None,
@@ -168,6 +216,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     res, active, J = F(z, jacobian=True)
     merit = F.merit(res)
     solver, last_step, settled = None, np.inf, False
+    merits, alphas = [merit], []
     for _ in range(max_iterations):
         # Near the solution with a settled contact set, the last factorization is reused
         # (a chord step) as long as it still contracts fast; else J is factored afresh.
@@ -176,31 +225,32 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
             dz = solver(res)
             if _norm(dz, n_u, F) > CHORD_CONTRACTION * last_step:
                 dz = None
+        h = z[:n_u] + model.dry_field[1:-1, :].ravel()
         if dz is None:
             solver = F.factor(J)
             dz = solver(res)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
-        h = z[:n_u] + model.dry_field[1:-1, :].ravel()
-        alpha = _step_limit(h, dz[:n_u], active, F.sigma)
-        if model.air.compressible:
-            p, dp = z[n_u:], dz[n_u:]
-            shrink = dp < -(1 - PRESSURE_KEEP) * p
-            if shrink.any():
-                alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink]
-                                                / dp[shrink])))
-        step = _norm(dz, n_u, F)
+        active_used = active
+        alpha, step, trial, merit_t = _line_search(F, model, z, dz, h, active, merit, tol)
+        entering = ~active & (h + dz[:n_u] < F.sigma)
+        if (merit_t > (1.0 - 1e-4 * alpha) * merit and step >= FULL_STEP
+                and entering.any()):
+            # The damped step failed while it would take free nodes below σ: they join
+            # the contact set now (the primal–dual active-set rule evaluated at the full
+            # step) and the step is solved again with them held at σ; the better of the
+            # two steps is taken. Damped steps would otherwise let them enter a few per
+            # iteration, each time with a line search that barely moves.
+            res_f, active_f, J_f = F(z, jacobian=True, force=entering)
+            forced = F.factor(J_f)
+            dz_f = forced(res_f)
+            if np.all(np.isfinite(dz_f)):
+                found = _line_search(F, model, z, dz_f, h, active_f, merit, tol)
+                if found[3] < merit_t:
+                    alpha, step, trial, merit_t = found
+                    solver, active_used = forced, active_f
+        active = active_used
         last_step = step
-        if step < tol:       # at round-off: the merit can no longer decrease reliably
-            alpha = 1.0
-        while True:
-            trial = z + alpha * dz
-            res_t, _, _ = F(trial, jacobian=False)
-            merit_t = F.merit(res_t)
-            if (step < tol or merit_t <= (1.0 - 1e-4 * alpha) * merit
-                    or alpha < MIN_STEP):
-                break
-            alpha *= 0.5
         z = trial
         res, active_new, J = F(z, jacobian=True)
         merit = F.merit(res)
@@ -216,6 +266,14 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         if alpha == 1.0 and step < tol and settled:
             lam = np.where(active, F.tape(z[:n_u], z[n_u:]), 0.0)
             return z, lam, active, info
+        merits.append(merit)
+        alphas.append(alpha)
+        if (len(alphas) >= STAGNATION_WINDOW
+                and merit > 0.5 * merits[-1 - STAGNATION_WINDOW]
+                and max(alphas[-STAGNATION_WINDOW:]) < STAGNATION_STEP):
+            raise ConvergenceError(
+                f"Newton stagnated (scaled residual {merit:.3g}, not halved in "
+                f"{STAGNATION_WINDOW} damped iterations)")
     raise ConvergenceError(
         f"Newton did not converge in {max_iterations} iterations "
         f"(last relative step {info.step_norms[-1]:.3g}, scaled residual {merit:.3g})")
@@ -338,6 +396,7 @@ class BearingSolution:
             "newton_iterations": self.info.iterations,
             "newton_step_norms": list(self.info.step_norms),
             "continuation_speeds": list(self.info.continuation),
+            "pseudo_time_steps": list(self.info.pseudo_time),
             "seconds": self.info.seconds,
             "velocity": m.velocity,
             "wrap_angle": m.wrap_angle,
@@ -365,8 +424,12 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
                  iteration_log=None) -> BearingSolution:
     """The steady flying state of ``model``.
 
-    Newton starts from ``z0`` (default :meth:`BearingModel.initial_state`); if it fails,
-    continuation in V brings the state down from a faster, thicker film.
+    Newton starts from ``z0`` (default :meth:`BearingModel.initial_state`). If it fails
+    (no convergence, or stagnation: the start is outside Newton's basin, typically when
+    part of the tape must come down onto the head), pseudo-transient continuation marches
+    the state towards the steady one in growing pseudo-time steps, and if that fails too,
+    continuation in V brings it down from a faster, thicker film (each stage by Newton,
+    then by pseudo-time).
 
     Parameters
     ----------
@@ -383,19 +446,118 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     Raises
     ------
     ConvergenceError
-        If neither Newton nor the continuation reaches the state.
+        If neither Newton, the pseudo-time march nor the continuation reaches the state.
     """
     start = time.perf_counter()
     info = NewtonInfo()
     z0 = model.initial_state() if z0 is None else np.asarray(z0, dtype=float)
     try:
-        z, lam, _, info = newton(model, z0, tension=tension, info=info, log=iteration_log)
+        z, lam, info = _newton_or_pseudo_time(model, z0, tension, info, progress,
+                                              iteration_log)
     except ConvergenceError:
         if progress is not None:
-            progress("Newton did not reach the state directly: continuation in V")
+            progress("pseudo-time did not reach the state: continuation in V")
         z, lam, info = _continuation(model, tension, progress, iteration_log)
     info.seconds = time.perf_counter() - start
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
+
+
+#: Pseudo-time continuation: first step (pseudo-time terms 1/s of each row's diagonal) ...
+PSEUDO_START = 0.1
+#: ... grown by this factor after an easy step (few Newton iterations) ...
+PSEUDO_GROWTH = 4.0
+#: ... cut by this factor after a failed one ...
+PSEUDO_CUT = 4.0
+#: ... and plain Newton is tried once the step exceeds this.
+PSEUDO_FINISH = 1e4
+#: Pseudo-time steps at most, Newton iterations per step, and the step's tolerance.
+PSEUDO_MAX_STEPS = 60
+PSEUDO_NEWTON = 12
+PSEUDO_TOLERANCE = 1e-4
+
+
+class _PseudoTime:
+    """Backward-Euler pseudo-time terms of pseudo-transient continuation with local steps:
+    each row gains its own diagonal over s (s the pseudo-time step, dimensionless). The
+    tape rows gain (c/s)(u − u_old) (c = diag K); the film rows the squeeze term
+    12μ A ∂(ph)/∂t with a local step Δt_i chosen so that its p-derivative is |∂r_i/∂p_i|/s
+    (compressible: Δt_i = 12μ A_i h_i s/|J_ii|; incompressible: Δt = s ℓ_film/V). Local
+    steps let a thin-gap region, whose film responds slowly, relax as fast as the rest.
+    Far from the steady state they keep each step inside Newton's basin; as s grows they
+    vanish and the steady equations remain."""
+
+    def __init__(self, model: BearingModel, z: np.ndarray, s: float, transit: float,
+                 tension) -> None:
+        n_u = model.n_u
+        u, p = z[:n_u], z[n_u:]
+        self.c = model.stiffness_diagonal / s
+        self.u_old = u.copy()
+        P, H = model.pressure_field(p), model.spacing_field(u)
+        self.phi_old = model.film.transported(P, H)
+        if model.air.compressible:
+            _, J_pp, _ = model.film_residual(u, p, jacobian=True)
+            film = model.film
+            self.dt = (s * 12.0 * model.air.viscosity * film.cell_area[film.interior]
+                       * H[film.interior] / np.maximum(np.abs(J_pp.diagonal()), 1e-300))
+        else:
+            self.dt = s * transit
+        self.jacobian = sp.diags(self.c).tocsr()
+
+    def tape_terms(self, u):
+        return self.c * (u - self.u_old), self.jacobian
+
+
+def _newton_or_pseudo_time(model, z0, tension, info, progress, iteration_log):
+    """Newton from z0; if it fails, pseudo-transient continuation from z0."""
+    try:
+        z, lam, _, info = newton(model, z0, tension=tension, info=info, log=iteration_log)
+        return z, lam, info
+    except ConvergenceError as exc:
+        if progress is not None:
+            progress(f"{exc}: pseudo-time continuation")
+    return pseudo_transient(model, z0, tension=tension, info=info, progress=progress,
+                            iteration_log=iteration_log)
+
+
+def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
+                     info: NewtonInfo | None = None, progress=None, iteration_log=None):
+    """Pseudo-transient continuation (switched evolution) from z0 to the steady state.
+
+    Each pseudo-time step s (:class:`_PseudoTime`) is solved by Newton; s grows by
+    PSEUDO_GROWTH while Newton converges quickly within it, by 1.5 otherwise, and is cut
+    by PSEUDO_CUT when it fails. Once s exceeds PSEUDO_FINISH plain Newton finishes.
+
+    Returns (z, λ, info). Raises ConvergenceError if the march does not get there.
+    """
+    from .model import foil_length_scales
+
+    info = NewtonInfo() if info is None else info
+    transit = foil_length_scales(model.params, model.air, model.velocity)[1] / model.velocity
+    z, s = np.array(z0, dtype=float), PSEUDO_START
+    for _ in range(PSEUDO_MAX_STEPS):
+        if s >= PSEUDO_FINISH:
+            try:
+                z, lam, _, info = newton(model, z, tension=tension, info=info,
+                                         log=iteration_log)
+                return z, lam, info
+            except ConvergenceError:
+                s = PSEUDO_FINISH / PSEUDO_CUT**2
+        before = info.iterations
+        try:
+            z, _, _, info = newton(model, z, tension=tension,
+                                   transient=_PseudoTime(model, z, s, transit, tension),
+                                   tol=PSEUDO_TOLERANCE, max_iterations=PSEUDO_NEWTON,
+                                   info=info, log=iteration_log)
+        except ConvergenceError:
+            s /= PSEUDO_CUT
+            if s < PSEUDO_START / PSEUDO_CUT**4:
+                break
+            continue
+        info.pseudo_time.append(s)
+        if progress is not None:
+            progress(f"pseudo-time step {s:.3g}: {info.iterations - before} Newton iterations")
+        s *= PSEUDO_GROWTH if info.iterations - before <= PSEUDO_NEWTON // 2 else 1.5
+    raise ConvergenceError("pseudo-time continuation did not reach the steady state")
 
 
 def _continuation(model: BearingModel, tension, progress, iteration_log):
@@ -413,5 +575,6 @@ def _continuation(model: BearingModel, tension, progress, iteration_log):
         if progress is not None:
             progress(f"continuation: V = {v:.4g} m/s")
         z0 = stage.initial_state() if z is None else z
-        z, lam, _, info = newton(stage, z0, tension=tension, info=info, log=iteration_log)
+        z, lam, info = _newton_or_pseudo_time(stage, z0, tension, info, progress,
+                                              iteration_log)
     return z, lam, info
