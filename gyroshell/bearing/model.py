@@ -246,13 +246,14 @@ class BearingModel:
 
     def _coarse_state(self) -> np.ndarray | None:
         """The steady state on the grid twice as coarse in x and y, interpolated
-        (bilinearly) onto this grid; None if that grid would be too coarse or Newton fails
-        there. Most of Newton's iterations move the free edges down from the infinitely
-        wide start; on the coarse grid they cost a fraction of a fine-grid factorization."""
+        (bilinearly) onto this grid; None if that grid would be too coarse or neither Newton
+        nor the pseudo-time march reaches the state there. Most of Newton's iterations move
+        the free edges down from the infinitely wide start; on the coarse grid they cost a
+        fraction of a fine-grid factorization."""
         from scipy.interpolate import RegularGridInterpolator
 
         from ..errors import ConvergenceError
-        from .steady import BearingSolution, newton
+        from .steady import BearingSolution, NewtonInfo, _newton_or_pseudo_time
 
         nx, ny = self.nx // 2 + (self.nx // 2) % 2, self.ny // 2 + (self.ny // 2) % 2
         if self.size < COARSE_START_MIN_UNKNOWNS or ny < 8 or nx < 8:
@@ -262,9 +263,9 @@ class BearingModel:
                               grading=self.grading)
         if coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
             return None
-        try:   # plain Newton: a coarse grid that fails falls back at once, no continuation
-            z, lam, _, info = newton(coarse, coarse.initial_state(),
-                                     max_iterations=COARSE_START_MAX_ITERATIONS)
+        try:   # Newton, then pseudo-time (no continuation in V): cheap on a coarse grid
+            z, lam, info = _newton_or_pseudo_time(coarse, coarse.initial_state(), None,
+                                                  NewtonInfo(), None, None)
         except ConvergenceError:
             return None
         sol = BearingSolution(coarse, z[:coarse.n_u], z[coarse.n_u:], lam, info)

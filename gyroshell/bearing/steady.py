@@ -468,8 +468,10 @@ PSEUDO_START = 0.1
 PSEUDO_GROWTH = 4.0
 #: ... cut by this factor after a failed one ...
 PSEUDO_CUT = 4.0
-#: ... and plain Newton is tried once the step exceeds this.
+#: ... and plain Newton is tried once the step exceeds this (and, if it fails, again
+#: after the step has grown by PSEUDO_FINISH_RETRY).
 PSEUDO_FINISH = 1e4
+PSEUDO_FINISH_RETRY = 100.0
 #: Pseudo-time steps at most, Newton iterations per step, and the step's tolerance.
 PSEUDO_MAX_STEPS = 60
 PSEUDO_NEWTON = 12
@@ -525,7 +527,8 @@ def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | No
 
     Each pseudo-time step s (:class:`_PseudoTime`) is solved by Newton; s grows by
     PSEUDO_GROWTH while Newton converges quickly within it, by 1.5 otherwise, and is cut
-    by PSEUDO_CUT when it fails. Once s exceeds PSEUDO_FINISH plain Newton finishes.
+    by PSEUDO_CUT when it fails. Once s exceeds PSEUDO_FINISH plain Newton finishes (if it
+    fails there, the march goes on and tries again 100 times further).
 
     Returns (z, λ, info). Raises ConvergenceError if the march does not get there.
     """
@@ -533,15 +536,15 @@ def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | No
 
     info = NewtonInfo() if info is None else info
     transit = foil_length_scales(model.params, model.air, model.velocity)[1] / model.velocity
-    z, s = np.array(z0, dtype=float), PSEUDO_START
+    z, s, finish = np.array(z0, dtype=float), PSEUDO_START, PSEUDO_FINISH
     for _ in range(PSEUDO_MAX_STEPS):
-        if s >= PSEUDO_FINISH:
+        if s >= finish:
             try:
                 z, lam, _, info = newton(model, z, tension=tension, info=info,
                                          log=iteration_log)
                 return z, lam, info
-            except ConvergenceError:
-                s = PSEUDO_FINISH / PSEUDO_CUT**2
+            except ConvergenceError:   # slow modes still relaxing: march on
+                finish *= PSEUDO_FINISH_RETRY
         before = info.iterations
         try:
             z, _, _, info = newton(model, z, tension=tension,
