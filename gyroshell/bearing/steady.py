@@ -439,7 +439,8 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     tension : float, optional
         Tension T, N/m, in place of the model's (continuation in T).
     progress : callable, optional
-        Called with a one-line message per continuation stage.
+        Called with a one-line message when Newton gives way to the pseudo-time march, per
+        pseudo-time step and per continuation stage.
     iteration_log : callable, optional
         Called with a one-line message per Newton iteration.
 
@@ -488,8 +489,7 @@ class _PseudoTime:
     Far from the steady state they keep each step inside Newton's basin; as s grows they
     vanish and the steady equations remain."""
 
-    def __init__(self, model: BearingModel, z: np.ndarray, s: float, transit: float,
-                 tension) -> None:
+    def __init__(self, model: BearingModel, z: np.ndarray, s: float, transit: float) -> None:
         n_u = model.n_u
         u, p = z[:n_u], z[n_u:]
         self.c = model.stiffness_diagonal / s
@@ -548,7 +548,7 @@ def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | No
         before = info.iterations
         try:
             z, _, _, info = newton(model, z, tension=tension,
-                                   transient=_PseudoTime(model, z, s, transit, tension),
+                                   transient=_PseudoTime(model, z, s, transit),
                                    tol=PSEUDO_TOLERANCE, max_iterations=PSEUDO_NEWTON,
                                    info=info, log=iteration_log)
         except ConvergenceError:
