@@ -231,7 +231,6 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
             dz = solver(res)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
-        active_used = active
         alpha, step, trial, merit_t = _line_search(F, model, z, dz, h, active, merit, tol)
         entering = ~active & (h + dz[:n_u] < F.sigma)
         if (merit_t > (1.0 - 1e-4 * alpha) * merit and step >= FULL_STEP
@@ -248,8 +247,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
                 found = _line_search(F, model, z, dz_f, h, active_f, merit, tol)
                 if found[3] < merit_t:
                     alpha, step, trial, merit_t = found
-                    solver, active_used = forced, active_f
-        active = active_used
+                    solver, active = forced, active_f
         last_step = step
         z = trial
         res, active_new, J = F(z, jacobian=True)
