@@ -25,7 +25,7 @@ from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing import model as bm
 from gyroshell.bearing.steady import solve_steady
-from gyroshell.threads import blas_threads
+from gyroshell.core.parallel import blas_threads
 
 KEYS = ("h_c", "h_edge", "h_min")
 

@@ -34,7 +34,7 @@ import scipy.sparse.linalg as spla
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.steady import _Residual, solve_steady
-from gyroshell.threads import blas_threads
+from gyroshell.core.parallel import blas_threads
 
 
 def one_lu(model: BearingModel) -> float:
@@ -53,7 +53,7 @@ import math, time
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.steady import solve_steady
-from gyroshell.threads import blas_threads
+from gyroshell.core.parallel import blas_threads
 m = BearingModel(TapeParameters(width={width!r}), AirParameters(), velocity=4.0,
                  wrap_angle=math.radians(15.0))
 with blas_threads(1):

@@ -38,10 +38,11 @@ from pathlib import Path
 import numpy as np
 import scipy.sparse as sp
 
-from gyroshell import TapeModel, TapeParameters, cholesky
-from gyroshell.critical import critical_speeds
-from gyroshell.eigen import modes
-from gyroshell.sweep import sweep
+from gyroshell import TapeModel, TapeParameters
+from gyroshell.engines.critical import critical_speeds
+from gyroshell.engines.eigen import modes
+from gyroshell.linalg import cholesky
+from gyroshell.studies.sweep import sweep
 
 SLEPC_PYTHON = os.environ.get("GYROSHELL_SLEPC_PYTHON", "/work/venvs/slepc/bin/python")
 SLEPC_DRIVER = Path(__file__).with_name("slepc_pep.py")

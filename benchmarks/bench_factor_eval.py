@@ -5,7 +5,7 @@
 Q(iω_s) = K − ω_s²M + iω_sG at V = 50 m/s, ω_s just below the lowest frequency. Prints
 medians over rounds (ms) of:
 
-* SuperLU (symmetric mode, as :mod:`gyroshell.inertia`): factorization, one substitution,
+* SuperLU (symmetric mode, as :mod:`gyroshell.linalg.inertia`): factorization, one substitution,
   and the cost per vector of a 2/3/4/6-column substitution;
 * MKL PARDISO through a small ctypes binding (needs ``pip install mkl``; skipped without):
   complex Hermitian indefinite (mtype −4) with 1×1 pivots, whose pivots give the inertia
@@ -33,9 +33,9 @@ import scipy.linalg as la
 import scipy.sparse as sp
 
 from gyroshell import TapeModel, TapeParameters
-from gyroshell.eigen import modes
-from gyroshell.inertia import factor_inertia
-from gyroshell.threads import blas_threads
+from gyroshell.core.parallel import blas_threads
+from gyroshell.engines.eigen import modes
+from gyroshell.linalg.inertia import factor_inertia
 
 
 def mkl():

@@ -20,7 +20,7 @@ import time
 import numpy as np
 
 from gyroshell import TapeModel, TapeParameters
-from gyroshell.frf import direct_response, frequency_response
+from gyroshell.engines.frequency_response import direct_response, frequency_response
 
 VELOCITY = 50.0  # m/s
 DAMPING = 100.0  # N s/m^3

@@ -18,8 +18,8 @@ import time
 import numpy as np
 
 from gyroshell import TapeModel, TapeParameters
-from gyroshell.moving_load import ContactWindows, MovingLoad, PreparedLoads, StraightPath
-from gyroshell.newmark import Newmark
+from gyroshell.engines.newmark import Newmark
+from gyroshell.tape.moving_loads import ContactWindows, MovingLoad, PreparedLoads, StraightPath
 
 VELOCITY = 50.0  # m/s
 DT = 2e-6  # s

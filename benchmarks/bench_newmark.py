@@ -23,8 +23,8 @@ from functools import partial
 import numpy as np
 
 from gyroshell import TapeModel, TapeParameters
-from gyroshell.factorization import available_backends
-from gyroshell.newmark import Newmark
+from gyroshell.engines.newmark import Newmark
+from gyroshell.linalg.factorization import available_backends
 
 VELOCITY = 50.0  # m/s
 DT = 2e-6  # s, Table 1

@@ -10,54 +10,46 @@ All quantities are SI.
 
 from __future__ import annotations
 
-import importlib
-import sys
-import types
-from importlib.metadata import PackageNotFoundError
-from importlib.metadata import version as _package_version
+from importlib import import_module as _import_module
 
-from .errors import ConvergenceError, ParameterError, SupercriticalError  # noqa: F401
-from .parameters import TapeParameters, bending_rigidity, shell_stiffness  # noqa: F401
-
-try:
-    __version__ = _package_version("gyroshell")
-except PackageNotFoundError:  # pragma: no cover - run from a source tree without install
-    __version__ = "0+unknown"
+from .core.errors import ConvergenceError, ParameterError, SupercriticalError  # noqa: F401
+from .core.version import __version__  # noqa: F401
+from .tape.parameters import TapeParameters, bending_rigidity, shell_stiffness  # noqa: F401
 
 #: Public name -> submodule. Engines import scipy, so they load on first use: `import
 #: gyroshell` and the CLI's refusals stay fast.
 _LAZY: dict[str, str] = {
     # grid and operators
-    "Grid": "grid", "TapeModel": "model",
-    "bending_foundation": "operators", "gyroscopic": "operators", "mass": "operators",
-    "membrane": "operators",
-    "Harmonic": "loads", "Ramp": "loads", "gaussian_load": "loads", "pressure_load": "loads",
-    "step": "loads",
+    "Grid": "tape.grid", "TapeModel": "tape.model",
+    "bending_foundation": "tape.operators", "gyroscopic": "tape.operators", "mass": "tape.operators",
+    "membrane": "tape.operators",
+    "Harmonic": "tape.loads", "Ramp": "tape.loads", "gaussian_load": "tape.loads", "pressure_load": "tape.loads",
+    "step": "tape.loads",
     # static and divergence
-    "StaticSolution": "static", "solve_static": "static",
-    "Divergence": "divergence", "divergence": "divergence",
-    "divergence_speed": "divergence",
+    "StaticSolution": "engines.static", "solve_static": "engines.static",
+    "Divergence": "engines.divergence", "divergence": "engines.divergence",
+    "divergence_speed": "engines.divergence",
     # time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends
-    "available_backends": "factorization", "factorize": "factorization",
-    "Newmark": "newmark", "NewmarkStabilityWarning": "newmark", "march": "newmark",
-    "Snapshots": "transient_result", "TransientResult": "transient_result",
+    "available_backends": "linalg.factorization", "factorize": "linalg.factorization",
+    "Newmark": "engines.newmark", "NewmarkStabilityWarning": "engines.newmark", "march": "engines.newmark",
+    "Snapshots": "results.transient", "TransientResult": "results.transient",
     # quadratic eigen-solver, critical speeds and speed sweeps
-    "CriticalSpeeds": "critical", "critical_speed_eigen": "critical",
-    "critical_speeds": "critical",
-    "Modes": "eigen", "frequencies": "eigen", "modes": "eigen",
-    "InertiaFactor": "inertia", "factor_inertia": "inertia",
-    "GyroscopicModes": "qep", "gyroscopic_modes": "qep",
-    "plot_sweep": "sweep", "sweep": "sweep",
+    "CriticalSpeeds": "engines.critical", "critical_speed_eigen": "engines.critical",
+    "critical_speeds": "engines.critical",
+    "Modes": "engines.eigen", "frequencies": "engines.eigen", "modes": "engines.eigen",
+    "InertiaFactor": "linalg.inertia", "factor_inertia": "linalg.inertia",
+    "GyroscopicModes": "linalg.qep", "gyroscopic_modes": "linalg.qep",
+    "plot_sweep": "studies.sweep", "sweep": "studies.sweep",
     # parameter studies and saved results (xarray, Dask and matplotlib load on use)
-    "load": "persistence", "save": "persistence",
-    "StudyResult": "study", "classify_stability": "qep", "run_study": "study",
+    "load": "results.storage", "save": "results.storage",
+    "StudyResult": "studies.parameter_study", "classify_stability": "linalg.qep", "run_study": "studies.parameter_study",
     # damping, moving and intermittent loads, and the frequency response
-    "Damping": "damping",
-    "FrequencyResponse": "frf", "ReducedModel": "frf", "direct_response": "frf",
-    "frequency_response": "frf",
-    "ContactWindows": "moving_load", "GaussianShape": "moving_load",
-    "MovingLoad": "moving_load", "StraightPath": "moving_load", "UniformShape": "moving_load",
-    "UserShape": "moving_load", "drum_heads": "moving_load",
+    "Damping": "tape.damping",
+    "FrequencyResponse": "engines.frequency_response", "ReducedModel": "engines.frequency_response", "direct_response": "engines.frequency_response",
+    "frequency_response": "engines.frequency_response",
+    "ContactWindows": "tape.moving_loads", "GaussianShape": "tape.moving_loads",
+    "MovingLoad": "tape.moving_loads", "StraightPath": "tape.moving_loads", "UniformShape": "tape.moving_loads",
+    "UserShape": "tape.moving_loads", "drum_heads": "tape.moving_loads",
 }
 
 __all__ = sorted(["ConvergenceError", "ParameterError", "SupercriticalError",
@@ -68,23 +60,10 @@ def __getattr__(name: str):
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'gyroshell' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    value = getattr(_import_module(f".{module}", __name__), name)
     globals()[name] = value
     return value
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
-
-
-class _Package(types.ModuleType):
-    """``gyroshell.sweep`` and ``gyroshell.divergence`` name functions, like their
-    submodules: importing a submodule must not replace the function of the same name."""
-
-    def __setattr__(self, name: str, value: object) -> None:
-        if isinstance(value, types.ModuleType) and _LAZY.get(name) == name:
-            return
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package
+    return list(__all__)

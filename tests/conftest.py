@@ -119,7 +119,7 @@ def _strict_floats_and_closed_figures():
 def every_factorization(request, monkeypatch):
     """Run a test once per eigen-solver factorization back-end: "auto" resolves to each
     (CHOLMOD through cvxopt, in the test extra; SuperLU, pure scipy)."""
-    from gyroshell import cholesky, qep
+    from gyroshell.linalg import cholesky, qep
 
     if request.param == "cholmod" and not cholesky.available():
         pytest.skip("cvxopt (CHOLMOD) is not installed")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from gyroshell.analysis import (
+from gyroshell.studies.signal import (
     dominant_period,
     dominant_wavelength,
     first_departure,
@@ -44,7 +44,7 @@ def test_front_position_and_departure():
 
 
 def test_amplitude_spectrum_is_the_rms_of_a_sine_in_its_units():
-    from gyroshell.analysis import amplitude_spectrum
+    from gyroshell.studies.signal import amplitude_spectrum
 
     t = np.arange(1000) * 1e-5
     f, a = amplitude_spectrum(3e-7 * np.cos(2 * np.pi * 2000.0 * t) + 1.0, 1e-5)

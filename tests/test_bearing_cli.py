@@ -106,7 +106,7 @@ def test_bad_input_one_line_exit_2(capsys, tmp_path, argv, message):
 def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
     """When neither Newton nor the continuation converges: one line, exit 2."""
     from gyroshell.bearing import steady
-    from gyroshell.errors import ConvergenceError
+    from gyroshell.core.errors import ConvergenceError
 
     def failing(*args, **kwargs):
         raise ConvergenceError("Newton did not converge in 60 iterations")

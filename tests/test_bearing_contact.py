@@ -14,7 +14,7 @@ from convergence import observed_order
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.steady import newton, pseudo_transient, solve_steady
-from gyroshell.errors import ConvergenceError
+from gyroshell.core.errors import ConvergenceError
 
 WRAP = math.radians(15.0)
 #: A 3 mm Table 1 tape at 0.2 m/s: its edges touch down between the wrap centre and the

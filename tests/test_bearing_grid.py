@@ -13,11 +13,11 @@ from closed_forms import beam_on_foundation, levy_profile
 from convergence import observed_order
 
 from gyroshell import TapeParameters
-from gyroshell import operators as core
 from gyroshell.bearing.geometry import dry_curvature
 from gyroshell.bearing.mesh import LineGrading, line_nodes, symmetric_line_nodes
 from gyroshell.bearing.tape import PlateOperators, StripOperators
-from gyroshell.grid import Grid
+from gyroshell.tape import operators as core
+from gyroshell.tape.grid import Grid
 
 WIDTH = 6.35e-3
 

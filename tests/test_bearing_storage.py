@@ -1,4 +1,4 @@
-"""A steady bearing state survives save/load (NetCDF via gyroshell.persistence): the same
+"""A steady bearing state survives save/load (NetCDF via gyroshell.results.storage): the same
 fields, summary and model, and the reloaded state is still a steady state."""
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from gyroshell import TapeParameters  # noqa: E402
 from gyroshell.bearing import AirParameters, BearingModel, solve_steady  # noqa: E402
 from gyroshell.bearing.steady import _Residual  # noqa: E402
 from gyroshell.bearing.storage import load, save, to_xarray  # noqa: E402
-from gyroshell.errors import ParameterError  # noqa: E402
+from gyroshell.core.errors import ParameterError  # noqa: E402
 
 
 @pytest.mark.parametrize("wide", [True, False])

@@ -12,7 +12,7 @@ from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.steady import BearingSolution, solve_steady
 from gyroshell.bearing.transient import march, tension_harmonic, tension_step
-from gyroshell.errors import ParameterError
+from gyroshell.core.errors import ParameterError
 
 #: Newmark with numerical damping of the grid-scale ringing (unconditionally stable).
 DAMPED = {"beta": 0.3025, "gamma": 0.6}

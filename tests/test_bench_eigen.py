@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from gyroshell import TapeModel, TapeParameters
-from gyroshell.eigen import modes
+from gyroshell.engines.eigen import modes
 
 BENCH = Path(__file__).resolve().parents[1] / "benchmarks" / "bench_eigen.py"
 

@@ -8,8 +8,8 @@ import pytest
 from conftest import WidthUniformModel
 
 from gyroshell import Grid, TapeModel, TapeParameters
-from gyroshell.campbell import _crossings_and_veerings, campbell, mac
-from gyroshell.errors import ParameterError
+from gyroshell.core.errors import ParameterError
+from gyroshell.studies.campbell import _crossings_and_veerings, campbell, mac
 
 WIDTH = 6.35e-3
 
@@ -112,7 +112,7 @@ def test_refusals():
         campbell(model, [10.0, 5.0], 2, critical_speed=False)
     with pytest.raises(ParameterError, match="min_mac"):
         campbell(model, [0.0, 5.0], 2, min_mac=2.0)
-    from gyroshell.campbell import CampbellDiagram
+    from gyroshell.studies.campbell import CampbellDiagram
 
     with pytest.raises(ParameterError, match="circumference"):
         CampbellDiagram.excitation(1, -1.0, 3.0)

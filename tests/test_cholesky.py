@@ -1,4 +1,4 @@
-"""CHOLMOD's Cholesky (gyroshell.cholesky) and the eigen-solver's factorization back-ends:
+"""CHOLMOD's Cholesky (gyroshell.linalg.cholesky) and the eigen-solver's factorization back-ends:
 solutions against the matrices, definiteness decided by success, the symbolic analysis reused
 per pattern, and the same frequencies and certificate as the pure-scipy path."""
 
@@ -8,9 +8,10 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from gyroshell import ParameterError, TapeModel, TapeParameters, cholesky, qep
-from gyroshell.eigen import modes, strip_frequency_estimate
-from gyroshell.inertia import factor_inertia
+from gyroshell import ParameterError, TapeModel, TapeParameters
+from gyroshell.engines.eigen import modes, strip_frequency_estimate
+from gyroshell.linalg import cholesky, qep
+from gyroshell.linalg.inertia import factor_inertia
 
 pytestmark = pytest.mark.skipif(not cholesky.available(), reason="cvxopt not installed")
 

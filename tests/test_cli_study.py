@@ -11,8 +11,8 @@ import pytest
 import gyroshell
 from gyroshell import TapeModel, TapeParameters, modes, run_study, solve_static
 from gyroshell.cli import main
-from gyroshell.config import write_config
-from gyroshell.io import read_csv_exact
+from gyroshell.core.files import read_csv_exact
+from gyroshell.tape.config import write_config
 
 COARSE = ["--length-ratio", "4", "--spacing", str(6.35e-3 / 8)]
 BASE = TapeParameters(length_ratio=4, spacing=6.35e-3 / 8)
@@ -70,7 +70,7 @@ def test_save_option_writes_a_loadable_result(tmp_path, command, capsys):
         assert np.array_equal(back.eigenvalues, modes(model, 40.0, 3).eigenvalues)
     else:
         assert list(back["velocity"].unique()) == [0.0, 50.0]
-    assert gyroshell.persistence.metadata(path)["parameters"] == BASE
+    assert gyroshell.results.storage.metadata(path)["parameters"] == BASE
 
 
 def test_transient_save(tmp_path, capsys):

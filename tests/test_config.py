@@ -5,8 +5,8 @@ from __future__ import annotations
 import pytest
 
 from gyroshell import TapeParameters
-from gyroshell.config import config_text, load_config, write_config
-from gyroshell.errors import ParameterError
+from gyroshell.core.errors import ParameterError
+from gyroshell.tape.config import config_text, load_config, write_config
 
 TABLE1 = """
 [tape]

@@ -10,14 +10,14 @@ from convergence import observed_order
 
 from gyroshell import Grid, ParameterError, TapeModel, TapeParameters
 from gyroshell.cli import main
-from gyroshell.critical import (
+from gyroshell.engines.critical import (
     PAPER_SPEED,
     SUNDARAM_BENSON_SPEED,
     critical_function,
     critical_speeds,
 )
-from gyroshell.divergence import beam_mu_estimate, divergence
-from gyroshell.sweep import parse_velocities, plot_sweep, sweep
+from gyroshell.engines.divergence import beam_mu_estimate, divergence
+from gyroshell.studies.sweep import parse_velocities, plot_sweep, sweep
 
 # Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
 pytestmark = pytest.mark.usefixtures("every_factorization")
@@ -220,7 +220,7 @@ def test_critical_refusals():
 
 def test_modes_text_says_what_is_true():
     from gyroshell.cli.eigen import stability_sentence
-    from gyroshell.qep import gyroscopic_modes
+    from gyroshell.linalg.qep import gyroscopic_modes
 
     def two_dof(k1, k2, g):
         return gyroscopic_modes(np.eye(2), np.array([[0.0, g], [-g, 0.0]]), np.diag([k1, k2]),
@@ -270,7 +270,7 @@ def test_continuation_shift_extrapolates_omega1_in_v_squared():
     """ω₁ = a − b V² + c V⁴ is reproduced exactly from three speeds (the polynomial in V²)."""
     from types import SimpleNamespace
 
-    from gyroshell.sweep import _extrapolate
+    from gyroshell.studies.sweep import _extrapolate
 
     def omega1(v):
         return 1.25e5 - 3.0 * v**2 - 2e-4 * v**4
@@ -283,8 +283,8 @@ def test_continuation_shift_extrapolates_omega1_in_v_squared():
 
 def test_continuation_shift_is_certified_and_close_below_omega1():
     model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
-    from gyroshell.eigen import modes
-    from gyroshell.sweep import _continuation_options
+    from gyroshell.engines.eigen import modes
+    from gyroshell.studies.sweep import _continuation_options
 
     history = [modes(model, v, 4) for v in (40.0, 45.0, 50.0)]
     options = _continuation_options(model, history, 55.0, True)
@@ -298,9 +298,9 @@ def test_continuation_shift_is_certified_and_close_below_omega1():
 
 # ----- the mirror-symmetric halves in the root search -------------------------------------
 def test_halves_give_the_full_critical_function_and_speed(monkeypatch):
-    import gyroshell.critical as crit
-    from gyroshell.critical import _HalfCritical, critical_function, critical_speed_eigen
-    from gyroshell.mirror import mirror_split
+    import gyroshell.engines.critical as crit
+    from gyroshell.engines.critical import _HalfCritical, critical_function, critical_speed_eigen
+    from gyroshell.tape.mirror import mirror_split
 
     model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
     half = _HalfCritical(model, mirror_split(model), 1, {})
@@ -320,9 +320,9 @@ def test_halves_give_the_full_critical_function_and_speed(monkeypatch):
 def test_an_exactly_singular_stiffness_is_the_root(monkeypatch):
     """If an evaluation lands on V_c to working precision (K(V) exactly singular), f = 0
     there instead of an error: the root search brackets it like any f <= 0."""
-    import gyroshell.critical as crit
-    from gyroshell.errors import SingularError
-    from gyroshell.mirror import mirror_split
+    import gyroshell.engines.critical as crit
+    from gyroshell.core.errors import SingularError
+    from gyroshell.tape.mirror import mirror_split
 
     model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
 

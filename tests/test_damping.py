@@ -8,9 +8,9 @@ import scipy.linalg as sl
 from convergence import observed_order
 
 from gyroshell import ParameterError, TapeModel, TapeParameters
-from gyroshell.damping import Damping, as_damping, rayleigh, viscous
-from gyroshell.loads import Ramp, gaussian_load
-from gyroshell.newmark import Newmark, march
+from gyroshell.engines.newmark import Newmark, march
+from gyroshell.tape.damping import Damping, as_damping, rayleigh, viscous
+from gyroshell.tape.loads import Ramp, gaussian_load
 
 WIDTH = 6.35e-3
 SPEED = 50.0
@@ -110,7 +110,7 @@ def test_bad_force_exponent_and_blowup_factor(small):
         stepper.march(2, blowup_factor=-1.0)
 
 
-@pytest.mark.parametrize("name", ["gyroshell.damping", "gyroshell.frf", "gyroshell.moving_load"])
+@pytest.mark.parametrize("name", ["gyroshell.tape.damping", "gyroshell.engines.frequency_response", "gyroshell.tape.moving_loads"])
 def test_docstring_examples(name):
     import doctest
     import importlib

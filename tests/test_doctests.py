@@ -6,11 +6,11 @@ import doctest
 
 import pytest
 
-import gyroshell.config
-import gyroshell.study
+import gyroshell.studies.parameter_study
+import gyroshell.tape.config
 
 
-@pytest.mark.parametrize("module", [gyroshell.study, gyroshell.config],
+@pytest.mark.parametrize("module", [gyroshell.studies.parameter_study, gyroshell.tape.config],
                          ids=lambda m: m.__name__)
 def test_docstring_examples(module):
     result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE)

@@ -12,7 +12,7 @@ from conftest import moving_string
 from convergence import observed_order
 
 from gyroshell import ConvergenceError, Grid, ParameterError, TapeModel, TapeParameters
-from gyroshell.eigen import modes, relative_residuals
+from gyroshell.engines.eigen import modes, relative_residuals
 
 # Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
 pytestmark = pytest.mark.usefixtures("every_factorization")
@@ -197,7 +197,7 @@ def test_lanczos_and_arpack_agree(velocity):
 
 
 def test_count_above_the_limit_is_refused_quickly():
-    from gyroshell.eigen import max_count
+    from gyroshell.engines.eigen import max_count
 
     model = _model(length_ratio=19.0)
     limit = max_count(model.size)
@@ -209,7 +209,7 @@ def test_count_above_the_limit_is_refused_quickly():
 @pytest.mark.parametrize("nu", [-0.5, 0.0, 0.3, 0.49])
 def test_bending_is_positive_semidefinite_so_K_is_definite_below_string_speed(edges, nu):
     """The stiffness floor takes A >= kW from the construction of A (Gram forms): check it."""
-    from gyroshell.inertia import factor_inertia
+    from gyroshell.linalg.inertia import factor_inertia
 
     model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8, edges=edges,
                                      poisson=nu))

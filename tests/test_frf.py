@@ -14,10 +14,14 @@ from closed_forms import navier_static
 from convergence import observed_order
 
 from gyroshell import ParameterError, TapeModel, TapeParameters, pressure_load, solve_static
-from gyroshell.eigen import modes
-from gyroshell.frf import direct_response, frequency_response, parse_frequencies
-from gyroshell.loads import Harmonic
-from gyroshell.newmark import march
+from gyroshell.engines.eigen import modes
+from gyroshell.engines.frequency_response import (
+    direct_response,
+    frequency_response,
+    parse_frequencies,
+)
+from gyroshell.engines.newmark import march
+from gyroshell.tape.loads import Harmonic
 
 WIDTH = 6.35e-3
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from gyroshell import TapeModel, TapeParameters, gaussian_load
-from gyroshell.loads import Ramp, gaussian_exponent
+from gyroshell.tape.loads import Ramp, gaussian_exponent
 
 
 def test_gaussian_decays_to_one_percent_at_five_percent_of_width():

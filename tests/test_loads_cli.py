@@ -10,7 +10,7 @@ import pytest
 
 from gyroshell import TapeModel, TapeParameters
 from gyroshell.cli import main
-from gyroshell.transient_result import Snapshots
+from gyroshell.results.transient import Snapshots
 
 WIDTH = 6.35e-3
 COARSE = ["--spacing", str(WIDTH / 10), "--length-ratio", "3"]

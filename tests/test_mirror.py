@@ -1,4 +1,4 @@
-"""The tape's mirror symmetry about its centre line (gyroshell.mirror): the reflection
+"""The tape's mirror symmetry about its centre line (gyroshell.tape.mirror): the reflection
 commutes with the operators, the two halves are an orthogonal splitting, and the eigen-solver
 on the halves returns the full problem's modes, each symmetric or antisymmetric as the
 Navier modes sin(mπx/L_x) sin(nπy/L_y) are for odd and even n."""
@@ -12,8 +12,8 @@ from closed_forms import navier_frequency
 from conftest import moving_string
 
 from gyroshell import ParameterError, TapeModel, TapeParameters
-from gyroshell.eigen import modes
-from gyroshell.mirror import _reflection, mirror_split
+from gyroshell.engines.eigen import modes
+from gyroshell.tape.mirror import _reflection, mirror_split
 
 pytestmark = pytest.mark.usefixtures("every_factorization")
 

@@ -17,8 +17,10 @@ from closed_forms import moving_line_load
 from convergence import observed_order
 
 from gyroshell import Grid, ParameterError, TapeModel, TapeParameters, gaussian_load
-from gyroshell.loads import gaussian_exponent
-from gyroshell.moving_load import (
+from gyroshell.engines.newmark import march
+from gyroshell.engines.static import solve_static
+from gyroshell.tape.loads import gaussian_exponent
+from gyroshell.tape.moving_loads import (
     ContactWindows,
     GaussianShape,
     MovingLoad,
@@ -28,8 +30,6 @@ from gyroshell.moving_load import (
     UserShape,
     drum_heads,
 )
-from gyroshell.newmark import march
-from gyroshell.static import solve_static
 
 #: Line-load exponent, 1/m²: a Gaussian of 1 mm scale along x (resolved by coarse grids).
 ALPHA = 1.0 / 1e-3**2

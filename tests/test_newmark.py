@@ -14,7 +14,7 @@ import scipy.linalg as sl
 from convergence import observed_order
 
 from gyroshell import TapeModel, TapeParameters, solve_static
-from gyroshell.newmark import Newmark, march
+from gyroshell.engines.newmark import Newmark, march
 
 WIDTH = 6.35e-3
 SPEED = 50.0  # m/s, well below the critical speed

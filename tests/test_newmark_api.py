@@ -7,10 +7,10 @@ import pytest
 import scipy.sparse as sp
 
 from gyroshell import ConvergenceError, ParameterError, TapeModel, TapeParameters
-from gyroshell.factorization import BACKENDS, available_backends, factorize, resolve_backend
-from gyroshell.loads import Harmonic
-from gyroshell.newmark import Newmark, NewmarkStabilityWarning, march
-from gyroshell.transient_result import Snapshots, TransientResult
+from gyroshell.engines.newmark import Newmark, NewmarkStabilityWarning, march
+from gyroshell.linalg.factorization import BACKENDS, available_backends, factorize, resolve_backend
+from gyroshell.results.transient import Snapshots, TransientResult
+from gyroshell.tape.loads import Harmonic
 
 WIDTH = 6.35e-3
 

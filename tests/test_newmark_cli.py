@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 from gyroshell.cli import main
-from gyroshell.transient_result import Snapshots
+from gyroshell.results.transient import Snapshots
 
 COARSE = ["--spacing", str(6.35e-3 / 10), "--length-ratio", "3"]
 

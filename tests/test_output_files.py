@@ -15,7 +15,7 @@ import pytest
 from conftest import WIDTH
 
 from gyroshell import ParameterError
-from gyroshell.io import (
+from gyroshell.core.files import (
     OutputPathError,
     atomic_path,
     check_output,
@@ -81,16 +81,16 @@ BAD_OUTPUTS = [
 
 @pytest.mark.parametrize(("case", "argv", "match"), BAD_OUTPUTS, ids=[b[0] for b in BAD_OUTPUTS])
 def test_bad_output_refused_before_computing(cli, workdir, monkeypatch, case, argv, match):
-    import gyroshell.eigen
-    import gyroshell.newmark
-    import gyroshell.study  # noqa: F401 - bound to the real engines before the patch
-    import gyroshell.sweep  # noqa: F401
+    import gyroshell.engines.eigen
+    import gyroshell.engines.newmark
+    import gyroshell.studies.parameter_study  # noqa: F401 - bound to the real engines before the patch
+    import gyroshell.studies.sweep  # noqa: F401
 
     def must_not_run(*args, **kwargs):
         raise AssertionError("computed before checking the outputs")
 
-    monkeypatch.setattr(gyroshell.eigen, "modes", must_not_run)
-    monkeypatch.setattr(gyroshell.newmark.Newmark, "__init__", must_not_run)
+    monkeypatch.setattr(gyroshell.engines.eigen, "modes", must_not_run)
+    monkeypatch.setattr(gyroshell.engines.newmark.Newmark, "__init__", must_not_run)
     before = listing(workdir)
     run = cli(argv)
     assert run.code == 2, run.err
@@ -286,7 +286,7 @@ ANNOUNCED_SWEEP = textwrap.dedent("""
     import sys
     from gyroshell.cli import main
 
-    sweep = importlib.import_module("gyroshell.sweep")   # the module, not the function
+    sweep = importlib.import_module("gyroshell.studies.sweep")   # the module, not the function
 
     original, started = sweep.modes, []
 
@@ -321,7 +321,7 @@ def test_plot_formats_are_ones_matplotlib_writes(tmp_path):
     import matplotlib.pyplot as plt
     from matplotlib.backend_bases import FigureCanvasBase
 
-    from gyroshell.io import PLOT_FORMATS
+    from gyroshell.core.files import PLOT_FORMATS
 
     assert set(PLOT_FORMATS) <= set(FigureCanvasBase.get_supported_filetypes())
     fig = plt.figure()

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from gyroshell import Grid, ParameterError, TapeModel, TapeParameters, solve_static
-from gyroshell.errors import SupercriticalError
+from gyroshell.core.errors import SupercriticalError
 
 
 def test_table1_defaults_and_derived_values():

@@ -18,8 +18,8 @@ from gyroshell import (
     solve_static,
     sweep,
 )
-from gyroshell.errors import ParameterError
-from gyroshell.persistence import metadata
+from gyroshell.core.errors import ParameterError
+from gyroshell.results.storage import metadata
 
 PARAMS = TapeParameters(length_ratio=4, spacing=6.35e-3 / 10)
 

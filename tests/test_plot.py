@@ -12,8 +12,8 @@ from matplotlib.axes import Axes
 
 from gyroshell import TapeModel, TapeParameters, march, modes, run_study, solve_static
 from gyroshell import plot as gplot
-from gyroshell.campbell import campbell
-from gyroshell.errors import ParameterError
+from gyroshell.core.errors import ParameterError
+from gyroshell.studies.campbell import campbell
 
 PARAMS = TapeParameters(length_ratio=4, spacing=6.35e-3 / 8)
 PNG = b"\x89PNG\r\n\x1a\n"
@@ -99,7 +99,7 @@ def test_gif_animations(model, tmp_path):
 
 
 def test_import_gyroshell_does_not_import_matplotlib_xarray_or_dask():
-    code = ("import sys, gyroshell, gyroshell.plot, gyroshell.study, gyroshell.campbell; "
+    code = ("import sys, gyroshell, gyroshell.plot, gyroshell.studies.parameter_study, gyroshell.studies.campbell; "
             "print([m for m in ('matplotlib', 'xarray', 'dask', 'distributed', 'pandas') "
             "if m in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,

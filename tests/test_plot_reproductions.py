@@ -10,8 +10,8 @@ from matplotlib.axes import Axes
 
 from gyroshell import TapeModel, TapeParameters, march
 from gyroshell import plot as gplot
-from gyroshell.errors import ParameterError
-from gyroshell.frf import frequency_response
+from gyroshell.core.errors import ParameterError
+from gyroshell.engines.frequency_response import frequency_response
 
 T = np.linspace(0.0, 100e-6, 51)          # s
 W = 1e-9 * (1 - np.cos(2 * np.pi * T / 50e-6))   # m

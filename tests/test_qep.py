@@ -9,8 +9,8 @@ import scipy.linalg as la
 import scipy.sparse as sp
 
 from gyroshell import ParameterError, TapeModel, TapeParameters
-from gyroshell.eigen import modes
-from gyroshell.qep import DENSE_LIMIT, classify_stability, gyroscopic_modes, max_count
+from gyroshell.engines.eigen import modes
+from gyroshell.linalg.qep import DENSE_LIMIT, classify_stability, gyroscopic_modes, max_count
 
 # Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
 pytestmark = pytest.mark.usefixtures("every_factorization")
@@ -233,9 +233,9 @@ def test_damped_navier_frequencies_converge_second_order():
 def test_docstring_examples():
     import doctest
 
-    import gyroshell.qep
+    import gyroshell.linalg.qep
 
-    result = doctest.testmod(gyroshell.qep, optionflags=doctest.NORMALIZE_WHITESPACE)
+    result = doctest.testmod(gyroshell.linalg.qep, optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0
 
 

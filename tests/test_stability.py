@@ -27,8 +27,8 @@ from conftest import moving_string
 from convergence import observed_order
 
 from gyroshell import TapeModel, TapeParameters, classify_stability, divergence_speed, modes
-from gyroshell.errors import ParameterError
-from gyroshell.study import tape_stability
+from gyroshell.core.errors import ParameterError
+from gyroshell.studies.parameter_study import tape_stability
 
 # Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
 pytestmark = pytest.mark.usefixtures("every_factorization")

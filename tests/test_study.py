@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 from test_stability import quadratic_eigenvalues  # the tests' own dense solver
 
-import gyroshell.study as study_module
+import gyroshell.studies.parameter_study as study_module
 from gyroshell import (
     TapeModel,
     TapeParameters,
@@ -19,7 +19,7 @@ from gyroshell import (
     run_study,
     solve_static,
 )
-from gyroshell.errors import ParameterError, SupercriticalError
+from gyroshell.core.errors import ParameterError, SupercriticalError
 
 BASE = TapeParameters(length_ratio=4, spacing=6.35e-3 / 8)
 VARY = {"velocity": [0.0, 60.0, 104.0], "tension": [70.0, 90.0]}

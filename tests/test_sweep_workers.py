@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 from gyroshell import ParameterError, TapeModel, TapeParameters
-from gyroshell.sweep import sweep
+from gyroshell.studies.sweep import sweep
 
 WIDTH = TapeParameters().width
 

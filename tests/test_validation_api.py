@@ -16,12 +16,11 @@ from gyroshell import (
     TapeModel,
     TapeParameters,
     bending_rigidity,
-    budget,
     march,
     shell_stiffness,
     solve_static,
-    validation,
 )
+from gyroshell.core import budget, validation
 
 NAN, INF = float("nan"), float("inf")
 
@@ -207,7 +206,7 @@ def test_progress_bars_only_on_a_terminal(monkeypatch):
     import io as stdio
     import sys
 
-    from gyroshell.io import progress_wanted
+    from gyroshell.core.files import progress_wanted
 
     monkeypatch.setattr(sys, "stderr", stdio.StringIO())
     assert progress_wanted(None) is False and progress_wanted(True) is True

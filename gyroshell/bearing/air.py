@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-from .. import validation
-from ..errors import ParameterError
+from ..core import validation
+from ..core.errors import ParameterError
 
 #: Accepted ranges (SI): wide around air at 20 °C, narrow enough that the film's scales stay
 #: inside double precision (p_a 1e-300 Pa overflowed the slip factor 6 λ p_a / (p h)).

@@ -21,8 +21,8 @@ import math
 
 import numpy as np
 
-from ..errors import ParameterError
-from ..parameters import _check_finite
+from ..core.errors import ParameterError
+from ..tape.parameters import _check_finite
 
 #: Largest wrap angle, rad: beyond it the shallow-shell gap w₀ is no longer a fair model.
 MAX_WRAP_ANGLE = math.radians(90.0)

@@ -20,8 +20,8 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import ParameterError
-from ..parameters import MIN_INTERVALS_ACROSS, TapeParameters, _check_positive
+from ..core.errors import ParameterError
+from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters, _check_positive
 from .air import AirParameters
 from .film import Film
 from .geometry import check_wrap_angle, dry_curvature, dry_gap
@@ -252,7 +252,7 @@ class BearingModel:
         fraction of a fine-grid factorization."""
         from scipy.interpolate import RegularGridInterpolator
 
-        from ..errors import ConvergenceError
+        from ..core.errors import ConvergenceError
         from .steady import BearingSolution, NewtonInfo, _newton_or_pseudo_time
 
         nx, ny = self.nx // 2 + (self.nx // 2) % 2, self.ny // 2 + (self.ny // 2) % 2
@@ -279,7 +279,7 @@ class BearingModel:
         return np.concatenate([u, fields[1][self.film.interior]])
 
     def _extruded_strip_state(self) -> np.ndarray:
-        from ..errors import ConvergenceError
+        from ..core.errors import ConvergenceError
         from .steady import solve_steady
 
         strip = BearingModel(self.params, self.air, velocity=self.velocity,

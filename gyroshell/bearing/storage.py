@@ -17,8 +17,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import persistence
-from ..errors import ParameterError
+from ..core.errors import ParameterError
+from ..results import storage
 from .air import AirParameters
 from .mesh import Grading
 from .model import BearingModel
@@ -49,21 +49,21 @@ def to_xarray(sol: BearingSolution):
     model = {"velocity": m.velocity, "wrap_angle": m.wrap_angle,
              "infinitely_wide": m.infinitely_wide, "span": m.span, "nx": m.nx, "ny": m.ny,
              "grading": m.grading.as_dict()}
-    return persistence._dataset(
+    return storage._dataset(
         data, coords, KIND, params=m.params, info=dataclasses.asdict(sol.info),
         air=dataclasses.asdict(m.air), model=model, summary=summary)
 
 
 def save(sol: BearingSolution, path: str | os.PathLike[str]) -> Path:
     """Write ``sol`` to a NetCDF file (``.nc``), whole or not at all. Returns the path."""
-    from ..io import atomic_path
+    from ..core.files import atomic_path
 
     path = Path(path)
-    if path.suffix.lower() not in persistence.NETCDF_SUFFIXES:
+    if path.suffix.lower() not in storage.NETCDF_SUFFIXES:
         raise ParameterError(f"a bearing state is saved as NetCDF "
-                             f"({', '.join(persistence.NETCDF_SUFFIXES)}), got {path.name!r}")
+                             f"({', '.join(storage.NETCDF_SUFFIXES)}), got {path.name!r}")
     ds = to_xarray(sol)
-    engine = persistence._engine()
+    engine = storage._engine()
     with atomic_path(path) as tmp:
         ds.to_netcdf(tmp, engine=engine)
     return path
@@ -77,17 +77,17 @@ def load(path: str | os.PathLike[str]) -> BearingSolution:
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"no such file: {path}")
-    with xr.open_dataset(path, engine=persistence._engine()) as ds:
+    with xr.open_dataset(path, engine=storage._engine()) as ds:
         ds = ds.load()
     if ds.attrs.get("gyroshell_type") != KIND:
         raise ParameterError(f"{path} is not a saved bearing state (gyroshell_type "
                              f"{ds.attrs.get('gyroshell_type')!r})")
     a = ds.attrs
-    settings = persistence.from_json(a["model"])
+    settings = storage.from_json(a["model"])
     # files written before graded grids: uniform
     settings["grading"] = Grading(**settings.get("grading", {}))
-    model = BearingModel(persistence._params_from(a),
-                         AirParameters(**persistence.from_json(a["air"])), **settings)
+    model = BearingModel(storage._params_from(a),
+                         AirParameters(**storage.from_json(a["air"])), **settings)
     stored_y = ds["y"].values
     if not (np.allclose(ds["x"].values, model.x - 0.5 * model.length, rtol=0,
                         atol=1e-12 * model.length)
@@ -96,6 +96,6 @@ def load(path: str | os.PathLike[str]) -> BearingSolution:
         raise ParameterError(f"{path}: the stored node coordinates do not match the grid "
                              "rebuilt from its settings")
     U, P, C = (ds[k].values for k in ("departure", "pressure", "contact"))
-    info = NewtonInfo(**persistence.from_json(a["info"]))
+    info = NewtonInfo(**storage.from_json(a["info"]))
     return BearingSolution(model, U[1:-1, :].ravel(), P[model.film.interior],
                            C[1:-1, :].ravel(), info)

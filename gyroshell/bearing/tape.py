@@ -28,8 +28,8 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from ..grid import Grid
-from ..parameters import TapeParameters
+from ..tape.grid import Grid
+from ..tape.parameters import TapeParameters
 from .mesh import dual_widths
 
 

@@ -24,8 +24,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..errors import ParameterError
-from ..newmark import _check_real, check_steps
+from ..core.errors import ParameterError
+from ..engines.newmark import _check_real, check_steps
 from .model import BearingModel
 from .steady import BearingSolution, NewtonInfo, newton
 

@@ -15,8 +15,8 @@ import importlib
 import inspect
 import sys
 
-from ..errors import ConvergenceError, ParameterError
-from ..io import Terminated, termination_signals
+from ..core.errors import ConvergenceError, ParameterError
+from ..core.files import Terminated, termination_signals
 from .common import ArgumentParser, UserError, common_parser
 
 #: Sub-command modules (gyroshell.cli.<name>), in help order.
@@ -29,7 +29,7 @@ def build_parser() -> ArgumentParser:
         prog="gyroshell",
         description="Dynamics of a moving magnetic tape modelled as a gyroscopic cylindrical "
                     "shell (SI units throughout).")
-    from .. import __version__
+    from ..core.version import __version__
     parser.add_argument("--version", action="version", version=f"gyroshell {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
                                 parser_class=ArgumentParser)

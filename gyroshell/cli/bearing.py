@@ -69,8 +69,14 @@ def _progress(message: str) -> None:
 def run(args: argparse.Namespace) -> int:
     from ..bearing import AirParameters, BearingModel
     from ..bearing.steady import solve_steady
-    from ..errors import ConvergenceError
-    from ..io import PLOT, check_output_folder, check_outputs, folder_transaction, transaction
+    from ..core.errors import ConvergenceError
+    from ..core.files import (
+        PLOT,
+        check_output_folder,
+        check_outputs,
+        folder_transaction,
+        transaction,
+    )
 
     if args.velocity <= 0.0:
         raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
@@ -125,7 +131,7 @@ def _write_out(out: Path, sol, summary: dict) -> None:
     import numpy as np
     import pandas as pd
 
-    from ..io import write_atomic
+    from ..core.files import write_atomic
 
     m = sol.model
     y = np.zeros(1) if m.infinitely_wide else m.y

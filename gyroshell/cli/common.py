@@ -8,7 +8,7 @@ import math
 import re
 import sys
 
-from ..parameters import EDGE_CHOICES, TapeParameters
+from ..tape.parameters import EDGE_CHOICES, TapeParameters
 
 #: Option values that are negative numbers (``-1e-4``, ``-.5``, ``-inf``): argparse's own
 #: pattern misses exponents, so ``--spacing -1e-4`` would be taken for an option.
@@ -64,7 +64,7 @@ def positive_int(text: str) -> int:
 
 def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
     """Speeds, m/s, from an option's text: :func:`gyroshell.sweep.parse_velocities`."""
-    from ..sweep import parse_velocities as parse
+    from ..studies.sweep import parse_velocities as parse
 
     return parse(text, option=option)
 
@@ -133,7 +133,7 @@ def parameters_from_args(args: argparse.Namespace) -> TapeParameters:
 
 
 def _with_config(args: argparse.Namespace, kwargs: dict) -> TapeParameters:
-    from ..config import load_config
+    from ..tape.config import load_config
 
     cfg = load_config(args.config)
     for name in ("length_ratio", "edges", "spacing"):
@@ -146,7 +146,7 @@ def _with_config(args: argparse.Namespace, kwargs: dict) -> TapeParameters:
 
 def grid_of(params: TapeParameters):
     """The grid of ``params``, refused (size, interval counts) before scipy is even loaded."""
-    from ..grid import Grid
+    from ..tape.grid import Grid
 
     return Grid.from_parameters(params)
 

@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from ..io import PLOT, check_outputs, transaction, write_atomic
+from ..core.files import PLOT, check_outputs, transaction, write_atomic
 from .common import grid_of, parameters_from_args, parse_velocities, positive_int, print_json
 from .loading import add_damping_options, damping_from_args
 from .saving import add_save_option, check_save_path, save_result
@@ -61,8 +61,8 @@ def run_modes(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
     velocity = params.check_velocity(args.velocity)
     grid = grid_of(params)
-    from ..eigen import modes
-    from ..model import TapeModel
+    from ..engines.eigen import modes
+    from ..tape.model import TapeModel
 
     check_save_path(args.save)
     model = TapeModel(params, grid)
@@ -134,8 +134,8 @@ def stability_sentence(res) -> str:
 def run_critical(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
     grid = grid_of(params)
-    from ..critical import critical_speeds
-    from ..model import TapeModel
+    from ..engines.critical import critical_speeds
+    from ..tape.model import TapeModel
 
     model = TapeModel(params, grid)
     t0 = time.perf_counter()
@@ -172,8 +172,8 @@ def run_sweep(args: argparse.Namespace) -> int:
     check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT),
                    "--save": (args.save, None)})
     grid = grid_of(params)
-    from ..model import TapeModel
-    from ..sweep import plot_sweep, sweep
+    from ..studies.sweep import plot_sweep, sweep
+    from ..tape.model import TapeModel
 
     check_save_path(args.save)
     model = TapeModel(params, grid)

@@ -45,7 +45,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
 
 def _check_outputs(out: str | None, plot: str | None) -> None:
     """Fail before computing if an output could never be written (or two are one file)."""
-    from ..io import PLOT, check_outputs
+    from ..core.files import PLOT, check_outputs
 
     if plot is not None and Path(plot).suffix.lower() != ".png":
         raise UserError(f"--plot must be a .png file, got {plot}")
@@ -53,9 +53,9 @@ def _check_outputs(out: str | None, plot: str | None) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..frf import frequency_response, parse_frequencies
-    from ..model import TapeModel
-    from ..parameters import check_velocity
+    from ..engines.frequency_response import frequency_response, parse_frequencies
+    from ..tape.model import TapeModel
+    from ..tape.parameters import check_velocity
 
     params = parameters_from_args(args)
     velocity = check_velocity(args.velocity)
@@ -68,7 +68,7 @@ def run(args: argparse.Namespace) -> int:
                                 method=args.method, tol=args.tol, max_points=args.max_points,
                                 progress=False if args.quiet else None)
     elapsed = time.perf_counter() - start
-    from ..io import transaction
+    from ..core.files import transaction
 
     with transaction():  # both files, or neither
         if args.out is not None:
@@ -114,7 +114,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _plot(result, params, damping, path: str) -> None:
-    from ..io import write_atomic
+    from ..core.files import write_atomic
     from ..reproduce._common import pyplot
 
     plt = pyplot()

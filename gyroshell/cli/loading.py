@@ -30,7 +30,7 @@ def add_damping_options(p: argparse.ArgumentParser) -> None:
 
 def damping_from_args(args: argparse.Namespace):
     """A Damping from --damping and --rayleigh (validated; raises ParameterError)."""
-    from ..damping import Damping
+    from ..tape.damping import Damping
 
     a, b = args.rayleigh if args.rayleigh is not None else (0.0, 0.0)
     c = 0.0 if args.damping is None else args.damping
@@ -59,7 +59,7 @@ def add_load_options(p: argparse.ArgumentParser) -> None:
 
 def load_from_args(args: argparse.Namespace, params):
     """A MovingLoad from the load options, or None for the paper's fixed step load."""
-    from ..moving_load import ContactWindows, MovingLoad, StraightPath
+    from ..tape.moving_loads import ContactWindows, MovingLoad, StraightPath
 
     contact_given = (args.contact_period is not None, args.contact_duration is not None)
     if any(contact_given) and not all(contact_given):

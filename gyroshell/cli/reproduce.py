@@ -28,7 +28,7 @@ def register(sub, common: argparse.ArgumentParser,
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..io import check_output_folder, folder_transaction
+    from ..core.files import check_output_folder, folder_transaction
     from ..reproduce import Settings, run_studies
 
     out = check_output_folder(args.out, option="--out")

@@ -16,8 +16,8 @@ def check_save_path(path: str | None) -> None:
     """Fail before computing if the result could never be written there."""
     if path is None:
         return
-    from ..io import check_output
-    from ..persistence import NETCDF_SUFFIXES, TABLE_SUFFIXES
+    from ..core.files import check_output
+    from ..results.storage import NETCDF_SUFFIXES, TABLE_SUFFIXES
     from .common import UserError
 
     if Path(path).suffix.lower() not in NETCDF_SUFFIXES + TABLE_SUFFIXES:
@@ -28,6 +28,6 @@ def check_save_path(path: str | None) -> None:
 def save_result(path: str | None, result, params) -> None:
     """Write ``result`` to ``path`` (if given) with ``params`` as metadata."""
     if path is not None:
-        from ..persistence import save
+        from ..results.storage import save
 
         save(result, path, params=params)

@@ -24,8 +24,8 @@ def run(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
     velocity = params.check_velocity(args.velocity)
     grid = grid_of(params)
-    from ..model import TapeModel
-    from ..static import solve_static
+    from ..engines.static import solve_static
+    from ..tape.model import TapeModel
 
     check_save_path(args.save)
     model = TapeModel(params, grid)

@@ -10,7 +10,7 @@ from .saving import add_save_option, check_save_path
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
-    from ..study import COMPUTE_CHOICES, VARIABLE_NAMES
+    from ..studies.parameter_study import COMPUTE_CHOICES, VARIABLE_NAMES
 
     p = sub.add_parser(
         "study", parents=[common], help="parameter study: vary tape parameters, one row each",
@@ -80,8 +80,8 @@ def parse_values(name: str, text: str) -> list:
     ``20um`` / ``"20 um"``; words for ``edges``)."""
     import numpy as np
 
-    from ..budget import check_study_points
-    from ..config import QUANTITIES, parse_quantity
+    from ..core.budget import check_study_points
+    from ..tape.config import QUANTITIES, parse_quantity
     from .common import real
 
     text = text.strip()
@@ -135,7 +135,7 @@ def parse_vary(specs: list[str]) -> dict[str, list]:
 def _check_outputs(outputs: dict[str, tuple[str | None, tuple[str, ...]]]) -> None:
     """Refuse, before computing, a wrong suffix, an unwritable path or one file named twice;
     ``outputs`` maps each option to (path or None, allowed suffixes)."""
-    from ..io import PLOT, check_outputs
+    from ..core.files import PLOT, check_outputs
 
     for flag, (path, suffixes) in outputs.items():
         if path is not None and Path(path).suffix.lower() not in suffixes:
@@ -145,7 +145,7 @@ def _check_outputs(outputs: dict[str, tuple[str | None, tuple[str, ...]]]) -> No
 
 
 def _save_plot(path: str, ax) -> None:
-    from ..io import write_atomic
+    from ..core.files import write_atomic
     from ..plot import pyplot
 
     plt = pyplot(path=path)
@@ -154,14 +154,14 @@ def _save_plot(path: str, ax) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..parameters import check_velocity
-    from ..study import run_study
+    from ..studies.parameter_study import run_study
+    from ..tape.parameters import check_velocity
 
     params = parameters_from_args(args)
     velocity = check_velocity(args.velocity)
     vary = parse_vary(args.vary)
     compute = [c.strip() for item in args.compute for c in item.split(",") if c.strip()]
-    from ..persistence import NETCDF_SUFFIXES, TABLE_SUFFIXES
+    from ..results.storage import NETCDF_SUFFIXES, TABLE_SUFFIXES
 
     check_save_path(args.save)
     _check_outputs({"--out": (args.out, (".csv", ".parquet")),
@@ -176,7 +176,7 @@ def run(args: argparse.Namespace) -> int:
     result = run_study(params, vary=vary, compute=compute, velocity=velocity,
                        count=args.count, workers=args.workers, scheduler=args.scheduler,
                        cache=args.cache, progress=False if args.quiet else None)
-    from ..io import transaction
+    from ..core.files import transaction
 
     with transaction():  # every output of the run, or none
         for path in (args.out, args.save):
@@ -199,9 +199,9 @@ def run(args: argparse.Namespace) -> int:
 def run_campbell(args: argparse.Namespace) -> int:
     import math
 
-    from ..campbell import MIN_MAC, campbell
-    from ..model import TapeModel
-    from ..sweep import check_velocities
+    from ..studies.campbell import MIN_MAC, campbell
+    from ..studies.sweep import check_velocities
+    from ..tape.model import TapeModel
     from .common import parse_velocities
 
     params = parameters_from_args(args)
@@ -217,7 +217,7 @@ def run_campbell(args: argparse.Namespace) -> int:
                     "--plot": (args.plot, (".png", ".pdf", ".svg"))})
     min_mac = MIN_MAC if args.min_mac is None else args.min_mac
     d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac, progress=None)
-    from ..io import transaction
+    from ..core.files import transaction
 
     with transaction():  # both files, or neither
         if args.out:

@@ -69,22 +69,22 @@ def _warn_if_supercritical(model, velocity: float) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .. import budget, io, validation
-    from ..grid import Grid
+    from ..core import budget, files, validation
+    from ..tape.grid import Grid
 
     if (args.snapshot_every is None) != (args.snapshots is None):
         raise UserError("--snapshot-every and --snapshots go together")
     params = parameters_from_args(args)
     velocity = params.check_velocity(args.velocity)
     validation.time_step(args.dt, args.beta)
-    io.check_outputs({"--out": (args.out, None), "--snapshots": (args.snapshots, None),
+    files.check_outputs({"--out": (args.out, None), "--snapshots": (args.snapshots, None),
                       "--save": (args.save, None)})
     check_save_path(args.save)
     grid = Grid.from_parameters(params)
     budget.check_transient(grid.nx, grid.ny, grid.edges, args.steps,
                            fields=budget.snapshot_count(args.steps, args.snapshot_every))
-    from ..model import TapeModel
-    from ..newmark import march
+    from ..engines.newmark import march
+    from ..tape.model import TapeModel
 
     load, damping = load_from_args(args, params), damping_from_args(args)
     model = TapeModel(params, grid)
@@ -93,7 +93,7 @@ def run(args: argparse.Namespace) -> int:
     result = march(model, velocity, dt=args.dt, steps=args.steps, beta=args.beta,
                    gamma=args.gamma, backend=args.backend, damping=damping, load=load,
                    snapshot_every=args.snapshot_every, progress=False if args.quiet else None)
-    with io.transaction():
+    with files.transaction():
         if args.out is not None:
             result.to_csv(args.out)
         if args.snapshots is not None:

@@ -13,8 +13,8 @@ import time
 from collections.abc import Iterable
 from pathlib import Path
 
-from ..errors import ParameterError
-from ..io import check_output_folder
+from ..core.errors import ParameterError
+from ..core.files import check_output_folder
 from ._common import Settings
 
 #: Study names in the order ``all`` runs them.

@@ -6,8 +6,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..io import write_atomic
-from ..parameters import TapeParameters
+from ..core.files import write_atomic
+from ..tape.parameters import TapeParameters
 
 if TYPE_CHECKING:  # pandas loads when a study runs, not when the CLI starts
     import pandas as pd

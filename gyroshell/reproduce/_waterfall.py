@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..model import TapeModel
-from ..newmark import march
+from ..engines.newmark import march
 from ..plot import waterfall
+from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
 #: Centre-line times, s: every 32 µs up to 800 µs (the paper labels a panel 736 µs).

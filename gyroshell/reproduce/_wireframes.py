@@ -12,10 +12,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..model import TapeModel
-from ..newmark import march
+from ..engines.newmark import march
+from ..engines.static import solve_static
 from ..plot import wireframe
-from ..static import solve_static
+from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
 #: Snapshot times, s (the paper notes the first free-edge reflection near 28 µs).

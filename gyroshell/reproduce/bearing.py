@@ -15,7 +15,7 @@ from ..bearing import AirParameters, BearingModel
 from ..bearing.model import foil_length_scales
 from ..bearing.steady import solve_steady
 from ..bearing.transient import march, tension_step
-from ..parameters import TapeParameters
+from ..tape.parameters import TapeParameters
 from ._common import Settings, pyplot, save_csv, save_figure
 
 WRAP = math.radians(15.0)

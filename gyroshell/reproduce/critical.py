@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..critical import PAPER_SPEED, SUNDARAM_BENSON_SPEED, critical_speeds
-from ..model import TapeModel
+from ..engines.critical import PAPER_SPEED, SUNDARAM_BENSON_SPEED, critical_speeds
+from ..tape.model import TapeModel
 from ._common import Settings, save_csv, save_markdown
 
 CASES = (("free", 4.0), ("free", 19.0), ("simply-supported", 4.0), ("simply-supported", 19.0))

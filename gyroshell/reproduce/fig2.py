@@ -14,10 +14,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..model import TapeModel
-from ..newmark import march
+from ..engines.newmark import march
+from ..engines.static import solve_static
 from ..plot import load_point_history
-from ..static import solve_static
+from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
 VELOCITIES = (0.0, 50.0, 90.0, 100.0)

@@ -14,10 +14,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..eigen import modes
-from ..frf import frequency_response
-from ..model import TapeModel
+from ..engines.eigen import modes
+from ..engines.frequency_response import frequency_response
 from ..plot import bode
+from ..tape.model import TapeModel
 from ._common import Settings, pyplot, save_csv, save_figure
 
 VELOCITIES = (0.0, 50.0, 90.0)

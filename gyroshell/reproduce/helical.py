@@ -16,10 +16,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..model import TapeModel
-from ..moving_load import drum_heads
-from ..newmark import march
+from ..engines.newmark import march
 from ..plot import head_histories, wireframe
+from ..tape.model import TapeModel
+from ..tape.moving_loads import drum_heads
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 from ._wireframes import snapshot_axes
 

@@ -20,11 +20,11 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..analysis import dominant_wavelength, first_departure, front_position
-from ..loads import gaussian_exponent, gaussian_load
-from ..model import TapeModel
-from ..newmark import march
-from ..static import solve_static
+from ..engines.newmark import march
+from ..engines.static import solve_static
+from ..studies.signal import dominant_wavelength, first_departure, front_position
+from ..tape.loads import gaussian_exponent, gaussian_load
+from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
 REFLECTION_DT, REFLECTION_STEPS = 0.5e-6, 140

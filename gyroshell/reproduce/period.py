@@ -33,12 +33,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..analysis import amplitude_spectrum, dominant_period
-from ..eigen import modes
-from ..model import TapeModel
-from ..newmark import march
+from ..engines.eigen import modes
+from ..engines.newmark import march
 from ..plot import period_vs_velocity
 from ..plot import spectra as plot_spectra
+from ..studies.signal import amplitude_spectrum, dominant_period
+from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
 
 VELOCITIES = (0.0, 25.0, 50.0, 75.0, 90.0, 95.0, 100.0)
@@ -92,7 +92,7 @@ def plot(table: pd.DataFrame, spectra: pd.DataFrame, path: Path,
 
 
 def run(out: Path, settings: Settings) -> list[Path]:
-    from ..divergence import divergence_speed
+    from ..engines.divergence import divergence_speed
 
     table, spectra = compute(settings)
     v_c = divergence_speed(TapeModel(settings.params(length_ratio=19)))

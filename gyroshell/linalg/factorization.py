@@ -30,7 +30,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from scipy.linalg import lapack
 
-from .errors import ParameterError
+from ..core.errors import ParameterError
 
 
 class Factorization(Protocol):

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import scipy.sparse as sp
 
-from .errors import ParameterError
+from ..core.errors import ParameterError
 from .model import TapeModel
 
 
@@ -53,7 +53,7 @@ class Damping:
     >>> Damping(viscous=-1.0)
     Traceback (most recent call last):
     ...
-    gyroshell.errors.ParameterError: damping must be finite and >= 0 N*s/m^3, got -1
+    gyroshell.ParameterError: damping must be finite and >= 0 N*s/m^3, got -1
     """
 
     viscous: float = 0.0

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .errors import ParameterError
+from ..core.errors import ParameterError
 
 #: Colours of the stability classes (colour-blind safe pairs).
 STABILITY_COLOURS = {"stable": "#4daf4a", "divergence": "#e41a1c", "flutter": "#377eb8",
@@ -227,7 +227,7 @@ def stability_map(study, *, x: str | None = None, y: str | None = None, ax=None,
 def study_lines(study, *, quantity: str | None = None, x: str | None = None, ax=None,
                 title: str | None = None):
     """A computed column against a varied parameter (one line per value of any other)."""
-    from .study import result_columns
+    from ..studies.parameter_study import result_columns
 
     table = _study_table(study)
     varied = list(getattr(study, "varied", ()))
@@ -785,7 +785,7 @@ def bode(omega, response=None, phase=None, *, axes=None, label: str | None = Non
 def _write_gif(fig, update, frames: int, path, fps: int):
     from matplotlib.animation import FuncAnimation, PillowWriter
 
-    from .io import atomic_path
+    from ..core.files import atomic_path
 
     anim = FuncAnimation(fig, update, frames=frames, blit=False)
     with atomic_path(path) as tmp:

@@ -37,7 +37,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import ParameterError
+from ..core.errors import ParameterError
 
 #: Suffixes of the formats :func:`save` writes.
 NETCDF_SUFFIXES = (".nc", ".nc4", ".netcdf")
@@ -85,7 +85,7 @@ def _params_json(params) -> str:
 
 
 def _params_from(attrs: dict):
-    from .parameters import TapeParameters
+    from ..tape.parameters import TapeParameters
 
     data = from_json(attrs.get("parameters", "null"))
     return None if data is None else TapeParameters(**data)
@@ -96,14 +96,14 @@ def _grid_json(grid) -> str:
 
 
 def _grid_from(attrs: dict):
-    from .grid import Grid
+    from ..tape.grid import Grid
 
     data = from_json(attrs.get("grid", "null"))
     return None if data is None else Grid(**data)
 
 
 def _version() -> str:
-    from . import __version__
+    from ..core.version import __version__
 
     return __version__
 
@@ -239,10 +239,10 @@ def to_xarray(result, *, params=None):
     params : TapeParameters, optional
         The tape the result was computed for, stored as metadata (a study knows its own).
     """
-    from .critical import CriticalSpeeds
-    from .eigen import Modes
-    from .static import StaticSolution
-    from .transient_result import TransientResult
+    from ..engines.critical import CriticalSpeeds
+    from ..engines.eigen import Modes
+    from ..engines.static import StaticSolution
+    from .transient import TransientResult
 
     if isinstance(result, StaticSolution):
         return _static(result, params)
@@ -287,7 +287,7 @@ def save(result, path: str | os.PathLike[str], *, params=None) -> Path:
 
     The file is written whole or not at all. Returns the path.
     """
-    from .io import atomic_path
+    from ..core.files import atomic_path
 
     path = Path(path)
     suffix = path.suffix.lower()
@@ -359,7 +359,7 @@ def metadata(path_or_dataset) -> dict:
 
 
 def _read_static(ds):
-    from .static import StaticSolution
+    from ..engines.static import StaticSolution
 
     grid = _grid_from(ds.attrs)
     return StaticSolution(grid, float(ds["velocity"]), grid.from_field(_get(ds, "w")),
@@ -367,7 +367,7 @@ def _read_static(ds):
 
 
 def _read_modes(ds):
-    from .eigen import Modes
+    from ..engines.eigen import Modes
 
     grid = _grid_from(ds.attrs)
     return Modes(grid, float(ds["velocity"]), _get(ds, "eigenvalue"),
@@ -377,7 +377,7 @@ def _read_modes(ds):
 
 
 def _read_critical(ds):
-    from .critical import CriticalSpeeds
+    from ..engines.critical import CriticalSpeeds
 
     names = ("critical_speed", "divergence_speed", "string_speed", "strip_speed",
              "sundaram_benson_speed", "paper_speed")
@@ -385,7 +385,7 @@ def _read_critical(ds):
 
 
 def _read_transient(ds):
-    from .transient_result import Snapshots, TransientResult
+    from .transient import Snapshots, TransientResult
 
     snaps = Snapshots(ds["x"].values, ds["y"].values, ds["snapshot_time"].values,
                       ds["fields"].values, ds["centerline_time"].values,
@@ -404,6 +404,6 @@ def _read_table(ds):
 
 
 def _read_study(ds):
-    from .study import StudyResult
+    from ..studies.parameter_study import StudyResult
 
     return StudyResult._from_saved(_read_table(ds), ds.attrs)

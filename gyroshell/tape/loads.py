@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import erf
 
-from .errors import ParameterError
+from ..core.errors import ParameterError
 from .grid import Grid
 from .parameters import TapeParameters
 

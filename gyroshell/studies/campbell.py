@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .errors import ParameterError
+from ..core.errors import ParameterError
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -96,15 +96,15 @@ class CampbellDiagram:
 
     def plot(self, ax=None, **options):
         """See :func:`gyroshell.plot.campbell`."""
-        from . import plot
+        from .. import plot
 
         return plot.campbell(self, ax=ax, **options)
 
     def save(self, path):
         """Write the tracked branches (NetCDF, CSV or Parquet)."""
-        from . import persistence
+        from ..results import storage
 
-        return persistence.save(self.frame, path)
+        return storage.save(self.frame, path)
 
 
 def _track(results, min_mac: float) -> list[dict]:
@@ -190,7 +190,7 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     import pandas as pd
     from tqdm import tqdm
 
-    from .eigen import modes
+    from ..engines.eigen import modes
     from .sweep import check_velocities
 
     velocities = check_velocities(velocities)
@@ -210,7 +210,7 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
                          columns=["velocity", "branch", "rank", "omega", "growth_rate", "mac"])
     crossings, veerings = _crossings_and_veerings(frame, veering_gap)
     if critical_speed is True:
-        from .critical import critical_speeds
+        from ..engines.critical import critical_speeds
 
         critical_speed = critical_speeds(model).critical_speed
     elif critical_speed is False:

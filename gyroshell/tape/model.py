@@ -14,7 +14,8 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
-from . import operators, validation
+from ..core import validation
+from . import operators
 from .grid import Grid
 from .loads import gaussian_load
 from .parameters import TapeParameters

@@ -17,10 +17,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from .errors import ConvergenceError, ParameterError
-from .inertia import InertiaFactor, factor_inertia
-from .model import TapeModel
-from .threads import blas_threads
+from ..core.errors import ConvergenceError, ParameterError
+from ..core.parallel import blas_threads
+from ..linalg.inertia import InertiaFactor, factor_inertia
+from ..tape.model import TapeModel
 
 #: Factorizations tried by :func:`safe_shift` before giving up (τ = 0).
 SHIFT_TRIES = 8

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import validation
-from .errors import ParameterError
+from ..core import validation
+from ..core.errors import ParameterError
 
 #: Fewest samples for a spectral estimate.
 MIN_SAMPLES = 8

@@ -13,12 +13,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import persistence, validation
+from ..core import validation
+from ..core.errors import ParameterError, SupercriticalError
+from ..linalg.inertia import factor_inertia
+from ..results import storage
+from ..tape.grid import Grid
+from ..tape.model import TapeModel
 from .divergence import divergence_speed
-from .errors import ParameterError, SupercriticalError
-from .grid import Grid
-from .inertia import factor_inertia
-from .model import TapeModel
 
 
 @dataclass(frozen=True)
@@ -53,11 +54,11 @@ class StaticSolution:
 
     def to_xarray(self, *, params=None):
         """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
-        return persistence.to_xarray(self, params=params)
+        return storage.to_xarray(self, params=params)
 
     def save(self, path, *, params=None):
         """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
-        return persistence.save(self, path, params=params)
+        return storage.save(self, path, params=params)
 
 
 def _check_model(model: object) -> TapeModel:

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import erf
 
-from .errors import ParameterError
+from ..core.errors import ParameterError
 from .grid import Grid
 from .loads import check_exponent, gaussian_exponent
 from .model import TapeModel

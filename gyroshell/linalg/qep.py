@@ -50,10 +50,10 @@ import scipy.linalg as la
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ..core.errors import ConvergenceError, ParameterError, SingularError
+from ..core.parallel import blas_threads
 from . import cholesky as _cholesky
-from .errors import ConvergenceError, ParameterError, SingularError
 from .inertia import InertiaFactor, factor_inertia
-from .threads import blas_threads
 
 #: Default relative tolerance of the eigen-iteration (on 1/(λ − σ)).
 DEFAULT_TOL = 1e-10

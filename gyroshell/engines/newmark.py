@@ -35,16 +35,16 @@ from dataclasses import asdict
 
 import numpy as np
 
-from . import budget, validation
-from .damping import Damping, as_damping
-from .errors import ConvergenceError, ParameterError
-from .factorization import factorize
-from .loads import TimeProfile, step
-from .model import TapeModel
-from .moving_load import MovingLoad, PreparedLoads, as_loads
-from .parameters import check_velocity
-from .threads import blas_threads as limit_blas_threads
-from .transient_result import Recorder, TransientResult
+from ..core import budget, validation
+from ..core.errors import ConvergenceError, ParameterError
+from ..core.parallel import blas_threads as limit_blas_threads
+from ..linalg.factorization import factorize
+from ..results.transient import Recorder, TransientResult
+from ..tape.damping import Damping, as_damping
+from ..tape.loads import TimeProfile, step
+from ..tape.model import TapeModel
+from ..tape.moving_loads import MovingLoad, PreparedLoads, as_loads
+from ..tape.parameters import check_velocity
 
 #: The run stops when ‖w‖₂ grows past this many times its natural scale.
 BLOWUP_FACTOR = 1e8

@@ -16,8 +16,8 @@ from functools import cached_property
 
 import numpy as np
 
-from . import budget, validation
-from .errors import ParameterError
+from ..core import budget, validation
+from ..core.errors import ParameterError
 from .parameters import EDGE_CHOICES, MIN_INTERVALS_ACROSS, MIN_INTERVALS_ALONG, TapeParameters
 
 

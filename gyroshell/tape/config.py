@@ -22,7 +22,7 @@ string ``"<number> <unit>"``::
 Keys are the :class:`~gyroshell.parameters.TapeParameters` fields plus ``velocity`` and
 ``name``; they may also sit at the top level instead of under ``[tape]``. Missing keys take
 the Table 1 defaults. An unknown key, an unknown or mismatched unit, or a value out of range
-raises :class:`~gyroshell.errors.ParameterError` naming the file and the key.
+raises :class:`~gyroshell.ParameterError` naming the file and the key.
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from .errors import ParameterError
+from ..core.errors import ParameterError
 from .parameters import TapeParameters, check_velocity
 
 #: Units accepted for each kind of quantity, with their factor to SI.
@@ -206,7 +206,7 @@ def config_text(params: TapeParameters, velocity: float | None = None,
 def write_config(params: TapeParameters, path: str | os.PathLike[str], *,
                  velocity: float | None = None, name: str | None = None) -> Path:
     """Write a tape definition file (whole or not at all)."""
-    from .io import write_atomic
+    from ..core.files import write_atomic
 
     text = config_text(params, velocity, name)
     return write_atomic(path, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))

@@ -10,8 +10,8 @@ import math
 from dataclasses import dataclass, fields, replace
 from typing import Literal
 
-from . import validation
-from .errors import ParameterError
+from ..core import validation
+from ..core.errors import ParameterError
 
 Edges = Literal["free", "simply-supported"]
 EDGE_CHOICES: tuple[str, ...] = ("free", "simply-supported")
@@ -146,7 +146,7 @@ class TapeParameters:
     >>> TapeParameters(thickness=-1e-6)
     Traceback (most recent call last):
     ...
-    gyroshell.errors.ParameterError: thickness must be > 0 m, got -1e-06
+    gyroshell.ParameterError: thickness must be > 0 m, got -1e-06
     """
 
     youngs_modulus: float = 4.0e9

@@ -26,14 +26,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from . import cholesky, persistence
-from .errors import ParameterError
-from .grid import Grid
-from .inertia import factor_inertia
-from .mirror import mirror_split
-from .model import TapeModel
-from .parameters import TapeParameters, check_velocity
-from .qep import (
+from ..core.errors import ParameterError
+from ..linalg import cholesky
+from ..linalg.inertia import factor_inertia
+from ..linalg.qep import (
     DEFAULT_TOL,
     RESIDUAL_LIMIT,
     SHIFT_MARGIN,
@@ -45,7 +41,12 @@ from .qep import (
     gyroscopic_modes,
     max_count,
 )
-from .qep import relative_residuals as _matrix_residuals
+from ..linalg.qep import relative_residuals as _matrix_residuals
+from ..results import storage
+from ..tape.grid import Grid
+from ..tape.mirror import mirror_split
+from ..tape.model import TapeModel
+from ..tape.parameters import TapeParameters, check_velocity
 
 __all__ = ["DEFAULT_TOL", "RESIDUAL_LIMIT", "SHIFT_MARGIN", "Modes", "check_speed",
            "damping_operator",
@@ -104,11 +105,11 @@ class Modes(_EigenvalueProperties):
 
     def to_xarray(self, *, params=None):
         """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
-        return persistence.to_xarray(self, params=params)
+        return storage.to_xarray(self, params=params)
 
     def save(self, path, *, params=None):
         """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
-        return persistence.save(self, path, params=params)
+        return storage.save(self, path, params=params)
 
 
 # ----- small pieces -----------------------------------------------------------------------
@@ -150,7 +151,7 @@ def damping_operator(model, velocity: float, damping) -> sp.spmatrix | None:
     N·s/m³ (C = c W, a damping pressure c ∂w/∂t), or a pair (a, b) for Rayleigh damping
     C = a M + b K(V) with a >= 0 in 1/s and b >= 0 in s.
     """
-    from .damping import Damping, damping_matrix, rayleigh
+    from ..tape.damping import Damping, damping_matrix, rayleigh
 
     if isinstance(damping, (tuple, list)):
         if len(damping) != 2:

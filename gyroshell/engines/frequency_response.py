@@ -42,12 +42,12 @@ import scipy.linalg as sl
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from .damping import Damping, as_damping
-from .errors import ParameterError
-from .io import atomic_path
-from .model import TapeModel
-from .parameters import check_velocity
-from .threads import blas_threads as limit_blas_threads
+from ..core.errors import ParameterError
+from ..core.files import atomic_path
+from ..core.parallel import blas_threads as limit_blas_threads
+from ..tape.damping import Damping, as_damping
+from ..tape.model import TapeModel
+from ..tape.parameters import check_velocity
 
 #: SuperLU's threshold for keeping a diagonal pivot. Q has a symmetric pattern; the default
 #: partial pivoting (1.0) abandons the fill-reducing order when K − ω²M is indefinite and
@@ -188,7 +188,7 @@ def parse_frequencies(text: str) -> np.ndarray:
     >>> parse_frequencies("1e5:0:3")
     Traceback (most recent call last):
     ...
-    gyroshell.errors.ParameterError: frequencies: need finite START <= STOP, got '1e5:0:3'
+    gyroshell.ParameterError: frequencies: need finite START <= STOP, got '1e5:0:3'
     """
     try:
         if ":" in text:

@@ -8,6 +8,10 @@ did not converge, a time march that blew up).
 
 from __future__ import annotations
 
+#: The public classes are shown as ``gyroshell.<Name>`` (their public home) in tracebacks and
+#: doctests, as numpy does for its public names; pickling resolves them there too.
+PUBLIC_MODULE = "gyroshell"
+
 
 class ParameterError(ValueError):
     """A parameter is outside its allowed range; the message names it and the range."""
@@ -37,3 +41,7 @@ class SingularError(ParameterError):
 
 class ConvergenceError(RuntimeError):
     """A numerical method failed to converge or a solution blew up."""
+
+
+for _public in (ParameterError, SupercriticalError, ConvergenceError):
+    _public.__module__ = PUBLIC_MODULE

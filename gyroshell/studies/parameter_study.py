@@ -46,9 +46,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from . import budget
-from .errors import ParameterError
-from .parameters import TapeParameters, check_velocity
+from ..core import budget
+from ..core.errors import ParameterError
+from ..tape.parameters import TapeParameters, check_velocity
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -74,7 +74,7 @@ CHUNKS_PER_WORKER = 4
 def classify_stability(eigenvalues, *args, **kwargs):
     """:func:`gyroshell.qep.classify_stability`, imported on first use (it loads scipy.linalg,
     which the CLI's parser and refusals do not need)."""
-    from .qep import classify_stability as classify
+    from ..linalg.qep import classify_stability as classify
 
     return classify(eigenvalues, *args, **kwargs)
 
@@ -88,7 +88,7 @@ def quadratic_eigenvalues(M, G, K) -> np.ndarray:
     companion = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ G]])
     import scipy.linalg as la
 
-    from .threads import blas_threads
+    from ..core.parallel import blas_threads
 
     with blas_threads(1):  # studies run one point per core
         return la.eigvals(companion)
@@ -112,7 +112,7 @@ def tape_stability(model, velocity: float, eigenvalues=None) -> str:
     zero, from :func:`gyroshell.eigen.modes`) decide if one of them grows, else the answer
     is ``undetermined``: the modes nearest zero do not show a far-off growing one.
     """
-    from .inertia import factor_inertia
+    from ..linalg.inertia import factor_inertia
 
     K = model.K(velocity)
     negatives = factor_inertia(K).negatives
@@ -219,7 +219,7 @@ def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
     and is reported in ``error`` (``"static: SupercriticalError: message"``; several joined
     by " | "), while the other quantities of the point are kept.
     """
-    from .model import TapeModel
+    from ..tape.model import TapeModel
 
     row: dict = {c: math.nan for c in result_columns(compute, count)}
     if "stability" in row:
@@ -240,13 +240,13 @@ def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
         model.append(TapeModel(params))
 
     def critical() -> None:
-        from .critical import critical_speeds
+        from ..engines.critical import critical_speeds
 
         c = critical_speeds(model[0])
         row.update(critical_speed=c.critical_speed, divergence_speed=c.divergence_speed)
 
     def eigen() -> None:
-        from .eigen import modes
+        from ..engines.eigen import modes
 
         res = modes(model[0], state["v"], count if "modes" in compute else 1)
         if "modes" in compute:
@@ -258,7 +258,7 @@ def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
         row["stability"] = tape_stability(model[0], state["v"], res.eigenvalues)
 
     def static() -> None:
-        from .static import solve_static
+        from ..engines.static import solve_static
 
         s = solve_static(model[0], state["v"])
         row.update(load_point_deflection=s.load_point_deflection,
@@ -369,9 +369,9 @@ class StudyResult:
 
     def to_xarray(self):
         """The table as an :class:`xarray.Dataset` (dimension ``row``) with the metadata."""
-        from . import persistence
+        from ..results import storage
 
-        return persistence.to_xarray(self)
+        return storage.to_xarray(self)
 
     def gridded(self):
         """The table as an :class:`xarray.Dataset` with one dimension per varied parameter
@@ -382,22 +382,22 @@ class StudyResult:
         table = self.table.drop(columns=["point"])
         if table.duplicated(list(self.varied)).any():
             raise ParameterError("points repeat the same varied values: no grid")
-        from .persistence import _column_units
+        from ..results.storage import _column_units
 
         ds = table.set_index(list(self.varied)).to_xarray()
         _column_units(ds)
         return ds
 
     def save(self, path):
-        """Write NetCDF (.nc), CSV or Parquet; see :func:`gyroshell.persistence.save`."""
-        from . import persistence
+        """Write NetCDF (.nc), CSV or Parquet; see :func:`gyroshell.storage.save`."""
+        from ..results import storage
 
-        return persistence.save(self, path)
+        return storage.save(self, path)
 
     def plot(self, ax=None, **options):
         """Stability map (two varied parameters) or the quantity against one; see
         :func:`gyroshell.plot.stability_map` and :func:`gyroshell.plot.study_lines`."""
-        from . import plot
+        from .. import plot
 
         if len(self.varied) == 2 and "stability" in self.table:
             return plot.stability_map(self, ax=ax, **options)
@@ -409,7 +409,7 @@ class StudyResult:
 
     @classmethod
     def _from_saved(cls, table: pd.DataFrame, attrs: Mapping) -> StudyResult:
-        from .persistence import _params_from, from_json
+        from ..results.storage import _params_from, from_json
 
         table = table.copy()
         for col in ("error", "stability"):
@@ -528,7 +528,7 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
 
     base_fields = {f.name: getattr(base, f.name) for f in dataclasses.fields(base)}
-    from . import __version__
+    from ..core.version import __version__
 
     spec = json.dumps([base_fields, velocity, compute, count, __version__], sort_keys=True,
                       default=repr)
@@ -595,7 +595,7 @@ def _execute(todo, record: Callable, base_fields, velocity, compute, count, *, w
 
 def _worker_version() -> str:
     try:
-        from gyroshell import __version__
+        from ..core.version import __version__
     except ImportError:
         return "not installed"
     return __version__
@@ -603,7 +603,7 @@ def _worker_version() -> str:
 
 def _check_worker_versions(client, scheduler: str) -> None:
     """Refuse workers that run another gyroshell: their rows would not be this version's."""
-    from . import __version__
+    from ..core.version import __version__
 
     versions = client.run(_worker_version)
     if not versions:

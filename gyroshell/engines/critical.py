@@ -23,14 +23,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import cholesky, persistence
+from ..core.errors import ConvergenceError, ParameterError, SingularError
+from ..linalg import cholesky
+from ..linalg.inertia import factor_inertia
+from ..linalg.qep import gyroscopic_modes
+from ..results import storage
+from ..tape.mirror import mirror_split
+from ..tape.model import TapeModel
 from .divergence import beam_mu_estimate, divergence
 from .eigen import check_speed, modes
-from .errors import ConvergenceError, ParameterError, SingularError
-from .inertia import factor_inertia
-from .mirror import mirror_split
-from .model import TapeModel
-from .qep import gyroscopic_modes
 
 #: Sundaram & Benson (1989/1990), all sides simply supported shell, m/s (quoted by the paper).
 SUNDARAM_BENSON_SPEED = 111.0
@@ -171,11 +172,11 @@ class CriticalSpeeds:
 
     def to_xarray(self, *, params=None):
         """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
-        return persistence.to_xarray(self, params=params)
+        return storage.to_xarray(self, params=params)
 
     def save(self, path, *, params=None):
         """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
-        return persistence.save(self, path, params=params)
+        return storage.save(self, path, params=params)
 
 
 #: The default starting speed is this fraction of the beam estimate √((T + μ_beam)/ρ).

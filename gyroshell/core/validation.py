@@ -1,7 +1,7 @@
 """Argument checks shared by every public function: numbers, integers, flags and vectors.
 
 Each check returns the value converted to its plain Python (or NumPy) type, or raises
-:class:`~gyroshell.errors.ParameterError` with a message that names the parameter, the
+:class:`~gyroshell.ParameterError` with a message that names the parameter, the
 allowed range and the value received, e.g. ``thickness must be > 0 m, got -1e-06``.
 
 Examples
@@ -11,7 +11,7 @@ Examples
 >>> real("velocity", -1, low=0.0, unit="m/s")
 Traceback (most recent call last):
 ...
-gyroshell.errors.ParameterError: velocity must be >= 0 m/s, got -1
+gyroshell.ParameterError: velocity must be >= 0 m/s, got -1
 >>> integer("count", 6.0, low=1)
 6
 """
@@ -165,7 +165,7 @@ def scale(name: str, value: float, unit: str = "", *, what: str = "",
     >>> scale("k / density", 1e200, "1/s^2", what="the shell stiffness and density")
     Traceback (most recent call last):
     ...
-    gyroshell.errors.ParameterError: k / density (from the shell stiffness and density) ...
+    gyroshell.ParameterError: k / density (from the shell stiffness and density) ...
     """
     source = f" (from {what})" if what else ""
     if not value <= MAX_SCALE:
@@ -191,7 +191,7 @@ def time_step(dt: object, beta: object, *, stiffness_scale: float | None = None)
     >>> time_step(1e-170, 0.25)
     Traceback (most recent call last):
     ...
-    gyroshell.errors.ParameterError: dt 1e-170 s is too small: beta x dt^2 = 0 s^2 ...
+    gyroshell.ParameterError: dt 1e-170 s is too small: beta x dt^2 = 0 s^2 ...
     """
     dt = positive("dt", dt, "s")
     beta = positive("beta", beta)

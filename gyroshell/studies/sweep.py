@@ -20,11 +20,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from . import budget
-from .eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
-from .errors import ParameterError
-from .model import TapeModel
-from .parameters import check_velocity
+from ..core import budget
+from ..core.errors import ParameterError
+from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
+from ..tape.model import TapeModel
+from ..tape.parameters import check_velocity
 
 if TYPE_CHECKING:  # pandas and tqdm are imported when a sweep runs: keep `import gyroshell` fast
     import pandas as pd
@@ -182,7 +182,7 @@ def _solve_parallel(model: TapeModel, velocities: list[float], count: int,
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
-    from .study import _init_worker
+    from .parameter_study import _init_worker
 
     bounds = np.linspace(0, len(velocities), workers + 1).round().astype(int)
     runs = [velocities[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
@@ -341,7 +341,7 @@ def plot_sweep(frame: pd.DataFrame, path=None, *, ax=None, title: str | None = N
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8, ncol=2)
     if path is not None:
-        from .io import write_atomic
+        from ..core.files import write_atomic
 
         write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=120))
     return fig

@@ -13,10 +13,11 @@ from pathlib import Path
 
 import numpy as np
 
-from . import budget, persistence, validation
-from .errors import ParameterError
-from .grid import Grid
-from .io import atomic_path
+from ..core import budget, validation
+from ..core.errors import ParameterError
+from ..core.files import atomic_path
+from ..tape.grid import Grid
+from . import storage
 
 
 def steps_at(times, dt: float, steps: int, t0: float = 0.0, *, name: str) -> np.ndarray:
@@ -217,11 +218,11 @@ class TransientResult:
 
     def to_xarray(self, *, params=None):
         """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
-        return persistence.to_xarray(self, params=params)
+        return storage.to_xarray(self, params=params)
 
     def save(self, path, *, params=None):
         """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
-        return persistence.save(self, path, params=params)
+        return storage.save(self, path, params=params)
 
     def to_frame(self):
         """pandas DataFrame with columns ``t`` (s) and ``w`` (m) (+ ``w_head<k>``, m, with
@@ -247,7 +248,7 @@ class TransientResult:
     def read_csv(path: str | os.PathLike[str]):
         """The load-point history written by :meth:`to_csv`, as a DataFrame (t in s, w in m),
         bit-exact (pandas' round-trip float parser)."""
-        from .io import read_csv_exact
+        from ..core.files import read_csv_exact
 
         return read_csv_exact(path)
 
