@@ -23,6 +23,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.errors import ParameterError
+from ..core.units import axis_label
 
 #: Colours of the stability classes (colour-blind safe pairs).
 STABILITY_COLOURS = {"stable": "#4daf4a", "divergence": "#e41a1c", "flutter": "#377eb8",
@@ -218,8 +219,8 @@ def stability_map(study, *, x: str | None = None, y: str | None = None, ax=None,
             (line,) = ax.plot(cx, cy, "k-", lw=1.5, label="critical speed")
             handles.append(line)
     ax.legend(handles=handles, fontsize=8, loc="best", framealpha=0.9)
-    ax.set_xlabel(_label(x))
-    ax.set_ylabel(_label(y))
+    ax.set_xlabel(axis_label(x))
+    ax.set_ylabel(axis_label(y))
     ax.set_title(title or "Stability of the moving tape")
     return ax
 
@@ -254,26 +255,14 @@ def study_lines(study, *, quantity: str | None = None, x: str | None = None, ax=
             label = ", ".join(f"{n} = {k:g}" if isinstance(k, float) else f"{n} = {k}"
                               for n, k in zip(others, key, strict=True))
         ax.plot(group[x], group[quantity], "-o", ms=3, label=label)
-    ax.set_xlabel(_label(x))
-    ax.set_ylabel(_label(quantity))
+    ax.set_xlabel(axis_label(x))
+    ax.set_ylabel(axis_label(quantity))
     ax.grid(True, alpha=0.3)
     if others:
         ax.legend(fontsize=8)
     if title:
         ax.set_title(title)
     return ax
-
-
-_UNITS = {"velocity": "m/s", "tension": "N/m", "thickness": "m", "youngs_modulus": "Pa",
-          "radius": "m", "width": "m", "spacing": "m", "density": "kg/m²", "load": "Pa",
-          "critical_speed": "m/s", "divergence_speed": "m/s", "growth_rate": "1/s",
-          "load_point_deflection": "m", "max_deflection": "m", "period": "s",
-          "bending_rigidity": "N·m", "foundation_stiffness": "N/m³"}
-
-
-def _label(name: str) -> str:
-    unit = "rad/s" if name.startswith("omega_") else _UNITS.get(name)
-    return f"{name.replace('_', ' ')} ({unit})" if unit else name.replace("_", " ")
 
 
 def _positions(column):

@@ -36,29 +36,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..core.errors import ParameterError
+from ..core.units import ACCEPTED, SI_UNITS
 from .parameters import TapeParameters, check_velocity
 
-#: Units accepted for each kind of quantity, with their factor to SI.
-UNITS: dict[str, dict[str, float]] = {
-    "m": {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6,
-          "nm": 1e-9, "in": 0.0254, "mil": 2.54e-5},
-    "Pa": {"Pa": 1.0, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9, "N/m^2": 1.0, "N/mm^2": 1e6,
-           "psi": 6894.757293168361},
-    "kg/m^2": {"kg/m^2": 1.0, "g/m^2": 1e-3},
-    "N/m": {"N/m": 1.0, "N/mm": 1e3, "mN/m": 1e-3},
-    "N*m": {"N*m": 1.0, "N m": 1.0, "N·m": 1.0, "Nm": 1.0},
-    "N/m^3": {"N/m^3": 1.0, "Pa/m": 1.0, "MPa/m": 1e6, "GPa/m": 1e9},
-    "m/s": {"m/s": 1.0, "mm/s": 1e-3, "km/h": 1 / 3.6, "in/s": 0.0254},
-    "1": {"": 1.0, "1": 1.0},
-}
-
-#: The SI unit (a key of :data:`UNITS`) of every numeric key.
-QUANTITIES: dict[str, str] = {
-    "youngs_modulus": "Pa", "poisson": "1", "thickness": "m", "radius": "m",
-    "density": "kg/m^2", "tension": "N/m", "width": "m", "length_ratio": "1", "spacing": "m",
-    "load": "Pa", "load_x": "m", "load_y": "m", "bending_rigidity": "N*m",
-    "foundation_stiffness": "N/m^3", "velocity": "m/s",
-}
+#: The numeric keys of a tape file; each has its SI unit in :data:`gyroshell.core.units.SI_UNITS`.
+QUANTITIES: dict[str, str] = {key: SI_UNITS[key] for key in (
+    "youngs_modulus", "poisson", "thickness", "radius", "density", "tension", "width",
+    "length_ratio", "spacing", "load", "load_x", "load_y", "bending_rigidity",
+    "foundation_stiffness", "velocity")}
 TEXT_KEYS = ("edges", "name")
 BOOL_KEYS = ("wrap_pressure",)
 KEYS = tuple(QUANTITIES) + TEXT_KEYS + BOOL_KEYS
@@ -102,11 +87,11 @@ def parse_quantity(key: str, value, where: str = "") -> float:
         if match is None:
             raise ParameterError(f"{prefix} must look like '<number> <unit>', got {value!r}")
         number, unit = float(match.group(1)), match.group(2)
-        if unit not in UNITS[kind]:
-            allowed = ", ".join(u for u in UNITS[kind] if u) or "no unit"
+        if unit not in ACCEPTED[kind]:
+            allowed = ", ".join(u for u in ACCEPTED[kind] if u) or "no unit"
             raise ParameterError(f"{prefix}: unit {unit!r} is not a unit of {kind} "
                                  f"(use one of: {allowed})")
-        factor = UNITS[kind][unit]
+        factor = ACCEPTED[kind][unit]
         exponent = round(math.log10(factor))
         if math.isfinite(number) and factor == 10.0**exponent:
             # decimal prefixes are applied in decimal, rounded once: "20 um" is 2e-05 exactly

@@ -13,7 +13,7 @@ import pytest
 from gyroshell.cli import main
 from gyroshell.reproduce import STUDIES
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture(scope="module")

@@ -1,0 +1,313 @@
+"""The one result protocol: every result saves, converts, summarizes and plots the same way.
+
+A result kind is a subclass of :class:`Result` that names itself, ``class StaticSolution(
+Result, kind="static")``; the base keeps a registry of kinds filled by ``__init_subclass__``,
+so reading a file looks its stored kind up there and the base never names a subclass. Each
+kind implements
+
+``to_xarray()``
+    An :class:`xarray.Dataset` with named dimensions (``x``, ``y`` in m, ``t`` in s,
+    ``mode``, ``row``...), SI units as ``units`` attributes and the metadata below.
+``from_xarray(ds)`` (class method)
+    The same object again from such a dataset: every array and parameter bit-exact.
+``summary()``
+    A dict of plain numbers and text (what the CLI's ``--json`` prints).
+``plot(ax=None)``
+    Its usual figure, drawn by :mod:`gyroshell.plot`; returns the Axes.
+``to_frame()``
+    A :class:`pandas.DataFrame`, where a table fits the result.
+
+and inherits :meth:`Result.save` (NetCDF for every kind, CSV or Parquet for tables).
+:func:`read` opens a NetCDF file and returns the object of its stored kind.
+
+Metadata attributes of every file: ``gyroshell_type`` (the kind), ``gyroshell_version``,
+and JSON text ``parameters`` (the :class:`~gyroshell.TapeParameters` fields, when known),
+``grid`` (the :class:`~gyroshell.Grid` fields) and ``info`` (the run's diagnostics).
+
+Complex numbers: NetCDF has no complex type, so a complex variable ``z`` is stored as two
+float64 variables ``z_real`` and ``z_imag`` with attributes ``complex_of = "z"`` and
+``complex_part = "real"`` / ``"imag"``; any NetCDF reader (ncdump, netCDF4, MATLAB) sees two
+ordinary real arrays. Tables go to CSV with floats in Python's shortest round-trip form and
+NaN written as ``NaN`` (read back exactly), or to Parquet.
+
+Files are written whole or not at all (a temporary file moved into place). xarray and a
+NetCDF engine (h5netcdf, or netCDF4) are imported only when a NetCDF file is written or read:
+``pip install "gyroshell[io]"``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+from pathlib import Path
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..core.errors import ParameterError
+from ..core.files import atomic_path
+from ..core.units import unit_of
+from ..core.version import __version__
+
+#: Suffixes of the formats :meth:`Result.save` writes.
+NETCDF_SUFFIXES = (".nc", ".nc4", ".netcdf")
+TABLE_SUFFIXES = (".csv", ".parquet")
+#: The attribute naming a file's kind.
+KIND_ATTRIBUTE = "gyroshell_type"
+COMPLEX_CONVENTION = "complex z stored as z_real, z_imag (attributes complex_of, complex_part)"
+
+
+class Result:
+    """Base of every result kind (see the module docstring for the protocol).
+
+    Subclasses register with ``kind="name"`` in their class statement; :func:`read` finds
+    them by that name.
+    """
+
+    #: The kind's name, stored as ``gyroshell_type`` in its files.
+    kind: ClassVar[str] = ""
+    _kinds: ClassVar[dict[str, type[Result]]] = {}
+
+    def __init_subclass__(cls, *, kind: str | None = None, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if kind is None:
+            return
+        known = Result._kinds.get(kind)
+        if known is not None and known.__qualname__ != cls.__qualname__:
+            raise TypeError(f"result kind {kind!r} is registered already by {known.__name__}")
+        cls.kind = kind
+        Result._kinds[kind] = cls
+
+    def to_xarray(self, *, params=None):
+        """The result as an :class:`xarray.Dataset` (named dimensions, units, metadata).
+
+        ``params`` (a :class:`~gyroshell.TapeParameters`) is stored as metadata by kinds
+        that do not carry their tape themselves."""
+        raise NotImplementedError(f"{type(self).__name__}.to_xarray")
+
+    @classmethod
+    def from_xarray(cls, ds) -> Result:
+        """The result stored in ``ds`` (a Dataset written by :meth:`to_xarray`)."""
+        raise NotImplementedError(f"{cls.__name__}.from_xarray")
+
+    def summary(self) -> dict:
+        """The headline numbers as a dict of plain floats, ints and text (SI units)."""
+        raise NotImplementedError(f"{type(self).__name__}.summary")
+
+    def plot(self, ax=None):
+        """Draw the result's usual figure on ``ax`` (a new figure if None); returns the Axes."""
+        raise NotImplementedError(f"{type(self).__name__}.plot")
+
+    def to_frame(self):
+        """The result as a :class:`pandas.DataFrame` (kinds that are tables)."""
+        raise ParameterError(f"a {type(self).__name__} is not a table: save it as .nc")
+
+    def save(self, path: str | os.PathLike[str], *, params=None) -> Path:
+        """Write NetCDF (``.nc``), or CSV / Parquet (``.csv``, ``.parquet``) for tables.
+
+        The file is written whole or not at all; :func:`gyroshell.load` reads a NetCDF file
+        back as an equal object. ``params`` as in :meth:`to_xarray`. Returns the path.
+        """
+        path = Path(path)
+        suffix = path.suffix.lower()
+        if suffix in NETCDF_SUFFIXES:
+            write_netcdf(self.to_xarray(params=params), path)
+        elif suffix in TABLE_SUFFIXES:
+            write_table(self.to_frame(), path)
+        else:
+            raise ParameterError(f"unknown file type {path.suffix!r}: use one of "
+                                 f"{', '.join(NETCDF_SUFFIXES + TABLE_SUFFIXES)}")
+        return path
+
+
+def kinds() -> dict[str, type[Result]]:
+    """The registered result kinds, name -> class (those whose modules are imported)."""
+    return dict(Result._kinds)
+
+
+def from_dataset(ds, *, source: str = "the dataset"):
+    """The object of the kind stored in ``ds.attrs['gyroshell_type']``."""
+    kind = ds.attrs.get(KIND_ATTRIBUTE)
+    cls = Result._kinds.get(kind)
+    if cls is None:
+        raise ParameterError(f"{source} is not a gyroshell result file "
+                             f"({KIND_ATTRIBUTE} {kind!r})")
+    return cls.from_xarray(ds)
+
+
+def read(path: str | os.PathLike[str]):
+    """The result stored in a NetCDF file, as the object of its kind."""
+    return from_dataset(open_netcdf(path), source=str(path))
+
+
+# ----- files -------------------------------------------------------------------------------
+def netcdf_engine() -> str:
+    """The NetCDF engine xarray should use: h5netcdf, else netCDF4."""
+    for name, module in (("h5netcdf", "h5netcdf"), ("netcdf4", "netCDF4")):
+        try:
+            __import__(module)
+            return name
+        except ImportError:
+            continue
+    raise ParameterError('NetCDF needs h5netcdf or netCDF4: pip install "gyroshell[io]"')
+
+
+def write_netcdf(ds, path: str | os.PathLike[str]) -> Path:
+    """Write a Dataset to ``path`` whole or not at all."""
+    engine = netcdf_engine()
+    with atomic_path(path) as tmp:
+        ds.to_netcdf(tmp, engine=engine)
+    return Path(path)
+
+
+def open_netcdf(path: str | os.PathLike[str]):
+    """A NetCDF file's Dataset, loaded into memory and closed."""
+    import xarray as xr
+
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no such file: {path}")
+    with xr.open_dataset(path, engine=netcdf_engine()) as ds:
+        return ds.load()
+
+
+def write_table(frame, path: str | os.PathLike[str]) -> Path:
+    """Write a DataFrame as CSV (exact floats, ``NaN`` for missing) or Parquet, atomically."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        if path.suffix.lower() == ".parquet":
+            frame.to_parquet(tmp, index=False)
+        else:
+            frame.to_csv(tmp, index=False, na_rep="NaN")
+    return path
+
+
+# ----- JSON metadata -----------------------------------------------------------------------
+def _encode(value: Any) -> Any:
+    if isinstance(value, complex | np.complexfloating):
+        return {"__complex__": [float(value.real), float(value.imag)]}
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, np.floating):
+        return float(value)
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, np.ndarray):
+        return [_encode(v) for v in value.tolist()]
+    if isinstance(value, tuple):
+        return [_encode(v) for v in value]
+    return str(value)
+
+
+def _decode(obj: dict) -> Any:
+    if set(obj) == {"__complex__"}:
+        re, im = obj["__complex__"]
+        return complex(re, im)
+    return obj
+
+
+def to_json(value: Any) -> str:
+    """JSON text of metadata; complex numbers and numpy scalars survive."""
+    return json.dumps(value, default=_encode, allow_nan=True)
+
+
+def from_json(text: str) -> Any:
+    """The metadata written by :func:`to_json`."""
+    return json.loads(text, object_hook=_decode)
+
+
+def params_json(params) -> str:
+    """JSON of a :class:`~gyroshell.TapeParameters` (``null`` for None)."""
+    if params is None:
+        return "null"
+    return to_json({f.name: getattr(params, f.name) for f in dataclasses.fields(params)})
+
+
+def params_from(attrs: dict):
+    """The :class:`~gyroshell.TapeParameters` stored in a file's attributes, or None."""
+    from ..tape.parameters import TapeParameters
+
+    data = from_json(attrs.get("parameters", "null"))
+    return None if data is None else TapeParameters(**data)
+
+
+def grid_from(attrs: dict):
+    """The :class:`~gyroshell.Grid` stored in a file's attributes, or None."""
+    from ..tape.grid import Grid
+
+    data = from_json(attrs.get("grid", "null"))
+    return None if data is None else Grid(**data)
+
+
+# ----- datasets ----------------------------------------------------------------------------
+def put(data_vars: dict, name: str, dims, values, attrs: dict | None = None) -> None:
+    """Add a variable to ``data_vars``; a complex one becomes ``name_real`` and ``name_imag``."""
+    values = np.asarray(values)
+    attrs = dict(attrs or {})
+    if np.iscomplexobj(values):
+        for part, array in (("real", values.real), ("imag", values.imag)):
+            data_vars[f"{name}_{part}"] = (dims, np.ascontiguousarray(array),
+                                           {**attrs, "complex_of": name, "complex_part": part})
+    else:
+        data_vars[name] = (dims, values, attrs)
+
+
+def get(ds, name: str) -> np.ndarray:
+    """A variable written by :func:`put`, complex again if it was complex."""
+    if name in ds.variables:
+        return ds[name].values
+    return ds[f"{name}_real"].values + 1j * ds[f"{name}_imag"].values
+
+
+def dataset(data_vars: dict, coords: dict, kind: str, *, params=None, grid=None,
+            info: dict | None = None, **extra_attrs):
+    """A Dataset with the metadata attributes every file carries (see the module docstring);
+    ``extra_attrs`` that are not text are stored as JSON."""
+    import xarray as xr
+
+    attrs = {KIND_ATTRIBUTE: kind, "gyroshell_version": __version__,
+             "parameters": params_json(params),
+             "grid": to_json(None if grid is None else dataclasses.asdict(grid)),
+             "info": to_json(info or {}), "complex_convention": COMPLEX_CONVENTION}
+    attrs.update({k: (to_json(v) if not isinstance(v, str) else v)
+                  for k, v in extra_attrs.items()})
+    return xr.Dataset(data_vars, coords=coords, attrs=attrs)
+
+
+def xy_coords(grid) -> dict:
+    """The node coordinates of a :class:`~gyroshell.Grid` as Dataset coordinates (m)."""
+    return {"x": ("x", grid.x, {"units": "m", "long_name": "along the tape"}),
+            "y": ("y", grid.y, {"units": "m", "long_name": "across the tape"})}
+
+
+def table_dataset(frame, kind: str, *, params=None, **attrs):
+    """A table as a Dataset on dimension ``row``, its columns' SI units as attributes."""
+    import xarray as xr
+
+    frame = frame.reset_index(drop=True)
+    ds = xr.Dataset.from_dataframe(frame.rename_axis("row"))
+    for name in ds.variables:
+        unit = unit_of(str(name))
+        if unit:
+            ds[name].attrs["units"] = unit
+    base = dataset({}, {}, kind, params=params, columns=list(frame.columns), **attrs)
+    ds.attrs.update(base.attrs)
+    return ds
+
+
+def table_from(ds):
+    """The DataFrame stored by :func:`table_dataset`, its columns in their order."""
+    columns = from_json(ds.attrs["columns"])
+    return ds.to_dataframe().reset_index(drop=True)[columns]
+
+
+def metadata(path_or_dataset) -> dict:
+    """``gyroshell_type``, ``gyroshell_version``, ``parameters`` (TapeParameters or None),
+    ``grid`` (Grid or None) and ``info`` of a saved NetCDF file or a Dataset."""
+    ds = path_or_dataset
+    attrs = dict(ds.attrs) if hasattr(ds, "attrs") else dict(open_netcdf(ds).attrs)
+    return {KIND_ATTRIBUTE: attrs.get(KIND_ATTRIBUTE),
+            "gyroshell_version": attrs.get("gyroshell_version"),
+            "parameters": params_from(attrs), "grid": grid_from(attrs),
+            "info": from_json(attrs.get("info", "{}"))}
