@@ -21,7 +21,6 @@ import os
 import shutil
 import signal
 import stat
-import sys
 import tempfile
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -47,15 +46,6 @@ class Terminated(KeyboardInterrupt):
     def __init__(self, signum: int) -> None:
         super().__init__(signal.Signals(signum).name)
         self.signum = signum
-
-
-def progress_wanted(progress: bool | None) -> bool:
-    """Whether to draw a progress bar: ``progress`` if given, else whether stderr is a
-    terminal (bars in log files and pipes are noise)."""
-    if progress is None:
-        isatty = getattr(sys.stderr, "isatty", None)
-        return bool(isatty()) if isatty is not None else False
-    return bool(progress)
 
 
 def read_csv_exact(path: str | os.PathLike[str], **kwargs):

@@ -206,7 +206,7 @@ def test_progress_bars_only_on_a_terminal(monkeypatch):
     import io as stdio
     import sys
 
-    from gyroshell.core.files import progress_wanted
+    from gyroshell.core.progress import progress_wanted
 
     monkeypatch.setattr(sys, "stderr", stdio.StringIO())
     assert progress_wanted(None) is False and progress_wanted(True) is True
