@@ -41,7 +41,7 @@ _LAZY: dict[str, str] = {
     "GyroscopicModes": "linalg.qep", "gyroscopic_modes": "linalg.qep",
     "plot_sweep": "studies.sweep", "sweep": "studies.sweep",
     # parameter studies and saved results (xarray, Dask and matplotlib load on use)
-    "load": "results.storage", "save": "results.storage",
+    "load": "kinds", "save": "kinds",
     "StudyResult": "studies.parameter_study", "classify_stability": "linalg.qep", "run_study": "studies.parameter_study",
     # damping, moving and intermittent loads, and the frequency response
     "Damping": "tape.damping",
