@@ -177,7 +177,7 @@ def run_sweep(args: argparse.Namespace) -> int:
 
     check_save_path(args.save)
     model = TapeModel(params, grid)
-    frame = sweep(model, velocities, args.count, progress=None, workers=args.workers)
+    frame = sweep(model, velocities, args.count, progress=None, workers=args.workers).table
     with transaction():
         save_result(args.save, frame, params)
         if args.out:

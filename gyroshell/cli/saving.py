@@ -17,7 +17,7 @@ def check_save_path(path: str | None) -> None:
     if path is None:
         return
     from ..core.files import check_output
-    from ..results.storage import NETCDF_SUFFIXES, TABLE_SUFFIXES
+    from ..results.base import NETCDF_SUFFIXES, TABLE_SUFFIXES
     from .common import UserError
 
     if Path(path).suffix.lower() not in NETCDF_SUFFIXES + TABLE_SUFFIXES:
@@ -26,8 +26,9 @@ def check_save_path(path: str | None) -> None:
 
 
 def save_result(path: str | None, result, params) -> None:
-    """Write ``result`` to ``path`` (if given) with ``params`` as metadata."""
+    """Write ``result`` to ``path`` (if given) with ``params`` as metadata
+    (:func:`gyroshell.save`: a result of any kind, or a table)."""
     if path is not None:
-        from ..results.storage import save
+        from ..kinds import save
 
         save(result, path, params=params)

@@ -5,8 +5,11 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .common import UserError, parameters_from_args, positive_int
+from .common import UserError, parameters_from_args, positive_int, print_json
 from .saving import add_save_option, check_save_path
+
+#: Resolution of the --plot files, dots per inch.
+PLOT_DPI = 120
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
@@ -45,6 +48,9 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                    help="stability map (two varied parameters) or the computed quantity "
                         "against the varied parameter (one)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (points, computed, cached, failed, seconds, "
+                        "executor) instead of the table")
     p.set_defaults(func=run)
     register_campbell(sub, common)
 
@@ -72,6 +78,13 @@ def register_campbell(sub, common: argparse.ArgumentParser) -> None:
                    help="write the tracked branches (velocity, branch, rank, omega, "
                         "growth_rate, mac)")
     p.add_argument("--plot", metavar="FILE.png", default=None, help="write the diagram")
+    p.add_argument("--workers", type=positive_int, default=1,
+                   help="local processes, >= 1, each solving a contiguous run of the speeds "
+                        "(default 1)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (branches, speeds, MAC of the links, critical "
+                        "speed in m/s, crossings, veerings) instead of the text")
     p.set_defaults(func=run_campbell)
 
 
@@ -145,12 +158,9 @@ def _check_outputs(outputs: dict[str, tuple[str | None, tuple[str, ...]]]) -> No
 
 
 def _save_plot(path: str, ax) -> None:
-    from ..core.files import write_atomic
-    from ..plot import pyplot
+    from ..plot import save_figure
 
-    plt = pyplot(path=path)
-    write_atomic(path, lambda tmp: ax.figure.savefig(tmp, dpi=120), option="--plot")
-    plt.close(ax.figure)
+    save_figure(ax.figure, path, dpi=PLOT_DPI, option="--plot")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -161,7 +171,7 @@ def run(args: argparse.Namespace) -> int:
     velocity = check_velocity(args.velocity)
     vary = parse_vary(args.vary)
     compute = [c.strip() for item in args.compute for c in item.split(",") if c.strip()]
-    from ..results.storage import NETCDF_SUFFIXES, TABLE_SUFFIXES
+    from ..results.base import NETCDF_SUFFIXES, TABLE_SUFFIXES
 
     check_save_path(args.save)
     _check_outputs({"--out": (args.out, (".csv", ".parquet")),
@@ -184,16 +194,24 @@ def run(args: argparse.Namespace) -> int:
                 result.save(path)
         if args.plot:
             _save_plot(args.plot, result.plot())
-    info = result.info
-    failed = len(result.failed)
+    _report_study(args, result)
+    return 0
+
+
+def _report_study(args: argparse.Namespace, result) -> None:
+    """The table (unless written with --out) and one line on the run; or --json."""
+    if args.json:
+        print_json(result.summary())
+        return
+    summary = result.summary()
     if args.out is None:
         print(result.table.drop(columns=["point"]).to_string(index=False))
-    print(f"{info['points']} points ({info['computed']} computed, {info['cached']} from the "
-          f"cache, {failed} with errors) in {info['seconds']:.2f} s on {info['executor']}")
+    print(f"{summary['points']} points ({summary['computed']} computed, {summary['cached']} "
+          f"from the cache, {summary['failed']} with errors) in {summary['seconds']:.2f} s "
+          f"on {summary['executor']}")
     for path in (args.out, args.save, args.plot):
         if path is not None:
             print(f"wrote {path}")
-    return 0
 
 
 def run_campbell(args: argparse.Namespace) -> int:
@@ -216,18 +234,28 @@ def run_campbell(args: argparse.Namespace) -> int:
     _check_outputs({"--out": (args.out, (".csv", ".parquet", ".nc")),
                     "--plot": (args.plot, (".png", ".pdf", ".svg"))})
     min_mac = MIN_MAC if args.min_mac is None else args.min_mac
-    d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac, progress=None)
+    d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac,
+                 progress=False if args.quiet else None, workers=args.workers)
     from ..core.files import transaction
 
     with transaction():  # both files, or neither
         if args.out:
-            d.save(args.out)
+            d.save(args.out, params=params)
         if args.plot:
             _save_plot(args.plot, d.plot(circumference=args.circumference, orders=orders))
-    links = d.frame["mac"].dropna()
-    print(f"{d.frame['branch'].nunique()} branches over {len(velocities)} speeds; MAC of "
-          f"the links: min {links.min():.3f}, median {links.median():.3f}"
-          if len(links) else f"{d.frame['branch'].nunique()} branches")
+    if args.json:
+        print_json(d.summary())
+        return 0
+    _report_campbell(args, d, orders)
+    return 0
+
+
+def _report_campbell(args: argparse.Namespace, d, orders: list[int]) -> None:
+    """Branches, MAC, critical speed, crossings, veerings and resonances, one per line."""
+    summary = d.summary()
+    print(f"{summary['branches']} branches over {summary['speeds']} speeds; MAC of "
+          f"the links: min {summary['mac_min']:.3f}, median {summary['mac_median']:.3f}"
+          if summary["mac_min"] is not None else f"{summary['branches']} branches")
     print(f"critical speed: {d.critical_speed:.6g} m/s")
     for row in d.crossings.itertuples():
         print(f"crossing: branches {row.branch_a} and {row.branch_b} at V = "
@@ -242,4 +270,3 @@ def run_campbell(args: argparse.Namespace) -> int:
     for path in (args.out, args.plot):
         if path:
             print(f"wrote {path}")
-    return 0

@@ -5,6 +5,7 @@
 * :func:`field` - a deflection field (static solution, snapshot, any array on the grid);
 * :func:`campbell` - frequencies against speed with tracked branches, crossings, veerings,
   excitation lines ω = n·2πV/ℓ and the critical speed;
+* :func:`sweep` - frequencies against speed with the branches a sweep tracked;
 * :func:`stability_map` - stable / divergence / flutter over two varied parameters;
 * :func:`study_lines` - a computed quantity against one varied parameter;
 * :func:`load_point_history`, :func:`head_histories`, :func:`wireframe`,
@@ -15,7 +16,8 @@
 * :func:`animate_mode`, :func:`animate_transient` - GIF animations (matplotlib + Pillow).
 
 matplotlib is imported when a function is called, never at ``import gyroshell``. Without
-``ax`` a new figure is made; save it with ``ax.figure.savefig(path)``.
+``ax`` a new figure is made; :func:`save_figure` writes it atomically. :func:`pyplot` is
+the one way gyroshell imports matplotlib.pyplot.
 """
 
 from __future__ import annotations
@@ -30,11 +32,18 @@ STABILITY_COLOURS = {"stable": "#4daf4a", "divergence": "#e41a1c", "flutter": "#
                      "undetermined": "#bbbbbb", "": "#ffffff"}
 
 
-def pyplot(path=None):
-    """matplotlib.pyplot, with the Agg back-end when writing files without a display."""
+def pyplot(path=None, *, headless: bool = False):
+    """matplotlib.pyplot, imported on first use (never at ``import gyroshell``).
+
+    ``headless``: the figures are only ever written to files (``gyroshell reproduce``):
+    the Agg back-end, if it can still be selected. ``path``: a figure is about to be
+    written there: Agg when there is no display.
+    """
     import matplotlib
 
-    if path is not None:
+    if headless:
+        matplotlib.use("Agg", force=False)
+    elif path is not None:
         import os
 
         if not os.environ.get("DISPLAY") and matplotlib.get_backend().lower() != "agg":
@@ -42,6 +51,43 @@ def pyplot(path=None):
     import matplotlib.pyplot as plt
 
     return plt
+
+
+def save_figure(fig, path, *, dpi: int, tight: bool = False, file_format: str | None = None,
+                close: bool = True, option: str = "output"):
+    """Write a matplotlib figure to ``path``, whole or not at all; returns the path.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+    path : str or os.PathLike
+        The file; its suffix gives the format unless ``file_format`` is set.
+    dpi : int
+        Resolution, dots per inch (each caller keeps its own, so its files stay the same).
+    tight : bool
+        Crop to the drawn content (``bbox_inches="tight"``).
+    file_format : str, optional
+        Format regardless of the suffix (e.g. ``"png"``).
+    close : bool
+        Close the figure afterwards (also if writing failed), freeing its memory.
+    option : str
+        The option naming the file in error messages (e.g. ``"--plot"``).
+    """
+    from pathlib import Path
+
+    from ..core.files import write_atomic
+
+    options: dict = {"dpi": dpi}
+    if file_format is not None:
+        options["format"] = file_format
+    if tight:
+        options["bbox_inches"] = "tight"
+    try:
+        write_atomic(path, lambda tmp: fig.savefig(tmp, **options), option=option)
+    finally:
+        if close:
+            pyplot().close(fig)
+    return Path(path)
 
 
 def _axes(ax, figsize=(7.0, 4.5)):
@@ -127,15 +173,8 @@ def campbell(diagram, *, ax=None, circumference: float | None = None,
     """
     ax = _axes(ax, figsize=(8.0, 5.0))
     frame = diagram.frame
-    for branch, group in frame.groupby("branch"):
-        group = group.sort_values("velocity")
-        ax.plot(group["velocity"], group["omega"], "-o", ms=2.5, lw=1.2,
-                color=f"C{int(branch) % 10}",
-                label=f"branch {branch}" if frame["branch"].nunique() <= 8 else None)
-    grow = frame[frame["growth_rate"] > 0]
-    if len(grow):
-        ax.plot(grow["velocity"], grow["growth_rate"], "kx", ls="none",
-                label="growth rate Re λ (1/s)")
+    _branch_lines(ax, frame, ms=2.5, colour_all=True)
+    _growth_rates(ax, frame, "growth rate Re λ (1/s)")
     if len(diagram.crossings):
         ax.plot(diagram.crossings["velocity"], diagram.crossings["omega"], "o", ms=9,
                 mfc="none", mec="k", label="crossing")
@@ -161,17 +200,75 @@ def campbell(diagram, *, ax=None, circumference: float | None = None,
         ax.axvline(crit, color="k", ls=":", lw=1.2, label=f"critical speed {crit:.4g} m/s")
     ax.set_ylim(0, top)
     ax.set_xlim(float(frame["velocity"].min()), vmax)
-    ax.set_xlabel("tape speed V (m/s)")
-    ax.set_ylabel("angular frequency ω (rad/s)")
-    ax.set_title(title or "Campbell diagram (branches tracked by MAC)")
-    ax.grid(True, alpha=0.3)
+    _speed_axes(ax, title or "Campbell diagram (branches tracked by MAC)")
     ax.legend(fontsize=8, loc="lower left")
     return ax
 
 
+def sweep(result, *, ax=None, title: str | None = None):
+    """Sweep: ω (rad/s) against V (m/s), one line per tracked branch; returns the Axes.
+
+    ``result`` is a :class:`~gyroshell.sweep.SweepResult` (or its table, with columns
+    ``velocity``, ``branch``, ``omega`` and optionally ``rank`` and ``growth_rate``). The
+    k-th lowest frequencies are drawn in grey beneath (continuous where branches end), and
+    growth rates above critical as crosses.
+    """
+    frame = _table(result)
+    missing = {"velocity", "branch", "omega"} - set(frame.columns)
+    if missing:
+        raise ParameterError(f"frame lacks columns {sorted(missing)}")
+    ax = _axes(ax)
+    if "rank" in frame:  # the k-th lowest frequency: continuous even where branches end
+        for rank, group in frame.groupby("rank"):
+            group = group.sort_values("velocity")
+            ax.plot(group["velocity"], group["omega"], color="0.75", lw=0.8, zorder=1,
+                    label="k-th lowest ω" if rank == 0 else None)
+    _branch_lines(ax, frame, ms=3, many_label="tracked branches (mode-shape correlation)")
+    if "growth_rate" in frame:
+        _growth_rates(ax, frame, "growth rate Re λ (1/s), divergence")
+    _speed_axes(ax, title or "Lowest frequencies of the moving tape against speed")
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=8, ncol=2)
+    return ax
+
+
+#: Most branches that each get a legend entry.
+LEGEND_BRANCHES = 8
+
+
+def _branch_lines(ax, frame, *, ms: float, colour_all: bool = False,
+                  many_label: str | None = None) -> None:
+    """One line with dots per tracked branch of ``frame``; up to :data:`LEGEND_BRANCHES`
+    branches are labelled one by one, more share ``many_label`` (and take colours from
+    their labels, as they do always with ``colour_all``)."""
+    branches = frame.groupby("branch")
+    few = branches.ngroups <= LEGEND_BRANCHES
+    for k, (branch, group) in enumerate(branches):
+        group = group.sort_values("velocity")
+        label = f"branch {branch}" if few else (many_label if k == 0 else None)
+        ax.plot(group["velocity"], group["omega"], marker="o", ms=ms, lw=1.2, zorder=2,
+                color=f"C{int(branch) % 10}" if colour_all or not few else None,
+                label=label)
+
+
+def _growth_rates(ax, frame, label: str) -> None:
+    """Crosses at the growth rates Re λ > 0 (1/s) of ``frame``, if any."""
+    grow = frame[frame["growth_rate"] > 0]
+    if len(grow):
+        ax.plot(grow["velocity"], grow["growth_rate"], "kx", ls="none", label=label)
+
+
+def _speed_axes(ax, title: str) -> None:
+    ax.set_xlabel("tape speed V (m/s)")
+    ax.set_ylabel("angular frequency ω (rad/s)")
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+
+
 # ----- studies -----------------------------------------------------------------------------
-def _study_table(study):
-    return study.table if hasattr(study, "table") else study
+def _table(result):
+    """The table of a result that holds one (``.table``), or the table itself."""
+    return result.table if hasattr(result, "table") else result
 
 
 def stability_map(study, *, x: str | None = None, y: str | None = None, ax=None,
@@ -182,7 +279,7 @@ def stability_map(study, *, x: str | None = None, y: str | None = None, ax=None,
     default to the first two varied parameters (x: the first). Each point is a coloured
     cell; the critical speed, if computed and x or y is the velocity, is drawn over it.
     """
-    table = _study_table(study)
+    table = _table(study)
     varied = list(getattr(study, "varied", ()))
     x = x or (varied[0] if varied else None)
     y = y or (varied[1] if len(varied) > 1 else None)
@@ -227,18 +324,16 @@ def stability_map(study, *, x: str | None = None, y: str | None = None, ax=None,
 
 def study_lines(study, *, quantity: str | None = None, x: str | None = None, ax=None,
                 title: str | None = None):
-    """A computed column against a varied parameter (one line per value of any other)."""
-    from ..studies.parameter_study import result_columns
+    """A computed column against a varied parameter (one line per value of any other).
 
-    table = _study_table(study)
+    ``quantity`` defaults to the first computed number of the study."""
+    table = _table(study)
     varied = list(getattr(study, "varied", ()))
     x = x or (varied[0] if varied else None)
     if x is None or x not in table:
         raise ParameterError("study_lines needs the varied parameter x")
     if quantity is None:
-        compute = getattr(study, "compute", ())
-        numeric = [c for c in result_columns(compute, getattr(study, "count", 1))
-                   if c not in ("stability", "error")] if compute else []
+        numeric = _computed_columns(table, varied) if getattr(study, "compute", ()) else []
         if not numeric:
             raise ParameterError("study_lines needs a quantity column")
         quantity = numeric[0]
@@ -263,6 +358,16 @@ def study_lines(study, *, quantity: str | None = None, x: str | None = None, ax=
     if title:
         ax.set_title(title)
     return ax
+
+
+#: Study columns that are neither varied nor computed numbers.
+_NOT_QUANTITIES = ("point", "stability", "error")
+
+
+def _computed_columns(table, varied) -> list[str]:
+    """The computed number columns of a study's table, in its order (a study's table holds
+    ``point``, the varied parameters, then what was computed)."""
+    return [c for c in table.columns if c not in varied and c not in _NOT_QUANTITIES]
 
 
 def _positions(column):

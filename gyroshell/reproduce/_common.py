@@ -6,6 +6,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from .. import plot
 from ..core.files import write_atomic
 from ..tape.parameters import TapeParameters
 
@@ -70,23 +71,16 @@ def save_markdown(frame: pd.DataFrame, path: Path, title: str = "") -> Path:
     return write_atomic(path, lambda tmp: tmp.write_text(text))
 
 
-def save_figure(fig, path: Path, dpi: int = 110) -> Path:
-    """Save a matplotlib figure as PNG, whole or not at all, and close it."""
-    import matplotlib.pyplot as plt
+#: Resolution of the studies' PNG files, dots per inch.
+FIGURE_DPI = 110
 
-    try:
-        write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=dpi, format="png",
-                                                   bbox_inches="tight"))
-    finally:
-        plt.close(fig)
-    return path
+
+def save_figure(fig, path: Path, dpi: int = FIGURE_DPI) -> Path:
+    """Save a matplotlib figure as PNG cropped to its content, whole or not at all, and
+    close it (:func:`gyroshell.plot.save_figure`)."""
+    return plot.save_figure(fig, path, dpi=dpi, tight=True, file_format="png")
 
 
 def pyplot():
-    """matplotlib.pyplot with a non-interactive backend (imported only when plotting)."""
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
+    """matplotlib.pyplot for figures only written to files (:func:`gyroshell.plot.pyplot`)."""
+    return plot.pyplot(headless=True)

@@ -25,6 +25,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.errors import ParameterError
+from ..core.units import unit_of
+from ..results import base
+from ..tape.parameters import TapeParameters
+from .branches import BranchTracker, track
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -33,6 +37,13 @@ if TYPE_CHECKING:
 MIN_MAC = 0.5
 #: Default largest relative gap |ω_a − ω_b| / ω̄ at a veering.
 VEERING_GAP = 0.02
+#: Columns of the tracked branches, the crossings and the veerings.
+FRAME_COLUMNS = ("velocity", "branch", "rank", "omega", "growth_rate", "mac")
+CROSSING_COLUMNS = ("velocity", "branch_a", "branch_b", "omega")
+VEERING_COLUMNS = ("velocity", "branch_a", "branch_b", "omega_a", "omega_b", "gap")
+#: How each table is stored in a file: (variable prefix, dimension).
+_STORED_TABLES = {"frame": ("", "row"), "crossings": ("crossing_", "crossing"),
+                  "veerings": ("veering_", "veering")}
 
 
 def mac(phi_a: np.ndarray, phi_b: np.ndarray) -> np.ndarray:
@@ -45,7 +56,7 @@ def mac(phi_a: np.ndarray, phi_b: np.ndarray) -> np.ndarray:
 
 
 @dataclass(frozen=True, eq=False)
-class CampbellDiagram:
+class CampbellDiagram(base.Result, kind="campbell"):
     """Tracked frequency branches against speed.
 
     Attributes
@@ -61,6 +72,11 @@ class CampbellDiagram:
         (relative).
     critical_speed : float or None
         m/s, marked on the plot.
+    info : dict
+        The settings: ``min_mac``, ``veering_gap``, ``count``, ``continuation``,
+        ``workers``.
+    params : TapeParameters or None
+        The tape.
     """
 
     frame: pd.DataFrame
@@ -68,6 +84,7 @@ class CampbellDiagram:
     veerings: pd.DataFrame
     critical_speed: float | None = None
     info: dict = field(default_factory=dict)
+    params: TapeParameters | None = None
 
     @staticmethod
     def excitation(order: int, circumference: float, velocity):
@@ -100,35 +117,76 @@ class CampbellDiagram:
 
         return plot.campbell(self, ax=ax, **options)
 
-    def save(self, path):
-        """Write the tracked branches (NetCDF, CSV or Parquet)."""
-        from ..results import storage
+    def to_frame(self) -> pd.DataFrame:
+        """The tracked branches (CSV and Parquet files hold these only; NetCDF all)."""
+        return self.frame
 
-        return storage.save(self.frame, path)
+    def to_xarray(self, *, params=None):
+        """The branches on dimension ``row``, the crossings on ``crossing`` (variables
+        ``crossing_*``) and the veerings on ``veering`` (``veering_*``), SI units, with the
+        critical speed and the settings; ``params`` if the diagram does not know its tape."""
+        data_vars: dict = {}
+        layout = {name: _put_table(data_vars, getattr(self, name), prefix, dim)
+                  for name, (prefix, dim) in _STORED_TABLES.items()}
+        return base.dataset(data_vars, {}, self.kind, params=self.params or params,
+                            info=self.info, tables=layout,
+                            critical_speed=self.critical_speed)
+
+    @classmethod
+    def from_xarray(cls, ds) -> CampbellDiagram:
+        """The diagram stored by :meth:`to_xarray`."""
+        layout = base.from_json(ds.attrs["tables"])
+        tables = {name: _get_table(ds, _STORED_TABLES[name][0], columns)
+                  for name, columns in layout.items()}
+        return cls(tables["frame"], tables["crossings"], tables["veerings"],
+                   base.from_json(ds.attrs["critical_speed"]),
+                   base.from_json(ds.attrs["info"]), base.params_from(ds.attrs))
+
+    def summary(self) -> dict:
+        """Branches, speeds, the MAC of the links (min, median), the critical speed (m/s,
+        None if not computed), and the numbers of crossings and veerings."""
+        links = self.frame["mac"].dropna()
+        return {"branches": int(self.frame["branch"].nunique()),
+                "speeds": int(self.frame["velocity"].nunique()),
+                "mac_min": float(links.min()) if len(links) else None,
+                "mac_median": float(links.median()) if len(links) else None,
+                "critical_speed": self.critical_speed,
+                "crossings": len(self.crossings), "veerings": len(self.veerings)}
 
 
-def _track(results, min_mac: float) -> list[dict]:
-    from scipy.optimize import linear_sum_assignment
+def _put_table(data_vars: dict, frame, prefix: str, dim: str) -> dict[str, str]:
+    """Add ``frame``'s columns as variables ``prefix + column`` on ``dim`` (SI units);
+    returns column -> dtype, so that an empty table comes back with its dtypes."""
+    dtypes = {}
+    for column in frame.columns:
+        values = frame[column].to_numpy()
+        dtypes[str(column)] = str(values.dtype)
+        if values.dtype == object and not len(values):  # no crossings: nothing to keep
+            values = values.astype(float)
+        unit = unit_of(str(column))
+        data_vars[prefix + str(column)] = (dim, values, {"units": unit} if unit else {})
+    return dtypes
 
-    rows, prev, labels, nxt = [], None, [], 0
-    for res in results:
-        k = res.count
-        new, macs = [-1] * k, np.full(k, np.nan)
-        if prev is not None:
-            m = mac(prev, res.vectors)
-            for i, j in zip(*linear_sum_assignment(-m), strict=True):
-                if m[i, j] >= min_mac:  # continues branch labels[i]
-                    new[j], macs[j] = labels[i], m[i, j]
-        for j in range(k):
-            if new[j] < 0:  # a mode that entered the lowest-count window: a new branch
-                new[j], nxt = nxt, nxt + 1
-        for j in range(k):
-            rows.append({"velocity": res.velocity, "branch": new[j], "rank": j,
-                         "omega": float(res.omega[j]),
-                         "growth_rate": float(max(res.eigenvalues[j].real, 0.0)),
-                         "mac": float(macs[j])})
-        prev, labels = res.vectors, new
-    return rows
+
+def _get_table(ds, prefix: str, dtypes: dict[str, str]):
+    import pandas as pd
+
+    return pd.DataFrame({column: ds[prefix + column].values.astype(dtype)
+                         for column, dtype in dtypes.items()}, columns=list(dtypes))
+
+
+def _frame(results, min_mac: float):
+    """The tracked branches of consecutive speeds' modes (columns :data:`FRAME_COLUMNS`)."""
+    import pandas as pd
+
+    rows = []
+    for res, match in zip(results, track(results, BranchTracker(mac, min_mac)), strict=True):
+        macs = np.where(match.continued, match.similarity, np.nan)  # NaN: a branch begins
+        rows.extend({"velocity": res.velocity, "branch": match.labels[j], "rank": j,
+                     "omega": float(res.omega[j]),
+                     "growth_rate": float(max(res.eigenvalues[j].real, 0.0)),
+                     "mac": float(macs[j])} for j in range(res.count))
+    return pd.DataFrame(rows, columns=list(FRAME_COLUMNS))
 
 
 def _pairs(frame):
@@ -160,14 +218,14 @@ def _crossings_and_veerings(frame, veering_gap: float):
                     and np.sign(d[k - 1]) == np.sign(d[k]) == np.sign(d[k + 1])):
                 veer.append({"velocity": v[k], "branch_a": a, "branch_b": b,
                              "omega_a": wa[k], "omega_b": wb[k], "gap": gap[k]})
-    return (pd.DataFrame(cross, columns=["velocity", "branch_a", "branch_b", "omega"]),
-            pd.DataFrame(veer, columns=["velocity", "branch_a", "branch_b", "omega_a",
-                                        "omega_b", "gap"]))
+    return (pd.DataFrame(cross, columns=list(CROSSING_COLUMNS)),
+            pd.DataFrame(veer, columns=list(VEERING_COLUMNS)))
 
 
 def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
              veering_gap: float = VEERING_GAP, critical_speed: float | bool | None = True,
-             progress: bool | None = None, **options) -> CampbellDiagram:
+             progress: bool | None = None, continuation: bool = False, workers: int = 1,
+             **options) -> CampbellDiagram:
     """Campbell diagram of the tape over ``velocities`` (m/s).
 
     Parameters
@@ -184,14 +242,19 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     critical_speed : True, float or None
         True: compute it (:func:`gyroshell.critical.critical_speeds`); a number: use it;
         None/False: none.
+    progress : bool or None
+        Progress bar on stderr; None: only if stderr is a terminal.
+    continuation : bool
+        Continue each solve from the previous speeds' modes, as :func:`gyroshell.sweep`
+        does (the same frequencies to round-off, in fewer Lanczos steps); False solves each
+        speed from scratch.
+    workers : int
+        Local processes (>= 1), each solving a contiguous run of the speeds, as in
+        :func:`gyroshell.sweep`.
     **options
         Passed to :func:`gyroshell.eigen.modes`.
     """
-    import pandas as pd
-    from tqdm import tqdm
-
-    from ..engines.eigen import modes
-    from .sweep import check_velocities
+    from .sweep import check_velocities, check_workers, solve_speeds
 
     velocities = check_velocities(velocities)
     if np.any(np.diff(velocities) <= 0):
@@ -200,21 +263,24 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
         raise ParameterError(f"min_mac must be in [0, 1], got {min_mac!r}")
     if not veering_gap > 0:
         raise ParameterError(f"veering_gap must be > 0, got {veering_gap!r}")
-    if progress is None:
-        import sys
-
-        progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
-    results = [modes(model, v, count, **options)
-               for v in tqdm(velocities, disable=not progress, desc="campbell", unit="speed")]
-    frame = pd.DataFrame(_track(results, min_mac),
-                         columns=["velocity", "branch", "rank", "omega", "growth_rate", "mac"])
+    workers = check_workers(workers, len(velocities))
+    results = solve_speeds(model, velocities, count, continuation=continuation,
+                           workers=workers, options=options, progress=progress,
+                           description="campbell")
+    frame = _frame(results, min_mac)
     crossings, veerings = _crossings_and_veerings(frame, veering_gap)
+    info = {"min_mac": min_mac, "veering_gap": veering_gap, "count": int(count),
+            "continuation": bool(continuation), "workers": workers}
+    return CampbellDiagram(frame, crossings, veerings, _critical_speed(model, critical_speed),
+                           info, getattr(model, "params", None))
+
+
+def _critical_speed(model, critical_speed: float | bool | None) -> float | None:
+    """The critical speed (m/s) to mark: computed for True, none for None or False."""
     if critical_speed is True:
         from ..engines.critical import critical_speeds
 
         critical_speed = critical_speeds(model).critical_speed
     elif critical_speed is False:
         critical_speed = None
-    return CampbellDiagram(frame, crossings, veerings,
-                           None if critical_speed is None else float(critical_speed),
-                           {"min_mac": min_mac, "veering_gap": veering_gap})
+    return None if critical_speed is None else float(critical_speed)

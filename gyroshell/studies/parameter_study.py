@@ -37,7 +37,6 @@ import itertools
 import json
 import math
 import os
-import sys
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -48,6 +47,10 @@ import numpy as np
 
 from ..core import budget
 from ..core.errors import ParameterError
+from ..core.parallel import process_pool
+from ..core.progress import progress_bar
+from ..core.units import unit_of
+from ..results import base as results_base
 from ..tape.parameters import TapeParameters, check_velocity
 
 if TYPE_CHECKING:
@@ -330,7 +333,7 @@ class _Cache:
 
 # ----- the result --------------------------------------------------------------------------
 @dataclass(frozen=True, eq=False)
-class StudyResult:
+class StudyResult(results_base.Result, kind="study"):
     """The rows of a parameter study and what made them.
 
     Attributes
@@ -367,11 +370,29 @@ class StudyResult:
         """The rows whose point failed."""
         return self.table[self.table["error"] != ""]
 
-    def to_xarray(self):
-        """The table as an :class:`xarray.Dataset` (dimension ``row``) with the metadata."""
-        from ..results import storage
+    def to_xarray(self, *, params=None):
+        """The table as an :class:`xarray.Dataset` (dimension ``row``) with the metadata:
+        the base tape (a study knows its own, so ``params`` is not used), ``velocity``,
+        ``varied``, ``compute``, ``count`` and ``info``."""
+        return results_base.table_dataset(self.table, self.kind,
+                                          **self._persistence_attrs())
 
-        return storage.to_xarray(self)
+    @classmethod
+    def from_xarray(cls, ds) -> StudyResult:
+        """The study stored by :meth:`to_xarray` (also files of the previous release)."""
+        return cls._from_saved(results_base.table_from(ds), ds.attrs)
+
+    def to_frame(self) -> pd.DataFrame:
+        """The table, one row per point."""
+        return self.table
+
+    def summary(self) -> dict:
+        """Points, how many were computed now, read from the cache and failed, the seconds
+        taken and where they ran (the line ``gyroshell study`` prints)."""
+        info = self.info
+        return {"points": info["points"], "computed": info["computed"],
+                "cached": info["cached"], "failed": len(self.failed),
+                "seconds": info["seconds"], "executor": info["executor"]}
 
     def gridded(self):
         """The table as an :class:`xarray.Dataset` with one dimension per varied parameter
@@ -382,17 +403,12 @@ class StudyResult:
         table = self.table.drop(columns=["point"])
         if table.duplicated(list(self.varied)).any():
             raise ParameterError("points repeat the same varied values: no grid")
-        from ..results.storage import _column_units
-
         ds = table.set_index(list(self.varied)).to_xarray()
-        _column_units(ds)
+        for name in ds.variables:
+            unit = unit_of(str(name))
+            if unit:
+                ds[name].attrs["units"] = unit
         return ds
-
-    def save(self, path):
-        """Write NetCDF (.nc), CSV or Parquet; see :func:`gyroshell.storage.save`."""
-        from ..results import storage
-
-        return storage.save(self, path)
 
     def plot(self, ax=None, **options):
         """Stability map (two varied parameters) or the quantity against one; see
@@ -404,18 +420,18 @@ class StudyResult:
         return plot.study_lines(self, ax=ax, **options)
 
     def _persistence_attrs(self) -> dict:
+        """The metadata of a study file (also used by the previous release's converter)."""
         return {"params": self.base, "velocity": self.velocity, "varied": list(self.varied),
                 "compute": list(self.compute), "count": self.count, "info": self.info}
 
     @classmethod
     def _from_saved(cls, table: pd.DataFrame, attrs: Mapping) -> StudyResult:
-        from ..results.storage import _params_from, from_json
-
+        from_json = results_base.from_json
         table = table.copy()
         for col in ("error", "stability"):
             if col in table:
                 table[col] = table[col].fillna("").astype(str)
-        return cls(table, _params_from(attrs), float(from_json(attrs["velocity"])),
+        return cls(table, results_base.params_from(attrs), float(from_json(attrs["velocity"])),
                    tuple(from_json(attrs["varied"])), tuple(from_json(attrs["compute"])),
                    int(from_json(attrs["count"])), from_json(attrs.get("info", "{}")))
 
@@ -436,15 +452,6 @@ def _check_workers(workers) -> int:
     if isinstance(workers, bool) or int(workers) != workers or workers < 1:
         raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
     return int(workers)
-
-
-def _init_worker() -> None:
-    """One BLAS thread per worker process: the workers already use every core."""
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:  # pragma: no cover - threadpoolctl missing
-        return
-    threadpool_limits(limits=1)
 
 
 def _chunks(tasks: list, size: int) -> list[list]:
@@ -487,7 +494,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         Points per task; default about ``CHUNKS_PER_WORKER`` tasks per worker (1 in
         this process).
     progress : bool, optional
-        tqdm progress bar on stderr; default only when stderr is a terminal.
+        Progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`); default
+        only when stderr is a terminal.
 
     Returns
     -------
@@ -498,9 +506,46 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     ParameterError
         Unknown parameter names, invalid values (naming the point), bad options.
     """
-    import pandas as pd
-    from tqdm import tqdm
+    plan = _plan(base, vary, points, compute, velocity, count)
+    return _run(plan, _check_executor(workers, scheduler, chunk_size), cache, progress)
 
+
+@dataclass(frozen=True)
+class _Plan:
+    """A validated study: the base tape's fields, the speed (m/s) where a point sets none,
+    the points, the varied names, what to compute and how many frequencies."""
+
+    base: TapeParameters
+    velocity: float
+    points: list[dict]
+    varied: tuple[str, ...]
+    compute: tuple[str, ...]
+    count: int
+
+    @property
+    def base_fields(self) -> dict:
+        return {f.name: getattr(self.base, f.name) for f in dataclasses.fields(self.base)}
+
+    def keys(self) -> list[str]:
+        """Each point's cache key: its values, the rest of the study and the version."""
+        from ..core.version import __version__
+
+        spec = json.dumps([self.base_fields, self.velocity, self.compute, self.count,
+                           __version__], sort_keys=True, default=repr)
+        return [_point_key(spec, p) for p in self.points]
+
+
+@dataclass(frozen=True)
+class _Executor:
+    """Where the points run: ``workers`` local processes, or a Dask ``scheduler``."""
+
+    workers: int | None
+    scheduler: str | None
+    chunk_size: int | None
+
+
+def _plan(base, vary, points, compute, velocity, count) -> _Plan:
+    """The study's settings validated (ParameterError names what is wrong)."""
     base = TapeParameters() if base is None else base
     if not isinstance(base, TapeParameters):
         raise ParameterError("base must be a TapeParameters")
@@ -508,13 +553,16 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     compute = _check_compute(compute)
     if isinstance(count, bool) or int(count) != count or count < 1:
         raise ParameterError(f"count must be an integer >= 1, got {count!r}")
-    count = int(count)
     if (vary is None) == (points is None):
         raise ParameterError("give either vary (a grid) or points (a list), not both")
     raw = grid_points(vary) if vary is not None else list(points)
     pts, varied = _check_points(base, velocity, raw)
     if vary is not None:
         varied = tuple(_canonical(n) for n in vary)
+    return _Plan(base, velocity, pts, varied, compute, int(count))
+
+
+def _check_executor(workers, scheduler, chunk_size) -> _Executor:
     if scheduler is not None and (not isinstance(scheduler, str) or "://" not in scheduler):
         raise ParameterError(f"scheduler must be an address like tcp://HOST:PORT, got "
                              f"{scheduler!r}")
@@ -524,72 +572,60 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     workers = _check_workers(workers) if scheduler is None else None
     if chunk_size is not None and (int(chunk_size) != chunk_size or chunk_size < 1):
         raise ParameterError(f"chunk_size must be an integer >= 1, got {chunk_size!r}")
-    if progress is None:
-        progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
+    return _Executor(workers, scheduler, chunk_size)
 
-    base_fields = {f.name: getattr(base, f.name) for f in dataclasses.fields(base)}
-    from ..core.version import __version__
 
-    spec = json.dumps([base_fields, velocity, compute, count, __version__], sort_keys=True,
-                      default=repr)
-    keys = [_point_key(spec, p) for p in pts]
+def _run(plan: _Plan, where: _Executor, cache, progress: bool | None) -> StudyResult:
+    """Compute the points the cache lacks, where asked, and gather the rows."""
+    import pandas as pd
+
+    keys, pts = plan.keys(), plan.points
     cache = _Cache(cache)
     done = cache.done()
     rows: dict[int, dict] = {i: done[k] for i, k in enumerate(keys) if k in done}
     todo = [(i, pts[i]) for i in range(len(pts)) if i not in rows]
-
     t0 = time.perf_counter()
-    bar = tqdm(total=len(pts), initial=len(rows), disable=not progress, desc="study",
-               unit="point")
+    bar = progress_bar(len(pts), "study", progress=progress, unit="point", initial=len(rows))
     with cache, bar:
         def record(results: list[tuple[int, dict]]) -> None:
             rows.update(results)
             cache.add([(keys[i], row) for i, row in results])
             bar.update(len(results))
 
-        executor, size = _execute(todo, record, base_fields, velocity, compute, count,
-                                  workers=workers, scheduler=scheduler, chunk_size=chunk_size)
-    columns = result_columns(compute, count)
+        executor, size = _execute(todo, record, plan, where)
+    columns = result_columns(plan.compute, plan.count)
     records = [{"point": i, **pts[i], **{c: rows[i][c] for c in columns}}
                for i in range(len(pts))]
-    table = pd.DataFrame(records, columns=["point", *varied, *columns])
+    table = pd.DataFrame(records, columns=["point", *plan.varied, *columns])
     info = {"points": len(pts), "computed": len(todo), "cached": len(pts) - len(todo),
             "seconds": time.perf_counter() - t0, "executor": executor, "chunk_size": size}
-    return StudyResult(table, base, velocity, varied, compute, count, info)
+    return StudyResult(table, plan.base, plan.velocity, plan.varied, plan.compute,
+                       plan.count, info)
 
 
-def _execute(todo, record: Callable, base_fields, velocity, compute, count, *, workers,
-             scheduler, chunk_size) -> tuple[str, int]:
-    """Run the tasks where asked; ``record`` gets each finished chunk's (index, row)s."""
-    args = (base_fields, velocity)
+def _execute(todo, record: Callable, plan: _Plan, where: _Executor) -> tuple[str, int]:
+    """Run the tasks where asked; ``record`` gets each finished chunk's (index, row)s.
+    Returns the executor's name and the chunk size."""
+    args = (plan.base_fields, plan.velocity)
+    compute, count, chunk_size = plan.compute, plan.count, where.chunk_size
     if not todo:
         return "cache", 0
-    if scheduler is not None:
-        return _execute_dask(todo, record, args, compute, count, scheduler, chunk_size)
-    if workers == 1:
+    if where.scheduler is not None:
+        return _execute_dask(todo, record, args, compute, count, where.scheduler, chunk_size)
+    if where.workers == 1:
         size = chunk_size or 1
         for chunk in _chunks(todo, size):
             record(_evaluate_chunk(*args, chunk, compute, count))
         return "serial", size
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from concurrent.futures import as_completed
 
+    workers = where.workers
     size = chunk_size or max(1, math.ceil(len(todo) / (workers * CHUNKS_PER_WORKER)))
-    # Not fork: the parent may hold BLAS or Dask threads, and a forked child can deadlock
-    # on their locks (Python 3.12+ warns). A fork server starts workers from a clean process.
-    methods = multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker,
-                             mp_context=context) as pool:
+    with process_pool(workers) as pool:
         futures = [pool.submit(_evaluate_chunk, *args, chunk, compute, count)
                    for chunk in _chunks(todo, size)]
-        try:
-            for fut in as_completed(futures):
-                record(fut.result())
-        except BaseException:
-            for fut in futures:
-                fut.cancel()
-            raise
+        for fut in as_completed(futures):
+            record(fut.result())
     return f"processes({workers})", size
 
 

@@ -1,11 +1,12 @@
-"""Frequencies against tape speed, with mode tracking, as a DataFrame and a plot.
+"""Frequencies against tape speed, with mode tracking, as a :class:`SweepResult` and a plot.
 
 At each speed the lowest ``count`` modes are computed (:func:`gyroshell.eigen.modes`) and
 matched to the previous speed's by mode-shape correlation
 
     C_ij = |φ_iᴴ M ψ_j| / (‖φ_i‖_M ‖ψ_j‖_M),
 
-with the assignment that maximizes the total correlation (Hungarian algorithm). A branch
+with the assignment that maximizes the total correlation (Hungarian algorithm,
+:mod:`gyroshell.studies.branches`). A branch
 therefore keeps its label when frequencies cross or veer, instead of following the sorted
 order. A mode that leaves the lowest-``count`` window is replaced by the newcomer with a low
 correlation; the ``correlation`` column says how sure each match is.
@@ -14,24 +15,142 @@ correlation; the ``correlation`` column says how sure each match is.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from functools import partial
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 from ..core import budget
 from ..core.errors import ParameterError
+from ..core.parallel import process_pool
+from ..core.progress import progress_bar
 from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
+from ..results import base
 from ..tape.model import TapeModel
-from ..tape.parameters import check_velocity
+from ..tape.parameters import TapeParameters, check_velocity
+from .branches import BranchTracker, Match, track
 
-if TYPE_CHECKING:  # pandas and tqdm are imported when a sweep runs: keep `import gyroshell` fast
+if TYPE_CHECKING:  # pandas is imported when a sweep runs: keep `import gyroshell` fast
     import pandas as pd
 
-#: Columns of the sweep DataFrame (long format, one row per speed and branch).
+    from ..tape.grid import Grid
+
+#: Columns of the sweep table (long format, one row per speed and branch).
 COLUMNS = ("velocity", "branch", "rank", "omega", "frequency", "period", "growth_rate",
            "residual", "correlation", "supercritical", "stability")
+#: Resolution of :func:`plot_sweep`'s files, dots per inch.
+SWEEP_DPI = 120
+#: The variable of a sweep file holding the requested speeds, on dimension ``speed``.
+VELOCITIES_VARIABLE = "velocities"
+
+
+@dataclass(frozen=True, eq=False)
+class SweepResult(base.Result, kind="sweep"):
+    """Tracked frequencies of a sweep (:func:`sweep`) and the settings that made them.
+
+    For one release a SweepResult also behaves like its table (``result["omega"]``,
+    ``len(result)``, ``result.columns``, ``result.groupby(...)``), with a
+    DeprecationWarning: use ``result.table``.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per speed and mode, columns :data:`COLUMNS` (see :func:`sweep`).
+    velocities : numpy.ndarray
+        The speeds, m/s, in the order they were tracked.
+    count : int
+        Modes per speed.
+    min_correlation : float
+        Weakest correlation that continued a branch.
+    continuation : bool
+        Whether each solve was continued from the previous speeds'.
+    params : TapeParameters or None
+        The tape.
+    grid : Grid or None
+        Its finite-difference grid.
+    info : dict
+        ``workers``: local processes used.
+    """
+
+    table: pd.DataFrame
+    velocities: np.ndarray
+    count: int
+    min_correlation: float
+    continuation: bool
+    params: TapeParameters | None = None
+    grid: Grid | None = None
+    info: dict = field(default_factory=dict)
+
+    def to_frame(self) -> pd.DataFrame:
+        """The table (columns :data:`COLUMNS`)."""
+        return self.table
+
+    def to_xarray(self, *, params=None):
+        """The table on dimension ``row``, the speeds on ``speed`` (m/s), and the settings;
+        ``params`` is stored only if the sweep does not know its tape."""
+        ds = base.table_dataset(self.table, self.kind, params=self.params or params,
+                                grid=self.grid, info=self.info, count=self.count,
+                                min_correlation=self.min_correlation,
+                                continuation=self.continuation)
+        ds[VELOCITIES_VARIABLE] = ("speed", self.velocities,
+                                   {"units": "m/s", "long_name": "tape speeds swept"})
+        return ds
+
+    @classmethod
+    def from_xarray(cls, ds) -> SweepResult:
+        """The sweep stored by :meth:`to_xarray`."""
+        attrs = ds.attrs
+        return cls(base.table_from(ds.drop_vars(VELOCITIES_VARIABLE)),
+                   ds[VELOCITIES_VARIABLE].values, int(base.from_json(attrs["count"])),
+                   float(base.from_json(attrs["min_correlation"])),
+                   bool(base.from_json(attrs["continuation"])), base.params_from(attrs),
+                   base.grid_from(attrs), base.from_json(attrs["info"]))
+
+    def summary(self) -> dict:
+        """Speeds, modes per speed, branches, speed range (m/s), the lowest ω (rad/s), the
+        supercritical speeds and the stability classes met."""
+        t = self.table
+        return {"speeds": len(self.velocities), "count": self.count,
+                "branches": int(t["branch"].nunique()),
+                "velocity_min": float(self.velocities.min()),
+                "velocity_max": float(self.velocities.max()),
+                "omega_min": float(t["omega"].min()),
+                "supercritical_speeds": int(t.groupby("velocity")["supercritical"]
+                                            .first().sum()),
+                "stability": ",".join(dict.fromkeys(t["stability"]))}
+
+    def plot(self, ax=None, *, title: str | None = None):
+        """See :func:`gyroshell.plot.sweep`."""
+        from .. import plot
+
+        return plot.sweep(self, ax=ax, title=title)
+
+    # ----- the DataFrame it was (deprecated) ---------------------------------------------
+    def _as_table(self, what: str) -> pd.DataFrame:
+        warnings.warn(f"sweep() returns a SweepResult, not a DataFrame: use .table{what} "
+                      "(the DataFrame behaviour goes in the next release)",
+                      DeprecationWarning, stacklevel=3)
+        return self.table
+
+    def __getattr__(self, name: str):
+        if name.startswith("_"):  # copy, pickle and hasattr probes: not the table's
+            raise AttributeError(name)
+        return getattr(self._as_table(f".{name}"), name)
+
+    def __getitem__(self, key):
+        return self._as_table("[...]")[key]
+
+    def __len__(self) -> int:
+        return len(self._as_table(" (len)"))
+
+    def __iter__(self):
+        return iter(self._as_table(" (iteration)"))
+
+    def __contains__(self, key) -> bool:
+        return key in self._as_table(" (in)")
 
 
 def parse_velocities(text: str, *, option: str = "velocities") -> list[float]:
@@ -89,7 +208,7 @@ def correlation(md: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
           min_correlation: float = 0.5, progress: bool | None = False,
-          continuation: bool = True, workers: int = 1, **options) -> pd.DataFrame:
+          continuation: bool = True, workers: int = 1, **options) -> SweepResult:
     """Lowest ``count`` frequencies at each speed, tracked into branches.
 
     Parameters
@@ -103,7 +222,8 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         A match weaker than this starts a new branch (the mode left the lowest-``count``
         window and another entered); take smaller speed steps to follow branches further.
     progress : bool or None
-        Show a tqdm progress bar on stderr; None: only if stderr is a terminal.
+        Show a progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`);
+        None: only if stderr is a terminal.
     continuation : bool
         Move the shift with the tracked lowest frequency (extrapolated from the previous
         speeds, see :func:`_continuation_options`), start each solve from the previous
@@ -122,41 +242,56 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
 
     Returns
     -------
-    pandas.DataFrame
-        Columns :data:`COLUMNS`: ``velocity`` (m/s), ``branch`` (tracked label), ``rank``
-        (position in ascending ω at that speed), ``omega`` (rad/s), ``frequency`` (Hz),
-        ``period`` (s), ``growth_rate`` (1/s, > 0 only if unstable), ``residual``,
-        ``correlation`` (with the previous speed's mode of the branch; 1 at the first speed),
-        ``supercritical`` (K(V) indefinite), ``stability`` ("stable", "divergence" or
-        "flutter", of the speed's computed eigenvalues).
+    SweepResult
+        Its ``table`` has the columns :data:`COLUMNS`: ``velocity`` (m/s), ``branch``
+        (tracked label), ``rank`` (position in ascending ω at that speed), ``omega``
+        (rad/s), ``frequency`` (Hz), ``period`` (s), ``growth_rate`` (1/s, > 0 only if
+        unstable), ``residual``, ``correlation`` (with the previous speed's mode of the
+        branch; 1 at the first speed), ``supercritical`` (K(V) indefinite), ``stability``
+        ("stable", "divergence" or "flutter", of the speed's computed eigenvalues).
     """
     import pandas as pd
-    from tqdm import tqdm
 
     velocities = check_velocities(velocities)
-    if progress is None:
-        import sys
-
-        progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
     if not 0.0 <= min_correlation <= 1.0:
         raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
     velocities = [check_speed(model, v) for v in velocities]   # all refused before any work
+    workers = check_workers(workers, len(velocities))
+    results = solve_speeds(model, velocities, count, continuation=continuation,
+                           workers=workers, options=options, progress=progress,
+                           description="sweep")
+    tracker = BranchTracker(partial(correlation, model.mass_diagonal), min_correlation)
+    rows: list[dict] = []
+    for res, match in zip(results, track(results, tracker), strict=True):
+        rows.extend(_rows(res, match))
+    return SweepResult(pd.DataFrame(rows, columns=list(COLUMNS)), np.array(velocities),
+                       int(count), float(min_correlation), bool(continuation),
+                       getattr(model, "params", None), getattr(model, "grid", None),
+                       {"workers": workers})
+
+
+def check_workers(workers, speeds: int) -> int:
+    """The number of local processes for ``speeds`` speeds: an integer >= 1, at most one
+    per speed."""
     if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
         raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
-    workers = min(int(workers), len(velocities))
-    bar = tqdm(total=len(velocities), disable=not progress, desc="sweep", unit="speed")
-    with bar:
+    return min(int(workers), speeds)
+
+
+def solve_speeds(model, velocities: list[float], count: int, *, continuation: bool,
+                 workers: int, options: dict, progress: bool | None,
+                 description: str) -> list[Modes]:
+    """The modes at each speed, in the order of ``velocities`` (validated, m/s).
+
+    One process continues each speed from the previous ones (``continuation``); several
+    ``workers`` each continue one contiguous run of the speeds. ``options`` go to
+    :func:`gyroshell.eigen.modes`; the bar is labelled ``description``.
+    """
+    with progress_bar(len(velocities), description, progress=progress, unit="speed") as bar:
         if workers == 1:
-            results = _solve_run(model, velocities, count, continuation, options, bar.update)
-        else:
-            results = _solve_parallel(model, velocities, count, continuation, options,
-                                      workers, bar.update)
-    tracker = _BranchTracker(model.mass_diagonal, min_correlation)
-    rows: list[dict] = []
-    for res in results:
-        labels, corr = tracker.match(res.vectors)
-        rows.extend(_rows(res, labels, corr))
-    return pd.DataFrame(rows, columns=list(COLUMNS))
+            return _solve_run(model, velocities, count, continuation, options, bar.update)
+        return _solve_parallel(model, velocities, count, continuation, options, workers,
+                               bar.update)
 
 
 def _solve_run(model: TapeModel, velocities: list[float], count: int, continuation: bool,
@@ -177,31 +312,18 @@ def _solve_run(model: TapeModel, velocities: list[float], count: int, continuati
 
 def _solve_parallel(model: TapeModel, velocities: list[float], count: int,
                     continuation: bool, options: dict, workers: int, done) -> list[Modes]:
-    """Contiguous runs of speeds on ``workers`` local processes (fork server: the parent
-    may hold BLAS threads), results in the order of the speeds."""
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-
-    from .parameter_study import _init_worker
-
+    """Contiguous runs of speeds on ``workers`` local processes, results in the order of
+    the speeds."""
     bounds = np.linspace(0, len(velocities), workers + 1).round().astype(int)
     runs = [velocities[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
-    methods = multiprocessing.get_all_start_methods()
-    context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    with ProcessPoolExecutor(max_workers=workers, initializer=_init_worker,
-                             mp_context=context) as pool:
+    results: list[Modes] = []
+    with process_pool(workers) as pool:
         futures = [pool.submit(_solve_run, model, run, count, continuation, options)
                    for run in runs]
-        try:
-            results: list[Modes] = []
-            for fut in futures:
-                part = fut.result()
-                done(len(part))
-                results.extend(part)
-        except BaseException:
-            for fut in futures:
-                fut.cancel()
-            raise
+        for fut in futures:
+            part = fut.result()
+            done(len(part))
+            results.extend(part)
     return results
 
 
@@ -260,37 +382,12 @@ def _extrapolate(points: list[Modes], velocity: float) -> float:
     return float(np.polyval(np.polyfit(v, w, len(v) - 1), velocity**2))
 
 
-class _BranchTracker:
-    """Labels modes by mass-weighted correlation with the previous speed's (Hungarian)."""
-
-    def __init__(self, md: np.ndarray, min_correlation: float) -> None:
-        self.md, self.min_correlation = md, min_correlation
-        self.previous: np.ndarray | None = None
-        self.labels: list[int] = []
-        self.next_label = 0
-
-    def match(self, vectors: np.ndarray) -> tuple[list[int], np.ndarray]:
-        k = vectors.shape[1]
-        new_labels = [-1] * k
-        corr_of = np.ones(k)
-        if self.previous is not None:
-            c = correlation(self.md, self.previous, vectors)
-            for i, j in zip(*linear_sum_assignment(-c), strict=False):
-                if c[i, j] >= self.min_correlation:
-                    new_labels[j], corr_of[j] = self.labels[i], c[i, j]
-                else:
-                    corr_of[j] = c[i, j]
-        for j in range(k):
-            if new_labels[j] < 0:  # a mode that entered the window: a new branch
-                new_labels[j], self.next_label = self.next_label, self.next_label + 1
-        self.previous, self.labels = vectors, new_labels
-        return new_labels, corr_of
-
-
-def _rows(res: Modes, labels: list[int], corr: np.ndarray) -> list[dict]:
+def _rows(res: Modes, match: Match) -> list[dict]:
     stability = res.stability
+    # a mode with no previous one to compare (the first speed, a newcomer) counts as sure
+    corr = np.where(match.assigned, match.similarity, 1.0)
     return [{
-        "velocity": res.velocity, "branch": labels[j], "rank": j,
+        "velocity": res.velocity, "branch": match.labels[j], "rank": j,
         "omega": float(res.omega[j]), "frequency": float(res.frequency[j]),
         "period": float(res.period[j]), "growth_rate": float(res.growth_rate[j]),
         "residual": float(res.residuals[j]), "correlation": float(corr[j]),
@@ -298,50 +395,18 @@ def _rows(res: Modes, labels: list[int], corr: np.ndarray) -> list[dict]:
     } for j in range(res.count)]
 
 
-def plot_sweep(frame: pd.DataFrame, path=None, *, ax=None, title: str | None = None):
+def plot_sweep(result, path=None, *, ax=None, title: str | None = None):
     """ω (rad/s) against V (m/s), one line per tracked branch; returns the Figure.
 
-    Supercritical points (growth rate > 0) are marked with crosses. With ``path`` the figure
-    is written there (PNG etc., atomically). matplotlib is imported here, not at import time.
+    ``result`` is a :class:`SweepResult` (or its table); the drawing is
+    :func:`gyroshell.plot.sweep`. With ``path`` the figure is also written there (PNG etc.,
+    atomically, at :data:`SWEEP_DPI` dots per inch).
     """
-    missing = {"velocity", "branch", "omega"} - set(frame.columns)
-    if missing:
-        raise ParameterError(f"frame lacks columns {sorted(missing)}")
-    import matplotlib
+    from .. import plot
 
-    if path is not None and ax is None:
-        matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        fig, ax = plt.subplots(figsize=(7.0, 4.5), constrained_layout=True)
-    else:
-        fig = ax.figure
-    if "rank" in frame:  # the k-th lowest frequency: continuous even where branches end
-        for rank, group in frame.groupby("rank"):
-            group = group.sort_values("velocity")
-            ax.plot(group["velocity"], group["omega"], color="0.75", lw=0.8, zorder=1,
-                    label="k-th lowest ω" if rank == 0 else None)
-    branches = frame.groupby("branch")
-    few = branches.ngroups <= 8
-    for k, (branch, group) in enumerate(branches):
-        group = group.sort_values("velocity")
-        label = f"branch {branch}" if few else ("tracked branches (mode-shape correlation)"
-                                                if k == 0 else None)
-        ax.plot(group["velocity"], group["omega"], marker="o", ms=3, lw=1.2, zorder=2,
-                color=None if few else f"C{branch % 10}", label=label)
-    if "growth_rate" in frame and (frame["growth_rate"] > 0).any():
-        sup = frame[frame["growth_rate"] > 0]
-        ax.plot(sup["velocity"], sup["growth_rate"], "kx", ls="none",
-                label="growth rate Re λ (1/s), divergence")
-    ax.set_xlabel("tape speed V (m/s)")
-    ax.set_ylabel("angular frequency ω (rad/s)")
-    ax.set_title(title or "Lowest frequencies of the moving tape against speed")
-    ax.set_ylim(bottom=0)
-    ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8, ncol=2)
     if path is not None:
-        from ..core.files import write_atomic
-
-        write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=120))
-    return fig
+        plot.pyplot(path=path)  # a figure only written to a file needs no window
+    ax = plot.sweep(result, ax=ax, title=title)
+    if path is not None:
+        plot.save_figure(ax.figure, path, dpi=SWEEP_DPI, close=False)
+    return ax.figure
