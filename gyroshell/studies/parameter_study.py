@@ -120,7 +120,7 @@ def tape_stability(model, velocity: float, eigenvalues=None) -> str:
     K = model.K(velocity)
     negatives = factor_inertia(K).negatives
     if negatives is None:  # pivoting happened: count the negative eigenvalues densely
-        if model.size > DENSE_LIMIT:
+        if model.unknowns > DENSE_LIMIT:
             negatives = -1
         else:
             negatives = int(np.count_nonzero(np.linalg.eigvalsh(K.toarray()) < 0))
@@ -128,7 +128,7 @@ def tape_stability(model, velocity: float, eigenvalues=None) -> str:
         return STABLE
     if negatives > 0 and negatives % 2 == 1:
         return DIVERGENCE
-    if model.size <= DENSE_LIMIT:
+    if model.unknowns <= DENSE_LIMIT:
         return classify_stability(quadratic_eigenvalues(model.M, model.G(velocity), K))
     if eigenvalues is not None:
         verdict = classify_stability(eigenvalues)

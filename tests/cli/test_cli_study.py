@@ -138,3 +138,38 @@ def test_campbell_command(tmp_path, capsys):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert exit_code(["campbell", *COARSE, "--orders", "x"]) == 2
     assert "--orders must be integers" in capsys.readouterr().err
+
+
+def test_study_and_campbell_json_print_the_results_summary(tmp_path, capsys):
+    from gyroshell.studies.campbell import campbell
+
+    argv = ["study", *COARSE, "--vary", "velocity=0,104", "--compute", "modes,static",
+            "--workers", "1", "--quiet", "--json"]
+    assert main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    api = run_study(BASE, vary={"velocity": [0.0, 104.0]}, compute=["modes", "static"],
+                    workers=1)
+    expected = api.summary()
+    assert out.keys() == expected.keys() and out.pop("seconds") > 0
+    assert out == {k: v for k, v in expected.items() if k != "seconds"}
+    assert out["failed"] == 1  # static above critical
+    assert main(["campbell", *COARSE, "--velocities", "0:10:5", "--count", "2", "--quiet",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out == campbell(TapeModel(BASE), [0.0, 5.0, 10.0], 2).summary()
+    assert out["branches"] == 2 and out["speeds"] == 3 and out["critical_speed"] > 10.0
+
+
+def test_campbell_saves_the_whole_diagram_and_runs_on_workers(tmp_path, capsys):
+    from gyroshell.results.base import read
+
+    nc = tmp_path / "c.nc"
+    base_argv = ["campbell", *COARSE, "--velocities", "0:30:10", "--count", "2", "--quiet"]
+    assert main([*base_argv, "--out", str(nc)]) == 0
+    one = read(nc)
+    assert one.params == BASE and one.info["workers"] == 1
+    assert main([*base_argv, "--workers", "2", "--out", str(nc)]) == 0
+    two = read(nc)
+    assert np.allclose(two.frame["omega"], one.frame["omega"], rtol=1e-10, atol=0)
+    assert (two.frame["branch"] == one.frame["branch"]).all()
+    assert "wrote" in capsys.readouterr().out

@@ -103,7 +103,7 @@ def test_parse_velocities():
 
 def test_sweep_tracks_branches(tmp_path):
     model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
-    frame = sweep(model, [0, 2, 4, 6, 8], 4)
+    frame = sweep(model, [0, 2, 4, 6, 8], 4).table
     assert list(frame.columns)[:4] == ["velocity", "branch", "rank", "omega"]
     assert len(frame) == 20
     # small steps: every mode continues its branch
@@ -244,8 +244,8 @@ def test_cli_modes_damped_json(capsys):
 def test_continuation_sweep_equals_independent_solves():
     model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
     speeds = np.linspace(0, 95, 8)
-    cont = sweep(model, speeds, 4, continuation=True)
-    fresh = sweep(TapeModel(model.params), speeds, 4, continuation=False)
+    cont = sweep(model, speeds, 4, continuation=True).table
+    fresh = sweep(TapeModel(model.params), speeds, 4, continuation=False).table
     assert np.allclose(cont.omega, fresh.omega, rtol=1e-10, atol=0)
     assert (cont.branch == fresh.branch).all()
     assert set(cont.stability) == {"stable"}
@@ -253,7 +253,7 @@ def test_continuation_sweep_equals_independent_solves():
 
 def test_sweep_stability_column_above_critical():
     model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
-    frame = sweep(model, [90.0, 120.0], 2)
+    frame = sweep(model, [90.0, 120.0], 2).table
     by_speed = frame.groupby("velocity").stability.first()
     assert by_speed[90.0] == "stable" and by_speed[120.0] == "divergence"
 

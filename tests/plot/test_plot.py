@@ -99,7 +99,8 @@ def test_gif_animations(model, tmp_path):
 
 
 def test_import_gyroshell_does_not_import_matplotlib_xarray_or_dask():
-    code = ("import sys, gyroshell, gyroshell.plot, gyroshell.studies.parameter_study, gyroshell.studies.campbell; "
+    code = ("import sys, gyroshell, gyroshell.plot, gyroshell.studies.parameter_study, "
+            "gyroshell.studies.campbell, gyroshell.studies.sweep; "
             "print([m for m in ('matplotlib', 'xarray', 'dask', 'distributed', 'pandas') "
             "if m in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
@@ -114,3 +115,40 @@ def test_stability_map_over_a_word_parameter(tmp_path):
     ax = study.plot()
     assert [t.get_text() for t in ax.get_xticklabels()] == ["free", "simply-supported"]
     assert saved(ax, tmp_path / "edges.png") == PNG
+
+
+def test_sweep_plot_of_a_result_or_its_table_and_the_figure_saver(model, tmp_path):
+    from gyroshell import sweep
+
+    result = sweep(TapeModel(PARAMS.replace(length_ratio=2)), [0.0, 40.0, 80.0], 3)
+    ax = result.plot(title="a sweep")
+    assert isinstance(ax, Axes) and ax.get_title() == "a sweep"
+    assert "m/s" in ax.get_xlabel() and "rad/s" in ax.get_ylabel()
+    rank_lines = [line for line in ax.lines if line.get_zorder() == 1]
+    assert len(rank_lines) == 3  # the k-th lowest ω, k = 1..3, in grey beneath
+    _, other = plt.subplots()
+    gplot.sweep(result.table, ax=other)
+    for a, b in zip(ax.lines, other.lines, strict=True):  # a table draws the same lines
+        assert np.array_equal(a.get_xydata(), b.get_xydata())
+    with pytest.raises(ParameterError, match="lacks columns"):
+        gplot.sweep(result.table.drop(columns="branch"))
+    path = gplot.save_figure(ax.figure, tmp_path / "s.png", dpi=50, close=False)
+    small = plt.imread(path).shape
+    gplot.save_figure(ax.figure, tmp_path / "s.png", dpi=100)  # replaces the file whole
+    assert plt.imread(path).shape[0] == pytest.approx(2 * small[0], abs=2)
+    assert not plt.fignum_exists(ax.figure.number), "closed after writing"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.png"], "no temporary files"
+    from gyroshell.core.files import OutputPathError
+
+    with pytest.raises(OutputPathError, match="--plot .*does not exist"):
+        gplot.save_figure(other.figure, tmp_path / "no" / "s.png", dpi=50, option="--plot")
+    assert not plt.fignum_exists(other.figure.number), "closed also when writing failed"
+
+
+def test_study_lines_pick_the_first_computed_quantity_without_importing_studies():
+    one = run_study(PARAMS, vary={"tension": [70.0, 90.0]}, compute=["modes", "critical"],
+                    count=2, workers=1)
+    ax = gplot.study_lines(one)
+    assert ax.get_ylabel() == "critical speed (m/s)"  # critical comes first in the table
+    with pytest.raises(ParameterError, match="quantity"):
+        gplot.study_lines(one.table.drop(columns=["critical_speed"]), x="tension")

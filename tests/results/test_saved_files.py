@@ -104,7 +104,7 @@ def test_transient_round_trip(model, tmp_path, energy, keep):
 
 @pytest.mark.parametrize("suffix", [".nc", ".csv", ".parquet"])
 def test_sweep_table_round_trip(model, tmp_path, suffix):
-    frame = sweep(model, [0.0, 60.0, 110.0], 3, progress=False)
+    frame = sweep(model, [0.0, 60.0, 110.0], 3, progress=False).table
     back = gyroshell.load(gyroshell.save(frame, tmp_path / f"sweep{suffix}"))
     pd.testing.assert_frame_equal(back, frame, check_exact=True)
 

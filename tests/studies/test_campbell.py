@@ -116,3 +116,24 @@ def test_refusals():
 
     with pytest.raises(ParameterError, match="circumference"):
         CampbellDiagram.excitation(1, -1.0, 3.0)
+
+
+def test_continued_and_two_process_diagrams_equal_the_independent_one():
+    """Campbell shares the sweep's continuation and workers: the same branches, crossings
+    and MAC, and the frequencies to the sweep tests' tolerance."""
+    model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
+    speeds = np.linspace(0.0, 95.0, 8)
+    fresh = campbell(model, speeds, 4, critical_speed=False)
+    for kwargs in ({"continuation": True}, {"workers": 2}, {"continuation": True,
+                                                            "workers": 2}):
+        other = campbell(TapeModel(model.params), speeds, 4, critical_speed=False, **kwargs)
+        assert np.allclose(other.frame["omega"], fresh.frame["omega"], rtol=1e-10, atol=0)
+        for column in ("velocity", "branch", "rank"):
+            assert (other.frame[column] == fresh.frame[column]).all(), (kwargs, column)
+        assert np.allclose(other.frame["mac"], fresh.frame["mac"], rtol=1e-8,
+                           equal_nan=True)
+        assert len(other.crossings) == len(fresh.crossings)
+        assert len(other.veerings) == len(fresh.veerings)
+        assert other.info["workers"] == kwargs.get("workers", 1)
+    with pytest.raises(ParameterError, match="workers must be an integer >= 1"):
+        campbell(model, speeds, 2, critical_speed=False, workers=0)
