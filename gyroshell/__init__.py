@@ -39,7 +39,7 @@ _LAZY: dict[str, str] = {
     "Modes": "engines.eigen", "frequencies": "engines.eigen", "modes": "engines.eigen",
     "InertiaFactor": "linalg.inertia", "factor_inertia": "linalg.inertia",
     "GyroscopicModes": "linalg.qep", "gyroscopic_modes": "linalg.qep",
-    "plot_sweep": "studies.sweep", "sweep": "studies.sweep",
+    "SweepResult": "studies.sweep", "plot_sweep": "studies.sweep", "sweep": "studies.sweep",
     # parameter studies and saved results (xarray, Dask and matplotlib load on use)
     "load": "kinds", "save": "kinds",
     "StudyResult": "studies.parameter_study", "classify_stability": "linalg.qep", "run_study": "studies.parameter_study",

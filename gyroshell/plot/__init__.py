@@ -779,8 +779,7 @@ def spectra(labels, omegas, amplitudes, *, omega_ref=None, ax=None, xmax: float 
     -------
     matplotlib.axes.Axes
     """
-    labels = list(labels)
-    omegas, amplitudes = list(omegas), list(amplitudes)
+    labels, omegas, amplitudes = list(labels), list(omegas), list(amplitudes)
     if not (len(labels) == len(omegas) == len(amplitudes)) or not labels:
         raise ParameterError("labels, omegas and amplitudes need one entry per spectrum")
     ref = None if omega_ref is None else _vector(omega_ref, "omega_ref")

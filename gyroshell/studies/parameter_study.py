@@ -222,61 +222,70 @@ def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
     and is reported in ``error`` (``"static: SupercriticalError: message"``; several joined
     by " | "), while the other quantities of the point are kept.
     """
-    from ..tape.model import TapeModel
-
     row: dict = {c: math.nan for c in result_columns(compute, count)}
     if "stability" in row:
         row["stability"] = ""
     errors: list[str] = []
 
-    def attempt(name: str, fn: Callable[[], None]) -> None:
+    def attempt(name: str, fn: Callable, *args) -> None:
         try:
-            fn()
+            fn(*args)
         except Exception as exc:  # reported in the row; the study goes on
             errors.append(f"{name}: {type(exc).__name__}: {exc}".replace("\n", " "))
 
-    model: list[TapeModel] = []
-    state: dict = {}
-
-    def build() -> None:
-        params, state["v"] = _parameters_of(TapeParameters(**base), velocity, point)
-        model.append(TapeModel(params))
-
-    def critical() -> None:
-        from ..engines.critical import critical_speeds
-
-        c = critical_speeds(model[0])
-        row.update(critical_speed=c.critical_speed, divergence_speed=c.divergence_speed)
-
-    def eigen() -> None:
-        from ..engines.eigen import modes
-
-        res = modes(model[0], state["v"], count if "modes" in compute else 1)
-        if "modes" in compute:
-            for j, w in enumerate(res.omega):
-                row[f"omega_{j + 1}"] = float(w)
-            row["growth_rate"] = float(np.max(res.eigenvalues.real.clip(min=0.0)))
-        if "period" in compute:
-            row["period"] = float(res.period[0])
-        row["stability"] = tape_stability(model[0], state["v"], res.eigenvalues)
-
-    def static() -> None:
-        from ..engines.static import solve_static
-
-        s = solve_static(model[0], state["v"])
-        row.update(load_point_deflection=s.load_point_deflection,
-                   max_deflection=s.max_deflection)
-
-    attempt("model", build)
-    if model:
-        if "critical" in compute:
-            attempt("critical", critical)
-        if "modes" in compute or "period" in compute:
-            attempt("modes" if "modes" in compute else "period", eigen)
-        if "static" in compute:
-            attempt("static", static)
+    built: list = []
+    attempt("model", lambda: built.append(_model_of(base, velocity, point)))
+    if built:
+        model, v = built[0]
+        eigen_name = "modes" if "modes" in compute else "period"
+        for name, wanted, columns in (
+                ("critical", "critical" in compute, _critical_columns),
+                (eigen_name, "modes" in compute or "period" in compute, _eigen_columns),
+                ("static", "static" in compute, _static_columns)):
+            if wanted:
+                attempt(name, columns, model, v, row, compute, count)
     row["error"] = " | ".join(errors)
     return row
+
+
+def _model_of(base: dict, velocity: float, point: dict):
+    """The point's TapeModel and speed V (m/s)."""
+    from ..tape.model import TapeModel
+
+    params, v = _parameters_of(TapeParameters(**base), velocity, point)
+    return TapeModel(params), v
+
+
+def _critical_columns(model, v: float, row: dict, compute, count: int) -> None:
+    """``critical_speed`` and ``divergence_speed`` (m/s) into ``row``."""
+    from ..engines.critical import critical_speeds
+
+    c = critical_speeds(model)
+    row.update(critical_speed=c.critical_speed, divergence_speed=c.divergence_speed)
+
+
+def _eigen_columns(model, v: float, row: dict, compute, count: int) -> None:
+    """``omega_k`` and ``growth_rate`` (modes), ``period`` and ``stability`` into ``row``,
+    each as soon as it is known (a later failure keeps them)."""
+    from ..engines.eigen import modes
+
+    res = modes(model, v, count if "modes" in compute else 1)
+    if "modes" in compute:
+        for j, w in enumerate(res.omega):
+            row[f"omega_{j + 1}"] = float(w)
+        row["growth_rate"] = float(np.max(res.eigenvalues.real.clip(min=0.0)))
+    if "period" in compute:
+        row["period"] = float(res.period[0])
+    row["stability"] = tape_stability(model, v, res.eigenvalues)
+
+
+def _static_columns(model, v: float, row: dict, compute, count: int) -> None:
+    """``load_point_deflection`` and ``max_deflection`` (m) into ``row``."""
+    from ..engines.static import solve_static
+
+    s = solve_static(model, v)
+    row.update(load_point_deflection=s.load_point_deflection,
+               max_deflection=s.max_deflection)
 
 
 def _evaluate_chunk(base: dict, velocity: float, tasks: list[tuple[int, dict]],

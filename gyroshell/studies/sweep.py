@@ -252,11 +252,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
     """
     import pandas as pd
 
-    velocities = check_velocities(velocities)
-    if not 0.0 <= min_correlation <= 1.0:
-        raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
-    velocities = [check_speed(model, v) for v in velocities]   # all refused before any work
-    workers = check_workers(workers, len(velocities))
+    velocities, workers = _check_sweep(model, velocities, min_correlation, workers)
     results = solve_speeds(model, velocities, count, continuation=continuation,
                            workers=workers, options=options, progress=progress,
                            description="sweep")
@@ -268,6 +264,16 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
                        int(count), float(min_correlation), bool(continuation),
                        getattr(model, "params", None), getattr(model, "grid", None),
                        {"workers": workers})
+
+
+def _check_sweep(model, velocities, min_correlation: float, workers
+                 ) -> tuple[list[float], int]:
+    """The validated speeds (m/s) and number of processes; all refused before any work."""
+    velocities = check_velocities(velocities)
+    if not 0.0 <= min_correlation <= 1.0:
+        raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")
+    velocities = [check_speed(model, v) for v in velocities]
+    return velocities, check_workers(workers, len(velocities))
 
 
 def check_workers(workers, speeds: int) -> int:
