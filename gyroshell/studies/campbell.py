@@ -128,7 +128,8 @@ class CampbellDiagram(base.Result, kind="campbell"):
         data_vars: dict = {}
         layout = {name: _put_table(data_vars, getattr(self, name), prefix, dim)
                   for name, (prefix, dim) in _STORED_TABLES.items()}
-        return base.dataset(data_vars, {}, self.kind, params=self.params or params,
+        tape = self.params if self.params is not None else params
+        return base.dataset(data_vars, {}, self.kind, params=tape,
                             info=self.info, tables=layout,
                             critical_speed=self.critical_speed)
 

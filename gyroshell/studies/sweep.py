@@ -91,7 +91,8 @@ class SweepResult(base.Result, kind="sweep"):
     def to_xarray(self, *, params=None):
         """The table on dimension ``row``, the speeds on ``speed`` (m/s), and the settings;
         ``params`` is stored only if the sweep does not know its tape."""
-        ds = base.table_dataset(self.table, self.kind, params=self.params or params,
+        tape = self.params if self.params is not None else params
+        ds = base.table_dataset(self.table, self.kind, params=tape,
                                 grid=self.grid, info=self.info, count=self.count,
                                 min_correlation=self.min_correlation,
                                 continuation=self.continuation)
