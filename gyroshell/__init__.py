@@ -26,7 +26,7 @@ _LAZY: dict[str, str] = {
     "Harmonic": "tape.loads", "Ramp": "tape.loads", "gaussian_load": "tape.loads", "pressure_load": "tape.loads",
     "step": "tape.loads",
     # static and divergence
-    "StaticSolution": "engines.static", "solve_static": "engines.static",
+    "StaticSolution": "results.static", "solve_static": "engines.static",
     "Divergence": "engines.divergence", "divergence": "engines.divergence",
     "divergence_speed": "engines.divergence",
     # time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends
