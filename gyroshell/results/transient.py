@@ -24,8 +24,8 @@ import numpy as np
 from ..core import budget, validation
 from ..core.errors import ParameterError
 from ..core.files import atomic_path
-from ..tape.grid import Grid
 from ..plot import load_point_history
+from ..tape.grid import Grid
 from .base import Result, dataset, from_json
 
 
