@@ -244,13 +244,11 @@ class Newmark:
         steps : int
             Number of time steps (>= 1); the result holds steps + 1 instants.
         profile : callable
-            f(t), dimensionless, t in s (default: a step switched on at t = 0); the applied
-            force is f(t) F with F = ``force`` or the model's force (its Gaussian pressure).
+            f(t), dimensionless, t in s (default: a step at t = 0); the force is f(t) F.
         force : numpy.ndarray, optional
             Nodal force vector F, N (default: the model's force).
         load : MovingLoad or list of MovingLoad, optional
-            Moving and intermittent heads instead of f(t) F; the history is then the
-            displacement under each head's current centre.
+            Moving heads instead of f(t) F (the history is then w under each head's centre).
         w0, v0 : numpy.ndarray, optional
             Initial displacement (m) and velocity (m/s) of the unknowns; default zero (the
             wrapped equilibrium).
@@ -277,8 +275,7 @@ class Newmark:
         ConvergenceError
             If the solution becomes non-finite or grows past the bound.
         """
-        steps = check_steps(steps)
-        t0 = _check_real("t0", t0)
+        steps, t0 = check_steps(steps), _check_real("t0", t0)
         blowup_factor = _check_real("blowup_factor", blowup_factor, positive=True)
         times = self._instants(steps, t0)
         loads = self._prepare_load(load, force, profile, times)
@@ -287,10 +284,8 @@ class Newmark:
         recorder = Recorder(self.model.grid, steps, self.dt, t0, snapshot_times=snapshot_times,
                             snapshot_every=snapshot_every, centerline_times=centerline_times)
         bound = self._blowup_bound(w, v, loads, steps, blowup_factor)
-        history = np.empty((steps + 1, loads.heads))
-        energy = np.empty(steps + 1) if record_energy else None
-        state, timing = self._timed_loop(steps, times, (w, v, a), loads, recorder, history,
-                                         energy, bound, progress)
+        state, history, energy, timing = self._timed_loop(
+            steps, times, (w, v, a), loads, recorder, bound, record_energy, progress)
         return self._result(times, history, recorder, state, energy, timing,
                             moving_load=load is not None)
 
@@ -300,17 +295,20 @@ class Newmark:
         budget.check_transient(grid.nx, grid.ny, grid.edges, steps)
         return t0 + self.dt * np.arange(steps + 1)
 
-    def _timed_loop(self, steps, times, state, loads, recorder, history, energy, bound,
+    def _timed_loop(self, steps, times, state, loads, recorder, bound, record_energy,
                     progress):
         """The time loop with its progress bar and BLAS threads; returns the final
-        (w, v, a) and the (solve, loop) times, s."""
+        (w, v, a), the history under each head (m), the energy (J, or None) and the
+        (solve, loop) times, s."""
         w, v, a = state
+        history = np.empty((steps + 1, loads.heads))
+        energy = np.empty(steps + 1) if record_energy else None
         start = time.perf_counter()
         with progress_bar(steps, "newmark", progress=progress, unit="step") as bar, \
                 limit_blas_threads(self.blas_threads):
             w, v, a, solve_time = self._loop(steps, times, w, v, a, loads, recorder,
                                              history, energy, bound, bar)
-        return (w, v, a), (solve_time, time.perf_counter() - start)
+        return (w, v, a), history, energy, (solve_time, time.perf_counter() - start)
 
     def _result(self, times, history, recorder, state, energy, timing, *,
                 moving_load: bool) -> TransientResult:

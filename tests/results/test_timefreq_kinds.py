@@ -127,7 +127,7 @@ def test_files_of_the_previous_release_still_load(kind, tmp_path):
 def test_summaries_are_plain_json_values():
     import json
 
-    for kind, build in EXAMPLES.items():
+    for build in EXAMPLES.values():
         json.dumps(build().summary())  # raises on numpy scalars or arrays
     assert frequency().summary()["unknowns"] == model().unknowns
 
