@@ -5,8 +5,9 @@ At each angular frequency ω (rad/s) the displacement amplitude W (complex, m) s
     Q(ω) W = F,        Q(ω) = K(V) − ω² M + iω (G(V) + C),
 
 and the response at a point is r·W (bilinear interpolation row r): amplitude |r·W| (m) and
-phase arg(r·W) (rad; negative = lagging the load). F is the model's load (the Gaussian of
-Eq. 17 with its peak pressure P₀), so the amplitude is the displacement per P₀-load.
+phase arg(r·W) (rad; negative = lagging the load). F is the model's force (the nodal forces
+of the Gaussian pressure of Eq. 17, peak P₀), so the amplitude is the displacement under
+that pressure.
 
 Two methods, chosen per frequency:
 

@@ -12,16 +12,17 @@ one solve K_eq wⁿ⁺¹ = f_eq (Eqs. 12, 15-16) with the matrix factored once,
 and correctors (Eqs. 13-14) aⁿ⁺¹ = (wⁿ⁺¹ − w̃)/(βΔt²), vⁿ⁺¹ = ṽ + γΔt aⁿ⁺¹.
 
 β = 1/4, γ = 1/2 (the default) is the trapezoidal rule: unconditionally stable, no
-algorithmic damping. With G skew, C the (optional) damping matrix and a constant load, the
+algorithmic damping. With G skew, C the (optional) damping matrix and a constant force, the
 energy E = ½vᵀMv + ½wᵀKw − Fᵀw then changes by exactly −Δt v̄ᵀC v̄ per step, v̄ the mean of
 the step's two velocities: conserved without damping, decreasing with it. β = 1, γ = 3/2
 damps strongly and brings a transient to its static equilibrium with large steps (the
 paper's "t = ∞" pictures).
 
-F(t) is either f(t) F (a fixed load with a time profile, by default the model's Gaussian
-switched on at t = 0) or moving heads (:mod:`gyroshell.tape.moving_loads`). A :class:`Newmark`
-object holds one factorization for one (V, Δt, β, γ, C) and can march any number of runs
-with it; :func:`march` is the one-call form.
+F(t) is either f(t) F (a fixed force with a time profile, by default the nodal forces of
+the model's Gaussian pressure switched on at t = 0) or moving heads
+(:mod:`gyroshell.tape.moving_loads`). A :class:`Newmark` object holds one factorization for
+one (V, Δt, β, γ, C) and can march any number of runs with it; :func:`march` is the
+one-call form.
 """
 
 from __future__ import annotations
@@ -86,7 +87,7 @@ def check_force(force, size: int, name: str = "force", unit: str = "N") -> np.nd
     return out
 
 
-class _FixedLoad:
+class _FixedForce:
     """F(t) = f(t) F at the instants of one run, with the load-point interpolation row."""
 
     heads = 1
@@ -215,8 +216,8 @@ class Newmark:
             return np.zeros(n)
         return check_force(vector, n, name, unit).copy()  # a copy: the march writes into it
 
-    def _prepare_load(self, load, force, profile, times: np.ndarray):
-        """The run's F(t): moving heads, or f(t) F with F the model's load or ``force``."""
+    def _prepare_forcing(self, load, force, profile, times: np.ndarray):
+        """The run's F(t): moving heads, or f(t) F with F ``force`` or the model's force."""
         if load is not None:
             if force is not None:
                 raise ParameterError("give either load (moving heads) or force, not both")
@@ -225,7 +226,7 @@ class Newmark:
                                      "dependence is its contact windows (ContactWindows)")
             return PreparedLoads(self.model, as_loads(load), times)
         force = self.model.force if force is None else check_force(force, self.model.unknowns)
-        return _FixedLoad(force, profile, self.model.load_point_row, times)
+        return _FixedForce(force, profile, self.model.load_point_row, times)
 
     # ----- the march --------------------------------------------------------------------
     def march(self, steps: int, *, profile: TimeProfile = step,
@@ -278,14 +279,14 @@ class Newmark:
         steps, t0 = check_steps(steps), _check_real("t0", t0)
         blowup_factor = _check_real("blowup_factor", blowup_factor, positive=True)
         times = self._instants(steps, t0)
-        loads = self._prepare_load(load, force, profile, times)
+        forcing = self._prepare_forcing(load, force, profile, times)
         w, v = self._state(w0, "w0", "m"), self._state(v0, "v0", "m/s")
-        a = self.initial_acceleration(w, v, loads.vector(0))
+        a = self.initial_acceleration(w, v, forcing.vector(0))
         recorder = Recorder(self.model.grid, steps, self.dt, t0, snapshot_times=snapshot_times,
                             snapshot_every=snapshot_every, centerline_times=centerline_times)
-        bound = self._blowup_bound(w, v, loads, steps, blowup_factor)
+        bound = self._blowup_bound(w, v, forcing, steps, blowup_factor)
         state, history, energy, timing = self._timed_loop(
-            steps, times, (w, v, a), loads, recorder, bound, record_energy, progress)
+            steps, times, (w, v, a), forcing, recorder, bound, record_energy, progress)
         return self._result(times, history, recorder, state, energy, timing,
                             moving_load=load is not None)
 
@@ -295,18 +296,18 @@ class Newmark:
         budget.check_transient(grid.nx, grid.ny, grid.edges, steps)
         return t0 + self.dt * np.arange(steps + 1)
 
-    def _timed_loop(self, steps, times, state, loads, recorder, bound, record_energy,
+    def _timed_loop(self, steps, times, state, forcing, recorder, bound, record_energy,
                     progress):
         """The time loop with its progress bar and BLAS threads; returns the final
         (w, v, a), the history under each head (m), the energy (J, or None) and the
         (solve, loop) times, s."""
         w, v, a = state
-        history = np.empty((steps + 1, loads.heads))
+        history = np.empty((steps + 1, forcing.heads))
         energy = np.empty(steps + 1) if record_energy else None
         start = time.perf_counter()
         with progress_bar(steps, "newmark", progress=progress, unit="step") as bar, \
                 limit_blas_threads(self.blas_threads):
-            w, v, a, solve_time = self._loop(steps, times, w, v, a, loads, recorder,
+            w, v, a, solve_time = self._loop(steps, times, w, v, a, forcing, recorder,
                                              history, energy, bound, bar)
         return (w, v, a), history, energy, (solve_time, time.perf_counter() - start)
 
@@ -324,12 +325,12 @@ class Newmark:
                                a, self.velocity, self.dt, self.beta, self.gamma, energy, info,
                                head_displacements=heads)
 
-    def _blowup_bound(self, w, v, loads, steps: int, factor: float) -> float:
+    def _blowup_bound(self, w, v, forcing, steps: int, factor: float) -> float:
         """The displacement (m) past which the run counts as blown up."""
-        if isinstance(loads, _FixedLoad):
-            peak = np.abs(loads.force).max()
+        if isinstance(forcing, _FixedForce):
+            peak = np.abs(forcing.force).max()
         else:  # the largest force a head can put on one node: its peak over all steps
-            peak = max(np.abs(loads.vector(n)).max() for n in
+            peak = max(np.abs(forcing.vector(n)).max() for n in
                        np.unique(np.linspace(0, steps, min(steps + 1, 64)).astype(int)))
         scale = max(np.abs(w).max(), steps * self.dt * np.abs(v).max(),
                     peak / np.abs(self.K.diagonal()).max())
@@ -346,7 +347,7 @@ class Newmark:
         np.multiply(a, (1.0 - self.gamma) * dt, out=v_t)
         v_t += v
 
-    def _right_hand_side(self, n, w_t, v_t, loads, rhs, tmp, tmp2) -> None:
+    def _right_hand_side(self, n, w_t, v_t, forcing, rhs, tmp, tmp2) -> None:
         """f_eq = M w̃ + (G + C)(γΔt w̃ − βΔt² ṽ) + βΔt² F(t_n) (Eq. 16)."""
         bdt2 = self.beta * self.dt * self.dt
         np.multiply(w_t, self.gamma * self.dt, out=tmp)
@@ -354,7 +355,7 @@ class Newmark:
         tmp -= tmp2
         np.multiply(self.m, w_t, out=rhs)
         rhs += self.damped_gyroscopic @ tmp
-        loads.add(n, bdt2, rhs)
+        forcing.add(n, bdt2, rhs)
 
     def _correct(self, w_new, w_t, v_t, a, v) -> None:
         """a = (w − w̃)/(βΔt²), v = ṽ + γΔt a (Eqs. 13-14)."""
@@ -363,20 +364,20 @@ class Newmark:
         np.multiply(a, self.gamma * self.dt, out=v)
         v += v_t
 
-    def _loop(self, steps, times, w, v, a, loads, recorder, history, energy, bound, bar):
+    def _loop(self, steps, times, w, v, a, forcing, recorder, history, energy, bound, bar):
         """The time loop; fills ``history`` (and ``energy``) and returns (w, v, a, solve s)."""
         solve, wanted = self.factor.solve, recorder.wanted
         w_t, v_t, rhs, tmp, tmp2 = (np.empty_like(w) for _ in range(5))
-        loads.displacement(0, w, history[0])
+        forcing.displacement(0, w, history[0])
         if energy is not None:
-            energy[0] = self.energy(w, v, loads.vector(0))
+            energy[0] = self.energy(w, v, forcing.vector(0))
         recorder.record(0, w)
         solve_time = 0.0
         n = 0
         try:
             for n in range(1, steps + 1):
                 self._predict(w, v, a, w_t, v_t, tmp)
-                self._right_hand_side(n, w_t, v_t, loads, rhs, tmp, tmp2)
+                self._right_hand_side(n, w_t, v_t, forcing, rhs, tmp, tmp2)
                 tick = time.perf_counter()
                 w = solve(rhs)  # Eq. 12
                 solve_time += time.perf_counter() - tick
@@ -384,9 +385,9 @@ class Newmark:
                 size = np.abs(w, out=tmp).max()  # NaN propagates: "not <=" catches it
                 if not size <= bound:
                     raise _blowup(n, times[n], size, bound, self)
-                loads.displacement(n, w, history[n])
+                forcing.displacement(n, w, history[n])
                 if energy is not None:
-                    energy[n] = self.energy(w, v, loads.vector(n))
+                    energy[n] = self.energy(w, v, forcing.vector(n))
                 if wanted[n]:
                     recorder.record(n, w)
                 bar.update(1)

@@ -67,7 +67,7 @@ def solve_static(model: TapeModel, velocity: float = 0.0,
         Tape speed V, m/s (>= 0, below the critical speed).
     force : numpy.ndarray, optional
         Nodal forces, N, a finite vector of length ``model.unknowns``; default the model's
-        Gaussian load (Eq. 17).
+        force (its Gaussian pressure, Eq. 17).
 
     Raises
     ------
