@@ -9,7 +9,7 @@ from .common import UserError, parameters_from_args, positive_int, print_json, r
 from .loading import add_damping_options, add_load_options, damping_from_args, load_from_args
 from .saving import add_save_option, check_save_path, save_result
 
-#: --backend values: "auto" and the names of gyroshell.factorization.BACKENDS (not imported
+#: --backend values: "auto" and the names of gyroshell.linalg.factorization.BACKENDS (not imported
 #: here, so that parsing and refusals do not load scipy).
 BACKEND_CHOICES: tuple[str, ...] = ("auto", "superlu", "umfpack", "pardiso", "banded")
 

@@ -135,9 +135,9 @@ class Newmark:
     beta, gamma : float
         Newmark parameters (β > 0). Outside 2β ≥ γ ≥ ½ a NewmarkStabilityWarning is issued.
     damping : Damping, float or None
-        Damping C (:class:`gyroshell.damping.Damping`; a number is viscous c, N·s/m³).
+        Damping C (:class:`gyroshell.tape.damping.Damping`; a number is viscous c, N·s/m³).
     backend : str
-        Sparse LU back-end (see :func:`gyroshell.factorization.factorize`).
+        Sparse LU back-end (see :func:`gyroshell.linalg.factorization.factorize`).
     blas_threads : int or None
         BLAS threads while factoring and marching (needs the optional threadpoolctl; None
         leaves them alone). One is fastest here: the substitutions call BLAS on small

@@ -71,13 +71,13 @@ class Recorder:
     dt, t0 : float
         Time step and initial time, s.
     snapshot_times, snapshot_every, centerline_times
-        As in :meth:`gyroshell.newmark.Newmark.march`.
+        As in :meth:`gyroshell.engines.newmark.Newmark.march`.
 
     Raises
     ------
     ParameterError
         If the history and the kept fields cannot fit in memory
-        (:func:`gyroshell.budget.check_transient`), checked before allocating them.
+        (:func:`gyroshell.core.budget.check_transient`), checked before allocating them.
     """
 
     def __init__(self, grid: Grid, steps: int, dt: float, t0: float = 0.0, *,
