@@ -77,8 +77,10 @@ POINTS_PER_ROUND = 4
 #: Frequencies per batch of small dense solves.
 BATCH = 256
 METHODS = ("auto", "direct", "reduced")
-#: Frequencies of a reduced model's Bode plot.
+#: Frequencies of a reduced model's Bode plot ...
 PLOT_FREQUENCIES = 400
+#: ... and its span, rad/s, when the model has a single interpolation frequency.
+SINGLE_POINT_SPAN = 1.0
 #: Direct sweeps shorter than this show no progress bar (it would flash and vanish).
 MIN_BAR_FREQUENCIES = 2
 
@@ -166,6 +168,8 @@ class _Operators:
 
     def factor(self, omega: float):
         """A solver b -> Q(ω)⁻¹ b for complex b (one sparse LU)."""
+        # SuperLU directly: the symmetric mode with a pivot threshold that keeps this cheap
+        # (see PIVOT_THRESHOLD) is not an option of linalg.factorization's back-ends.
         lu = spla.splu(self.Q(omega), permc_spec="MMD_AT_PLUS_A",
                        diag_pivot_thresh=PIVOT_THRESHOLD, options={"SymmetricMode": True})
         if omega != 0.0:
@@ -444,7 +448,7 @@ class ReducedModel(Result, kind="reduced_model"):
         if not self.interpolation_points:
             raise ParameterError("the reduced model has no interpolation point yet")
         lo, hi = min(self.interpolation_points), max(self.interpolation_points)
-        omega = np.linspace(lo, hi if hi > lo else lo + 1.0, PLOT_FREQUENCIES)
+        omega = np.linspace(lo, hi if hi > lo else lo + SINGLE_POINT_SPAN, PLOT_FREQUENCIES)
         response, _ = self.evaluate(omega)
         return bode(omega, response[:, 0], axes=ax, label="reduced model", scale=1.0)
 
