@@ -297,6 +297,15 @@ def _grow(A: np.ndarray, right: np.ndarray, below: np.ndarray, corner: np.ndarra
     return np.block([[A, right], [below, corner]])
 
 
+class _Reduction:
+    """The live state of a reduction: the full model's operators, the response rows and the
+    full and nested bases (what a saved reduced model does not keep)."""
+
+    def __init__(self, ops: _Operators, rows: sp.csr_matrix) -> None:
+        self.ops, self.rows = ops, rows
+        self.spaces = (_Projection(ops, rows), _Projection(ops, rows))
+
+
 class ReducedModel(Result, kind="reduced_model"):
     """Rational Krylov (moment-matching) reduction of Q(ω) W = F on a real basis.
 
@@ -331,21 +340,21 @@ class ReducedModel(Result, kind="reduced_model"):
         self.velocity = check_velocity(velocity)
         self.damping = as_damping(damping)
         self.unknowns = model.unknowns
-        self.ops = _Operators(model, self.velocity, self.damping, _force(model, force))
-        self.points, self.rows = response_rows(model, probes)
+        ops = _Operators(model, self.velocity, self.damping, _force(model, force))
+        self.points, rows = response_rows(model, probes)
+        self._solver = _Reduction(ops, rows)
         self.moments = int(moments)
         self.interpolation_points: list[float] = []
-        self._spaces = (_Projection(self.ops, self.rows), _Projection(self.ops, self.rows))
         self._full = self._nested = None
         self._basis_size = 0
 
     def add_points(self, omegas: Sequence[float]) -> None:
         """Factor Q at each ω (rad/s), add W and its Taylor coefficients to the basis, and
         rebuild the reduced model."""
-        if self.ops is None:
+        if self._solver is None:
             raise ParameterError("a loaded reduced model cannot add interpolation points: "
                                  "build a new ReducedModel from the TapeModel")
-        full, nested = self._spaces
+        full, nested = self._solver.spaces
         for omega in omegas:
             self.interpolation_points.append(float(omega))
             vectors = self.ops.moments(float(omega), self.moments)
@@ -354,6 +363,16 @@ class ReducedModel(Result, kind="reduced_model"):
         self._full = self._poles(full.parts())
         self._nested = self._poles(nested.parts())
         self._basis_size = full.size
+
+    @property
+    def ops(self) -> _Operators | None:
+        """The full model's operators (None for a loaded model)."""
+        return None if self._solver is None else self._solver.ops
+
+    @property
+    def rows(self) -> sp.csr_matrix | None:
+        """Interpolation rows of the response points (None for a loaded model)."""
+        return None if self._solver is None else self._solver.rows
 
     @property
     def basis_size(self) -> int:
@@ -425,7 +444,7 @@ class ReducedModel(Result, kind="reduced_model"):
         info = from_json(ds.attrs["info"])
         self.velocity = float(ds["velocity"])
         self.damping, self.unknowns = Damping(**info["damping"]), info["unknowns"]
-        self.ops = self.rows = self._spaces = None
+        self._solver = None
         self.points = ds["points"].values
         self.moments = int(from_json(ds.attrs["moments"]))
         self.interpolation_points = [float(w) for w in ds["interpolation_points"].values]
