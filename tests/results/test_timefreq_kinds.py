@@ -9,6 +9,7 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
+from bit_exact import assert_same
 from examples_timefreq import EXAMPLES, OMEGA, PARAMS, frequency, model
 
 from gyroshell.core.errors import ParameterError
@@ -49,6 +50,13 @@ def round_trip(result, tmp_path, name="result.nc"):
 def test_dataclass_kinds_round_trip_bit_exactly(kind, tmp_path):
     original = EXAMPLES[kind]()
     same_fields(original, round_trip(original, tmp_path))
+
+
+@pytest.mark.parametrize("kind", ["static", "transient", "frequency_response",
+                                  "reduced_model"])
+def test_loaded_results_hold_the_same_data_deeply(kind, tmp_path):
+    original = EXAMPLES[kind]()
+    assert_same(original, round_trip(original, tmp_path), kind)
 
 
 def test_static_solution_carries_its_parameters(tmp_path):
