@@ -4,10 +4,9 @@ File layout (unchanged from the previous release): one variable per column on di
 ``row``, the columns' SI units as ``units`` attributes and their order as the JSON
 attribute ``columns``.
 
-For compatibility with the files and code of the previous release, reading a ``"table"``
-file gives back the plain :class:`pandas.DataFrame` (``Table.from_xarray`` returns a
-DataFrame, not a :class:`Table`), columns in their saved order; wrap it in :class:`Table`
-for the result protocol.
+For compatibility with the code of the previous release, :func:`gyroshell.load` gives a
+``"table"`` file back as the plain :class:`pandas.DataFrame` (``Table.from_xarray`` gives the
+:class:`Table`, whose ``frame`` it is), columns in their saved order.
 """
 
 from __future__ import annotations
@@ -18,7 +17,7 @@ from typing import TYPE_CHECKING
 from ..core.errors import ParameterError
 from ..plot import study_lines
 from ..tape.parameters import TapeParameters
-from .base import Result, table_dataset, table_from
+from .base import Result, params_from, table_dataset, table_from
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -50,10 +49,9 @@ class Table(Result, kind="table"):
                              params=self.params if params is None else params)
 
     @classmethod
-    def from_xarray(cls, ds):
-        """The stored table as a :class:`pandas.DataFrame` (not a Table: see the module
-        docstring), columns in their saved order."""
-        return table_from(ds)
+    def from_xarray(cls, ds) -> Table:
+        """The stored table, columns in their saved order, with its tape if one was saved."""
+        return cls(table_from(ds), params_from(ds.attrs))
 
     def summary(self) -> dict:
         """The number of rows and the column names."""

@@ -111,8 +111,11 @@ def test_reduced_model_without_points_refuses_to_save(tmp_path):
 def test_table_reads_back_as_the_dataframe(tmp_path):
     table = EXAMPLES["table"]()
     loaded = round_trip(table, tmp_path)
-    assert isinstance(loaded, pd.DataFrame)
-    pd.testing.assert_frame_equal(loaded, table.frame, check_exact=True)
+    assert isinstance(loaded, Table)
+    pd.testing.assert_frame_equal(loaded.frame, table.frame, check_exact=True)
+    plain = gyroshell.load(tmp_path / "result.nc")  # the previous release's reading of a table
+    assert isinstance(plain, pd.DataFrame)
+    pd.testing.assert_frame_equal(plain, table.frame, check_exact=True)
     assert table.summary() == {"rows": 3, "columns": ["velocity", "omega", "stability"]}
     csv = table.save(tmp_path / "table.csv")
     pd.testing.assert_frame_equal(pd.read_csv(csv), table.frame, check_exact=True)
