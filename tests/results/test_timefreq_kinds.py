@@ -12,6 +12,7 @@ import pytest
 from bit_exact import assert_same
 from examples_timefreq import EXAMPLES, OMEGA, PARAMS, frequency, model
 
+import gyroshell
 from gyroshell.core.errors import ParameterError
 from gyroshell.engines.frequency_response import ReducedModel, frequency_response
 from gyroshell.engines.newmark import Newmark
