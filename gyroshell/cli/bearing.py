@@ -10,6 +10,9 @@ from pathlib import Path
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
 
+#: Columns of ``fields.csv``: the solution's table with its units in the names.
+FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
+
 
 def register(sub, common: argparse.ArgumentParser) -> None:
     from ..bearing import air as a
@@ -77,6 +80,7 @@ def run(args: argparse.Namespace) -> int:
         folder_transaction,
         transaction,
     )
+    from ..core.progress import progress_wanted
 
     if args.velocity <= 0.0:
         raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
@@ -93,15 +97,16 @@ def run(args: argparse.Namespace) -> int:
                          wrap_angle=math.radians(args.wrap_angle),
                          infinitely_wide=args.infinitely_wide, span=args.span, nx=args.nx,
                          ny=args.ny, grading="uniform" if args.uniform else None)
-    show = sys.stderr.isatty()
+    show = progress_wanted(None)
     if show:
-        _progress(f"gyroshell bearing: {model.size} unknowns ({model!r})")
+        _progress(f"gyroshell bearing: {model.unknowns} unknowns ({model!r})")
     try:
         sol = solve_steady(model, progress=_progress if show else None,
                            iteration_log=_progress if show else None)
     except ConvergenceError as exc:
         raise UserError(f"no steady flying state reached for this input: {exc}") from None
     summary = sol.summary()
+    # the angle as typed: degrees -> radians -> degrees need not give it back exactly
     summary["wrap_angle_degrees"] = args.wrap_angle
     # every output, or none (and no folder this run created)
     with transaction() if out is None else folder_transaction(out):
@@ -128,17 +133,9 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _write_out(out: Path, sol, summary: dict) -> None:
-    import numpy as np
-    import pandas as pd
-
     from ..core.files import write_atomic
 
-    m = sol.model
-    y = np.zeros(1) if m.infinitely_wide else m.y
-    X, Y = np.meshgrid(sol.x, y, indexing="ij")
-    fields = pd.DataFrame({"x_m": X.ravel(), "y_m": Y.ravel(),
-                           "spacing_m": sol.spacing.ravel(),
-                           "pressure_Pa": sol.pressure.ravel()})
+    fields = sol.to_frame().rename(columns=FIELD_COLUMNS)
     write_atomic(out / "fields.csv", lambda tmp: fields.to_csv(tmp, index=False))
     write_atomic(out / "summary.json",
                  lambda tmp: tmp.write_text(json.dumps(summary, indent=1) + "\n"))
