@@ -161,6 +161,7 @@ class _Record:
         return sol
 
     def result(self, x: np.ndarray, final: BearingSolution) -> BearingTransient:
+        """The record as a BearingTransient on the abscissae ``x`` (m), ending at ``final``."""
         rec = {k: np.array(v) for k, v in self.series.items()}
         return BearingTransient(rec["t"], rec["hc"], rec["hmin"], rec["fc"], rec["T"], x,
                                 rec["line"], rec["it"], final)
