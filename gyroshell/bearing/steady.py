@@ -366,28 +366,33 @@ COARSE_START_MIN_UNKNOWNS = 20_000
 COARSE_START_MAX_Y_SPACING = 110e-6
 
 
-def initial_state(model: BearingModel) -> np.ndarray:
+def initial_state(model: BearingModel, *,
+                  coarse_min_unknowns: int = COARSE_START_MIN_UNKNOWNS) -> np.ndarray:
     """A start [u (m), p (Pa)] for Newton. Infinitely wide: the flexible-foil spacing and
     the wrap pressure (:meth:`BearingModel.initial_state`). 2-D: the steady state on a grid
     twice as coarse, interpolated, when the model is large enough (:func:`_coarse_state`);
     else the infinitely wide tape's solution on the same x-grid, extruded across the width
-    (one cheap 1-D solve saves several 2-D Newton iterations)."""
+    (one cheap 1-D solve saves several 2-D Newton iterations).
+
+    ``coarse_min_unknowns``: the fewest unknowns of a 2-D model started from the coarse
+    grid (default :data:`COARSE_START_MIN_UNKNOWNS`)."""
     if model.infinitely_wide:
         return model.initial_state()
-    z = _coarse_state(model)
+    z = (_coarse_state(model, coarse_min_unknowns)
+         if model.unknowns >= coarse_min_unknowns else None)
     return _extruded_strip_state(model) if z is None else z
 
 
-def _coarse_state(model: BearingModel) -> np.ndarray | None:
+def _coarse_state(model: BearingModel, coarse_min_unknowns: int) -> np.ndarray | None:
     """The steady state on the grid twice as coarse in x and y, interpolated
     (bilinearly) onto the model's grid; None if that grid would be too coarse or neither
-    Newton nor the pseudo-time march reaches the state there. Most of Newton's iterations
-    move the free edges down from the infinitely wide start; on the coarse grid they cost
-    a fraction of a fine-grid factorization."""
+    Newton nor the pseudo-time march reaches the state there. The coarse grid starts from
+    its own :func:`initial_state` (with ``coarse_min_unknowns``). Most of Newton's
+    iterations move the free edges down from the infinitely wide start; on the coarse grid
+    they cost a fraction of a fine-grid factorization."""
     nx = model.nx // 2 + (model.nx // 2) % 2
     ny = model.ny // 2 + (model.ny // 2) % 2
-    if (model.unknowns < COARSE_START_MIN_UNKNOWNS or ny < MIN_INTERVALS_ACROSS
-            or nx < MIN_INTERVALS_ALONG):
+    if ny < MIN_INTERVALS_ACROSS or nx < MIN_INTERVALS_ALONG:
         return None
     coarse = BearingModel(model.params, model.air, velocity=model.velocity,
                           wrap_angle=model.wrap_angle, span=model.span, nx=nx, ny=ny,
@@ -395,7 +400,8 @@ def _coarse_state(model: BearingModel) -> np.ndarray | None:
     if coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
         return None
     try:   # Newton, then pseudo-time (no continuation in V): cheap on a coarse grid
-        z, lam, info = _newton_or_pseudo_time(coarse, coarse.initial_state(), None,
+        start = initial_state(coarse, coarse_min_unknowns=coarse_min_unknowns)
+        z, lam, info = _newton_or_pseudo_time(coarse, start, None,
                                               NewtonInfo(), None, None)
     except ConvergenceError:
         return None
