@@ -18,7 +18,7 @@ _LAZY = {
     "AirParameters": "air", "check_wrap_angle": "geometry", "BearingModel": "model",
     "BearingSolution": "results", "NewtonInfo": "results", "solve_steady": "steady",
     "BearingTransient": "results", "march": "transient", "tension_harmonic": "transient",
-    "tension_step": "transient", "Grading": "mesh",
+    "tension_step": "transient", "Grading": "mesh", "save": "storage", "load": "storage",
 }
 
 __all__ = sorted(_LAZY)
