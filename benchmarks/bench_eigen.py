@@ -15,7 +15,8 @@ Prints medians (s) over alternating rounds of:
   ``benchmarks/slepc_pep.py`` in its own virtual environment as a separate process (set-up
   with the factorization and solve timed inside it); the column is skipped when that
   environment is missing. Its interpreter: $GYROSHELL_SLEPC_PYTHON, default
-  /work/venvs/slepc/bin/python;
+  .venv-slepc/bin/python in the repository (``python3.12 -m venv .venv-slepc &&
+  .venv-slepc/bin/pip install dolfinx-solver-complex``);
 * a 20-speed sweep (0-95 m/s, 6 modes) by continuation against 20 separate ``modes`` calls
   on fresh models, and the continued sweep split over 2 local processes (``workers=2``);
 * the critical speed (both routes).
@@ -44,7 +45,9 @@ from gyroshell.engines.eigen import modes
 from gyroshell.linalg import cholesky
 from gyroshell.studies.sweep import sweep
 
-SLEPC_PYTHON = os.environ.get("GYROSHELL_SLEPC_PYTHON", "/work/venvs/slepc/bin/python")
+SLEPC_PYTHON = os.environ.get(
+    "GYROSHELL_SLEPC_PYTHON",
+    str(Path(__file__).resolve().parents[1] / ".venv-slepc" / "bin" / "python"))
 SLEPC_DRIVER = Path(__file__).with_name("slepc_pep.py")
 
 

@@ -26,7 +26,7 @@ _LAZY: dict[str, str] = {
     "Harmonic": "tape.loads", "Ramp": "tape.loads", "gaussian_load": "tape.loads", "pressure_load": "tape.loads",
     "step": "tape.loads",
     # static and divergence
-    "StaticSolution": "engines.static", "solve_static": "engines.static",
+    "StaticSolution": "results.static", "solve_static": "engines.static",
     "Divergence": "engines.divergence", "divergence": "engines.divergence",
     "divergence_speed": "engines.divergence",
     # time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends
@@ -45,7 +45,7 @@ _LAZY: dict[str, str] = {
     "StudyResult": "studies.parameter_study", "classify_stability": "linalg.qep", "run_study": "studies.parameter_study",
     # damping, moving and intermittent loads, and the frequency response
     "Damping": "tape.damping",
-    "FrequencyResponse": "engines.frequency_response", "ReducedModel": "engines.frequency_response", "direct_response": "engines.frequency_response",
+    "FrequencyResponse": "results.frequency_response", "ReducedModel": "engines.frequency_response", "direct_response": "engines.frequency_response",
     "frequency_response": "engines.frequency_response",
     "ContactWindows": "tape.moving_loads", "GaussianShape": "tape.moving_loads",
     "MovingLoad": "tape.moving_loads", "StraightPath": "tape.moving_loads", "UniformShape": "tape.moving_loads",

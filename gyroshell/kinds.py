@@ -17,7 +17,8 @@ from .results import base, storage
 KIND_MODULES: tuple[str, ...] = ()
 
 
-def _import_kinds() -> None:
+def import_kinds() -> None:
+    """Import every module of :data:`KIND_MODULES` (each registers its kinds)."""
     for name in KIND_MODULES:
         import_module(name)
 
@@ -28,7 +29,7 @@ def load(path: str | os.PathLike[str]):
     A ``.csv`` or ``.parquet`` file gives a pandas DataFrame; a NetCDF file gives the
     object named by its ``gyroshell_type`` attribute (a DataFrame for ``table``).
     """
-    _import_kinds()
+    import_kinds()
     return storage.load(path)
 
 

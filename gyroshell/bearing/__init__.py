@@ -2,8 +2,10 @@
 
 A film module (:mod:`.film`, finite-volume Reynolds with slip, compressible or not) and a
 coupling engine (:mod:`.model`, :mod:`.steady`, :mod:`.transient`) over the tape's shell
-operators (:mod:`gyroshell.operators`): steady flying states by Newton's method with
-contact, and strongly coupled transients by Newmark's method. Plots in :mod:`.plots`.
+operators (:mod:`gyroshell.tape.operators`): steady flying states by Newton's method with
+contact, and strongly coupled transients by Newmark's method. The results
+(:mod:`.results`) follow the result protocol of :mod:`gyroshell.results.base`; plots in
+:mod:`.plots`.
 """
 
 from __future__ import annotations
@@ -14,9 +16,9 @@ import importlib
 #: sub-command (which reads the air defaults) does not load scipy for ``gyroshell --help``.
 _LAZY = {
     "AirParameters": "air", "check_wrap_angle": "geometry", "BearingModel": "model",
-    "BearingSolution": "steady", "NewtonInfo": "steady", "solve_steady": "steady",
-    "BearingTransient": "transient", "march": "transient", "tension_harmonic": "transient",
-    "tension_step": "transient", "Grading": "mesh",
+    "BearingSolution": "results", "NewtonInfo": "results", "solve_steady": "steady",
+    "BearingTransient": "results", "march": "transient", "tension_harmonic": "transient",
+    "tension_step": "transient", "Grading": "mesh", "save": "storage", "load": "storage",
 }
 
 __all__ = sorted(_LAZY)

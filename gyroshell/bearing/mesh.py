@@ -148,13 +148,3 @@ def intervals_for(length: float, finest: float, grading: LineGrading | None) -> 
         peak = float(np.max(grading.density(np.array(grading.centres))))
         n = float(grading.cumulative(length)) / (finest * peak)
     return max(4, 4 * round(0.25 * n))
-
-
-def dual_widths(t: np.ndarray) -> np.ndarray:
-    """Control-volume widths of the nodes t (m): half the two neighbouring intervals
-    (one half-interval at the ends)."""
-    h = np.diff(t)
-    w = np.empty(len(t))
-    w[0], w[-1] = 0.5 * h[0], 0.5 * h[-1]
-    w[1:-1] = 0.5 * (h[:-1] + h[1:])
-    return w

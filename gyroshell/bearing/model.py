@@ -14,6 +14,7 @@ assembled exactly: K, the coupling −W, and the film's ∂r_p/∂p, ∂r_p/∂h
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import replace
 from functools import cached_property
 
@@ -53,14 +54,8 @@ Y_EDGE_SPACING = 12e-6
 #: Width of the refined zones about the wrap corners, in units of the larger of the film
 #: and bending lengths (when the grading leaves it unset).
 X_GRADING_WIDTH = 1.5
-#: A 2-D tape with at least this many unknowns starts Newton from its solution on a grid
-#: twice as coarse (recursively), interpolated; smaller ones from the infinitely wide tape.
-COARSE_START_MIN_UNKNOWNS = 20_000
-#: ... unless that grid would be coarser than this at the edges (m): an under-resolved free-edge
-#: row falsely touches down and the coarse solve would lead Newton astray ...
-COARSE_START_MAX_Y_SPACING = 110e-6
-#: ... or Newton there needs more than this many iterations.
-COARSE_START_MAX_ITERATIONS = 25
+#: Fewest intervals along x.
+MIN_INTERVALS_ALONG = 8
 #: Classical flexible-foil constant, used only to size the domain and guess a start.
 _FOIL_GUESS = 0.64
 
@@ -73,6 +68,31 @@ def foil_length_scales(params: TapeParameters, air: AirParameters, velocity: flo
     eps = 6.0 * air.viscosity * velocity / t_eff
     r = params.radius
     return r * eps ** (2 / 3), r * eps ** (1 / 3), math.sqrt(params.D / t_eff)
+
+
+def _check_below_string_speed(params: TapeParameters, velocity: float) -> None:
+    """Raise unless V (m/s) is below the string speed √(T/ρ) (else the tape would not wrap)."""
+    if params.tension - params.density * velocity**2 <= 0.0:
+        raise ParameterError(
+            f"velocity must be below the string speed sqrt(T/rho) = "
+            f"{params.string_speed:.6g} m/s (the tape would not wrap), got {velocity:g}")
+
+
+def _resolved_grading(grading: Grading | str | None, infinitely_wide: bool,
+                      x_width: float) -> Grading:
+    """The grid's :class:`Grading` from the constructor's ``grading`` argument (see
+    :class:`BearingModel`), its unset x-width set to ``x_width`` (m)."""
+    if grading is None:
+        grading = UNIFORM if infinitely_wide else DEFAULT_GRADING
+    elif isinstance(grading, str):
+        if grading != "uniform":
+            raise ParameterError(f"grading must be a Grading or 'uniform', got {grading!r}")
+        grading = UNIFORM
+    elif not isinstance(grading, Grading):
+        raise ParameterError(f"grading must be a Grading or 'uniform', got {grading!r}")
+    if grading.x_width is None:
+        grading = replace(grading, x_width=x_width)
+    return grading
 
 
 class BearingModel:
@@ -116,68 +136,74 @@ class BearingModel:
         self.velocity = _check_positive("velocity", velocity, "m/s")
         self.wrap_angle = check_wrap_angle(wrap_angle)
         self.infinitely_wide = bool(infinitely_wide)
-        if params.tension - params.density * self.velocity**2 <= 0.0:
-            raise ParameterError(
-                f"velocity must be below the string speed sqrt(T/rho) = "
-                f"{params.string_speed:.6g} m/s (the tape would not wrap), got {velocity:g}")
+        _check_below_string_speed(params, self.velocity)
         h_foil, l_film, l_bend = foil_length_scales(params, self.air, self.velocity)
-        spans, resolution = ((SPAN_LENGTHS, X_RESOLUTION) if self.infinitely_wide
-                             else (SPAN_LENGTHS_2D, X_RESOLUTION_2D))
+        self.h_guess = _FOIL_GUESS * h_foil
+        spans = SPAN_LENGTHS if self.infinitely_wide else SPAN_LENGTHS_2D
         self.span = (spans * max(l_film, l_bend) if span is None
                      else _check_positive("span", span, "m"))
         self.length = params.radius * self.wrap_angle + 2.0 * self.span
-        if grading is None:
-            grading = UNIFORM if self.infinitely_wide else DEFAULT_GRADING
-        elif isinstance(grading, str):
-            if grading != "uniform":
-                raise ParameterError(f"grading must be a Grading or 'uniform', got {grading!r}")
-            grading = UNIFORM
-        elif not isinstance(grading, Grading):
-            raise ParameterError(f"grading must be a Grading or 'uniform', got {grading!r}")
-        if grading.x_width is None:
-            grading = replace(grading, x_width=X_GRADING_WIDTH * max(l_film, l_bend))
-        self.grading = grading
-        half_wrap = 0.5 * params.radius * self.wrap_angle
-        x_line = grading.x_line(self.length, (0.5 * self.length - half_wrap,
-                                              0.5 * self.length + half_wrap))
-        if nx is None:
-            if x_line is None:
-                nx = 2 * math.ceil(0.5 * self.length / (resolution * min(l_film, l_bend)))
-            else:
-                nx = intervals_for(self.length, X_RESOLUTION_GRADED * min(l_film, l_bend),
-                                   x_line)
-            if nx > MAX_INTERVALS_ALONG:
-                raise ParameterError(
-                    f"velocity {self.velocity:g} m/s gives a film only "
-                    f"{min(l_film, l_bend):.3g} m long: resolving it over the "
-                    f"{self.length:.3g} m domain needs {nx} intervals, more than the limit "
-                    f"{MAX_INTERVALS_ALONG}; use a higher velocity (the tape is then in "
-                    "contact with the head anyway) or set nx")
-        if (isinstance(nx, bool) or not isinstance(nx, (int, np.integer))
-                or not 8 <= nx <= MAX_INTERVALS_ALONG):
-            raise ParameterError(f"nx must be an integer in [8, {MAX_INTERVALS_ALONG}], "
-                                 f"got {nx!r}")
-        self.nx = int(nx)
-        self.h_guess = _FOIL_GUESS * h_foil
-        self.x = symmetric_line_nodes(self.length, self.nx, x_line)
+        self.grading = _resolved_grading(grading, self.infinitely_wide,
+                                         X_GRADING_WIDTH * max(l_film, l_bend))
+        self._build_x_line(nx, min(l_film, l_bend))
         if self.infinitely_wide:
-            self.ny, self.y = None, None
+            self.ny, self.y, self.nc = None, None, 1
             self.tape = StripOperators(params, self.x)
-            self.nc = 1
         else:
-            y_line = grading.y_line(params.width)
-            if ny is None:
-                ny = max(MIN_INTERVALS_ACROSS,
-                         2 * round(0.5 * params.width / Y_SPACING) if y_line is None
-                         else intervals_for(params.width, Y_EDGE_SPACING, y_line))
-            if (isinstance(ny, bool) or not isinstance(ny, (int, np.integer)) or ny < 8
-                    or ny % 2):
-                raise ParameterError(f"ny must be an even integer >= 8 (a node on the centre "
-                                     f"line), got {ny!r}")
-            self.ny = int(ny)
-            self.y = symmetric_line_nodes(params.width, self.ny, y_line)
+            self._build_y_line(ny)
             self.tape = PlateOperators(params, self.x, self.y)
-            self.nc = self.ny + 1
+        self._couple_film_and_loads()
+
+    def _build_x_line(self, nx: int | None, film_length: float) -> None:
+        """The x-nodes (:attr:`x`, m) and their count :attr:`nx` (default from
+        ``film_length``, the smaller of the film and bending lengths, m)."""
+        half_wrap = 0.5 * self.params.radius * self.wrap_angle
+        x_line = self.grading.x_line(self.length, (0.5 * self.length - half_wrap,
+                                                   0.5 * self.length + half_wrap))
+        if nx is None:
+            nx = self._default_nx(x_line, film_length)
+        if (isinstance(nx, bool) or not isinstance(nx, (int, np.integer))
+                or not MIN_INTERVALS_ALONG <= nx <= MAX_INTERVALS_ALONG):
+            raise ParameterError(f"nx must be an integer in [{MIN_INTERVALS_ALONG}, "
+                                 f"{MAX_INTERVALS_ALONG}], got {nx!r}")
+        self.nx = int(nx)
+        self.x = symmetric_line_nodes(self.length, self.nx, x_line)
+
+    def _default_nx(self, x_line, film_length: float) -> int:
+        """The default number of x-intervals (see the class docstring)."""
+        if x_line is None:
+            resolution = X_RESOLUTION if self.infinitely_wide else X_RESOLUTION_2D
+            nx = 2 * math.ceil(0.5 * self.length / (resolution * film_length))
+        else:
+            nx = intervals_for(self.length, X_RESOLUTION_GRADED * film_length, x_line)
+        if nx > MAX_INTERVALS_ALONG:
+            raise ParameterError(
+                f"velocity {self.velocity:g} m/s gives a film only "
+                f"{film_length:.3g} m long: resolving it over the "
+                f"{self.length:.3g} m domain needs {nx} intervals, more than the limit "
+                f"{MAX_INTERVALS_ALONG}; use a higher velocity (the tape is then in "
+                "contact with the head anyway) or set nx")
+        return nx
+
+    def _build_y_line(self, ny: int | None) -> None:
+        """The y-nodes (:attr:`y`, m), their count :attr:`ny` and :attr:`nc` = ny + 1."""
+        width = self.params.width
+        y_line = self.grading.y_line(width)
+        if ny is None:
+            ny = max(MIN_INTERVALS_ACROSS,
+                     2 * round(0.5 * width / Y_SPACING) if y_line is None
+                     else intervals_for(width, Y_EDGE_SPACING, y_line))
+        if (isinstance(ny, bool) or not isinstance(ny, (int, np.integer))
+                or ny < MIN_INTERVALS_ACROSS or ny % 2):
+            raise ParameterError(f"ny must be an even integer >= {MIN_INTERVALS_ACROSS} "
+                                 f"(a node on the centre line), got {ny!r}")
+        self.ny = int(ny)
+        self.y = symmetric_line_nodes(width, self.ny, y_line)
+        self.nc = self.ny + 1
+
+    def _couple_film_and_loads(self) -> None:
+        """The film on the tape's grid, and the loads of the dry wrapped configuration."""
+        params = self.params
         self.film = Film(self.nx, self.nc, np.diff(self.x),
                          None if self.infinitely_wide else np.diff(self.y), self.air,
                          self.velocity)
@@ -244,58 +270,6 @@ class BearingModel:
             offset += n
         return sp.block_diag(blocks, format="csr"), np.concatenate(rows)
 
-    def _coarse_state(self) -> np.ndarray | None:
-        """The steady state on the grid twice as coarse in x and y, interpolated
-        (bilinearly) onto this grid; None if that grid would be too coarse or neither Newton
-        nor the pseudo-time march reaches the state there. Most of Newton's iterations move
-        the free edges down from the infinitely wide start; on the coarse grid they cost a
-        fraction of a fine-grid factorization."""
-        from scipy.interpolate import RegularGridInterpolator
-
-        from ..core.errors import ConvergenceError
-        from .steady import BearingSolution, NewtonInfo, _newton_or_pseudo_time
-
-        nx, ny = self.nx // 2 + (self.nx // 2) % 2, self.ny // 2 + (self.ny // 2) % 2
-        if self.size < COARSE_START_MIN_UNKNOWNS or ny < 8 or nx < 8:
-            return None
-        coarse = BearingModel(self.params, self.air, velocity=self.velocity,
-                              wrap_angle=self.wrap_angle, span=self.span, nx=nx, ny=ny,
-                              grading=self.grading)
-        if coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
-            return None
-        try:   # Newton, then pseudo-time (no continuation in V): cheap on a coarse grid
-            z, lam, info = _newton_or_pseudo_time(coarse, coarse.initial_state(), None,
-                                                  NewtonInfo(), None, None)
-        except ConvergenceError:
-            return None
-        sol = BearingSolution(coarse, z[:coarse.n_u], z[coarse.n_u:], lam, info)
-        X, Y = np.meshgrid(self.x, self.y, indexing="ij")
-        pts = np.column_stack([X.ravel(), Y.ravel()])
-        fields = []
-        for f in (sol.spacing - coarse.dry_field, sol.pressure):
-            fields.append(RegularGridInterpolator((coarse.x, coarse.y), f)(pts)
-                          .reshape(X.shape))
-        u = fields[0][1:-1, :].ravel()
-        return np.concatenate([u, fields[1][self.film.interior]])
-
-    def _extruded_strip_state(self) -> np.ndarray:
-        from ..core.errors import ConvergenceError
-        from .steady import solve_steady
-
-        strip = BearingModel(self.params, self.air, velocity=self.velocity,
-                             wrap_angle=self.wrap_angle, infinitely_wide=True,
-                             span=self.span, nx=self.nx, grading=self.grading)
-        try:
-            sol = solve_steady(strip)
-        except ConvergenceError:
-            z = strip.initial_state()
-            u1, p1 = z[:strip.n_u], z[strip.n_u:]
-        else:
-            u1, p1 = sol.u, sol.p
-        u = np.repeat(u1, self.nc)
-        P = np.repeat(strip.pressure_field(p1), self.nc, axis=1)
-        return np.concatenate([u, P[self.film.interior]])
-
     def at_velocity(self, velocity: float) -> BearingModel:
         """The same tape, head and grid at another speed V, m/s (for continuation)."""
         return BearingModel(self.params, self.air, velocity=velocity,
@@ -304,8 +278,16 @@ class BearingModel:
 
     # ----- state <-> fields ----------------------------------------------------------------
     @property
-    def size(self) -> int:
+    def unknowns(self) -> int:
+        """Number of unknowns of the coupled state [u, p]."""
         return self.n_u + self.n_p
+
+    @property
+    def size(self) -> int:
+        """Deprecated: use :attr:`unknowns`."""
+        warnings.warn("BearingModel.size is deprecated: use BearingModel.unknowns",
+                      DeprecationWarning, stacklevel=2)
+        return self.unknowns
 
     @property
     def hx(self) -> float:
@@ -382,12 +364,10 @@ class BearingModel:
         return float(np.sum(area * (p - self.air.ambient_pressure)))
 
     def initial_state(self) -> np.ndarray:
-        """A start for Newton. Infinitely wide: the flexible-foil spacing and the wrap
-        pressure. 2-D: the infinitely wide tape's solution on the same x-grid, extruded
-        across the width (one cheap 1-D solve saves several 2-D Newton iterations)."""
-        if not self.infinitely_wide:
-            z = self._coarse_state()
-            return self._extruded_strip_state() if z is None else z
+        """The flexible-foil start [u (m), p (Pa)]: the foil spacing scale everywhere and
+        the wrap pressure (T − ρV²) κ + p_a. :func:`gyroshell.bearing.steady.solve_steady`
+        starts a 2-D tape from a better (solved) state, :func:`~gyroshell.bearing.steady.
+        initial_state`."""
         u = np.full(self.n_u, self.h_guess)
         kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)
         p = self.air.ambient_pressure + self.effective_tension() * kappa[

@@ -5,16 +5,22 @@ from __future__ import annotations
 
 import numpy as np
 
-UM = 1e6   # m -> µm for axis labels
+from ..plot import pyplot as _plt
 
-
-def _plt():
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
+#: m -> µm, m -> mm and s -> ms for the axes ...
+UM = 1e6
+MM = 1e3
+MS = 1e3
+#: ... and Pa per kPa.
+PA_PER_KPA = 1e3
+#: Spacing axes reach this many central spacings (the film's scale) ...
+SPACING_AXIS_SPAN = 3.0
+#: ... and the log colour scale of a spacing map ends at this many.
+MAP_TOP_SPACINGS = 10.0
+#: Smallest spacing of the colour scale, µm (LogNorm needs a positive floor).
+MAP_FLOOR_UM = 1e-3
+#: Nodes whose spacing is within this fraction above the roughness count as in contact.
+CONTACT_MARGIN = 1e-9
 
 
 def centreline(solution, ax=None, *, pressure: bool = True):
@@ -23,20 +29,20 @@ def centreline(solution, ax=None, *, pressure: bool = True):
     ax = plt.subplots(figsize=(7, 3.6))[1] if ax is None else ax
     m = solution.model
     col = 0 if m.infinitely_wide else m.ny // 2
-    x = solution.x * 1e3
+    x = solution.x * MM
     h = solution.spacing[:, col] * UM
     ax.plot(x, h, color="C0", label="spacing h")
-    half = 0.5 * m.params.radius * m.wrap_angle * 1e3
+    half = 0.5 * m.params.radius * m.wrap_angle * MM
     for s in (-half, half):
         ax.axvline(s, color="0.6", lw=0.8, ls=":")
     ax.set_xlabel("x from the middle of the wrap (mm), tape moves →")
     ax.set_ylabel("spacing h (µm)", color="C0")
-    ax.set_ylim(0, 3 * max(solution.central_spacing * UM, 1e-3))
+    ax.set_ylim(0, SPACING_AXIS_SPAN * max(solution.central_spacing * UM, MAP_FLOOR_UM))
     if pressure:
         twin = ax.twinx()
-        twin.plot(x, (solution.pressure[:, col] - m.air.ambient_pressure) / 1e3,
+        twin.plot(x, (solution.pressure[:, col] - m.air.ambient_pressure) / PA_PER_KPA,
                   color="C3", lw=1.0)
-        twin.axhline(m.effective_tension() / m.params.radius / 1e3, color="C3", lw=0.6,
+        twin.axhline(m.effective_tension() / m.params.radius / PA_PER_KPA, color="C3", lw=0.6,
                      ls="--")
         twin.set_ylabel("p − p_a (kPa); dashed: (T − ρV²)/R", color="C3")
     ax.set_title(f"V = {m.velocity:g} m/s, wrap {np.degrees(m.wrap_angle):g}°, "
@@ -52,26 +58,27 @@ def spacing_map(solution, ax=None, *, field: str = "spacing"):
 
     ax = plt.subplots(figsize=(7, 3.6))[1] if ax is None else ax
     m = solution.model
-    x, y = solution.x * 1e3, m.y * 1e3
+    x, y = solution.x * MM, m.y * MM
     if field == "spacing":
         data = solution.spacing.T * UM
-        top = 10 * solution.central_spacing * UM
+        top = MAP_TOP_SPACINGS * solution.central_spacing * UM
         mesh = ax.pcolormesh(x, y, np.minimum(data, top), shading="auto", cmap="viridis",
-                             norm=LogNorm(vmin=max(data.min(), 1e-3), vmax=top))
+                             norm=LogNorm(vmin=max(data.min(), MAP_FLOOR_UM), vmax=top))
         label = "spacing h (µm)"
         i, j = np.unravel_index(np.argmin(solution.spacing), solution.spacing.shape)
         ax.plot(x[i], y[j], "rx", ms=8, label=f"minimum {data.T[i, j]:.3f} µm")
-        contact = solution.model.spacing_field(solution.u) <= m.air.roughness * (1 + 1e-9)
+        contact = (solution.model.spacing_field(solution.u)
+                   <= m.air.roughness * (1 + CONTACT_MARGIN))
         if contact.any():
             ci, cj = np.nonzero(contact)
             ax.plot(x[ci], y[cj], "w.", ms=2, label="contact")
         ax.legend(loc="upper right", fontsize=8)
     else:
-        data = (solution.pressure.T - m.air.ambient_pressure) / 1e3
+        data = (solution.pressure.T - m.air.ambient_pressure) / PA_PER_KPA
         mesh = ax.pcolormesh(x, y, data, shading="auto", cmap="magma")
         label = "p − p_a (kPa)"
     plt.colorbar(mesh, ax=ax, label=label)
-    half = 0.5 * m.params.radius * m.wrap_angle * 1e3
+    half = 0.5 * m.params.radius * m.wrap_angle * MM
     for s in (-half, half):
         ax.axvline(s, color="w", lw=0.8, ls=":")
     ax.set_xlabel("x from the middle of the wrap (mm), tape moves →")
@@ -85,7 +92,7 @@ def cross_width(solution, ax=None, **kw):
     ax = plt.subplots(figsize=(6, 3.4))[1] if ax is None else ax
     m = solution.model
     kw.setdefault("label", "spacing")
-    ax.plot(m.y * 1e3, solution.cross_width_spacing * UM, marker=".", ms=3, **kw)
+    ax.plot(m.y * MM, solution.cross_width_spacing * UM, marker=".", ms=3, **kw)
     ax.axhline(m.air.roughness * UM, color="0.5", lw=0.8, ls=":", label="roughness")
     ax.legend(fontsize=8)
     ax.set_xlabel("y across the width (mm)")
@@ -109,3 +116,16 @@ def overview(solution):
     cross_width(solution, axes[1, 1])
     fig.tight_layout()
     return fig
+
+
+def transient_spacing(run, ax=None):
+    """Central and minimum spacing (µm) against time (ms) of a bearing transient."""
+    plt = _plt()
+    ax = plt.subplots(figsize=(7, 3.6))[1] if ax is None else ax
+    t = run.t * MS
+    ax.plot(t, run.central_spacing * UM, label="central spacing")
+    ax.plot(t, run.minimum_spacing * UM, label="minimum spacing")
+    ax.set_xlabel("time (ms)")
+    ax.set_ylabel("spacing (µm)")
+    ax.legend()
+    return ax

@@ -15,14 +15,15 @@ a penalty with a step limiter does.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..core.errors import ConvergenceError
-from .model import BearingModel
+from ..linalg.factorization import SuperLUFactor
+from ..tape.parameters import MIN_INTERVALS_ACROSS
+from .model import MIN_INTERVALS_ALONG, BearingModel, foil_length_scales
+from .results import BearingSolution, NewtonInfo
 
 #: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
 STEP_TOLERANCE = 1e-8
@@ -43,27 +44,18 @@ CHORD_CONTRACTION = 0.1
 FULL_STEP = 1e-5
 #: Smallest line-search step before a step is taken anyway.
 MIN_STEP = 1.0 / 256.0
+#: Sufficient decrease of the line search: the merit must fall by this fraction of α ...
+ARMIJO = 1e-4
+#: ... else α is cut by this factor.
+BACKTRACK = 0.5
+#: Column ordering of the Jacobian's sparse LU: COLAMD, SuperLU's ordering for general
+#: unsymmetric matrices (the Newton iterates' round-off depends on the ordering).
+JACOBIAN_ORDERING = "COLAMD"
 #: Newton has stagnated when, over this many iterations, the scaled residual has not halved
 #: and no line-search step reached STAGNATION_STEP (the start is outside Newton's basin:
 #: pseudo-time or continuation takes over).
 STAGNATION_WINDOW = 10
 STAGNATION_STEP = 0.5
-
-
-@dataclass
-class NewtonInfo:
-    """What a Newton solve did: iterations, step and residual norms per iteration, the
-    number of nodes in contact per iteration, the wall time (s), the pseudo-time steps
-    taken (dimensionless, :func:`pseudo_transient`; empty if Newton reached the state
-    directly) and the continuation path (speeds in m/s, empty if none was needed)."""
-
-    iterations: int = 0
-    step_norms: list = field(default_factory=list)
-    residual_norms: list = field(default_factory=list)
-    contact_nodes: list = field(default_factory=list)
-    seconds: float = 0.0
-    continuation: list = field(default_factory=list)
-    pseudo_time: list = field(default_factory=list)
 
 
 def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float) -> float:
@@ -160,7 +152,7 @@ class _Residual:
             P, rows = fold
             J = (J[rows, :] @ P).tocsc()
         try:
-            lu = spla.splu(J, permc_spec="COLAMD")
+            lu = SuperLUFactor(J, permc_spec=JACOBIAN_ORDERING)
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
         if fold is None:
@@ -190,9 +182,79 @@ def _line_search(F, model, z, dz, h, active, merit, tol):
         trial = _project(z + alpha * dz, model, F.sigma)
         res_t, _, _ = F(trial, jacobian=False)
         merit_t = F.merit(res_t)
-        if full or merit_t <= (1.0 - 1e-4 * alpha) * merit or alpha < MIN_STEP:
+        if full or _decreased(merit_t, merit, alpha) or alpha < MIN_STEP:
             return alpha, step, trial, merit_t
-        alpha *= 0.5
+        alpha *= BACKTRACK
+
+
+def _decreased(merit_trial: float, merit: float, alpha: float) -> bool:
+    """The Armijo condition of a step α: the merit fell by at least ARMIJO α of itself."""
+    return merit_trial <= (1.0 - ARMIJO * alpha) * merit
+
+
+class _Iterate:
+    """Newton's current state: z, its residual, contact set, Jacobian and merit, the last
+    factorization (a solver) and whether the contact set has settled."""
+
+    def __init__(self, F: _Residual, z0: np.ndarray) -> None:
+        self.z = np.array(z0, dtype=float)
+        self.res, self.active, self.J = F(self.z, jacobian=True)
+        self.merit = F.merit(self.res)
+        self.solver, self.last_step, self.settled = None, np.inf, False
+
+
+def _newton_direction(F: _Residual, it: _Iterate) -> np.ndarray:
+    """The Newton step. Near the solution with a settled contact set, the last
+    factorization is reused (a chord step) as long as it still contracts fast; else J is
+    factored afresh."""
+    n_u = F.model.n_u
+    if it.solver is not None and it.settled and it.last_step < CHORD_SWITCH:
+        dz = it.solver(it.res)
+        if _norm(dz, n_u, F) <= CHORD_CONTRACTION * it.last_step:
+            return dz
+    it.solver = F.factor(it.J)
+    return it.solver(it.res)
+
+
+def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
+    """The step again with the free nodes it would take below σ held there, if the damped
+    step ``found`` (α, step, trial, merit) failed because of them; the better of the two.
+
+    Those nodes join the contact set now (the primal–dual active-set rule evaluated at the
+    full step): damped steps would otherwise let them enter a few per iteration, each time
+    with a line search that barely moves. Updates ``it.solver`` and ``it.active`` when the
+    forced step is taken."""
+    model = F.model
+    alpha, step, _, merit_t = found
+    entering = ~it.active & (h + dz[:model.n_u] < F.sigma)
+    if _decreased(merit_t, it.merit, alpha) or step < FULL_STEP or not entering.any():
+        return found
+    res_f, active_f, J_f = F(it.z, jacobian=True, force=entering)
+    forced = F.factor(J_f)
+    dz_f = forced(res_f)
+    if not np.all(np.isfinite(dz_f)):
+        return found
+    retry = _line_search(F, model, it.z, dz_f, h, active_f, it.merit, tol)
+    if retry[3] >= merit_t:
+        return found
+    it.solver, it.active = forced, active_f
+    return retry
+
+
+def _record(info: NewtonInfo, step: float, merit: float, contacts: int) -> None:
+    """Append one iteration (its step, scaled residual and contact count) to ``info``."""
+    info.iterations += 1
+    info.step_norms.append(float(step))
+    info.residual_norms.append(merit)
+    info.contact_nodes.append(contacts)
+
+
+def _stagnated(merits: list, alphas: list) -> bool:
+    """Whether the scaled residual has not halved over STAGNATION_WINDOW damped
+    iterations (none reaching STAGNATION_STEP)."""
+    return (len(alphas) >= STAGNATION_WINDOW
+            and merits[-1] > 0.5 * merits[-1 - STAGNATION_WINDOW]
+            and max(alphas[-STAGNATION_WINDOW:]) < STAGNATION_STEP)
 
 
 def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
@@ -212,69 +274,37 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     info = NewtonInfo() if info is None else info
     n_u = model.n_u
     F = _Residual(model, tension, transient)
-    z = np.array(z0, dtype=float)
-    res, active, J = F(z, jacobian=True)
-    merit = F.merit(res)
-    solver, last_step, settled = None, np.inf, False
-    merits, alphas = [merit], []
+    it = _Iterate(F, z0)
+    merits, alphas = [it.merit], []
     for _ in range(max_iterations):
-        # Near the solution with a settled contact set, the last factorization is reused
-        # (a chord step) as long as it still contracts fast; else J is factored afresh.
-        dz = None
-        if solver is not None and settled and last_step < CHORD_SWITCH:
-            dz = solver(res)
-            if _norm(dz, n_u, F) > CHORD_CONTRACTION * last_step:
-                dz = None
-        h = z[:n_u] + model.dry_field[1:-1, :].ravel()
-        if dz is None:
-            solver = F.factor(J)
-            dz = solver(res)
+        h = it.z[:n_u] + model.dry_field[1:-1, :].ravel()
+        dz = _newton_direction(F, it)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
-        alpha, step, trial, merit_t = _line_search(F, model, z, dz, h, active, merit, tol)
-        entering = ~active & (h + dz[:n_u] < F.sigma)
-        if (merit_t > (1.0 - 1e-4 * alpha) * merit and step >= FULL_STEP
-                and entering.any()):
-            # The damped step failed while it would take free nodes below σ: they join
-            # the contact set now (the primal–dual active-set rule evaluated at the full
-            # step) and the step is solved again with them held at σ; the better of the
-            # two steps is taken. Damped steps would otherwise let them enter a few per
-            # iteration, each time with a line search that barely moves.
-            res_f, active_f, J_f = F(z, jacobian=True, force=entering)
-            forced = F.factor(J_f)
-            dz_f = forced(res_f)
-            if np.all(np.isfinite(dz_f)):
-                found = _line_search(F, model, z, dz_f, h, active_f, merit, tol)
-                if found[3] < merit_t:
-                    alpha, step, trial, merit_t = found
-                    solver, active = forced, active_f
-        last_step = step
-        z = trial
-        res, active_new, J = F(z, jacobian=True)
-        merit = F.merit(res)
-        info.iterations += 1
-        info.step_norms.append(float(alpha * step))
-        info.residual_norms.append(merit)
-        info.contact_nodes.append(int(active_new.sum()))
+        found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol)
+        alpha, step, it.z, _ = _forced_contact_step(F, it, h, dz, found, tol)
+        it.last_step = step
+        it.res, active_new, it.J = F(it.z, jacobian=True)
+        it.merit = F.merit(it.res)
+        contacts = int(active_new.sum())
+        _record(info, alpha * step, it.merit, contacts)
         if log is not None:
             log(f"Newton {info.iterations}: step {alpha * step:.2e} (alpha {alpha:.3g}), "
-                f"residual {merit:.2e}, {int(active_new.sum())} nodes in contact")
-        settled = np.array_equal(active_new, active)
-        active = active_new
-        if alpha == 1.0 and step < tol and settled:
-            lam = np.where(active, F.tape(z[:n_u], z[n_u:]), 0.0)
-            return z, lam, active, info
-        merits.append(merit)
+                f"residual {it.merit:.2e}, {contacts} nodes in contact")
+        it.settled = np.array_equal(active_new, it.active)
+        it.active = active_new
+        if alpha == 1.0 and step < tol and it.settled:
+            lam = np.where(it.active, F.tape(it.z[:n_u], it.z[n_u:]), 0.0)
+            return it.z, lam, it.active, info
+        merits.append(it.merit)
         alphas.append(alpha)
-        if (len(alphas) >= STAGNATION_WINDOW
-                and merit > 0.5 * merits[-1 - STAGNATION_WINDOW]
-                and max(alphas[-STAGNATION_WINDOW:]) < STAGNATION_STEP):
+        if _stagnated(merits, alphas):
             raise ConvergenceError(
-                f"Newton stagnated (scaled residual {merit:.3g}, not halved in "
+                f"Newton stagnated (scaled residual {it.merit:.3g}, not halved in "
                 f"{STAGNATION_WINDOW} damped iterations)")
     raise ConvergenceError(
         f"Newton did not converge in {max_iterations} iterations "
-        f"(last relative step {info.step_norms[-1]:.3g}, scaled residual {merit:.3g})")
+        f"(last relative step {info.step_norms[-1]:.3g}, scaled residual {it.merit:.3g})")
 
 
 #: Continuation in V starts this many times faster (a thicker, easier film) ...
@@ -283,146 +313,12 @@ CONTINUATION_START = 4.0
 CONTINUATION_FACTOR = 0.7
 
 
-@dataclass(frozen=True)
-class BearingSolution:
-    """A steady flying state.
-
-    Attributes
-    ----------
-    model : BearingModel
-    u : numpy.ndarray
-        Departure from the dry wrapped configuration at the tape unknowns, m.
-    p : numpy.ndarray
-        Film pressure at the film-interior nodes, Pa.
-    contact : numpy.ndarray
-        Contact force at the tape unknowns, N (N/m per unit width if infinitely wide).
-    info : NewtonInfo
-    """
-
-    model: BearingModel
-    u: np.ndarray
-    p: np.ndarray
-    contact: np.ndarray
-    info: NewtonInfo
-
-    @property
-    def spacing(self) -> np.ndarray:
-        """h on every node, shape (nx + 1, nc), m."""
-        return self.model.spacing_field(self.u)
-
-    @property
-    def pressure(self) -> np.ndarray:
-        """p on every node, shape (nx + 1, nc), Pa."""
-        return self.model.pressure_field(self.p)
-
-    @property
-    def x(self) -> np.ndarray:
-        """Node abscissae measured from the middle of the wrap, m (tape moves along +x)."""
-        return self.model.x - 0.5 * self.model.length
-
-    @property
-    def y(self) -> np.ndarray | None:
-        """Node ordinates across the width, m (None if infinitely wide)."""
-        return self.model.y
-
-    def _at_centre_x(self, field: np.ndarray) -> np.ndarray:
-        return np.array([np.interp(0.0, self.x, field[:, j]) for j in range(field.shape[1])])
-
-    def _at_centre_y(self, row: np.ndarray) -> float:
-        if self.model.infinitely_wide:
-            return float(row[0])
-        return float(np.interp(0.5 * self.model.params.width, self.model.y, row))
-
-    @property
-    def central_spacing(self) -> float:
-        """h in the middle of the wrap and of the width, m."""
-        return self._at_centre_y(self._at_centre_x(self.spacing))
-
-    @property
-    def central_pressure(self) -> float:
-        """p − p_a in the middle of the wrap and of the width, Pa."""
-        return self._at_centre_y(self._at_centre_x(self.pressure)) \
-            - self.model.air.ambient_pressure
-
-    @property
-    def cross_width_spacing(self) -> np.ndarray:
-        """h across the width in the middle of the wrap, m (one value if infinitely wide)."""
-        return self._at_centre_x(self.spacing)
-
-    @property
-    def minimum_spacing(self) -> float:
-        """Smallest nodal spacing, m."""
-        return float(self.spacing.min())
-
-    @property
-    def minimum_location(self) -> tuple[float, float | None]:
-        """(x, y) of the smallest spacing, m: x from the middle of the wrap (> 0 towards the
-        exit), y across the width (None if infinitely wide)."""
-        i, j = np.unravel_index(np.argmin(self.spacing), self.spacing.shape)
-        return float(self.x[i]), (None if self.model.infinitely_wide
-                                  else float(self.model.y[j]))
-
-    @property
-    def air_force(self) -> float:
-        """∫ (p − p_a) dA, N (N/m per unit width if infinitely wide)."""
-        return float(np.sum(self.model.pressure_load @ (self.p - self.model.air.ambient_pressure)))
-
-    @property
-    def contact_force(self) -> float:
-        """Total contact force of the head on the tape, N (N/m if infinitely wide)."""
-        return float(self.contact.sum())
-
-    @property
-    def contact_nodes(self) -> int:
-        """Number of tape nodes in contact."""
-        return int(np.count_nonzero(self.contact))
-
-    def summary(self) -> dict:
-        """The scalar outputs (SI), as for the CLI's JSON."""
-        m = self.model
-        x_min, y_min = self.minimum_location
-        return {
-            "central_spacing": self.central_spacing,
-            "minimum_spacing": self.minimum_spacing,
-            "minimum_x": x_min,
-            "minimum_y": y_min,
-            "central_pressure": self.central_pressure,
-            "wrap_pressure": m.effective_tension() / m.params.radius,
-            "air_force": self.air_force,
-            "contact_force": self.contact_force,
-            "contact_nodes": self.contact_nodes,
-            "newton_iterations": self.info.iterations,
-            "newton_step_norms": list(self.info.step_norms),
-            "continuation_speeds": list(self.info.continuation),
-            "pseudo_time_steps": list(self.info.pseudo_time),
-            "seconds": self.info.seconds,
-            "velocity": m.velocity,
-            "wrap_angle": m.wrap_angle,
-            "infinitely_wide": m.infinitely_wide,
-            "width": None if m.infinitely_wide else m.params.width,
-            "tension": m.params.tension,
-            "radius": m.params.radius,
-            "viscosity": m.air.viscosity,
-            "ambient_pressure": m.air.ambient_pressure,
-            "mean_free_path": m.air.mean_free_path,
-            "compressible": m.air.compressible,
-            "roughness": m.air.roughness,
-            "length": m.length,
-            "nx": m.nx,
-            "ny": m.ny,
-            "graded": m.graded,
-            "finest_x_spacing": float(np.diff(m.x).min()),
-            "finest_y_spacing": None if m.infinitely_wide else float(np.diff(m.y).min()),
-            "unknowns": m.size,
-        }
-
-
 def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
                  tension: float | None = None, progress=None,
                  iteration_log=None) -> BearingSolution:
     """The steady flying state of ``model``.
 
-    Newton starts from ``z0`` (default :meth:`BearingModel.initial_state`). If it fails
+    Newton starts from ``z0`` (default :func:`initial_state`). If it fails
     (no convergence, or stagnation: the start is outside Newton's basin, typically when
     part of the tape must come down onto the head), pseudo-transient continuation marches
     the state towards the steady one in growing pseudo-time steps, and if that fails too,
@@ -449,7 +345,7 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     """
     start = time.perf_counter()
     info = NewtonInfo()
-    z0 = model.initial_state() if z0 is None else np.asarray(z0, dtype=float)
+    z0 = initial_state(model) if z0 is None else np.asarray(z0, dtype=float)
     try:
         z, lam, info = _newton_or_pseudo_time(model, z0, tension, info, progress,
                                               iteration_log)
@@ -459,6 +355,92 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
         z, lam, info = _continuation(model, tension, progress, iteration_log)
     info.seconds = time.perf_counter() - start
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
+
+
+# ----- the start of Newton -----------------------------------------------------------------
+#: A 2-D tape with at least this many unknowns starts Newton from its solution on a grid
+#: twice as coarse (recursively), interpolated; smaller ones from the infinitely wide tape ...
+COARSE_START_MIN_UNKNOWNS = 20_000
+#: ... unless that grid would be coarser than this at the edges (m): an under-resolved
+#: free-edge row falsely touches down and the coarse solve would lead Newton astray.
+COARSE_START_MAX_Y_SPACING = 110e-6
+
+
+def initial_state(model: BearingModel, *,
+                  coarse_min_unknowns: int = COARSE_START_MIN_UNKNOWNS) -> np.ndarray:
+    """A start [u (m), p (Pa)] for Newton. Infinitely wide: the flexible-foil spacing and
+    the wrap pressure (:meth:`BearingModel.initial_state`). 2-D: the steady state on a grid
+    twice as coarse, interpolated, when the model is large enough (:func:`_coarse_state`);
+    else the infinitely wide tape's solution on the same x-grid, extruded across the width
+    (one cheap 1-D solve saves several 2-D Newton iterations).
+
+    ``coarse_min_unknowns``: the fewest unknowns of a 2-D model started from the coarse
+    grid (default :data:`COARSE_START_MIN_UNKNOWNS`)."""
+    if model.infinitely_wide:
+        return model.initial_state()
+    z = (_coarse_state(model, coarse_min_unknowns)
+         if model.unknowns >= coarse_min_unknowns else None)
+    return _extruded_strip_state(model) if z is None else z
+
+
+def _coarse_state(model: BearingModel, coarse_min_unknowns: int) -> np.ndarray | None:
+    """The steady state on the grid twice as coarse in x and y, interpolated
+    (bilinearly) onto the model's grid; None if that grid would be too coarse or neither
+    Newton nor the pseudo-time march reaches the state there. The coarse grid starts from
+    its own :func:`initial_state` (with ``coarse_min_unknowns``). Most of Newton's
+    iterations move the free edges down from the infinitely wide start; on the coarse grid
+    they cost a fraction of a fine-grid factorization."""
+    nx = model.nx // 2 + (model.nx // 2) % 2
+    ny = model.ny // 2 + (model.ny // 2) % 2
+    if ny < MIN_INTERVALS_ACROSS or nx < MIN_INTERVALS_ALONG:
+        return None
+    coarse = BearingModel(model.params, model.air, velocity=model.velocity,
+                          wrap_angle=model.wrap_angle, span=model.span, nx=nx, ny=ny,
+                          grading=model.grading)
+    if coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
+        return None
+    try:   # Newton, then pseudo-time (no continuation in V): cheap on a coarse grid
+        start = initial_state(coarse, coarse_min_unknowns=coarse_min_unknowns)
+        z, lam, info = _newton_or_pseudo_time(coarse, start, None,
+                                              NewtonInfo(), None, None)
+    except ConvergenceError:
+        return None
+    sol = BearingSolution(coarse, z[:coarse.n_u], z[coarse.n_u:], lam, info)
+    return _interpolated_state(model, coarse, sol)
+
+
+def _interpolated_state(model: BearingModel, coarse: BearingModel,
+                        sol: BearingSolution) -> np.ndarray:
+    """The state [u, p] of ``sol`` (on ``coarse``'s grid) interpolated bilinearly onto
+    ``model``'s grid."""
+    from scipy.interpolate import RegularGridInterpolator
+
+    X, Y = np.meshgrid(model.x, model.y, indexing="ij")
+    pts = np.column_stack([X.ravel(), Y.ravel()])
+    fields = []
+    for f in (sol.spacing - coarse.dry_field, sol.pressure):
+        fields.append(RegularGridInterpolator((coarse.x, coarse.y), f)(pts)
+                      .reshape(X.shape))
+    u = fields[0][1:-1, :].ravel()
+    return np.concatenate([u, fields[1][model.film.interior]])
+
+
+def _extruded_strip_state(model: BearingModel) -> np.ndarray:
+    """The infinitely wide tape's steady state on the model's x-grid (its flexible-foil
+    start if Newton fails there), repeated across the width."""
+    strip = BearingModel(model.params, model.air, velocity=model.velocity,
+                         wrap_angle=model.wrap_angle, infinitely_wide=True,
+                         span=model.span, nx=model.nx, grading=model.grading)
+    try:
+        sol = solve_steady(strip)
+    except ConvergenceError:
+        z = strip.initial_state()
+        u1, p1 = z[:strip.n_u], z[strip.n_u:]
+    else:
+        u1, p1 = sol.u, sol.p
+    u = np.repeat(u1, model.nc)
+    P = np.repeat(strip.pressure_field(p1), model.nc, axis=1)
+    return np.concatenate([u, P[model.film.interior]])
 
 
 #: Pseudo-time continuation: first step (pseudo-time terms 1/s of each row's diagonal) ...
@@ -530,8 +512,6 @@ def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | No
 
     Returns (z, λ, info). Raises ConvergenceError if the march does not get there.
     """
-    from .model import foil_length_scales
-
     info = NewtonInfo() if info is None else info
     transit = foil_length_scales(model.params, model.air, model.velocity)[1] / model.velocity
     z, s, finish = np.array(z0, dtype=float), PSEUDO_START, PSEUDO_FINISH
@@ -575,7 +555,7 @@ def _continuation(model: BearingModel, tension, progress, iteration_log):
         stage = model.at_velocity(v)
         if progress is not None:
             progress(f"continuation: V = {v:.4g} m/s")
-        z0 = stage.initial_state() if z is None else z
+        z0 = initial_state(stage) if z is None else z
         z, lam, info = _newton_or_pseudo_time(stage, z0, tension, info, progress,
                                               iteration_log)
     return z, lam, info

@@ -13,7 +13,7 @@ foundation term k acting on u (the tape's hoop stiffness resists departures from
 wrapped configuration only).
 
 The grid is a tensor product of node lines x_i, y_j, uniform or graded (:mod:`.mesh`).
-The operators are those of :mod:`gyroshell.operators`, written for non-uniform spacing
+The operators are those of :mod:`gyroshell.tape.operators`, written for non-uniform spacing
 from the same discrete energies: second differences
 δ²w_i = [(w_{i+1} − w_i)/h_i − (w_i − w_{i−1})/h_{i−1}] / w_i (w_i the node's
 control width, half the two neighbouring intervals), first differences and the twist on
@@ -29,38 +29,19 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..tape.grid import Grid
+from ..tape.operators import (
+    dual_widths,
+    forward_difference,
+    nodal_gyroscopic,
+    nodal_mass,
+    nodal_membrane,
+    second_difference,
+    weighted_gram,
+)
 from ..tape.parameters import TapeParameters
-from .mesh import dual_widths
 
-
-def second_difference(t: np.ndarray, dirichlet: bool = True) -> sp.csr_matrix:
-    """δ² at the interior nodes of the line t, acting on its interior nodes (``dirichlet``,
-    zero end values: square) or on all its nodes, 1/m²."""
-    h = np.diff(t)
-    w = dual_widths(t)[1:-1]
-    lo, hi = 1.0 / (h[:-1] * w), 1.0 / (h[1:] * w)
-    n = len(t) - 2
-    full = sp.diags([lo, -(lo + hi), hi], [0, 1, 2], shape=(n, n + 2), format="csr")
-    return full[:, 1:-1].tocsr() if dirichlet else full
-
-
-def forward_difference(t: np.ndarray, dirichlet: bool) -> sp.csr_matrix:
-    """δ⁺ from the nodes t to the interval midpoints, 1/m (``dirichlet``: on the interior
-    nodes only, end values zero)."""
-    h = np.diff(t)
-    full = sp.diags([-1.0 / h, 1.0 / h], [0, 1], shape=(len(h), len(t)), format="csr")
-    return full[:, 1:-1].tocsr() if dirichlet else full
-
-
-def _half_shift(n: int) -> sp.csr_matrix:
-    """½ (S⁺ − S⁻): W C_x for any spacing (the central difference times the control width,
-    whose 2 w_i = x_{i+1} − x_{i−1} cancels)."""
-    e = np.ones(n - 1)
-    return (0.5 * sp.diags([-e, e], [-1, 1], shape=(n, n))).tocsr()
-
-
-def _gram(op: sp.spmatrix, weights: np.ndarray) -> sp.csr_matrix:
-    return (op.T @ sp.diags(weights) @ op).tocsr()
+#: The strip's "width": it is solved per unit width (one node across, weight 1).
+_UNIT_WIDTH = np.ones(1)
 
 
 class StripOperators:
@@ -76,15 +57,15 @@ class StripOperators:
         self.x, self.n = x, len(x) - 2
         self.W = dual_widths(x)[1:-1]
         self.lxx = second_difference(x)
-        dx = forward_difference(x, dirichlet=True)
-        self.A = (params.D * _gram(self.lxx, self.W)
+        self.A = (params.D * weighted_gram(self.lxx, self.W)
                   + params.k * sp.diags(self.W)).tocsr()
-        self.B = _gram(dx, np.diff(x))
-        self.M = sp.diags(params.density * self.W)
+        self.B = nodal_membrane(x, _UNIT_WIDTH)
+        self.M = nodal_mass(params.density, self.W, _UNIT_WIDTH)
         self.params = params
 
     def G(self, velocity: float) -> sp.csr_matrix:
-        return (2 * self.params.density * velocity * _half_shift(self.n)).tocsr()
+        """G(V) = 2ρV W C_x, kg/s per unit width (V in m/s)."""
+        return nodal_gyroscopic(self.params.density, velocity, self.n, _UNIT_WIDTH)
 
     def curvature_load(self, kappa: np.ndarray) -> np.ndarray:
         """f_κ = D δ²ᵀ W κ, N/m: the bending force of the reference curvature κ (1/m)."""
@@ -96,7 +77,7 @@ class PlateOperators:
 
     Unknowns: the interior x-lines i = 1..nx−1, every node across (j fastest), as in
     :class:`gyroshell.grid.Grid` with free edges. The bending energy is that of
-    :func:`gyroshell.operators.bending_foundation`: D/2 Σ W [w_xx² + w_yy² + 2ν w_xx w_yy]
+    :func:`gyroshell.tape.operators.bending_foundation`: D/2 Σ W [w_xx² + w_yy² + 2ν w_xx w_yy]
     at the interior nodes, D/2 Σ W (1 − ν²) w_xx² at the edge nodes (the edge moment M_y
     is zero: free-edge conditions as natural boundary conditions), D (1 − ν) Σ a w_xy²
     over the cells (a their areas), plus k/2 Σ W w².
@@ -127,18 +108,17 @@ class PlateOperators:
         dxx, dyy = self._dxx, self._dyy
         bend = (dxx.T @ sp.diags(self._w_inner) @ (dxx + nu * dyy)
                 + dyy.T @ sp.diags(self._w_inner) @ (dyy + nu * dxx)
-                + (1 - nu**2) * _gram(self._dxx_edge, self._w_edge))
+                + (1 - nu**2) * weighted_gram(self._dxx_edge, self._w_edge))
         dxy = sp.kron(forward_difference(x, dirichlet=True),
                       forward_difference(y, dirichlet=False), format="csr")
-        bend = bend + 2 * (1 - nu) * _gram(dxy, np.kron(np.diff(x), np.diff(y)))
+        bend = bend + 2 * (1 - nu) * weighted_gram(dxy, np.kron(np.diff(x), np.diff(y)))
         self.A = (D * bend + sp.diags(params.k * self.W)).tocsr()
-        self.B = sp.kron(_gram(forward_difference(x, dirichlet=True), np.diff(x)),
-                         sp.diags(wy)).tocsr()
-        self.M = sp.diags(params.density * self.W)
+        self.B = nodal_membrane(x, wy)
+        self.M = nodal_mass(params.density, wx, wy)
 
     def G(self, velocity: float) -> sp.csr_matrix:
-        return (2 * self.params.density * velocity
-                * sp.kron(_half_shift(len(self.x) - 2), sp.diags(self.wy))).tocsr()
+        """G(V) = 2ρV W C_x, kg/s (V in m/s)."""
+        return nodal_gyroscopic(self.params.density, velocity, len(self.x) - 2, self.wy)
 
     def curvature_load(self, kappa: np.ndarray) -> np.ndarray:
         """f_κ, N: gradient of the bending energy's cross terms with a reference curvature

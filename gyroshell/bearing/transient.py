@@ -17,17 +17,23 @@ and an extra pressure load moving across the head.
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..core.errors import ParameterError
+from ..core.progress import progress_bar
 from ..engines.newmark import _check_real, check_steps
 from .model import BearingModel
-from .steady import BearingSolution, NewtonInfo, newton
+from .results import BearingSolution, BearingTransient, NewtonInfo
+from .steady import newton
+
+#: Newmark's default parameters: the trapezoidal rule (no numerical damping).
+NEWMARK_BETA = 0.25
+NEWMARK_GAMMA = 0.5
+#: The progress bar's label.
+PROGRESS_LABEL = "bearing transient"
 
 
 class _StepTerms:
@@ -54,41 +60,6 @@ class _StepTerms:
         return r, self.jacobian
 
 
-@dataclass(frozen=True)
-class BearingTransient:
-    """A march's record (every ``record_every`` steps).
-
-    Attributes
-    ----------
-    t : numpy.ndarray
-        Times, s.
-    central_spacing, minimum_spacing : numpy.ndarray
-        h at the middle of the wrap and width, and its minimum, m.
-    contact_force : numpy.ndarray
-        Total contact force, N (N/m if infinitely wide).
-    tension : numpy.ndarray
-        T(t), N/m.
-    x : numpy.ndarray
-        Node abscissae from the middle of the wrap, m.
-    centreline : numpy.ndarray
-        h(x) along the middle of the width at each recorded time, m, shape (len(t), nx + 1).
-    newton_iterations : numpy.ndarray
-        Newton iterations of each recorded step.
-    final : BearingSolution
-        The last state (velocity v and acceleration a not included).
-    """
-
-    t: np.ndarray
-    central_spacing: np.ndarray
-    minimum_spacing: np.ndarray
-    contact_force: np.ndarray
-    tension: np.ndarray
-    x: np.ndarray
-    centreline: np.ndarray
-    newton_iterations: np.ndarray
-    final: BearingSolution
-
-
 def tension_step(initial: float, final: float, at: float = 0.0) -> Callable[[float], float]:
     """T(t): ``initial`` before ``at`` (s), ``final`` from then on, N/m."""
     return lambda t: final if t >= at else initial
@@ -103,7 +74,7 @@ def tension_harmonic(mean: float, amplitude: float, frequency: float
 def march(start: BearingSolution, *, dt: float, steps: int,
           tension: Callable[[float], float] | None = None,
           moving_load: Callable[[float], np.ndarray] | None = None,
-          beta: float = 0.25, gamma: float = 0.5, record_every: int = 1,
+          beta: float = NEWMARK_BETA, gamma: float = NEWMARK_GAMMA, record_every: int = 1,
           progress: bool | None = None) -> BearingTransient:
     """March the flying tape from a steady state.
 
@@ -124,69 +95,73 @@ def march(start: BearingSolution, *, dt: float, steps: int,
     record_every : int
         Record every this many steps.
     progress : bool or None
-        A progress bar (tqdm) on stderr; None: only if stderr is a terminal.
+        A progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`); None:
+        only if stderr is a terminal.
     """
     model = start.model
     dt = _check_real("dt", dt, positive=True)
     steps = check_steps(steps)
     record_every = check_steps(record_every)
-    beta = _check_real("beta", beta, positive=True)
-    gamma = _check_real("gamma", gamma)
-    if not 2.0 * beta >= gamma >= 0.5:
-        raise ParameterError(f"beta, gamma must satisfy 2 beta >= gamma >= 1/2 "
-                             f"(unconditional stability), got {beta:g}, {gamma:g}")
+    beta, gamma = _checked_newmark(beta, gamma)
     T = (lambda _t: model.params.tension) if tension is None else tension
     G = model.tape.G(model.velocity)
     u, p = start.u.copy(), start.p.copy()
     v = np.zeros_like(u)
     a = np.zeros_like(u)   # the start is an equilibrium of the tape at T(0)
     phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
-    rec = {k: [] for k in ("t", "hc", "hmin", "fc", "T", "line", "it")}
-    lam = start.contact
-    centre_col = 0 if model.infinitely_wide else model.ny // 2
+    record = _Record(model)
+    sol = record(0.0, u, p, start.contact, 0, T(0.0))
+    with progress_bar(steps, PROGRESS_LABEL, progress=progress, unit="step") as bar:
+        for n in range(1, steps + 1):
+            t = n * dt
+            u_tilde = u + dt * v + (0.5 - beta) * dt * dt * a
+            v_tilde = v + (1.0 - gamma) * dt * a
+            force = None if moving_load is None else moving_load(t)
+            terms = _StepTerms(model, G, dt, beta, gamma, u_tilde, v_tilde, phi, force)
+            z, lam, _, info = newton(model, np.concatenate([u, p]), tension=T(t),
+                                     transient=terms, info=NewtonInfo())
+            u, p = z[:model.n_u], z[model.n_u:]
+            a, v = terms.kinematics(u)
+            phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
+            if n % record_every == 0 or n == steps:
+                sol = record(t, u, p, lam, info.iterations, T(t))
+            bar.update(1)
+    return record.result(start.x, sol)
 
-    def record(t, u, p, lam, its, tension_now):
-        sol = BearingSolution(model, u, p, lam, NewtonInfo(iterations=its))
+
+def _checked_newmark(beta: float, gamma: float) -> tuple[float, float]:
+    """(β, γ), checked for unconditional stability: 2β >= γ >= ½."""
+    beta = _check_real("beta", beta, positive=True)
+    gamma = _check_real("gamma", gamma)
+    if not 2.0 * beta >= gamma >= 0.5:
+        raise ParameterError(f"beta, gamma must satisfy 2 beta >= gamma >= 1/2 "
+                             f"(unconditional stability), got {beta:g}, {gamma:g}")
+    return beta, gamma
+
+
+class _Record:
+    """The series a march records; called with a state, returns its BearingSolution."""
+
+    def __init__(self, model: BearingModel) -> None:
+        self.model = model
+        self.centre_col = 0 if model.infinitely_wide else model.ny // 2
+        self.series = {k: [] for k in ("t", "hc", "hmin", "fc", "T", "line", "it")}
+
+    def __call__(self, t, u, p, lam, its, tension_now) -> BearingSolution:
+        sol = BearingSolution(self.model, u, p, lam, NewtonInfo(iterations=its))
         H = sol.spacing
+        rec = self.series
         rec["t"].append(t)
         rec["hc"].append(sol.central_spacing)
         rec["hmin"].append(H.min())
         rec["fc"].append(float(lam.sum()))
         rec["T"].append(tension_now)
-        rec["line"].append(H[:, centre_col].copy())
+        rec["line"].append(H[:, self.centre_col].copy())
         rec["it"].append(its)
         return sol
 
-    sol = record(0.0, u, p, lam, 0, T(0.0))
-    bar = _progress(steps, progress)
-    for n in range(1, steps + 1):
-        t = n * dt
-        u_tilde = u + dt * v + (0.5 - beta) * dt * dt * a
-        v_tilde = v + (1.0 - gamma) * dt * a
-        force = None if moving_load is None else moving_load(t)
-        terms = _StepTerms(model, G, dt, beta, gamma, u_tilde, v_tilde, phi, force)
-        info = NewtonInfo()
-        z, lam, _, info = newton(model, np.concatenate([u, p]), tension=T(t),
-                                 transient=terms, info=info)
-        u, p = z[:model.n_u], z[model.n_u:]
-        a, v = terms.kinematics(u)
-        phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
-        if n % record_every == 0 or n == steps:
-            sol = record(t, u, p, lam, info.iterations, T(t))
-        if bar is not None:
-            bar.update(1)
-    if bar is not None:
-        bar.close()
-    return BearingTransient(np.array(rec["t"]), np.array(rec["hc"]), np.array(rec["hmin"]),
-                            np.array(rec["fc"]), np.array(rec["T"]), start.x,
-                            np.array(rec["line"]), np.array(rec["it"]), sol)
-
-
-def _progress(steps: int, progress: bool | None):
-    if progress is None:
-        progress = sys.stderr.isatty()
-    if not progress:
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=steps, desc="bearing transient", unit="step", file=sys.stderr)
+    def result(self, x: np.ndarray, final: BearingSolution) -> BearingTransient:
+        """The record as a BearingTransient on the abscissae ``x`` (m), ending at ``final``."""
+        rec = {k: np.array(v) for k, v in self.series.items()}
+        return BearingTransient(rec["t"], rec["hc"], rec["hmin"], rec["fc"], rec["T"], x,
+                                rec["line"], rec["it"], final)

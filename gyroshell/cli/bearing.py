@@ -10,6 +10,9 @@ from pathlib import Path
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
 
+#: Columns of ``fields.csv``: the solution's table with its units in the names.
+FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
+
 
 def register(sub, common: argparse.ArgumentParser) -> None:
     from ..bearing import air as a
@@ -63,13 +66,13 @@ def register(sub, common: argparse.ArgumentParser) -> None:
 
 
 def _progress(message: str) -> None:
+    """One progress line on stderr."""
     print(message, file=sys.stderr, flush=True)
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..bearing import AirParameters, BearingModel
-    from ..bearing.steady import solve_steady
-    from ..core.errors import ConvergenceError
+    """Solve the steady flying state of the arguments' tape, write the asked outputs (all
+    or none) and print the summary (JSON or text). Returns the exit code 0."""
     from ..core.files import (
         PLOT,
         check_output_folder,
@@ -82,26 +85,14 @@ def run(args: argparse.Namespace) -> int:
         raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
                         f"got {args.velocity:g}")
     params = parameters_from_args(args)
-    air = AirParameters(viscosity=args.viscosity, ambient_pressure=args.ambient_pressure,
-                        mean_free_path=args.mean_free_path, roughness=args.roughness,
-                        compressible=not args.incompressible)
+    air = _air(args)
     if args.plot is not None and Path(args.plot).suffix.lower() != ".png":
         raise UserError(f"--plot must name a .png file, got {args.plot!r}")
     check_outputs({"--plot": (args.plot, PLOT)})
     out = None if args.out is None else check_output_folder(args.out, option="--out")
-    model = BearingModel(params, air, velocity=args.velocity,
-                         wrap_angle=math.radians(args.wrap_angle),
-                         infinitely_wide=args.infinitely_wide, span=args.span, nx=args.nx,
-                         ny=args.ny, grading="uniform" if args.uniform else None)
-    show = sys.stderr.isatty()
-    if show:
-        _progress(f"gyroshell bearing: {model.size} unknowns ({model!r})")
-    try:
-        sol = solve_steady(model, progress=_progress if show else None,
-                           iteration_log=_progress if show else None)
-    except ConvergenceError as exc:
-        raise UserError(f"no steady flying state reached for this input: {exc}") from None
+    sol = _solve(_model(args, params, air))
     summary = sol.summary()
+    # the angle as typed: degrees -> radians -> degrees need not give it back exactly
     summary["wrap_angle_degrees"] = args.wrap_angle
     # every output, or none (and no folder this run created)
     with transaction() if out is None else folder_transaction(out):
@@ -115,30 +106,64 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(summary)
     else:
-        x_min, y_min = sol.minimum_location
-        where = f"x = {x_min:.4e} m" + ("" if y_min is None else f", y = {y_min:.4e} m")
-        print(f"model:            {model!r}")
-        print(f"central spacing:  {sol.central_spacing:.6e} m")
-        print(f"minimum spacing:  {sol.minimum_spacing:.6e} m at {where}")
-        print(f"air force:        {sol.air_force:.6e} {'N/m' if model.infinitely_wide else 'N'}")
-        print(f"contact force:    {sol.contact_force:.6e} "
-              f"{'N/m' if model.infinitely_wide else 'N'} ({sol.contact_nodes} nodes)")
-        print(f"Newton:           {sol.info.iterations} iterations, {sol.info.seconds:.2f} s")
+        _print_text(sol)
     return 0
 
 
-def _write_out(out: Path, sol, summary: dict) -> None:
-    import numpy as np
-    import pandas as pd
+def _air(args: argparse.Namespace):
+    """The AirParameters of the arguments."""
+    from ..bearing import AirParameters
 
+    return AirParameters(viscosity=args.viscosity, ambient_pressure=args.ambient_pressure,
+                         mean_free_path=args.mean_free_path, roughness=args.roughness,
+                         compressible=not args.incompressible)
+
+
+def _model(args: argparse.Namespace, params, air):
+    """The BearingModel of the arguments (speed, wrap, grid) on the tape and the air."""
+    from ..bearing import BearingModel
+
+    return BearingModel(params, air, velocity=args.velocity,
+                        wrap_angle=math.radians(args.wrap_angle),
+                        infinitely_wide=args.infinitely_wide, span=args.span, nx=args.nx,
+                        ny=args.ny, grading="uniform" if args.uniform else None)
+
+
+def _solve(model):
+    """The steady state, with progress lines on a terminal; a UserError if none is reached."""
+    from ..bearing.steady import solve_steady
+    from ..core.errors import ConvergenceError
+    from ..core.progress import progress_wanted
+
+    show = progress_wanted(None)
+    if show:
+        _progress(f"gyroshell bearing: {model.unknowns} unknowns ({model!r})")
+    try:
+        return solve_steady(model, progress=_progress if show else None,
+                            iteration_log=_progress if show else None)
+    except ConvergenceError as exc:
+        raise UserError(f"no steady flying state reached for this input: {exc}") from None
+
+
+def _print_text(sol) -> None:
+    """The headline numbers as text."""
+    model = sol.model
+    force_unit = "N/m" if model.infinitely_wide else "N"
+    x_min, y_min = sol.minimum_location
+    where = f"x = {x_min:.4e} m" + ("" if y_min is None else f", y = {y_min:.4e} m")
+    print(f"model:            {model!r}")
+    print(f"central spacing:  {sol.central_spacing:.6e} m")
+    print(f"minimum spacing:  {sol.minimum_spacing:.6e} m at {where}")
+    print(f"air force:        {sol.air_force:.6e} {force_unit}")
+    print(f"contact force:    {sol.contact_force:.6e} {force_unit} ({sol.contact_nodes} nodes)")
+    print(f"Newton:           {sol.info.iterations} iterations, {sol.info.seconds:.2f} s")
+
+
+def _write_out(out: Path, sol, summary: dict) -> None:
+    """fields.csv (the solution's table) and summary.json into the folder ``out``."""
     from ..core.files import write_atomic
 
-    m = sol.model
-    y = np.zeros(1) if m.infinitely_wide else m.y
-    X, Y = np.meshgrid(sol.x, y, indexing="ij")
-    fields = pd.DataFrame({"x_m": X.ravel(), "y_m": Y.ravel(),
-                           "spacing_m": sol.spacing.ravel(),
-                           "pressure_Pa": sol.pressure.ravel()})
+    fields = sol.to_frame().rename(columns=FIELD_COLUMNS)
     write_atomic(out / "fields.csv", lambda tmp: fields.to_csv(tmp, index=False))
     write_atomic(out / "summary.json",
                  lambda tmp: tmp.write_text(json.dumps(summary, indent=1) + "\n"))

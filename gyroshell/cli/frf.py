@@ -76,24 +76,12 @@ def run(args: argparse.Namespace) -> int:
         if args.plot is not None:
             _plot(result, params, damping, args.plot)
     info = result.info
-    out = {
-        "velocity": velocity, "omega": result.omega.tolist(),
-        "amplitude": result.amplitude[:, 0].tolist(), "phase": result.phase[:, 0].tolist(),
-        "probes": [list(p) for p in result.points[1:].tolist()],
-        "probe_amplitude": result.amplitude[:, 1:].T.tolist(),
-        "probe_phase": result.phase[:, 1:].T.tolist(),
-        "method": result.method.tolist(), "error_estimate": result.error_estimate.tolist(),
-        "max_error_estimate": float(result.error_estimate.max()),
-        "direct_solves": info["direct_solves"], "factorizations": info["factorizations"],
-        "basis_size": info["basis_size"], "damping": damping.viscous,
-        "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
-        "unknowns": model.size, "seconds": elapsed, "out": args.out, "plot": args.plot,
-    }
-    if args.json:
-        print_json(out)
+    if args.json:  # the wall time and output paths are the command's, not the response's
+        print_json({**result.summary(), "seconds": elapsed, "out": args.out,
+                    "plot": args.plot})
         return 0
     g = model.grid
-    print(f"grid: {g.nx} x {g.ny} intervals, {g.size} unknowns; V = {velocity:g} m/s; "
+    print(f"grid: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns; V = {velocity:g} m/s; "
           f"{len(omega)} frequencies in [{omega.min():g}, {omega.max():g}] rad/s")
     print(f"method: {info['factorizations']} factorizations ({info['direct_solves']} direct "
           f"solves), reduced basis {info['basis_size']}, largest estimated relative error "

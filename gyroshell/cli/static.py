@@ -32,18 +32,8 @@ def run(args: argparse.Namespace) -> int:
     sol = solve_static(model, velocity)
     save_result(args.save, sol, params)
     g = model.grid
-    out = {
-        "load_point_deflection": sol.load_point_deflection,
-        "max_deflection": sol.max_deflection,
-        "velocity": velocity,
-        "load_centroid": list(params.load_centroid),
-        "nx": g.nx, "ny": g.ny, "spacing_x": g.hx, "spacing_y": g.hy,
-        "unknowns": g.unknowns,
-        "edges": g.edges,
-        "bending_rigidity": params.D, "foundation_stiffness": params.k,
-    }
     if args.json:
-        print_json(out)
+        print_json(sol.summary())
     else:
         print(f"grid: {g.nx} x {g.ny} intervals, spacing {g.hx:.6g} m x {g.hy:.6g} m, "
               f"{g.unknowns} unknowns, {g.edges} edges")

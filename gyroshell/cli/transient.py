@@ -9,7 +9,7 @@ from .common import UserError, parameters_from_args, positive_int, print_json, r
 from .loading import add_damping_options, add_load_options, damping_from_args, load_from_args
 from .saving import add_save_option, check_save_path, save_result
 
-#: --backend values: "auto" and the names of gyroshell.factorization.BACKENDS (not imported
+#: --backend values: "auto" and the names of gyroshell.linalg.factorization.BACKENDS (not imported
 #: here, so that parsing and refusals do not load scipy).
 BACKEND_CHOICES: tuple[str, ...] = ("auto", "superlu", "umfpack", "pardiso", "banded")
 
@@ -100,22 +100,8 @@ def run(args: argparse.Namespace) -> int:
             result.save_snapshots(args.snapshots)
         save_result(args.save, result, params)
     g, info, w = model.grid, result.info, result.load_point
-    out = {
-        "velocity": result.velocity, "dt": result.dt, "steps": result.steps,
-        "beta": result.beta, "gamma": result.gamma,
-        "final_time": float(result.times[-1]),
-        "final_load_point_displacement": float(w[-1]),
-        "max_load_point_displacement": float(w.max()),
-        "min_load_point_displacement": float(w.min()),
-        "nx": g.nx, "ny": g.ny, "unknowns": g.unknowns,
-        "backend": info["backend"], "factor_time": info["factor_time"],
-        "loop_time": info["loop_time"], "step_time": info["step_time"],
-        "out": args.out, "snapshots": args.snapshots,
-        "moving_load": load is not None, "damping": damping.viscous,
-        "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
-    }
-    if args.json:
-        print_json(out)
+    if args.json:  # the output paths are the command's, not the run's
+        print_json({**result.summary(), "out": args.out, "snapshots": args.snapshots})
     else:
         print(f"grid: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns; V = {result.velocity:g} "
               f"m/s, dt = {result.dt:g} s, {result.steps} steps, beta = {result.beta:g}, "

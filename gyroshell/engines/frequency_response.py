@@ -5,8 +5,9 @@ At each angular frequency ω (rad/s) the displacement amplitude W (complex, m) s
     Q(ω) W = F,        Q(ω) = K(V) − ω² M + iω (G(V) + C),
 
 and the response at a point is r·W (bilinear interpolation row r): amplitude |r·W| (m) and
-phase arg(r·W) (rad; negative = lagging the load). F is the model's load (the Gaussian of
-Eq. 17 with its peak pressure P₀), so the amplitude is the displacement per P₀-load.
+phase arg(r·W) (rad; negative = lagging the load). F is the model's force (the nodal forces
+of the Gaussian pressure of Eq. 17, peak P₀), so the amplitude is the displacement under
+that pressure.
 
 Two methods, chosen per frequency:
 
@@ -30,12 +31,9 @@ directly.
 from __future__ import annotations
 
 import math
-import os
-import sys
 import time
 from collections.abc import Sequence
-from dataclasses import dataclass, field
-from pathlib import Path
+from dataclasses import asdict
 
 import numpy as np
 import scipy.linalg as sl
@@ -43,8 +41,11 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..core.errors import ParameterError
-from ..core.files import atomic_path
 from ..core.parallel import blas_threads as limit_blas_threads
+from ..core.progress import progress_bar
+from ..plot import bode
+from ..results.base import Result, dataset, from_json, get, put
+from ..results.frequency_response import FrequencyResponse
 from ..tape.damping import Damping, as_damping
 from ..tape.model import TapeModel
 from ..tape.parameters import check_velocity
@@ -76,92 +77,12 @@ POINTS_PER_ROUND = 4
 #: Frequencies per batch of small dense solves.
 BATCH = 256
 METHODS = ("auto", "direct", "reduced")
-
-
-@dataclass(frozen=True)
-class FrequencyResponse:
-    """Steady harmonic response at a list of frequencies and points.
-
-    Attributes
-    ----------
-    omega : numpy.ndarray
-        Angular frequencies ω, rad/s, shape (k,).
-    response : numpy.ndarray
-        Complex displacement amplitude, m, shape (k, p): column 0 at the load centroid, then
-        one per probe.
-    points : numpy.ndarray
-        (x, y) of the response points, m, shape (p, 2).
-    velocity : float
-        Tape speed V, m/s.
-    method : numpy.ndarray
-        "reduced" or "direct" per frequency, shape (k,).
-    error_estimate : numpy.ndarray
-        Estimated relative error per frequency (0 where solved directly), shape (k,).
-    info : dict
-        Statistics: ``factorizations``, ``interpolation_points`` (rad/s), ``basis_size``,
-        ``direct_solves``, ``reduced_time``, ``direct_time`` (s), ``tol``.
-    """
-
-    omega: np.ndarray
-    response: np.ndarray
-    points: np.ndarray
-    velocity: float
-    method: np.ndarray
-    error_estimate: np.ndarray
-    info: dict = field(default_factory=dict, compare=False)
-
-    @property
-    def amplitude(self) -> np.ndarray:
-        """|W|, m, shape (k, p)."""
-        return np.abs(self.response)
-
-    @property
-    def phase(self) -> np.ndarray:
-        """arg W, rad in (−π, π], shape (k, p)."""
-        return np.angle(self.response)
-
-    def to_frame(self):
-        """DataFrame: omega (rad/s), frequency (Hz), amplitude (m), phase (rad), method,
-        error_estimate, then amplitude_<k>, phase_<k> for each probe k = 1, 2, ..."""
-        import pandas as pd
-
-        data = {"omega": self.omega, "frequency": self.omega / (2 * np.pi),
-                "amplitude": self.amplitude[:, 0], "phase": self.phase[:, 0],
-                "method": self.method, "error_estimate": self.error_estimate}
-        for k in range(1, self.response.shape[1]):
-            data[f"amplitude_{k}"] = self.amplitude[:, k]
-            data[f"phase_{k}"] = self.phase[:, k]
-        return pd.DataFrame(data)
-
-    def to_csv(self, path: str | os.PathLike[str]) -> Path:
-        """Write :meth:`to_frame` as CSV, whole or not at all."""
-        frame = self.to_frame()
-        with atomic_path(path) as tmp:
-            frame.to_csv(tmp, index=False, float_format="%.17g")
-        return Path(path)
-
-    def plot(self, ax=None, *, label: str | None = None, probes: bool = True):
-        """Bode plot (amplitude, m, log scale; phase, rad) against ω (rad/s).
-
-        ``ax`` is a pair of Axes (amplitude, phase) or None for a new figure; returns it.
-        """
-        import matplotlib.pyplot as plt
-
-        if ax is None:
-            _, ax = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
-        columns = range(self.response.shape[1]) if probes else range(1)
-        for k in columns:
-            name = "load point" if k == 0 else f"probe {k} ({self.points[k, 0] * 1e3:.3g}, " \
-                f"{self.points[k, 1] * 1e3:.3g}) mm"
-            text = name if label is None else f"{label}, {name}" if k else label
-            line, = ax[0].semilogy(self.omega, self.amplitude[:, k], lw=0.9, label=text)
-            ax[1].plot(self.omega, self.phase[:, k], lw=0.9, color=line.get_color())
-        ax[0].set_ylabel("amplitude |W| (m)")
-        ax[1].set_ylabel("phase (rad)")
-        ax[1].set_xlabel("angular frequency ω (rad/s)")
-        for a in ax:
-            a.grid(alpha=0.3)
-        return ax
+#: Frequencies of a reduced model's Bode plot ...
+PLOT_FREQUENCIES = 400
+#: ... and its span, rad/s, when the model has a single interpolation frequency.
+SINGLE_POINT_SPAN = 1.0
+#: Direct sweeps shorter than this show no progress bar (it would flash and vanish).
+MIN_BAR_FREQUENCIES = 2
 
 
 # ----- validation ----------------------------------------------------------------------
@@ -226,7 +147,7 @@ def response_rows(model: TapeModel, probes: Sequence[tuple[float, float]]
 
 # ----- the operator -----------------------------------------------------------------------
 class _Operators:
-    """M (diagonal), D = G + C, K and F of one model, speed and damping."""
+    """M (diagonal), G + C, K and F of one model, speed and damping."""
 
     def __init__(self, model: TapeModel, velocity: float, damping: Damping,
                  force: np.ndarray | None):
@@ -234,17 +155,21 @@ class _Operators:
         self.M = sp.diags(self.m, format="csr")
         self.K = model.K(velocity).tocsr()
         G = model.G(velocity).tocsr()
-        self.D = G if damping.is_zero else (G + damping.matrix(model, velocity)).tocsr()
-        self.F = model.load if force is None else force
+        #: G + C, the velocity-proportional operator, kg/s.
+        self.damped_gyroscopic = G if damping.is_zero else (
+            G + damping.matrix(model, velocity)).tocsr()
+        self.F = model.force if force is None else force
 
     def Q(self, omega: float) -> sp.csc_matrix:
         """K − ω²M + iω(G + C), N/m (complex unless ω = 0)."""
         if omega == 0.0:
             return self.K.tocsc()
-        return (self.K - omega**2 * self.M + (1j * omega) * self.D).tocsc()
+        return (self.K - omega**2 * self.M + (1j * omega) * self.damped_gyroscopic).tocsc()
 
     def factor(self, omega: float):
         """A solver b -> Q(ω)⁻¹ b for complex b (one sparse LU)."""
+        # SuperLU directly: the symmetric mode with a pivot threshold that keeps this cheap
+        # (see PIVOT_THRESHOLD) is not an option of linalg.factorization's back-ends.
         lu = spla.splu(self.Q(omega), permc_spec="MMD_AT_PLUS_A",
                        diag_pivot_thresh=PIVOT_THRESHOLD, options={"SymmetricMode": True})
         if omega != 0.0:
@@ -255,7 +180,8 @@ class _Operators:
     def moments(self, omega: float, count: int) -> list[np.ndarray]:
         """W₀ ... W_{count−1}: Taylor coefficients of W about ω (one factorization)."""
         solve = self.factor(omega)
-        dQ = lambda x: -2.0 * omega * (self.m * x) + 1j * (self.D @ x)  # noqa: E731
+        GC = self.damped_gyroscopic
+        dQ = lambda x: -2.0 * omega * (self.m * x) + 1j * (GC @ x)  # noqa: E731
         out = [solve(self.F.astype(complex))]
         for j in range(1, count):
             rhs = -dQ(out[j - 1])
@@ -269,26 +195,35 @@ def direct_response(model: TapeModel, velocity: float, omega, *,
                     damping: Damping | float | None = None, force: np.ndarray | None = None,
                     probes: Sequence[tuple[float, float]] = (), progress: bool | None = None
                     ) -> FrequencyResponse:
-    """The response by one sparse LU of Q(ω) per frequency (exact to round-off)."""
+    """The response by one sparse LU of Q(ω) per frequency (exact to round-off).
+
+    Parameters as in :func:`frequency_response`.
+    """
     velocity, omega = check_velocity(velocity), check_frequencies(omega)
-    ops = _Operators(model, velocity, as_damping(damping), _force(model, force))
+    damping = as_damping(damping)
+    ops = _Operators(model, velocity, damping, _force(model, force))
     points, rows = response_rows(model, probes)
     start = time.perf_counter()
     response = _direct(ops, rows, omega, progress)
     k = len(omega)
+    info = {"factorizations": k, "direct_solves": k,
+            "direct_time": time.perf_counter() - start, "reduced_time": 0.0,
+            "basis_size": 0, "interpolation_points": [], **_run_info(model, damping)}
     return FrequencyResponse(omega, response, points, velocity, np.full(k, "direct"),
-                             np.zeros(k), {"factorizations": k, "direct_solves": k,
-                                           "direct_time": time.perf_counter() - start,
-                                           "reduced_time": 0.0, "basis_size": 0,
-                                           "interpolation_points": []})
+                             np.zeros(k), info)
+
+
+def _run_info(model: TapeModel, damping: Damping) -> dict:
+    """What a response records of its run: the damping's fields and the unknowns."""
+    return {"damping": asdict(damping), "unknowns": model.unknowns}
 
 
 def _force(model: TapeModel, force) -> np.ndarray | None:
     if force is None:
         return None
     out = np.asarray(force, dtype=float)
-    if out.shape != (model.size,) or not np.all(np.isfinite(out)):
-        raise ParameterError(f"force must be a finite vector of length {model.size} (N)")
+    if out.shape != (model.unknowns,) or not np.all(np.isfinite(out)):
+        raise ParameterError(f"force must be a finite vector of length {model.unknowns} (N)")
     return out
 
 
@@ -301,21 +236,18 @@ def _direct(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
 def _direct_loop(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
                  progress: bool | None) -> np.ndarray:
     out = np.empty((len(omega), rows.shape[0]), dtype=complex)
-    bar = _progress_bar(len(omega), progress)
-    try:
+    shown = progress if len(omega) >= MIN_BAR_FREQUENCIES else False
+    with progress_bar(len(omega), "frf direct", progress=shown, unit="freq") as bar:
         for k, w in enumerate(omega):
             out[k] = rows @ ops.factor(float(w))(ops.F.astype(complex))
-            if bar is not None:
-                bar.update(1)
-    finally:
-        if bar is not None:
-            bar.close()
+            bar.update(1)
     return out
 
 
 # ----- the reduced model ----------------------------------------------------------------------
 class _Projection:
-    """An orthonormal real basis V, grown block by block, and M, G + C, K, F projected on it.
+    """An orthonormal real basis V, grown block by block, and M, G + C, K, F projected on it
+    (``Mr``, ``GCr``, ``Kr``).
 
     Each block costs O(n r k) (two Gram–Schmidt passes and the new rows and columns of the
     projected matrices), not a re-orthogonalization of the whole basis.
@@ -324,7 +256,7 @@ class _Projection:
     def __init__(self, ops: _Operators, rows: sp.csr_matrix) -> None:
         self.ops, self.rows = ops, rows
         self.V = np.empty((len(ops.m), 0))
-        self.Mr, self.Kr, self.Dr = (np.empty((0, 0)) for _ in range(3))
+        self.Mr, self.Kr, self.GCr = (np.empty((0, 0)) for _ in range(3))
 
     @property
     def size(self) -> int:
@@ -346,16 +278,17 @@ class _Projection:
             new -= V @ (V.T @ new)
         new, _ = np.linalg.qr(new)
         ops = self.ops
-        MN, KN, DN, DtN = ops.m[:, None] * new, ops.K @ new, ops.D @ new, ops.D.T @ new
+        GC = ops.damped_gyroscopic
+        MN, KN, GCN, GCtN = ops.m[:, None] * new, ops.K @ new, GC @ new, GC.T @ new
         self.Mr = _grow(self.Mr, V.T @ MN, MN.T @ V, new.T @ MN)
         self.Kr = _grow(self.Kr, V.T @ KN, KN.T @ V, new.T @ KN)
-        self.Dr = _grow(self.Dr, V.T @ DN, DtN.T @ V, new.T @ DN)
+        self.GCr = _grow(self.GCr, V.T @ GCN, GCtN.T @ V, new.T @ GCN)
         self.V = np.hstack([V, new])
 
     def parts(self):
-        """(M_r, K_r, D_r, F_r, R_r) on the current basis."""
+        """(M_r, K_r, GC_r, F_r, R_r) on the current basis (GC_r: G + C projected)."""
         V = self.V
-        return (0.5 * (self.Mr + self.Mr.T), 0.5 * (self.Kr + self.Kr.T), self.Dr,
+        return (0.5 * (self.Mr + self.Mr.T), 0.5 * (self.Kr + self.Kr.T), self.GCr,
                 V.T @ self.ops.F, np.asarray(self.rows @ V))
 
 
@@ -364,7 +297,16 @@ def _grow(A: np.ndarray, right: np.ndarray, below: np.ndarray, corner: np.ndarra
     return np.block([[A, right], [below, corner]])
 
 
-class ReducedModel:
+class _Reduction:
+    """The live state of a reduction: the full model's operators, the response rows and the
+    full and nested bases (what a saved reduced model does not keep)."""
+
+    def __init__(self, ops: _Operators, rows: sp.csr_matrix) -> None:
+        self.ops, self.rows = ops, rows
+        self.spaces = (_Projection(ops, rows), _Projection(ops, rows))
+
+
+class ReducedModel(Result, kind="reduced_model"):
     """Rational Krylov (moment-matching) reduction of Q(ω) W = F on a real basis.
 
     Parameters
@@ -374,10 +316,19 @@ class ReducedModel:
         Tape speed V, m/s.
     damping : Damping, float or None
         Damping C (a number is viscous c, N·s/m³).
+    force : numpy.ndarray, optional
+        Nodal force amplitude F, N (default: the model's force).
     probes : sequence of (x, y)
         Extra response points, m.
     moments : int
         Taylor coefficients matched per interpolation frequency (>= 2).
+
+    Notes
+    -----
+    Saved as kind ``"reduced_model"``: the poles (1/s) and residues (m·s⁻¹ per point) of the
+    full and nested reduced models, the interpolation frequencies (rad/s), the response
+    points (m), the speed, the moments and the basis size. A loaded model evaluates exactly
+    as the saved one; it cannot :meth:`add_points` (that needs the tape's matrices).
     """
 
     def __init__(self, model: TapeModel, velocity: float = 0.0, *,
@@ -387,17 +338,23 @@ class ReducedModel:
                 or moments < 2:
             raise ParameterError(f"moments must be an integer >= 2, got {moments!r}")
         self.velocity = check_velocity(velocity)
-        self.ops = _Operators(model, self.velocity, as_damping(damping), _force(model, force))
-        self.points, self.rows = response_rows(model, probes)
+        self.damping = as_damping(damping)
+        self.unknowns = model.unknowns
+        ops = _Operators(model, self.velocity, self.damping, _force(model, force))
+        self.points, rows = response_rows(model, probes)
+        self._solver = _Reduction(ops, rows)
         self.moments = int(moments)
         self.interpolation_points: list[float] = []
-        self._spaces = (_Projection(self.ops, self.rows), _Projection(self.ops, self.rows))
         self._full = self._nested = None
+        self._basis_size = 0
 
     def add_points(self, omegas: Sequence[float]) -> None:
         """Factor Q at each ω (rad/s), add W and its Taylor coefficients to the basis, and
         rebuild the reduced model."""
-        full, nested = self._spaces
+        if self._solver is None:
+            raise ParameterError("a loaded reduced model cannot add interpolation points: "
+                                 "build a new ReducedModel from the TapeModel")
+        full, nested = self._solver.spaces
         for omega in omegas:
             self.interpolation_points.append(float(omega))
             vectors = self.ops.moments(float(omega), self.moments)
@@ -405,24 +362,40 @@ class ReducedModel:
             nested.extend(vectors[:-1])
         self._full = self._poles(full.parts())
         self._nested = self._poles(nested.parts())
+        self._basis_size = full.size
+
+    @property
+    def ops(self) -> _Operators | None:
+        """The full model's operators (None for a loaded model)."""
+        return None if self._solver is None else self._solver.ops
+
+    @property
+    def rows(self) -> sp.csr_matrix | None:
+        """Interpolation rows of the response points (None for a loaded model)."""
+        return None if self._solver is None else self._solver.rows
 
     @property
     def basis_size(self) -> int:
-        return self._spaces[0].size
+        """Columns of the reduced basis (twice the independent complex vectors)."""
+        return self._basis_size
+
+    def run_info(self) -> dict:
+        """The damping's fields and the number of unknowns of the full model."""
+        return {"damping": asdict(self.damping), "unknowns": self.unknowns}
 
     @staticmethod
     def _poles(parts) -> tuple[np.ndarray, np.ndarray]:
         """Poles λ_j (1/s) and residues (p, 2r) of the reduced transfer function.
 
-        H(s) = R (s²M_r + sD_r + K_r)⁻¹ F = Σ_j res_j / (s − λ_j), from the eigen-
-        decomposition of the first-order form A z = λ B z, A = [[0, I], [−K_r, −D_r]],
+        H(s) = R (s²M_r + sGC_r + K_r)⁻¹ F = Σ_j res_j / (s − λ_j), from the eigen-
+        decomposition of the first-order form A z = λ B z, A = [[0, I], [−K_r, −GC_r]],
         B = diag(I, M_r): then every frequency costs O(r) instead of a dense solve.
         """
-        Mr, Kr, Dr, Fr, Rr = parts
+        Mr, Kr, GCr, Fr, Rr = parts
         r = len(Fr)
         Minv_K = np.linalg.solve(Mr, Kr)
-        Minv_D = np.linalg.solve(Mr, Dr)
-        A = np.block([[np.zeros((r, r)), np.eye(r)], [-Minv_K, -Minv_D]])
+        Minv_GC = np.linalg.solve(Mr, GCr)
+        A = np.block([[np.zeros((r, r)), np.eye(r)], [-Minv_K, -Minv_GC]])
         lam, X = sl.eig(A, check_finite=False)
         b = np.concatenate([np.zeros(r), np.linalg.solve(Mr, Fr)])
         coeff = np.linalg.solve(X, b.astype(complex))
@@ -445,6 +418,58 @@ class ReducedModel:
         full = self._evaluate(self._full, omega)
         nested = self._evaluate(self._nested, omega)
         return full, ESTIMATE_SAFETY * relative_error(full, nested) + ESTIMATE_ROUNDOFF
+
+    # ----- the saved kind -------------------------------------------------------------
+    def to_xarray(self, *, params=None):
+        """Dataset of the poles and residues the model evaluates from (class Notes)."""
+        if self._full is None:
+            raise ParameterError("the reduced model has no interpolation point yet")
+        data_vars: dict = {}
+        for prefix, (lam, residues) in (("full", self._full), ("nested", self._nested)):
+            put(data_vars, f"{prefix}_poles", (f"{prefix}_pole",), lam, {"units": "1/s"})
+            put(data_vars, f"{prefix}_residues", ("point", f"{prefix}_pole"), residues,
+                {"units": "m/s"})
+        data_vars["points"] = (("point", "axis"), self.points, {"units": "m"})
+        data_vars["interpolation_points"] = (("interpolation_point",),
+                                             np.array(self.interpolation_points, dtype=float),
+                                             {"units": "rad/s"})
+        data_vars["velocity"] = ((), self.velocity, {"units": "m/s"})
+        return dataset(data_vars, {}, self.kind, params=params, info=self.run_info(),
+                       moments=self.moments, basis_size=self.basis_size)
+
+    @classmethod
+    def from_xarray(cls, ds) -> ReducedModel:
+        """A reduced model that evaluates as the saved one (it cannot add points)."""
+        self = cls.__new__(cls)
+        info = from_json(ds.attrs["info"])
+        self.velocity = float(ds["velocity"])
+        self.damping, self.unknowns = Damping(**info["damping"]), info["unknowns"]
+        self._solver = None
+        self.points = ds["points"].values
+        self.moments = int(from_json(ds.attrs["moments"]))
+        self.interpolation_points = [float(w) for w in ds["interpolation_points"].values]
+        self._full, self._nested = ((get(ds, f"{p}_poles"), get(ds, f"{p}_residues"))
+                                    for p in ("full", "nested"))
+        self._basis_size = int(from_json(ds.attrs["basis_size"]))
+        return self
+
+    def summary(self) -> dict:
+        """Speed (m/s), interpolation frequencies (rad/s), sizes and response points (m)."""
+        return {"velocity": self.velocity, "moments": self.moments,
+                "interpolation_points": list(self.interpolation_points),
+                "basis_size": self.basis_size,
+                "poles": 0 if self._full is None else len(self._full[0]),
+                "points": self.points.tolist(), **self.run_info()}
+
+    def plot(self, ax=None):
+        """Bode plot of the reduced load-point response between the lowest and highest
+        interpolation frequencies (:func:`gyroshell.plot.bode`); returns the Axes."""
+        if not self.interpolation_points:
+            raise ParameterError("the reduced model has no interpolation point yet")
+        lo, hi = min(self.interpolation_points), max(self.interpolation_points)
+        omega = np.linspace(lo, hi if hi > lo else lo + SINGLE_POINT_SPAN, PLOT_FREQUENCIES)
+        response, _ = self.evaluate(omega)
+        return bode(omega, response[:, 0], axes=ax, label="reduced model", scale=1.0)
 
 
 def relative_error(value: np.ndarray, reference: np.ndarray) -> np.ndarray:
@@ -477,7 +502,8 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
         Damping C (a number is viscous c, N·s/m³). Without damping the response is infinite
         at the natural frequencies; a frequency exactly on one gives a singular Q.
     force : numpy.ndarray, optional
-        Nodal force amplitude F, N (default: the model's Gaussian load, peak P₀).
+        Nodal force amplitude F, N (default: the model's force, its Gaussian pressure of
+        peak P₀, Pa).
     probes : sequence of (x, y)
         Extra response points, m.
     method : {"auto", "direct", "reduced"}
@@ -498,39 +524,63 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
         is fastest on a shared machine, where spinning BLAS workers compete for cores.
     """
     velocity, omega = check_velocity(velocity), check_frequencies(omega)
+    tol = _check_options(method, tol, max_points)
+    _check_subcritical(model, velocity)
+    if method == "direct" or (method == "auto" and len(omega) <= INITIAL_POINTS * 2):
+        return direct_response(model, velocity, omega, damping=damping, force=force,
+                               probes=probes, progress=progress)
+    reduced = ReducedModel(model, velocity, damping=damping, force=force, probes=probes,
+                           moments=moments)
+    return _reduced_response(reduced, omega, method=method, tol=tol, max_points=max_points,
+                             progress=progress, blas_threads=blas_threads)
+
+
+def _check_options(method: str, tol, max_points) -> float:
+    """Validate ``method`` and ``max_points``; returns ``tol`` as a float > 0."""
     if method not in METHODS:
         raise ParameterError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
     tol = _positive("tol", tol)
     if isinstance(max_points, bool) or not isinstance(max_points, (int, np.integer)) \
             or max_points < 1:
         raise ParameterError(f"max_points must be an integer >= 1, got {max_points!r}")
-    _check_subcritical(model, velocity)
-    if method == "direct" or (method == "auto" and len(omega) <= INITIAL_POINTS * 2):
-        return direct_response(model, velocity, omega, damping=damping, force=force,
-                               probes=probes, progress=progress)
+    return tol
+
+
+def _reduced_response(reduced: ReducedModel, omega: np.ndarray, *, method: str, tol: float,
+                      max_points: int, progress: bool | None, blas_threads: int | None
+                      ) -> FrequencyResponse:
+    """The response from the greedy reduced model; with method "auto", direct solves
+    replace it wherever its estimated error stays above ``tol``."""
     start = time.perf_counter()
-    reduced = ReducedModel(model, velocity, damping=damping, force=force, probes=probes,
-                           moments=moments)
     with limit_blas_threads(blas_threads):
         response, estimate = _greedy(reduced, omega, tol, max_points)
     reduced_time = time.perf_counter() - start
     chosen = np.full(len(omega), "reduced", dtype=object)
-    direct = 0
     start = time.perf_counter()
+    direct = 0
     if method == "auto":
-        bad = np.flatnonzero(estimate > tol)
-        if bad.size:
-            response[bad] = _direct(reduced.ops, reduced.rows, omega[bad], progress)
-            estimate[bad] = 0.0
-            chosen[bad] = "direct"
-            direct = int(bad.size)
+        direct = _direct_where_inaccurate(reduced, omega, response, estimate, chosen, tol,
+                                          progress)
     info = {"factorizations": len(reduced.interpolation_points) + direct,
             "interpolation_points": list(reduced.interpolation_points),
             "basis_size": reduced.basis_size, "direct_solves": direct,
             "reduced_time": reduced_time, "direct_time": time.perf_counter() - start,
-            "tol": tol, "moments": reduced.moments}
-    return FrequencyResponse(omega, response, reduced.points, velocity,
+            "tol": tol, "moments": reduced.moments, **reduced.run_info()}
+    return FrequencyResponse(omega, response, reduced.points, reduced.velocity,
                              chosen.astype(str), estimate, info)
+
+
+def _direct_where_inaccurate(reduced: ReducedModel, omega: np.ndarray, response: np.ndarray,
+                             estimate: np.ndarray, chosen: np.ndarray, tol: float,
+                             progress: bool | None) -> int:
+    """Solve directly where ``estimate`` > ``tol``, in place (the estimate there becomes 0
+    and ``chosen`` "direct"); returns how many frequencies that was."""
+    bad = np.flatnonzero(estimate > tol)
+    if bad.size:
+        response[bad] = _direct(reduced.ops, reduced.rows, omega[bad], progress)
+        estimate[bad] = 0.0
+        chosen[bad] = "direct"
+    return int(bad.size)
 
 
 def _greedy(reduced: ReducedModel, omega: np.ndarray, tol: float, max_points: int
@@ -577,14 +627,3 @@ def _check_subcritical(model: TapeModel, velocity: float) -> None:
     from .static import factor_definite
 
     factor_definite(model, velocity)
-
-
-def _progress_bar(total: int, progress: bool | None):
-    if progress is None:
-        progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
-    if not progress or total < 2:
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=total, unit="freq", desc="frf direct", mininterval=0.25, leave=False,
-                file=sys.stderr)

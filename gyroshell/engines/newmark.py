@@ -12,22 +12,22 @@ one solve K_eq wⁿ⁺¹ = f_eq (Eqs. 12, 15-16) with the matrix factored once,
 and correctors (Eqs. 13-14) aⁿ⁺¹ = (wⁿ⁺¹ − w̃)/(βΔt²), vⁿ⁺¹ = ṽ + γΔt aⁿ⁺¹.
 
 β = 1/4, γ = 1/2 (the default) is the trapezoidal rule: unconditionally stable, no
-algorithmic damping. With G skew, C the (optional) damping matrix and a constant load, the
+algorithmic damping. With G skew, C the (optional) damping matrix and a constant force, the
 energy E = ½vᵀMv + ½wᵀKw − Fᵀw then changes by exactly −Δt v̄ᵀC v̄ per step, v̄ the mean of
 the step's two velocities: conserved without damping, decreasing with it. β = 1, γ = 3/2
 damps strongly and brings a transient to its static equilibrium with large steps (the
 paper's "t = ∞" pictures).
 
-F(t) is either f(t) F (a fixed load with a time profile, by default the model's Gaussian
-switched on at t = 0) or moving heads (:mod:`gyroshell.moving_load`). A :class:`Newmark`
-object holds one factorization for one (V, Δt, β, γ, C) and can march any number of runs
-with it; :func:`march` is the one-call form.
+F(t) is either f(t) F (a fixed force with a time profile, by default the nodal forces of
+the model's Gaussian pressure switched on at t = 0) or moving heads
+(:mod:`gyroshell.tape.moving_loads`). A :class:`Newmark` object holds one factorization for
+one (V, Δt, β, γ, C) and can march any number of runs with it; :func:`march` is the
+one-call form.
 """
 
 from __future__ import annotations
 
 import math
-import sys
 import time
 import warnings
 from collections.abc import Sequence
@@ -38,6 +38,7 @@ import numpy as np
 from ..core import budget, validation
 from ..core.errors import ConvergenceError, ParameterError
 from ..core.parallel import blas_threads as limit_blas_threads
+from ..core.progress import progress_bar
 from ..linalg.factorization import factorize
 from ..results.transient import Recorder, TransientResult
 from ..tape.damping import Damping, as_damping
@@ -86,7 +87,7 @@ def check_force(force, size: int, name: str = "force", unit: str = "N") -> np.nd
     return out
 
 
-class _FixedLoad:
+class _FixedForce:
     """F(t) = f(t) F at the instants of one run, with the load-point interpolation row."""
 
     heads = 1
@@ -134,9 +135,9 @@ class Newmark:
     beta, gamma : float
         Newmark parameters (β > 0). Outside 2β ≥ γ ≥ ½ a NewmarkStabilityWarning is issued.
     damping : Damping, float or None
-        Damping C (:class:`gyroshell.damping.Damping`; a number is viscous c, N·s/m³).
+        Damping C (:class:`gyroshell.tape.damping.Damping`; a number is viscous c, N·s/m³).
     backend : str
-        Sparse LU back-end (see :func:`gyroshell.factorization.factorize`).
+        Sparse LU back-end (see :func:`gyroshell.linalg.factorization.factorize`).
     blas_threads : int or None
         BLAS threads while factoring and marching (needs the optional threadpoolctl; None
         leaves them alone). One is fastest here: the substitutions call BLAS on small
@@ -169,28 +170,36 @@ class Newmark:
         self.G = model.G(self.velocity).tocsr()
         self.C = None if self.damping.is_zero else self.damping.matrix(model, self.velocity)
         #: G + C, the velocity-proportional operator, kg/s.
-        self.D = self.G if self.C is None else (self.G + self.C).tocsr()
-        self.D.sort_indices()
+        self.damped_gyroscopic = self.G if self.C is None else (self.G + self.C).tocsr()
+        self.damped_gyroscopic.sort_indices()
         self.m = np.ascontiguousarray(model.mass_diagonal, dtype=float)
         self.blas_threads = blas_threads
         dt, b, g = self.dt, self.beta, self.gamma
-        K_eq = (model.M + (g * dt) * self.D + (b * dt * dt) * self.K).tocsc()
+        K_eq = (model.M + (g * dt) * self.damped_gyroscopic + (b * dt * dt) * self.K).tocsc()
         with limit_blas_threads(blas_threads):
             self.factor = factorize(K_eq, backend)
         self.info = {"backend": self.factor.name, "factor_time": self.factor.factor_time,
-                     "unknowns": model.size, "factorizations": 1,
+                     "unknowns": model.unknowns, "factorizations": 1,
                      "blas_threads": blas_threads}
 
     def __repr__(self) -> str:
         return (f"Newmark(V={self.velocity:g} m/s, dt={self.dt:g} s, beta={self.beta:g}, "
                 f"gamma={self.gamma:g}, damping={self.damping}, backend={self.factor.name!r},"
-                f" n={self.model.size})")
+                f" n={self.model.unknowns})")
+
+    @property
+    def D(self):
+        """Deprecated name of :attr:`damped_gyroscopic` (G + C, kg/s); D is the bending
+        rigidity elsewhere."""
+        warnings.warn("Newmark.D is deprecated; use damped_gyroscopic (G + C)",
+                      DeprecationWarning, stacklevel=2)
+        return self.damped_gyroscopic
 
     # ----- pieces ---------------------------------------------------------------------
     def initial_acceleration(self, w0: np.ndarray, v0: np.ndarray, force0: np.ndarray
                              ) -> np.ndarray:
         """a⁰ from M a⁰ = F(0) − K w⁰ − (G + C) v⁰, m/s²."""
-        return (force0 - self.K @ w0 - self.D @ v0) / self.m
+        return (force0 - self.K @ w0 - self.damped_gyroscopic @ v0) / self.m
 
     def energy(self, w: np.ndarray, v: np.ndarray, force: np.ndarray) -> float:
         """½vᵀMv + ½wᵀKw − Fᵀw, J (G does no work, so it has no term)."""
@@ -207,8 +216,8 @@ class Newmark:
             return np.zeros(n)
         return check_force(vector, n, name, unit).copy()  # a copy: the march writes into it
 
-    def _prepare_load(self, load, force, profile, times: np.ndarray):
-        """The run's F(t): moving heads, or f(t) F with F the model's load or ``force``."""
+    def _prepare_forcing(self, load, force, profile, times: np.ndarray):
+        """The run's F(t): moving heads, or f(t) F with F ``force`` or the model's force."""
         if load is not None:
             if force is not None:
                 raise ParameterError("give either load (moving heads) or force, not both")
@@ -216,8 +225,8 @@ class Newmark:
                 raise ParameterError("profile applies to a fixed load; a moving head's time "
                                      "dependence is its contact windows (ContactWindows)")
             return PreparedLoads(self.model, as_loads(load), times)
-        force = self.model.load if force is None else check_force(force, self.model.size)
-        return _FixedLoad(force, profile, self.model.load_point_row, times)
+        force = self.model.force if force is None else check_force(force, self.model.unknowns)
+        return _FixedForce(force, profile, self.model.load_point_row, times)
 
     # ----- the march --------------------------------------------------------------------
     def march(self, steps: int, *, profile: TimeProfile = step,
@@ -236,24 +245,20 @@ class Newmark:
         steps : int
             Number of time steps (>= 1); the result holds steps + 1 instants.
         profile : callable
-            f(t), dimensionless, t in s (default: a step switched on at t = 0); the load is
-            f(t) F with F = ``force`` or the model's load.
+            f(t), dimensionless, t in s (default: a step at t = 0); the force is f(t) F.
         force : numpy.ndarray, optional
-            Nodal force vector F, N (default: the model's load).
+            Nodal force vector F, N (default: the model's force).
         load : MovingLoad or list of MovingLoad, optional
-            Moving and intermittent heads instead of f(t) F; the history is then the
-            displacement under each head's current centre.
+            Moving heads instead of f(t) F (the history is then w under each head's centre).
         w0, v0 : numpy.ndarray, optional
             Initial displacement (m) and velocity (m/s) of the unknowns; default zero (the
             wrapped equilibrium).
         t0 : float
             Initial time, s (to continue a previous run).
-        snapshot_times : sequence of float, optional
-            Times (s) at which to keep the full field (the nearest step is taken).
+        snapshot_times, centerline_times : sequence of float, optional
+            Times (s) at which to keep the full field, or w(x, L_y/2) (nearest steps).
         snapshot_every : int, optional
             Keep the full field every N steps (from step 0).
-        centerline_times : sequence of float, optional
-            Times (s) at which to keep w(x, L_y/2).
         record_energy : bool
             Record E_n = ½vᵀMv + ½wᵀKw − F(t_n)ᵀw (J) every step (one K mat-vec per step).
         progress : bool or None
@@ -271,46 +276,61 @@ class Newmark:
         ConvergenceError
             If the solution becomes non-finite or grows past the bound.
         """
-        steps = check_steps(steps)
-        t0 = _check_real("t0", t0)
+        steps, t0 = check_steps(steps), _check_real("t0", t0)
         blowup_factor = _check_real("blowup_factor", blowup_factor, positive=True)
-        grid = self.model.grid  # size before work: the per-step arrays below must fit
-        budget.check_transient(grid.nx, grid.ny, grid.edges, steps)
-        times = t0 + self.dt * np.arange(steps + 1)
-        loads = self._prepare_load(load, force, profile, times)
+        times = self._instants(steps, t0)
+        forcing = self._prepare_forcing(load, force, profile, times)
         w, v = self._state(w0, "w0", "m"), self._state(v0, "v0", "m/s")
-        force0 = loads.vector(0)
-        a = self.initial_acceleration(w, v, force0)
+        a = self.initial_acceleration(w, v, forcing.vector(0))
         recorder = Recorder(self.model.grid, steps, self.dt, t0, snapshot_times=snapshot_times,
                             snapshot_every=snapshot_every, centerline_times=centerline_times)
-        bound = self._blowup_bound(w, v, loads, steps, blowup_factor)
+        bound = self._blowup_bound(w, v, forcing, steps, blowup_factor)
+        state, history, energy, timing = self._timed_loop(
+            steps, times, (w, v, a), forcing, recorder, bound, record_energy, progress)
+        return self._result(times, history, recorder, state, energy, timing,
+                            moving_load=load is not None)
 
-        history = np.empty((steps + 1, loads.heads))
+    def _instants(self, steps: int, t0: float) -> np.ndarray:
+        """t_n = t0 + n Δt, s, n = 0..steps, once the run's per-step arrays are known to fit."""
+        grid = self.model.grid
+        budget.check_transient(grid.nx, grid.ny, grid.edges, steps)
+        return t0 + self.dt * np.arange(steps + 1)
+
+    def _timed_loop(self, steps, times, state, forcing, recorder, bound, record_energy,
+                    progress):
+        """The time loop with its progress bar and BLAS threads; returns the final
+        (w, v, a), the history under each head (m), the energy (J, or None) and the
+        (solve, loop) times, s."""
+        w, v, a = state
+        history = np.empty((steps + 1, forcing.heads))
         energy = np.empty(steps + 1) if record_energy else None
-        bar = _progress_bar(steps, progress)
         start = time.perf_counter()
-        try:
-            with limit_blas_threads(self.blas_threads):
-                w, v, a, solve_time = self._loop(steps, times, w, v, a, loads, recorder,
-                                                 history, energy, bound, bar)
-        finally:
-            if bar is not None:
-                bar.close()
-        loop_time = time.perf_counter() - start
+        with progress_bar(steps, "newmark", progress=progress, unit="step") as bar, \
+                limit_blas_threads(self.blas_threads):
+            w, v, a, solve_time = self._loop(steps, times, w, v, a, forcing, recorder,
+                                             history, energy, bound, bar)
+        return (w, v, a), history, energy, (solve_time, time.perf_counter() - start)
 
+    def _result(self, times, history, recorder, state, energy, timing, *,
+                moving_load: bool) -> TransientResult:
+        """The TransientResult of a finished run; ``info`` gains the run's statistics."""
+        steps = len(times) - 1
+        solve_time, loop_time = timing
         info = dict(self.info, steps=steps, solve_time=solve_time, loop_time=loop_time,
-                    step_time=loop_time / steps, damping=asdict(self.damping))
-        heads = history if loads.heads > 1 else None
+                    step_time=loop_time / steps, damping=asdict(self.damping),
+                    moving_load=moving_load)
+        heads = history if history.shape[1] > 1 else None
+        w, v, a = state
         return TransientResult(times, history[:, 0].copy(), recorder.snapshots(times), w, v,
                                a, self.velocity, self.dt, self.beta, self.gamma, energy, info,
                                head_displacements=heads)
 
-    def _blowup_bound(self, w, v, loads, steps: int, factor: float) -> float:
+    def _blowup_bound(self, w, v, forcing, steps: int, factor: float) -> float:
         """The displacement (m) past which the run counts as blown up."""
-        if isinstance(loads, _FixedLoad):
-            peak = np.abs(loads.force).max()
+        if isinstance(forcing, _FixedForce):
+            peak = np.abs(forcing.force).max()
         else:  # the largest force a head can put on one node: its peak over all steps
-            peak = max(np.abs(loads.vector(n)).max() for n in
+            peak = max(np.abs(forcing.vector(n)).max() for n in
                        np.unique(np.linspace(0, steps, min(steps + 1, 64)).astype(int)))
         scale = max(np.abs(w).max(), steps * self.dt * np.abs(v).max(),
                     peak / np.abs(self.K.diagonal()).max())
@@ -327,15 +347,15 @@ class Newmark:
         np.multiply(a, (1.0 - self.gamma) * dt, out=v_t)
         v_t += v
 
-    def _right_hand_side(self, n, w_t, v_t, loads, rhs, tmp, tmp2) -> None:
+    def _right_hand_side(self, n, w_t, v_t, forcing, rhs, tmp, tmp2) -> None:
         """f_eq = M w̃ + (G + C)(γΔt w̃ − βΔt² ṽ) + βΔt² F(t_n) (Eq. 16)."""
         bdt2 = self.beta * self.dt * self.dt
         np.multiply(w_t, self.gamma * self.dt, out=tmp)
         np.multiply(v_t, bdt2, out=tmp2)
         tmp -= tmp2
         np.multiply(self.m, w_t, out=rhs)
-        rhs += self.D @ tmp
-        loads.add(n, bdt2, rhs)
+        rhs += self.damped_gyroscopic @ tmp
+        forcing.add(n, bdt2, rhs)
 
     def _correct(self, w_new, w_t, v_t, a, v) -> None:
         """a = (w − w̃)/(βΔt²), v = ṽ + γΔt a (Eqs. 13-14)."""
@@ -344,20 +364,20 @@ class Newmark:
         np.multiply(a, self.gamma * self.dt, out=v)
         v += v_t
 
-    def _loop(self, steps, times, w, v, a, loads, recorder, history, energy, bound, bar):
+    def _loop(self, steps, times, w, v, a, forcing, recorder, history, energy, bound, bar):
         """The time loop; fills ``history`` (and ``energy``) and returns (w, v, a, solve s)."""
         solve, wanted = self.factor.solve, recorder.wanted
         w_t, v_t, rhs, tmp, tmp2 = (np.empty_like(w) for _ in range(5))
-        loads.displacement(0, w, history[0])
+        forcing.displacement(0, w, history[0])
         if energy is not None:
-            energy[0] = self.energy(w, v, loads.vector(0))
+            energy[0] = self.energy(w, v, forcing.vector(0))
         recorder.record(0, w)
         solve_time = 0.0
         n = 0
         try:
             for n in range(1, steps + 1):
                 self._predict(w, v, a, w_t, v_t, tmp)
-                self._right_hand_side(n, w_t, v_t, loads, rhs, tmp, tmp2)
+                self._right_hand_side(n, w_t, v_t, forcing, rhs, tmp, tmp2)
                 tick = time.perf_counter()
                 w = solve(rhs)  # Eq. 12
                 solve_time += time.perf_counter() - tick
@@ -365,13 +385,12 @@ class Newmark:
                 size = np.abs(w, out=tmp).max()  # NaN propagates: "not <=" catches it
                 if not size <= bound:
                     raise _blowup(n, times[n], size, bound, self)
-                loads.displacement(n, w, history[n])
+                forcing.displacement(n, w, history[n])
                 if energy is not None:
-                    energy[n] = self.energy(w, v, loads.vector(n))
+                    energy[n] = self.energy(w, v, forcing.vector(n))
                 if wanted[n]:
                     recorder.record(n, w)
-                if bar is not None:
-                    bar.update(1)
+                bar.update(1)
         except FloatingPointError as exc:
             raise ConvergenceError(f"Newmark march overflowed at step {n} (t = "
                                    f"{times[n]:.6g} s): {exc}") from None
@@ -387,17 +406,6 @@ def _blowup(n: int, t: float, size: float, bound: float, stepper: Newmark
         f"V = {stepper.velocity:g} m/s, dt = {stepper.dt:g} s, beta = {stepper.beta:g}, "
         f"gamma = {stepper.gamma:g}; is V at or above the critical speed, or dt too large "
         "for these beta, gamma?")
-
-
-def _progress_bar(steps: int, progress: bool | None):
-    if progress is None:
-        progress = bool(getattr(sys.stderr, "isatty", lambda: False)())
-    if not progress:
-        return None
-    from tqdm import tqdm
-
-    return tqdm(total=steps, unit="step", desc="newmark", mininterval=0.25, leave=False,
-                file=sys.stderr)
 
 
 def march(model: TapeModel, velocity: float = 0.0, *, dt: float, steps: int,

@@ -9,56 +9,14 @@ and names the critical speed instead of returning an unstable "equilibrium".
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from ..core import validation
 from ..core.errors import ParameterError, SupercriticalError
 from ..linalg.inertia import factor_inertia
-from ..results import storage
-from ..tape.grid import Grid
+from ..results.static import StaticSolution
 from ..tape.model import TapeModel
 from .divergence import divergence_speed
-
-
-@dataclass(frozen=True)
-class StaticSolution:
-    """Static deflection under the model's load.
-
-    Attributes
-    ----------
-    grid : Grid
-    velocity : float
-        Tape speed V, m/s.
-    w : numpy.ndarray
-        Deflection at the unknown nodes, m.
-    load_point_deflection : float
-        w at the load centroid (bilinear interpolation), m.
-    """
-
-    grid: Grid
-    velocity: float
-    w: np.ndarray
-    load_point_deflection: float
-
-    @property
-    def field(self) -> np.ndarray:
-        """Deflection on all nodes, shape (nx + 1, ny + 1), m."""
-        return self.grid.to_field(self.w)
-
-    @property
-    def max_deflection(self) -> float:
-        """Deflection of largest magnitude (signed), m."""
-        return float(self.w[np.argmax(np.abs(self.w))])
-
-    def to_xarray(self, *, params=None):
-        """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
-        return storage.to_xarray(self, params=params)
-
-    def save(self, path, *, params=None):
-        """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
-        return storage.save(self, path, params=params)
 
 
 def _check_model(model: object) -> TapeModel:
@@ -109,7 +67,7 @@ def solve_static(model: TapeModel, velocity: float = 0.0,
         Tape speed V, m/s (>= 0, below the critical speed).
     force : numpy.ndarray, optional
         Nodal forces, N, a finite vector of length ``model.unknowns``; default the model's
-        Gaussian load (Eq. 17).
+        force (its Gaussian pressure, Eq. 17).
 
     Raises
     ------
@@ -130,4 +88,5 @@ def solve_static(model: TapeModel, velocity: float = 0.0,
     force = (model.force if force is None
              else validation.vector("force", force, model.unknowns, "N"))
     w = factor_definite(model, velocity).solve(force)
-    return StaticSolution(model.grid, velocity, w, float(model.load_point_row @ w))
+    return StaticSolution(model.grid, velocity, w, float(model.load_point_row @ w),
+                          model.params)

@@ -1,8 +1,16 @@
 """What a transient run keeps: the load-point history, snapshots, centre lines, and files.
 
-The time marcher (:mod:`gyroshell.newmark`) fills these; studies and plots read them. Full
-fields are kept only at the steps asked for, so a run of thousands of steps on the
-L_x/L_y = 19 grid holds one float per step unless told otherwise.
+The time marcher (:mod:`gyroshell.engines.newmark`) fills these; studies and plots read
+them. Full fields are kept only at the steps asked for, so a run of thousands of steps on
+the L_x/L_y = 19 grid holds one float per step unless told otherwise.
+
+A :class:`TransientResult` is the saved kind ``"transient"``. Its file holds, on dimension
+``t`` (s): ``load_point`` (m), ``energy`` (J, if recorded) and ``head_displacements`` (m,
+on ``t`` x ``head``, with several moving heads); the snapshots ``fields`` (m) on
+``snapshot_time`` x ``x`` x ``y`` and ``centerlines`` (m) on ``centerline_time`` x ``x``;
+the final state ``final_w``, ``final_v``, ``final_a`` (m, m/s, m/s²) on ``unknown``; the
+scalars ``velocity``, ``dt``, ``beta``, ``gamma``; and the run's ``info``. Files of the
+previous release (without head histories) load as results without them.
 """
 
 from __future__ import annotations
@@ -16,8 +24,9 @@ import numpy as np
 from ..core import budget, validation
 from ..core.errors import ParameterError
 from ..core.files import atomic_path
+from ..plot import load_point_history
 from ..tape.grid import Grid
-from . import storage
+from .base import Result, dataset, from_json
 
 
 def steps_at(times, dt: float, steps: int, t0: float = 0.0, *, name: str) -> np.ndarray:
@@ -62,13 +71,13 @@ class Recorder:
     dt, t0 : float
         Time step and initial time, s.
     snapshot_times, snapshot_every, centerline_times
-        As in :meth:`gyroshell.newmark.Newmark.march`.
+        As in :meth:`gyroshell.engines.newmark.Newmark.march`.
 
     Raises
     ------
     ParameterError
         If the history and the kept fields cannot fit in memory
-        (:func:`gyroshell.budget.check_transient`), checked before allocating them.
+        (:func:`gyroshell.core.budget.check_transient`), checked before allocating them.
     """
 
     def __init__(self, grid: Grid, steps: int, dt: float, t0: float = 0.0, *,
@@ -157,6 +166,26 @@ class Snapshots:
     def __len__(self) -> int:
         return len(self.times)
 
+    def coords(self) -> dict:
+        """Dataset coordinates of the snapshots: ``x``, ``y`` (m), ``snapshot_time``,
+        ``centerline_time`` (s)."""
+        return {"x": ("x", self.x, {"units": "m"}), "y": ("y", self.y, {"units": "m"}),
+                "snapshot_time": ("snapshot_time", self.times, {"units": "s"}),
+                "centerline_time": ("centerline_time", self.centerline_times,
+                                    {"units": "s"})}
+
+    def data_vars(self) -> dict:
+        """Dataset variables of the snapshots: ``fields`` and ``centerlines`` (m)."""
+        return {"fields": (("snapshot_time", "x", "y"), self.fields, {"units": "m"}),
+                "centerlines": (("centerline_time", "x"), self.centerlines, {"units": "m"})}
+
+    @classmethod
+    def from_xarray(cls, ds) -> Snapshots:
+        """The snapshots stored by :meth:`coords` and :meth:`data_vars` in ``ds``."""
+        return cls(ds["x"].values, ds["y"].values, ds["snapshot_time"].values,
+                   ds["fields"].values, ds["centerline_time"].values,
+                   ds["centerlines"].values)
+
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write an .npz (x, y, times, fields, centerline_times, centerlines); whole or not."""
         with atomic_path(path) as tmp, open(tmp, "wb") as fh:
@@ -173,7 +202,7 @@ class Snapshots:
 
 
 @dataclass(frozen=True)
-class TransientResult:
+class TransientResult(Result, kind="transient"):
     """One time march of M a + G v + K w = f(t) F.
 
     Attributes
@@ -217,12 +246,60 @@ class TransientResult:
         return len(self.times) - 1
 
     def to_xarray(self, *, params=None):
-        """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
-        return storage.to_xarray(self, params=params)
+        """Dataset of the whole run (see the module docstring); ``params`` (a
+        :class:`~gyroshell.TapeParameters`) is stored as metadata."""
+        coords = {"t": ("t", self.times, {"units": "s"}), **self.snapshots.coords()}
+        data_vars = {"load_point": (("t",), self.load_point,
+                                    {"units": "m", "long_name": "load-point displacement"}),
+                     **self.snapshots.data_vars()}
+        for name, unit in (("w", "m"), ("v", "m/s"), ("a", "m/s^2")):
+            data_vars[f"final_{name}"] = (("unknown",), getattr(self, name), {"units": unit})
+        if self.energy is not None:
+            data_vars["energy"] = (("t",), self.energy, {"units": "J"})
+        if self.head_displacements is not None:
+            data_vars["head_displacements"] = (
+                ("t", "head"), self.head_displacements,
+                {"units": "m", "long_name": "displacement under each head's centre"})
+        for name, unit in (("velocity", "m/s"), ("dt", "s"), ("beta", "1"), ("gamma", "1")):
+            data_vars[name] = ((), getattr(self, name), {"units": unit})
+        return dataset(data_vars, coords, self.kind, params=params, info=self.info)
 
-    def save(self, path, *, params=None):
-        """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
-        return storage.save(self, path, params=params)
+    @classmethod
+    def from_xarray(cls, ds) -> TransientResult:
+        """The run stored by :meth:`to_xarray` (or by the previous release)."""
+        def optional(name):
+            return ds[name].values if name in ds else None
+
+        return cls(ds["t"].values, ds["load_point"].values, Snapshots.from_xarray(ds),
+                   ds["final_w"].values, ds["final_v"].values, ds["final_a"].values,
+                   float(ds["velocity"]), float(ds["dt"]), float(ds["beta"]),
+                   float(ds["gamma"]), optional("energy"), from_json(ds.attrs["info"]),
+                   head_displacements=optional("head_displacements"))
+
+    def summary(self) -> dict:
+        """The run's settings, load-point extremes (m), grid and timings (s), SI units."""
+        w, info = self.load_point, self.info
+        damping = info.get("damping", {})
+        return {
+            "velocity": self.velocity, "dt": self.dt, "steps": self.steps,
+            "beta": self.beta, "gamma": self.gamma, "final_time": float(self.times[-1]),
+            "final_load_point_displacement": float(w[-1]),
+            "max_load_point_displacement": float(w.max()),
+            "min_load_point_displacement": float(w.min()),
+            "nx": len(self.snapshots.x) - 1, "ny": len(self.snapshots.y) - 1,
+            "unknowns": info.get("unknowns", len(self.w)),
+            "backend": info.get("backend"), "factor_time": info.get("factor_time"),
+            "loop_time": info.get("loop_time"), "step_time": info.get("step_time"),
+            "moving_load": bool(info.get("moving_load", self.head_displacements is not None)),
+            "damping": damping.get("viscous", 0.0),
+            "rayleigh": [damping.get("mass_coefficient", 0.0),
+                         damping.get("stiffness_coefficient", 0.0)],
+        }
+
+    def plot(self, ax=None):
+        """The load-point displacement against time (:func:`gyroshell.plot.load_point_history`);
+        returns the Axes."""
+        return load_point_history(self, ax=ax)
 
     def to_frame(self):
         """pandas DataFrame with columns ``t`` (s) and ``w`` (m) (+ ``w_head<k>``, m, with

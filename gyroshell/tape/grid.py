@@ -39,7 +39,7 @@ class Grid:
     ParameterError
         For a non-positive or non-finite length, a fractional or too small interval count,
         or a grid whose operators and factorization cannot fit in memory
-        (:func:`gyroshell.budget.check_unknowns`).
+        (:func:`gyroshell.core.budget.check_unknowns`).
 
     Examples
     --------

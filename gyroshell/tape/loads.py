@@ -1,7 +1,8 @@
 """Loads: the Gaussian "concentrated" load of Eq. 17, pressure fields, time profiles.
 
-A load is a nodal force vector F (N, one entry per unknown; rows scaled by control areas
-like the operators) times a time profile f(t) (dimensionless): F(t) = f(t) F.
+A load is a pressure P (Pa) on the tape. The functions here turn it into the nodal force
+vector F the engines take (N, one entry per unknown; rows scaled by control areas like the
+operators), and a time profile f(t) (dimensionless) switches it: F(t) = f(t) F.
 """
 
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """TapeModel: one tape (parameters + grid) with its operators assembled once.
 
-A thin cache over the plain functions of :mod:`gyroshell.operators` and
-:mod:`gyroshell.loads`, so that engines and studies that need K(V) at many speeds assemble
+A thin cache over the plain functions of :mod:`gyroshell.tape.operators` and
+:mod:`gyroshell.tape.loads`, so that engines and studies that need K(V) at many speeds assemble
 the speed-independent parts A, B, M, W only once.
 """
 

@@ -333,7 +333,7 @@ class PreparedLoads:
 
     def vector(self, n: int) -> np.ndarray:
         """F(t_n), N (allocates: for the initial acceleration and energies)."""
-        out = np.zeros(self.grid.size)
+        out = np.zeros(self.grid.unknowns)
         self.add(n, 1.0, out)
         return out
 

@@ -71,9 +71,79 @@ def _y_selector(grid: Grid, rows: np.ndarray) -> sp.csr_matrix:
                          shape=(len(rows), grid.n_across))
 
 
-def _weighted_gram(op: sp.spmatrix, weights: np.ndarray) -> sp.csr_matrix:
+def weighted_gram(op: sp.spmatrix, weights: np.ndarray) -> sp.csr_matrix:
     """opᵀ diag(weights) op: the matrix of the quadratic form Σ weights (op w)²."""
     return (op.T @ sp.diags(weights) @ op).tocsr()
+
+
+# ----- node-coordinate assembly (uniform or graded lines) ---------------------------------
+# The tape's grid is uniform; the air bearing's (gyroshell.bearing.tape) is graded. Both
+# assemble M, G and B here from their node coordinates: each term of the energy weighted by
+# its own length or area, so M stays diagonal, G skew and B symmetric for any spacing.
+def dual_widths(t: np.ndarray) -> np.ndarray:
+    """Control-volume widths of the nodes t (m): half the two neighbouring intervals
+    (one half-interval at the ends)."""
+    h = np.diff(t)
+    w = np.empty(len(t))
+    w[0], w[-1] = 0.5 * h[0], 0.5 * h[-1]
+    w[1:-1] = 0.5 * (h[:-1] + h[1:])
+    return w
+
+
+def unknown_widths(t: np.ndarray, free_ends: bool) -> np.ndarray:
+    """Control widths (m) of the unknown nodes of the line t: every node with free ends,
+    the interior ones with supported (zero) ends."""
+    w = dual_widths(t)
+    return w if free_ends else w[1:-1]
+
+
+def second_difference(t: np.ndarray, dirichlet: bool = True) -> sp.csr_matrix:
+    """δ² at the interior nodes of the line t, acting on its interior nodes (``dirichlet``,
+    zero end values: square) or on all its nodes, 1/m².
+
+    δ²w_i = [(w_{i+1} − w_i)/h_i − (w_i − w_{i−1})/h_{i−1}] / w_i with w_i the node's
+    control width: second-order accurate on a smoothly graded line.
+    """
+    h = np.diff(t)
+    w = dual_widths(t)[1:-1]
+    lo, hi = 1.0 / (h[:-1] * w), 1.0 / (h[1:] * w)
+    n = len(t) - 2
+    full = sp.diags([lo, -(lo + hi), hi], [0, 1, 2], shape=(n, n + 2), format="csr")
+    return full[:, 1:-1].tocsr() if dirichlet else full
+
+
+def forward_difference(t: np.ndarray, dirichlet: bool) -> sp.csr_matrix:
+    """δ⁺ from the nodes t to the interval midpoints, 1/m (``dirichlet``: on the interior
+    nodes only, end values zero)."""
+    h = np.diff(t)
+    full = sp.diags([-1.0 / h, 1.0 / h], [0, 1], shape=(len(h), len(t)), format="csr")
+    return full[:, 1:-1].tocsr() if dirichlet else full
+
+
+def half_shift(n: int) -> sp.csr_matrix:
+    """½ (S⁺ − S⁻): W C_x for any spacing (the central difference times the control width,
+    whose 2 w_i = x_{i+1} − x_{i−1} cancels)."""
+    e = np.ones(n - 1)
+    return (0.5 * sp.diags([-e, e], [-1, 1], shape=(n, n))).tocsr()
+
+
+def nodal_mass(density: float, wx: np.ndarray, wy: np.ndarray) -> sp.dia_matrix:
+    """M = ρ W, kg, W = wx ⊗ wy the control areas (m²) of the unknowns (x-lines outer)."""
+    return sp.diags(density * np.kron(wx, wy))
+
+
+def nodal_gyroscopic(density: float, velocity: float, n_lines: int,
+                     wy: np.ndarray) -> sp.csr_matrix:
+    """G = 2ρV W C_x, kg/s, on ``n_lines`` unknown x-lines with the control widths ``wy``
+    (m) across: exactly skew for any spacing."""
+    return (2 * density * velocity * sp.kron(half_shift(n_lines), sp.diags(wy))).tocsr()
+
+
+def nodal_membrane(x: np.ndarray, wy: np.ndarray) -> sp.csr_matrix:
+    """B, the discrete ∫ w_x² dA over the interior x-lines of the nodes ``x`` (m) with the
+    control widths ``wy`` (m) across: Σ over the x-intervals of h (δ⁺w)², symmetric."""
+    return sp.kron(weighted_gram(forward_difference(x, dirichlet=True), np.diff(x)),
+                   sp.diags(wy)).tocsr()
 
 
 def mass(grid: Grid, params: TapeParameters) -> sp.dia_matrix:
@@ -86,7 +156,8 @@ def mass(grid: Grid, params: TapeParameters) -> sp.dia_matrix:
     >>> mass(Grid.from_parameters(p), p).diagonal()[:4]
     array([0.007, 0.014, 0.014, 0.014])
     """
-    return sp.diags(params.density * grid.areas)
+    return nodal_mass(params.density, dual_widths(grid.x)[1:-1],
+                      unknown_widths(grid.y, grid.free_edges))
 
 
 def gyroscopic(grid: Grid, params: TapeParameters, velocity: float) -> sp.csr_matrix:
@@ -100,11 +171,8 @@ def gyroscopic(grid: Grid, params: TapeParameters, velocity: float) -> sp.csr_ma
         Tape transport speed V, m/s (>= 0), in the +x direction.
     """
     velocity = check_velocity(velocity)
-    n = grid.n_lines
-    e = np.ones(n - 1)
-    cx = sp.diags([-e, e], [-1, 1], shape=(n, n)) / (2 * grid.hx)
-    return (2 * params.density * velocity * sp.kron(cx, sp.diags(grid.hx * grid.y_weights))
-            ).tocsr()
+    return nodal_gyroscopic(params.density, velocity, grid.n_lines,
+                            unknown_widths(grid.y, grid.free_edges))
 
 
 def membrane(grid: Grid) -> sp.csr_matrix:
@@ -112,9 +180,7 @@ def membrane(grid: Grid) -> sp.csr_matrix:
 
     B w approximates −∂²w/∂x² times the control areas; K(V) = A + (T − ρV²) B.
     """
-    dx = _forward_difference(grid.nx + 1, grid.hx, dirichlet=True)
-    return sp.kron(_weighted_gram(dx, np.full(grid.nx, grid.hx)),
-                   sp.diags(grid.y_weights)).tocsr()
+    return nodal_membrane(grid.x, unknown_widths(grid.y, grid.free_edges))
 
 
 def bending_foundation(grid: Grid, params: TapeParameters) -> sp.csr_matrix:

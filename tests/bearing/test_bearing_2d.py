@@ -64,17 +64,16 @@ def test_contact_set_converges_without_stalling():
     assert np.all(sol.contact >= 0.0)
 
 
-def test_coarse_grid_start_reaches_the_same_state_in_fewer_iterations(monkeypatch):
+def test_coarse_grid_start_reaches_the_same_state_in_fewer_iterations():
     """Starting the 2-D Newton from the solution on a grid twice as coarse (interpolated)
     instead of the extruded infinitely wide tape changes only the path: the same state,
     reached in fewer fine-grid iterations."""
-    import gyroshell.bearing.model as bm
+    from gyroshell.bearing.steady import initial_state
 
     def solve(threshold):
-        monkeypatch.setattr(bm, "COARSE_START_MIN_UNKNOWNS", threshold)
         model = BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
                              wrap_angle=WRAP, nx=100, ny=60, span=SPAN)
-        return solve_steady(model)
+        return solve_steady(model, z0=initial_state(model, coarse_min_unknowns=threshold))
 
     extruded, coarse = solve(10**9), solve(0)
     assert coarse.info.iterations < extruded.info.iterations
@@ -112,7 +111,7 @@ def test_graded_grid_matches_the_uniform_grid_of_its_finest_spacing(graded_seque
     unknowns; at equal unknowns the graded grid is closer to the extrapolated minimum."""
     graded, uniform = graded_sequence
     g = graded[1]
-    assert g.model.size < 0.26 * uniform.model.size
+    assert g.model.unknowns < 0.26 * uniform.model.unknowns
     assert np.diff(g.model.x).min() < 1.02 * np.diff(uniform.model.x).min()
     assert np.diff(g.model.y).min() < 1.02 * np.diff(uniform.model.y).min()
     assert g.minimum_spacing == pytest.approx(uniform.minimum_spacing, rel=1e-2)

@@ -66,7 +66,7 @@ def test_a_resting_head_is_the_gaussian_load_of_eq_17():
     x0, y0 = model.params.load_centroid
     prepared = PreparedLoads(model, [MovingLoad(StraightPath((x0, y0)))], np.zeros(1))
     np.testing.assert_allclose(prepared.vector(0), gaussian_load(model.grid, model.params),
-                               rtol=0, atol=1e-14 * model.load.max())
+                               rtol=0, atol=1e-14 * model.force.max())
 
 
 @pytest.mark.parametrize("fraction", [0.0, 0.3, 0.5, 0.77])
@@ -237,7 +237,7 @@ def test_a_path_leaving_the_tape_is_refused_before_marching():
                       contact=ContactWindows(period=1e-3, duration=20e-6))
     march(model, 0.0, dt=1e-6, steps=100, load=idle)
     with pytest.raises(ParameterError, match="give either load"):
-        march(model, 0.0, dt=1e-6, steps=2, load=idle, force=model.load)
+        march(model, 0.0, dt=1e-6, steps=2, load=idle, force=model.force)
     with pytest.raises(ParameterError, match="profile applies to a fixed load"):
         march(model, 0.0, dt=1e-6, steps=2, load=idle, profile=lambda t: 1.0)
 

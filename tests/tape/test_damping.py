@@ -26,7 +26,7 @@ def test_damping_matrix_structure(small):
     c = viscous(700.0).matrix(small, SPEED)
     np.testing.assert_allclose(c.diagonal(), 700.0 / small.params.density
                                * small.mass_diagonal, rtol=1e-15)
-    assert c.nnz == small.size
+    assert c.nnz == small.unknowns
     C = Damping(viscous=300.0, mass_coefficient=2e3, stiffness_coefficient=1e-7).matrix(
         small, SPEED).toarray()
     assert np.abs(C - C.T).max() == 0.0
@@ -41,8 +41,8 @@ def test_damping_matrix_structure(small):
 def test_trapezoidal_energy_decays_at_exactly_the_dissipation_rate(small, damping, rng):
     """β = 1/4, γ = 1/2, constant load: E_{n+1} − E_n = −Δt v̄ᵀC v̄, v̄ = (wⁿ⁺¹ − wⁿ)/Δt."""
     dt, steps = 1e-6, 400
-    w0 = 1e-8 * rng.standard_normal(small.size)
-    v0 = 1e-3 * rng.standard_normal(small.size)
+    w0 = 1e-8 * rng.standard_normal(small.unknowns)
+    v0 = 1e-3 * rng.standard_normal(small.unknowns)
     stepper = Newmark(small, SPEED, dt=dt, damping=damping)
     result = stepper.march(steps, w0=w0, v0=v0, record_energy=True, snapshot_every=1)
     W = np.array([small.grid.from_field(f) for f in result.snapshots.fields])
@@ -67,7 +67,7 @@ def test_mass_proportional_damping_decays_a_mode_at_c_over_2rho(small):
     errors, dts = [], []
     for dt in (1e-6, 5e-7, 2.5e-7):
         result = march(small, 0.0, dt=dt, steps=round(duration / dt), damping=c,
-                       w0=1e-9 * mode, force=np.zeros(small.size))
+                       w0=1e-9 * mode, force=np.zeros(small.unknowns))
         t = result.times[-1]
         exact = 1e-9 * mode * np.exp(-zeta * t) * (np.cos(wd * t) + zeta / wd * np.sin(wd * t))
         errors.append(np.abs(result.w - exact).max() / (1e-9 * np.abs(mode).max()))
@@ -105,12 +105,13 @@ def test_bad_force_exponent_and_blowup_factor(small):
     with pytest.raises(ParameterError, match="force must be a finite vector of length 135"):
         stepper.march(2, force=np.zeros(3))
     with pytest.raises(ParameterError, match="non-finite"):
-        stepper.march(2, force=np.full(small.size, np.nan))
+        stepper.march(2, force=np.full(small.unknowns, np.nan))
     with pytest.raises(ParameterError, match="blowup_factor must be > 0"):
         stepper.march(2, blowup_factor=-1.0)
 
 
-@pytest.mark.parametrize("name", ["gyroshell.tape.damping", "gyroshell.engines.frequency_response", "gyroshell.tape.moving_loads"])
+@pytest.mark.parametrize("name", ["gyroshell.tape.damping", "gyroshell.engines.frequency_response",
+                                  "gyroshell.tape.moving_loads"])
 def test_docstring_examples(name):
     import doctest
     import importlib

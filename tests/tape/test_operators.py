@@ -59,3 +59,38 @@ def test_assembly_is_vectorised_and_fast_on_the_long_tape():
     assert m.unknowns == 778 * 42
     K = m.K(50.0).tocoo()
     assert np.max(np.abs(K.row - K.col)) <= 2 * (m.grid.ny + 1) + 2
+
+
+# ----- one node-coordinate assembly: uniform nodes give the uniform stencils -------------
+#: Relative agreement of the node-coordinate assembly with the uniform stencils.
+ROUND_OFF = 1e-12
+
+
+def _uniform_stencils(model: TapeModel, velocity: float):
+    """M, G(V), B from the uniform-grid stencils written out: trapezoid control areas
+    hx × (hy, hy/2 at free edges), G = ρV (S⁺ − S⁻) ⊗ w_y, B = (δ⁺)ᵀ hx δ⁺ ⊗ w_y."""
+    g, p = model.grid, model.params
+    wy = np.full(g.n_across, g.hy)
+    if g.free_edges:
+        wy[0] = wy[-1] = 0.5 * g.hy
+    n = g.n_lines
+    shift = np.eye(n, k=1) - np.eye(n, k=-1)
+    second = (2 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)) / g.hx
+    M = p.density * np.kron(np.full(n, g.hx), wy)
+    G = p.density * velocity * np.kron(shift, np.diag(wy))
+    B = np.kron(second, np.diag(wy))
+    return M, G, B
+
+
+@pytest.mark.parametrize("spacing", [WIDTH / 8, WIDTH / 10])
+@pytest.mark.parametrize("edges", ["free", "simply-supported"])
+def test_node_coordinate_assembly_matches_the_uniform_stencils(edges, spacing):
+    """M, G and K = A + (T − ρV²) B, assembled from the node coordinates (the air
+    bearing's graded assembly), equal the uniform stencils to round-off."""
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=spacing, edges=edges))
+    velocity = 30.0
+    M, G, B = _uniform_stencils(model, velocity)
+    K = model.A.toarray() + model.effective_tension(velocity) * B
+    for mine, reference in ((model.M.diagonal(), M), (model.G(velocity).toarray(), G),
+                            (model.K(velocity).toarray(), K)):
+        assert np.abs(mine - reference).max() <= ROUND_OFF * np.abs(reference).max()

@@ -1,0 +1,381 @@
+"""The bearing's results on the result protocol (:mod:`gyroshell.results.base`).
+
+:class:`BearingSolution` (kind ``"bearing"``) is a steady flying state,
+:class:`BearingTransient` (kind ``"bearing_transient"``) the record of a march. Both save
+to NetCDF with ``save(path)`` and come back through :func:`gyroshell.results.base.read`
+equal to the saved ones: the nodal fields are stored on (x, y) with their coordinates
+(uniform or graded), and everything that rebuilds the :class:`~.model.BearingModel`
+(tape parameters, air, speed, wrap, span, grid counts and grading) as attributes; reading
+rebuilds the model from them and checks its nodes against the stored coordinates.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core.errors import ParameterError
+from ..results.base import Result, dataset, from_json, params_from
+from .air import AirParameters
+from .mesh import Grading
+from .model import BearingModel
+
+#: Summary entries not stored in a file's ``summary`` attribute (lists, kept in ``info``).
+_NOT_STORED = ("newton_step_norms",)
+#: Stored node coordinates must match the rebuilt grid's to this fraction of its extent.
+COORDINATE_TOLERANCE = 1e-12
+
+
+@dataclass
+class NewtonInfo:
+    """What a Newton solve did: iterations, step and residual norms per iteration, the
+    number of nodes in contact per iteration, the wall time (s), the pseudo-time steps
+    taken (dimensionless, :func:`pseudo_transient`; empty if Newton reached the state
+    directly) and the continuation path (speeds in m/s, empty if none was needed)."""
+
+    iterations: int = 0
+    step_norms: list = field(default_factory=list)
+    residual_norms: list = field(default_factory=list)
+    contact_nodes: list = field(default_factory=list)
+    seconds: float = 0.0
+    continuation: list = field(default_factory=list)
+    pseudo_time: list = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class BearingSolution(Result, kind="bearing"):
+    """A steady flying state.
+
+    Attributes
+    ----------
+    model : BearingModel
+    u : numpy.ndarray
+        Departure from the dry wrapped configuration at the tape unknowns, m.
+    p : numpy.ndarray
+        Film pressure at the film-interior nodes, Pa.
+    contact : numpy.ndarray
+        Contact force at the tape unknowns, N (N/m per unit width if infinitely wide).
+    info : NewtonInfo
+    """
+
+    model: BearingModel
+    u: np.ndarray
+    p: np.ndarray
+    contact: np.ndarray
+    info: NewtonInfo
+
+    @property
+    def spacing(self) -> np.ndarray:
+        """h on every node, shape (nx + 1, nc), m."""
+        return self.model.spacing_field(self.u)
+
+    @property
+    def pressure(self) -> np.ndarray:
+        """p on every node, shape (nx + 1, nc), Pa."""
+        return self.model.pressure_field(self.p)
+
+    @property
+    def x(self) -> np.ndarray:
+        """Node abscissae measured from the middle of the wrap, m (tape moves along +x)."""
+        return self.model.x - 0.5 * self.model.length
+
+    @property
+    def y(self) -> np.ndarray | None:
+        """Node ordinates across the width, m (None if infinitely wide)."""
+        return self.model.y
+
+    def _at_centre_x(self, field: np.ndarray) -> np.ndarray:
+        return np.array([np.interp(0.0, self.x, field[:, j]) for j in range(field.shape[1])])
+
+    def _at_centre_y(self, row: np.ndarray) -> float:
+        if self.model.infinitely_wide:
+            return float(row[0])
+        return float(np.interp(0.5 * self.model.params.width, self.model.y, row))
+
+    @property
+    def central_spacing(self) -> float:
+        """h in the middle of the wrap and of the width, m."""
+        return self._at_centre_y(self._at_centre_x(self.spacing))
+
+    @property
+    def central_pressure(self) -> float:
+        """p − p_a in the middle of the wrap and of the width, Pa."""
+        return self._at_centre_y(self._at_centre_x(self.pressure)) \
+            - self.model.air.ambient_pressure
+
+    @property
+    def cross_width_spacing(self) -> np.ndarray:
+        """h across the width in the middle of the wrap, m (one value if infinitely wide)."""
+        return self._at_centre_x(self.spacing)
+
+    @property
+    def minimum_spacing(self) -> float:
+        """Smallest nodal spacing, m."""
+        return float(self.spacing.min())
+
+    @property
+    def minimum_location(self) -> tuple[float, float | None]:
+        """(x, y) of the smallest spacing, m: x from the middle of the wrap (> 0 towards the
+        exit), y across the width (None if infinitely wide)."""
+        i, j = np.unravel_index(np.argmin(self.spacing), self.spacing.shape)
+        return float(self.x[i]), (None if self.model.infinitely_wide
+                                  else float(self.model.y[j]))
+
+    @property
+    def air_force(self) -> float:
+        """∫ (p − p_a) dA, N (N/m per unit width if infinitely wide)."""
+        return float(np.sum(self.model.pressure_load @ (self.p - self.model.air.ambient_pressure)))
+
+    @property
+    def contact_force(self) -> float:
+        """Total contact force of the head on the tape, N (N/m if infinitely wide)."""
+        return float(self.contact.sum())
+
+    @property
+    def contact_nodes(self) -> int:
+        """Number of tape nodes in contact."""
+        return int(np.count_nonzero(self.contact))
+
+    def summary(self) -> dict:
+        """The scalar outputs (SI; the wrap angle also in degrees): what ``gyroshell bearing
+        --json`` prints."""
+        m = self.model
+        x_min, y_min = self.minimum_location
+        return {
+            "central_spacing": self.central_spacing,
+            "minimum_spacing": self.minimum_spacing,
+            "minimum_x": x_min,
+            "minimum_y": y_min,
+            "central_pressure": self.central_pressure,
+            "wrap_pressure": m.effective_tension() / m.params.radius,
+            "air_force": self.air_force,
+            "contact_force": self.contact_force,
+            "contact_nodes": self.contact_nodes,
+            "newton_iterations": self.info.iterations,
+            "newton_step_norms": list(self.info.step_norms),
+            "continuation_speeds": list(self.info.continuation),
+            "pseudo_time_steps": list(self.info.pseudo_time),
+            "seconds": self.info.seconds,
+            "velocity": m.velocity,
+            "wrap_angle": m.wrap_angle,
+            "infinitely_wide": m.infinitely_wide,
+            "width": None if m.infinitely_wide else m.params.width,
+            "tension": m.params.tension,
+            "radius": m.params.radius,
+            "viscosity": m.air.viscosity,
+            "ambient_pressure": m.air.ambient_pressure,
+            "mean_free_path": m.air.mean_free_path,
+            "compressible": m.air.compressible,
+            "roughness": m.air.roughness,
+            "length": m.length,
+            "nx": m.nx,
+            "ny": m.ny,
+            "graded": m.graded,
+            "finest_x_spacing": float(np.diff(m.x).min()),
+            "finest_y_spacing": None if m.infinitely_wide else float(np.diff(m.y).min()),
+            "unknowns": m.unknowns,
+            "wrap_angle_degrees": math.degrees(m.wrap_angle),
+        }
+
+    # ----- the result protocol -----------------------------------------------------------
+    def to_xarray(self, *, params=None):
+        """The steady state as an :class:`xarray.Dataset`: ``spacing`` and ``departure``
+        (m), ``pressure`` (Pa) and ``contact`` (N, N/m if infinitely wide) on dimensions
+        (x, y), x from the middle of the wrap (m); the summary, air and model settings as
+        attributes. ``params`` is ignored: the model carries its tape."""
+        data = _state_variables(self)
+        summary = {k: v for k, v in self.summary().items() if k not in _NOT_STORED}
+        return dataset(data, _node_coords(self.model), self.kind, params=self.model.params,
+                       info=dataclasses.asdict(self.info), air=dataclasses.asdict(self.model.air),
+                       model=_settings(self.model), summary=summary)
+
+    @classmethod
+    def from_xarray(cls, ds) -> BearingSolution:
+        """The state stored by :meth:`to_xarray` (or by the previous release's
+        ``gyroshell.bearing.storage.save``): the model is rebuilt from the stored settings
+        and checked against the stored node coordinates."""
+        model = _model_from(ds)
+        info = NewtonInfo(**from_json(ds.attrs["info"]))
+        return _state_from(ds, model, info)
+
+    def to_frame(self):
+        """The nodal fields as a table: x (from the middle of the wrap) and y (0 if
+        infinitely wide), m, the spacing h, m, and the pressure p, Pa."""
+        import pandas as pd
+
+        m = self.model
+        y = np.zeros(1) if m.infinitely_wide else m.y
+        X, Y = np.meshgrid(self.x, y, indexing="ij")
+        return pd.DataFrame({"x": X.ravel(), "y": Y.ravel(),
+                             "spacing": self.spacing.ravel(),
+                             "pressure": self.pressure.ravel()})
+
+    def plot(self, ax=None):
+        """The spacing along the middle of the width with the pressure on a twin axis
+        (:func:`gyroshell.bearing.plots.centreline`); returns the Axes."""
+        from .plots import centreline
+
+        return centreline(self, ax)
+
+
+@dataclass(frozen=True)
+class BearingTransient(Result, kind="bearing_transient"):
+    """A march's record (every ``record_every`` steps).
+
+    Attributes
+    ----------
+    t : numpy.ndarray
+        Times, s.
+    central_spacing, minimum_spacing : numpy.ndarray
+        h at the middle of the wrap and width, and its minimum, m.
+    contact_force : numpy.ndarray
+        Total contact force, N (N/m if infinitely wide).
+    tension : numpy.ndarray
+        T(t), N/m.
+    x : numpy.ndarray
+        Node abscissae from the middle of the wrap, m.
+    centreline : numpy.ndarray
+        h(x) along the middle of the width at each recorded time, m, shape (len(t), nx + 1).
+    newton_iterations : numpy.ndarray
+        Newton iterations of each recorded step.
+    final : BearingSolution
+        The last state (velocity v and acceleration a not included).
+    """
+
+    t: np.ndarray
+    central_spacing: np.ndarray
+    minimum_spacing: np.ndarray
+    contact_force: np.ndarray
+    tension: np.ndarray
+    x: np.ndarray
+    centreline: np.ndarray
+    newton_iterations: np.ndarray
+    final: BearingSolution
+
+    def summary(self) -> dict:
+        """Headline numbers (SI): recorded times, the end time, the extremes of the
+        spacings and of the contact force, the Newton iterations in all, and the final
+        central and minimum spacings."""
+        return {"records": int(len(self.t)), "end_time": float(self.t[-1]),
+                "smallest_minimum_spacing": float(self.minimum_spacing.min()),
+                "largest_central_spacing": float(self.central_spacing.max()),
+                "smallest_central_spacing": float(self.central_spacing.min()),
+                "largest_contact_force": float(self.contact_force.max()),
+                "newton_iterations": int(self.newton_iterations.sum()),
+                "final_central_spacing": self.final.central_spacing,
+                "final_minimum_spacing": self.final.minimum_spacing,
+                "velocity": self.final.model.velocity,
+                "wrap_angle": self.final.model.wrap_angle,
+                "infinitely_wide": self.final.model.infinitely_wide}
+
+    def to_frame(self):
+        """The time series as a table: t (s), tension (N/m), central and minimum spacing
+        (m), contact force (N, N/m if infinitely wide) and Newton iterations per step."""
+        import pandas as pd
+
+        return pd.DataFrame({name: getattr(self, name) for name in _SERIES})
+
+    def to_xarray(self, *, params=None):
+        """The record as an :class:`xarray.Dataset`: the series on dimension ``t`` (s), the
+        centre-line spacing on (t, x), the final state as ``final_*`` fields on (x, y), and
+        the model, air and final Newton record as attributes. ``params`` is ignored: the
+        model carries its tape."""
+        m = self.final.model
+        data = {name: (("t",), getattr(self, name), {"units": _SERIES[name]})
+                for name in _SERIES if name != "t"}
+        data["centreline"] = (("t", "x"), self.centreline,
+                              {"units": "m", "long_name": "spacing along the middle"})
+        data.update(_state_variables(self.final, prefix=_FINAL))
+        coords = _node_coords(m)
+        coords["t"] = ("t", self.t, {"units": "s"})
+        coords["x_record"] = ("x", self.x, {"units": "m",
+                                            "long_name": "abscissae of the record"})
+        return dataset(data, coords, self.kind, params=m.params,
+                       info=dataclasses.asdict(self.final.info),
+                       air=dataclasses.asdict(m.air), model=_settings(m))
+
+    @classmethod
+    def from_xarray(cls, ds) -> BearingTransient:
+        """The record stored by :meth:`to_xarray`."""
+        model = _model_from(ds)
+        final = _state_from(ds, model, NewtonInfo(**from_json(ds.attrs["info"])),
+                            prefix=_FINAL)
+        series = {name: ds[name].values for name in _SERIES if name != "t"}
+        return cls(t=ds["t"].values, x=ds["x_record"].values,
+                   centreline=ds["centreline"].values, final=final, **series)
+
+    def plot(self, ax=None):
+        """Central and minimum spacing against time
+        (:func:`gyroshell.bearing.plots.transient_spacing`); returns the Axes."""
+        from .plots import transient_spacing
+
+        return transient_spacing(self, ax)
+
+
+#: The time series of a :class:`BearingTransient` and their units.
+_SERIES = {"t": "s", "tension": "N/m", "central_spacing": "m", "minimum_spacing": "m",
+           "contact_force": "N", "newton_iterations": "1"}
+#: Prefix of the final state's variables in a transient's file.
+_FINAL = "final_"
+
+
+# ----- storage helpers shared by both kinds ----------------------------------------------
+def _node_coords(model: BearingModel) -> dict:
+    """x (from the middle of the wrap) and y (a single 0 if infinitely wide), m."""
+    y = np.zeros(1) if model.infinitely_wide else model.y
+    return {"x": ("x", model.x - 0.5 * model.length,
+                  {"units": "m", "long_name": "from the middle of the wrap"}),
+            "y": ("y", y, {"units": "m", "long_name": "across the tape"})}
+
+
+def _nodal(model: BearingModel, values: np.ndarray) -> np.ndarray:
+    """Values at the tape unknowns on every node (0 at the span ends), shape (nx + 1, nc)."""
+    out = np.zeros((model.nx + 1, model.nc))
+    out[1:-1, :] = values.reshape(model.nx - 1, model.nc)
+    return out
+
+
+def _state_variables(sol: BearingSolution, prefix: str = "") -> dict:
+    """The Dataset variables of a steady state, their names prefixed by ``prefix``."""
+    m = sol.model
+    return {f"{prefix}spacing": (("x", "y"), sol.spacing, {"units": "m"}),
+            f"{prefix}pressure": (("x", "y"), sol.pressure, {"units": "Pa"}),
+            f"{prefix}departure": (("x", "y"), _nodal(m, sol.u),
+                                   {"units": "m",
+                                    "long_name": "from the dry wrapped configuration"}),
+            f"{prefix}contact": (("x", "y"), _nodal(m, sol.contact), {"units": "N"})}
+
+
+def _state_from(ds, model: BearingModel, info: NewtonInfo,
+                prefix: str = "") -> BearingSolution:
+    """The steady state stored by :func:`_state_variables`."""
+    U, P, C = (ds[f"{prefix}{k}"].values for k in ("departure", "pressure", "contact"))
+    return BearingSolution(model, U[1:-1, :].ravel(), P[model.film.interior],
+                           C[1:-1, :].ravel(), info)
+
+
+def _settings(model: BearingModel) -> dict:
+    """The keyword arguments that rebuild ``model`` with its tape and air."""
+    return {"velocity": model.velocity, "wrap_angle": model.wrap_angle,
+            "infinitely_wide": model.infinitely_wide, "span": model.span, "nx": model.nx,
+            "ny": model.ny, "grading": model.grading.as_dict()}
+
+
+def _model_from(ds) -> BearingModel:
+    """The model rebuilt from a file's attributes, checked against its node coordinates."""
+    a = ds.attrs
+    settings = from_json(a["model"])
+    # files written before graded grids: uniform
+    settings["grading"] = Grading(**settings.get("grading", {}))
+    model = BearingModel(params_from(a), AirParameters(**from_json(a["air"])), **settings)
+    x_ok = np.allclose(ds["x"].values, model.x - 0.5 * model.length, rtol=0,
+                       atol=COORDINATE_TOLERANCE * model.length)
+    y_ok = model.infinitely_wide or np.allclose(
+        ds["y"].values, model.y, rtol=0, atol=COORDINATE_TOLERANCE * model.params.width)
+    if not (x_ok and y_ok):
+        raise ParameterError("the stored node coordinates do not match the grid rebuilt "
+                             "from its settings")
+    return model

@@ -1,0 +1,48 @@
+"""Small instances of the bearing's result kinds, for the registry's round-trip test."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+from gyroshell import TapeParameters
+from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.steady import solve_steady
+from gyroshell.bearing.transient import march, tension_step
+from gyroshell.results.base import Result
+
+#: A coarse infinitely wide tape: Newton in a few hundredths of a second.
+INTERVALS = 60
+#: A coarse free-edged tape (its default grid is graded).
+INTERVALS_2D = (40, 8)
+TIME_STEP = 1e-5
+STEPS = 3
+
+
+def _model(infinitely_wide: bool = True) -> BearingModel:
+    nx, ny = (INTERVALS, None) if infinitely_wide else INTERVALS_2D
+    return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
+                        wrap_angle=math.radians(15.0), infinitely_wide=infinitely_wide,
+                        nx=nx, ny=ny)
+
+
+def steady() -> Result:
+    """A steady flying state of the infinitely wide tape."""
+    return solve_steady(_model())
+
+
+def steady_2d() -> Result:
+    """A steady flying state of a free-edged tape on a graded grid."""
+    return solve_steady(_model(infinitely_wide=False))
+
+
+def transient() -> Result:
+    """A few steps after a tension step."""
+    return march(solve_steady(_model()), dt=TIME_STEP, steps=STEPS,
+                 tension=tension_step(90.0, 100.0), progress=False)
+
+
+EXAMPLES: dict[str, Callable[[], Result]] = {
+    "bearing": steady,
+    "bearing_transient": transient,
+}
