@@ -27,22 +27,22 @@ _LAZY: dict[str, str] = {
     "step": "tape.loads",
     # static and divergence
     "StaticSolution": "engines.static", "solve_static": "engines.static",
-    "Divergence": "engines.divergence", "divergence": "engines.divergence",
+    "Divergence": "results.critical", "divergence": "engines.divergence",
     "divergence_speed": "engines.divergence",
     # time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends
     "available_backends": "linalg.factorization", "factorize": "linalg.factorization",
     "Newmark": "engines.newmark", "NewmarkStabilityWarning": "engines.newmark", "march": "engines.newmark",
     "Snapshots": "results.transient", "TransientResult": "results.transient",
     # quadratic eigen-solver, critical speeds and speed sweeps
-    "CriticalSpeeds": "engines.critical", "critical_speed_eigen": "engines.critical",
+    "CriticalSpeeds": "results.critical", "critical_speed_eigen": "engines.critical",
     "critical_speeds": "engines.critical",
-    "Modes": "engines.eigen", "frequencies": "engines.eigen", "modes": "engines.eigen",
+    "Modes": "results.modes", "frequencies": "engines.eigen", "modes": "engines.eigen",
     "InertiaFactor": "linalg.inertia", "factor_inertia": "linalg.inertia",
-    "GyroscopicModes": "linalg.qep", "gyroscopic_modes": "linalg.qep",
+    "GyroscopicModes": "results.modes", "gyroscopic_modes": "engines.gyroscopic",
     "plot_sweep": "studies.sweep", "sweep": "studies.sweep",
     # parameter studies and saved results (xarray, Dask and matplotlib load on use)
     "load": "kinds", "save": "kinds",
-    "StudyResult": "studies.parameter_study", "classify_stability": "linalg.qep", "run_study": "studies.parameter_study",
+    "StudyResult": "studies.parameter_study", "classify_stability": "studies.stability", "run_study": "studies.parameter_study",
     # damping, moving and intermittent loads, and the frequency response
     "Damping": "tape.damping",
     "FrequencyResponse": "engines.frequency_response", "ReducedModel": "engines.frequency_response", "direct_response": "engines.frequency_response",

@@ -10,7 +10,9 @@ import scipy.sparse as sp
 
 from gyroshell import ParameterError, TapeModel, TapeParameters
 from gyroshell.engines.eigen import modes
-from gyroshell.linalg.qep import DENSE_LIMIT, classify_stability, gyroscopic_modes, max_count
+from gyroshell.engines.gyroscopic import gyroscopic_modes
+from gyroshell.linalg.qep import DENSE_LIMIT, max_count
+from gyroshell.studies.stability import classify_stability
 
 # Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
 pytestmark = pytest.mark.usefixtures("every_factorization")
@@ -230,12 +232,14 @@ def test_damped_navier_frequencies_converge_second_order():
     assert res.decay_rate == pytest.approx(np.full(3, delta), rel=1e-9)
 
 
-def test_docstring_examples():
+@pytest.mark.parametrize("name", ["gyroshell.studies.stability",
+                                  "gyroshell.linalg.factorization"])
+def test_docstring_examples(name):
     import doctest
+    import importlib
 
-    import gyroshell.linalg.qep
-
-    result = doctest.testmod(gyroshell.linalg.qep, optionflags=doctest.NORMALIZE_WHITESPACE)
+    module = importlib.import_module(name)
+    result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0
 
 
