@@ -176,72 +176,59 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     count : int
         Number of frequencies (pairs ±iω), 1 <= count <= :func:`max_count` (n).
     sigma : "auto", 0 or complex i·ω_s
-        Shift, 1/s. ``"auto"``: i·ω_s just below the estimated lowest frequency, moved down
-        until the inertia of Q(iω_s) certifies few modes below it. ``0``: one factorization
-        of K, the ±iω pairs found together.
+        Shift, 1/s. ``"auto"``: just below the estimated lowest frequency, certified by the
+        inertia of Q(iω_s). ``0``: one factorization of K, the ±iω pairs found together.
     damping : Damping, float or (a, b), optional
-        Viscous damping c, N·s/m³ (C = c W), Rayleigh (a 1/s, b s): C = a M + b K(V), or a
-        :class:`gyroshell.damping.Damping` (see :func:`damping_operator`). Damped
-        eigenvalues are −δ + iω_d (``decay_rate`` δ, ``damping_ratio``); the count
-        certificate does not apply to them.
+        See :func:`damping_operator`. Damped eigenvalues are −δ + iω_d (``decay_rate`` δ,
+        ``damping_ratio``); the count certificate does not apply to them.
     start : Modes, optional
         Modes at a nearby speed: their vectors start the iteration (continuation).
     estimate : float, optional
-        Estimate of the lowest frequency, rad/s, for the automatic shift (e.g. extrapolated
-        along a sweep); default the bottom of the travelling-wave band
-        (:func:`strip_frequency_estimate`). The shift is still certified by inertia.
+        Estimate of the lowest frequency for the automatic shift, rad/s (still certified by
+        inertia); default :func:`strip_frequency_estimate`.
     symmetry : bool
-        Use the tape's mirror symmetry about its centre line (same edges on both sides,
-        :mod:`gyroshell.tape.mirror`) below critical without damping: the symmetric half's
-        ``count`` lowest frequencies, the antisymmetric half's below the highest of them
-        (counted by inertia), each on half the unknowns. The same modes as the full problem
-        (to round-off); False solves the full problem.
+        Solve on the mirror-symmetric halves where that applies (module notes; the same
+        modes to round-off); False solves the full problem.
     options : SolverOptions, optional
-        The eigen-solver's tuning knobs together.
-    **tuning
-        Knobs of :class:`~gyroshell.linalg.qep.SolverOptions` by name (replacing those of
-        ``options``): ``tol`` (relative tolerance of the eigen-iteration), ``ncv``,
-        ``maxiter`` (ARPACK's Krylov basis size and restarts; giving either selects ARPACK),
-        ``method`` ({"auto", "lanczos", "arpack"}, see :func:`gyroshell.gyroscopic_modes`)
-        and ``factorization`` ({"auto", "cholmod", "superlu"}: the sparse factorization of
-        the shift matrix; "auto" is CHOLMOD's Cholesky where cvxopt is installed, the
-        ``fast`` extra, else SuperLU, or what
-        :func:`gyroshell.linalg.factorization.use_factorization` sets).
+        The tuning knobs together; ``**tuning`` gives any of them (``tol``, ``ncv``,
+        ``maxiter``, ``method``, ``factorization``) by name, replacing the one in ``options``.
 
     Returns
     -------
     Modes
-        Above the critical speed (K(V) indefinite) ``supercritical`` is True and the
-        eigenvalues nearest zero are returned; ``stability`` says whether the tape diverges,
-        flutters or is gyroscopically stable there.
+        Above critical (K(V) indefinite) ``supercritical`` is True, the eigenvalues are
+        those nearest zero, and ``stability`` tells divergence, flutter or stable.
 
     Raises
     ------
     ParameterError
         Bad count, sigma, tol, ncv or damping.
     ConvergenceError
-        The eigen-solver did not converge, or the residuals or the mode count failed.
+        No convergence, or the residuals or the mode count failed.
     """
     opts = SolverOptions.of(options, **tuning)
     velocity = check_speed(model, velocity)
-    # before any assembly: a refusal costs nothing
-    check_count(count, model.unknowns)
+    check_count(count, model.unknowns)  # before any assembly: a refusal costs nothing
     check_factorization(opts.factorization)
     C = damping_operator(model, velocity, damping)
     estimate, shift, first = _checked_guesses(model, velocity, sigma, start, estimate)
-    if not isinstance(symmetry, bool):
-        raise ParameterError(f"symmetry must be True or False, got {symmetry!r}")
-    if symmetry and C is None and shift is None and opts.method in ("auto", "lanczos") \
-            and opts.ncv is None and opts.maxiter is None and _known_definite(model, velocity):
+    if check_flag("symmetry", symmetry) and C is None and shift is None:
         result = _try_mirror(model, velocity, count, start, first, estimate, opts)
         if result is not None:
             return result
-    result = gyroscopic_modes(
-        _mass(model), model.G(velocity), model.K(velocity), count, sigma=shift, C=C,
-        estimate=estimate if estimate > 0 else None,
-        definite=_known_definite(model, velocity), start=first, options=opts)
+    result = gyroscopic_modes(_mass(model), model.G(velocity), model.K(velocity), count,
+                              sigma=shift, C=C, estimate=estimate if estimate > 0 else None,
+                              definite=_known_definite(model, velocity), start=first,
+                              options=opts)
     return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
                  result.supercritical, result.info, result.damped)
+
+
+def check_flag(name: str, value) -> bool:
+    """``value`` if it is True or False, else a ParameterError naming ``name``."""
+    if not isinstance(value, bool):
+        raise ParameterError(f"{name} must be True or False, got {value!r}")
+    return value
 
 
 def _checked_guesses(model: TapeModel, velocity: float, sigma, start: Modes | None,
@@ -265,8 +252,12 @@ def _checked_guesses(model: TapeModel, velocity: float, sigma, start: Modes | No
 
 def _try_mirror(model: TapeModel, velocity: float, count: int, start: Modes | None, first,
                 estimate: float, options: SolverOptions) -> Modes | None:
-    """The modes from the mirror-symmetric halves, or None where the halves do not apply
-    (no mirror symmetry, too many modes for a half, or the counts did not close)."""
+    """The modes from the mirror-symmetric halves (undamped, automatic shift), or None where
+    the halves do not apply: K(V) not proved definite, ARPACK asked for, no mirror symmetry,
+    too many modes for a half, or the counts did not close."""
+    if options.method not in ("auto", "lanczos") or options.ncv is not None or \
+            options.maxiter is not None or not _known_definite(model, velocity):
+        return None
     split = mirror_split(model)
     if split is None or count > max_count(split.antisymmetric.shape[1]):
         return None
