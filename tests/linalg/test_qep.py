@@ -256,3 +256,21 @@ def test_out_of_range_damping_is_a_clean_convergence_error():
     model = TapeModel(TapeParameters(length_ratio=1.0, spacing=WIDTH / 8))
     with pytest.raises(ConvergenceError, match="out of floating-point range"):
         modes(model, 0.0, 2, damping=1e300)
+
+
+def test_one_superlu_helper_serves_lu_and_inertia(rng):
+    """linalg.factorization.splu is the package's SuperLU: general LU and the symmetric-mode
+    LDLᴴ whose pivots factor_inertia counts."""
+    from gyroshell.linalg.factorization import splu
+    from gyroshell.linalg.inertia import factor_inertia
+
+    X = rng.standard_normal((60, 60))
+    A = sp.csc_matrix(X + X.T - 3.0 * np.eye(60))
+    b = rng.standard_normal(60)
+    assert np.allclose(A @ splu(A).solve(b), b)
+    lu = splu(A, symmetric_mode=True)
+    assert np.array_equal(lu.perm_r, lu.perm_c)   # diagonal pivots only
+    negatives = int(np.count_nonzero(np.linalg.eigvalsh(A.toarray()) < 0))
+    assert factor_inertia(A).negatives in (None, negatives)
+    with pytest.raises(RuntimeError):
+        splu(sp.csc_matrix((3, 3)))
