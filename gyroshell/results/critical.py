@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core.errors import ParameterError
 from ..tape.grid import Grid
 from .base import Result, dataset, from_json, grid_from, xy_coords
 
@@ -76,9 +77,9 @@ class CriticalSpeeds(Result, kind="critical"):
         """What ``gyroshell critical --json`` prints of the result: the speeds (m/s), the
         routes' times (s), the eigen-solves and μ_min (N/m)."""
         info = self.info
-        return {**self.as_dict(), "critical_seconds": info["critical_time"],
-                "divergence_seconds": info["divergence_time"],
-                "eigen_solves": info["evaluations"], "mu": info["mu"]}
+        return {**self.as_dict(), "critical_seconds": info.get("critical_time"),
+                "divergence_seconds": info.get("divergence_time"),
+                "eigen_solves": info.get("evaluations"), "mu": info.get("mu")}
 
     def to_xarray(self, *, params=None):
         """Dataset of scalar speeds (m/s); the diagnostics as the ``info`` attribute."""
@@ -118,6 +119,8 @@ class Divergence(Result, kind="divergence"):
     @property
     def field(self) -> np.ndarray:
         """The buckling mode on all nodes, shape (nx + 1, ny + 1) (needs the grid)."""
+        if self.grid is None:
+            raise ParameterError("this Divergence has no grid: its mode is an unknown vector")
         return self.grid.to_field(self.mode)
 
     def summary(self) -> dict:

@@ -98,3 +98,13 @@ def test_frames_and_plots(built):
     assert "mode 1" in ax.get_title()
     ax = built["divergence"].plot()
     assert "V_div" in ax.get_title()
+
+
+def test_a_divergence_without_grid_still_saves_but_has_no_field(built, tmp_path):
+    from gyroshell.core.errors import ParameterError
+
+    d = built["divergence"]
+    bare = Divergence(d.speed, d.mu, d.mode)
+    same_result(bare, read(bare.save(tmp_path / "bare.nc")))
+    with pytest.raises(ParameterError, match="no grid"):
+        bare.plot()
