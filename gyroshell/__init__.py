@@ -42,8 +42,7 @@ _LAZY: dict[str, str] = {
     "plot_sweep": "studies.sweep", "sweep": "studies.sweep",
     # parameter studies and saved results (xarray, Dask and matplotlib load on use)
     "load": "kinds", "save": "kinds",
-    "StudyResult": "studies.parameter_study", "classify_stability": "studies.stability",
-    "run_study": "studies.parameter_study",
+    "StudyResult": "studies.parameter_study", "classify_stability": "studies.stability", "run_study": "studies.parameter_study",
     # damping, moving and intermittent loads, and the frequency response
     "Damping": "tape.damping",
     "FrequencyResponse": "engines.frequency_response", "ReducedModel": "engines.frequency_response", "direct_response": "engines.frequency_response",
