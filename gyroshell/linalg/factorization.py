@@ -46,16 +46,24 @@ from . import cholesky
 ORDERING = "MMD_AT_PLUS_A"
 
 
-def splu(matrix: sp.spmatrix, *, symmetric_mode: bool = False) -> spla.SuperLU:
-    """SuperLU of a square sparse matrix with the package's ordering (:data:`ORDERING`).
+def splu(matrix: sp.spmatrix, *, symmetric_mode: bool = False, ordering: str = ORDERING,
+         pivot_threshold: float = 0.0) -> spla.SuperLU:
+    """SuperLU of a square sparse matrix, by default with the package's ordering.
 
     Parameters
     ----------
     matrix : scipy.sparse matrix, shape (n, n)
         Real or complex.
     symmetric_mode : bool
-        Diagonal pivots only (SuperLU's symmetric mode): P A Pᵀ = L D Lᴴ for a symmetric or
-        Hermitian matrix, whose pivots then give its inertia (:mod:`gyroshell.linalg.inertia`).
+        Prefer diagonal pivots (SuperLU's symmetric mode): with ``pivot_threshold = 0``,
+        P A Pᵀ = L D Lᴴ for a symmetric or Hermitian matrix, whose pivots then give its
+        inertia (:mod:`gyroshell.linalg.inertia`).
+    ordering : str
+        SuperLU's column ordering (``permc_spec``); :data:`ORDERING` unless a caller's
+        matrices are known to fill less under another (the bearing's Jacobian: COLAMD).
+    pivot_threshold : float
+        In symmetric mode, how much smaller than the column's largest a diagonal pivot may
+        be before another is taken (SuperLU's ``diag_pivot_thresh``), 0 to 1.
 
     Raises
     ------
@@ -63,9 +71,9 @@ def splu(matrix: sp.spmatrix, *, symmetric_mode: bool = False) -> spla.SuperLU:
         SuperLU's "Factor is exactly singular".
     """
     if symmetric_mode:
-        return spla.splu(sp.csc_matrix(matrix), permc_spec=ORDERING, diag_pivot_thresh=0.0,
-                         options={"SymmetricMode": True})
-    return spla.splu(sp.csc_matrix(matrix), permc_spec=ORDERING)
+        return spla.splu(sp.csc_matrix(matrix), permc_spec=ordering,
+                         diag_pivot_thresh=pivot_threshold, options={"SymmetricMode": True})
+    return spla.splu(sp.csc_matrix(matrix), permc_spec=ordering)
 
 
 #: What "auto" means for the eigen-solvers' factorizations inside :func:`use_factorization`
@@ -136,13 +144,15 @@ class SuperLUFactor:
     ----------
     matrix : scipy.sparse matrix
         Square, real; ordered by :data:`ORDERING`, which gave the least fill on K_eq.
+    ordering : str
+        Another SuperLU column ordering, for matrices that fill less under it.
     """
 
     name = "superlu"
 
-    def __init__(self, matrix: sp.spmatrix) -> None:
+    def __init__(self, matrix: sp.spmatrix, *, ordering: str = ORDERING) -> None:
         start = time.perf_counter()
-        self._lu = splu(matrix)
+        self._lu = splu(matrix, ordering=ordering)
         self.factor_time = time.perf_counter() - start
         self.nnz = int(self._lu.L.nnz + self._lu.U.nnz)
 
