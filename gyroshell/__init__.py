@@ -16,41 +16,42 @@ from .core.errors import ConvergenceError, ParameterError, SupercriticalError  #
 from .core.version import __version__  # noqa: F401
 from .tape.parameters import TapeParameters, bending_rigidity, shell_stiffness  # noqa: F401
 
-#: Public name -> submodule. Engines import scipy, so they load on first use: `import
-#: gyroshell` and the CLI's refusals stay fast.
-_LAZY: dict[str, str] = {
-    # grid and operators
-    "Grid": "tape.grid", "TapeModel": "tape.model",
-    "bending_foundation": "tape.operators", "gyroscopic": "tape.operators", "mass": "tape.operators",
-    "membrane": "tape.operators",
-    "Harmonic": "tape.loads", "Ramp": "tape.loads", "gaussian_load": "tape.loads", "pressure_load": "tape.loads",
-    "step": "tape.loads",
-    # static and divergence
-    "StaticSolution": "results.static", "solve_static": "engines.static",
-    "Divergence": "engines.divergence", "divergence": "engines.divergence",
-    "divergence_speed": "engines.divergence",
-    # time marching (Newmark, paper Eqs. 10-16) and its sparse LU back-ends
-    "available_backends": "linalg.factorization", "factorize": "linalg.factorization",
-    "Newmark": "engines.newmark", "NewmarkStabilityWarning": "engines.newmark", "march": "engines.newmark",
-    "Snapshots": "results.transient", "TransientResult": "results.transient",
-    # quadratic eigen-solver, critical speeds and speed sweeps
-    "CriticalSpeeds": "engines.critical", "critical_speed_eigen": "engines.critical",
-    "critical_speeds": "engines.critical",
-    "Modes": "engines.eigen", "frequencies": "engines.eigen", "modes": "engines.eigen",
-    "InertiaFactor": "linalg.inertia", "factor_inertia": "linalg.inertia",
-    "GyroscopicModes": "linalg.qep", "gyroscopic_modes": "linalg.qep",
-    "SweepResult": "studies.sweep", "plot_sweep": "studies.sweep", "sweep": "studies.sweep",
-    # parameter studies and saved results (xarray, Dask and matplotlib load on use)
-    "load": "kinds", "save": "kinds",
-    "StudyResult": "studies.parameter_study", "classify_stability": "linalg.qep", "run_study": "studies.parameter_study",
-    # damping, moving and intermittent loads, and the frequency response
-    "Damping": "tape.damping",
-    "FrequencyResponse": "results.frequency_response", "ReducedModel": "engines.frequency_response", "direct_response": "engines.frequency_response",
-    "frequency_response": "engines.frequency_response",
-    "ContactWindows": "tape.moving_loads", "GaussianShape": "tape.moving_loads",
-    "MovingLoad": "tape.moving_loads", "StraightPath": "tape.moving_loads", "UniformShape": "tape.moving_loads",
-    "UserShape": "tape.moving_loads", "drum_heads": "tape.moving_loads",
+#: Submodule -> the public names it defines. Engines import scipy, so they load on first use:
+#: ``import gyroshell`` and the CLI's refusals stay fast.
+_HOMES: dict[str, tuple[str, ...]] = {
+    # the tape: grid, operators, loads, damping, moving heads
+    "tape.grid": ("Grid",),
+    "tape.model": ("TapeModel",),
+    "tape.operators": ("bending_foundation", "gyroscopic", "mass", "membrane"),
+    "tape.loads": ("Harmonic", "Ramp", "gaussian_load", "pressure_load", "step"),
+    "tape.damping": ("Damping",),
+    "tape.moving_loads": ("ContactWindows", "GaussianShape", "MovingLoad", "StraightPath",
+                          "UniformShape", "UserShape", "drum_heads"),
+    # sparse factorizations
+    "linalg.factorization": ("available_backends", "factorize"),
+    "linalg.inertia": ("InertiaFactor", "factor_inertia"),
+    # results
+    "results.static": ("StaticSolution",),
+    "results.transient": ("Snapshots", "TransientResult"),
+    "results.modes": ("GyroscopicModes", "Modes"),
+    "results.critical": ("CriticalSpeeds", "Divergence"),
+    "results.frequency_response": ("FrequencyResponse",),
+    # engines: static, Newmark (paper Eqs. 10-16), eigen-solvers, critical speeds, frf
+    "engines.static": ("solve_static",),
+    "engines.divergence": ("divergence", "divergence_speed"),
+    "engines.newmark": ("Newmark", "NewmarkStabilityWarning", "march"),
+    "engines.eigen": ("frequencies", "modes"),
+    "engines.gyroscopic": ("gyroscopic_modes",),
+    "engines.critical": ("critical_speed_eigen", "critical_speeds"),
+    "engines.frequency_response": ("ReducedModel", "direct_response", "frequency_response"),
+    # studies (xarray, Dask and matplotlib load on use) and saved results
+    "studies.sweep": ("SweepResult", "plot_sweep", "sweep"),
+    "studies.campbell": ("CampbellDiagram", "campbell"),
+    "studies.parameter_study": ("StudyResult", "run_study"),
+    "studies.stability": ("classify_stability",),
+    "kinds": ("load", "save"),
 }
+_LAZY: dict[str, str] = {name: module for module, names in _HOMES.items() for name in names}
 
 __all__ = sorted(["ConvergenceError", "ParameterError", "SupercriticalError",
                   "TapeParameters", "bending_rigidity", "shell_stiffness", *_LAZY])

@@ -116,16 +116,17 @@ def _strict_floats_and_closed_figures():
 
 
 @pytest.fixture(params=["cholmod", "superlu"])
-def every_factorization(request, monkeypatch):
-    """Run a test once per eigen-solver factorization back-end: "auto" resolves to each
-    (CHOLMOD through cvxopt, in the test extra; SuperLU, pure scipy)."""
-    from gyroshell.linalg import cholesky, qep
+def every_factorization(request):
+    """Run a test once per eigen-solver factorization back-end: "auto" means each in turn
+    (CHOLMOD through cvxopt, in the test extra; SuperLU, pure scipy) for every solver,
+    engine and inertia count, through the public ``use_factorization``."""
+    from gyroshell.linalg import cholesky
+    from gyroshell.linalg.factorization import use_factorization
 
     if request.param == "cholmod" and not cholesky.available():
         pytest.skip("cvxopt (CHOLMOD) is not installed")
-    monkeypatch.setattr(qep, "_resolve_factorization",
-                        lambda f: request.param if f == "auto" else f)
-    return request.param
+    with use_factorization(request.param):
+        yield request.param
 
 
 @pytest.fixture

@@ -152,7 +152,7 @@ class _Residual:
             P, rows = fold
             J = (J[rows, :] @ P).tocsc()
         try:
-            lu = SuperLUFactor(J, permc_spec=JACOBIAN_ORDERING)
+            lu = SuperLUFactor(J, ordering=JACOBIAN_ORDERING)
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
         if fold is None:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import math
 import time
 
 import numpy as np
@@ -72,23 +71,9 @@ def run_modes(args: argparse.Namespace) -> int:
     elapsed = time.perf_counter() - t0
     save_result(args.save, res, params)
     g = model.grid
-    out = {
-        "velocity": velocity,
-        "omega": res.omega.tolist(),
-        "frequency": res.frequency.tolist(),
-        "period": [p if math.isfinite(p) else None for p in res.period.tolist()],
-        "growth_rate": res.growth_rate.tolist(),
-        "decay_rate": res.decay_rate.tolist(),
-        "damping_ratio": res.damping_ratio.tolist(),
-        "damping": damping.viscous,
-        "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
-        "supercritical": res.supercritical,
-        "stability": res.stability,
-        "residual": res.residuals.tolist(),
-        "foundation_frequency": params.foundation_frequency,
-        "nx": g.nx, "ny": g.ny, "unknowns": g.unknowns, "edges": g.edges,
-        "seconds": elapsed,
-    }
+    out = {**res.summary(), "damping": damping.viscous,
+           "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
+           "foundation_frequency": params.foundation_frequency, "seconds": elapsed}
     if args.json:
         print_json(out)
         return 0
@@ -141,11 +126,8 @@ def run_critical(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     c = critical_speeds(model)
     elapsed = time.perf_counter() - t0
-    out = dict(c.as_dict(), seconds=elapsed, critical_seconds=c.info["critical_time"],
-               divergence_seconds=c.info["divergence_time"],
-               eigen_solves=c.info["evaluations"], mu=c.info["mu"],
-               length_ratio=params.length_ratio, edges=params.edges,
-               unknowns=model.unknowns)
+    out = dict(c.summary(), seconds=elapsed, length_ratio=params.length_ratio,
+               edges=params.edges, unknowns=model.unknowns)
     if args.json:
         print_json(out)
         return 0

@@ -5,7 +5,7 @@
     the root is sought for the smooth f(V) = −λ₀² (λ₀ the eigenvalue nearest zero):
     f = ω₁² > 0 below critical, −(Re λ₀)² < 0 above (divergence).
 (b) Divergence route: K(V) = A + (T − ρV²)B loses definiteness at V_div = √((T + μ_min)/ρ)
-    (:func:`gyroshell.divergence.divergence`, one ``eigsh``).
+    (:func:`gyroshell.divergence`, one ``eigsh``).
 
 For a conservative gyroscopic system an eigenvalue is zero exactly when K is singular, so
 the two must agree; they are computed by different algorithms and compared.
@@ -19,24 +19,22 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..core.errors import ConvergenceError, ParameterError, SingularError
 from ..linalg import cholesky
+from ..linalg.factorization import resolve_factorization
 from ..linalg.inertia import factor_inertia
-from ..linalg.qep import gyroscopic_modes
-from ..results import storage
+from ..results.critical import PAPER_SPEED, SUNDARAM_BENSON_SPEED, CriticalSpeeds
 from ..tape.mirror import mirror_split
 from ..tape.model import TapeModel
 from .divergence import beam_mu_estimate, divergence
 from .eigen import check_speed, modes
+from .gyroscopic import gyroscopic_modes
 
-#: Sundaram & Benson (1989/1990), all sides simply supported shell, m/s (quoted by the paper).
-SUNDARAM_BENSON_SPEED = 111.0
-#: Seed paper: unbounded displacements "for a small positive change from 100 m/s", m/s.
-PAPER_SPEED = 100.0
+__all__ = ["PAPER_SPEED", "SUNDARAM_BENSON_SPEED", "CriticalSpeeds", "critical_function",
+           "critical_speed_eigen", "critical_speeds", "default_guess"]
 
 
 def _evaluate(model: TapeModel, velocity: float, count: int, options: dict
@@ -93,7 +91,7 @@ class _HalfCritical:
 
     def _definite(self, which: str, velocity: float) -> bool:
         K = self.split.matrices(self.model, velocity, which)[2]
-        if cholesky.available() and self.options.get("factorization") != "superlu":
+        if resolve_factorization(self.options.get("factorization", "auto")) == "cholmod":
             factor = cholesky.cholesky(K)
             if factor is not None:
                 factor.release()
@@ -122,61 +120,6 @@ def critical_function(model: TapeModel, velocity: float, *, count: int = 1,
     growing eigenvalue if found, else −|λ₀|² (still negative: K(V) is indefinite).
     """
     return _evaluate(model, velocity, count, options)[0]
-
-
-@dataclass(frozen=True)
-class CriticalSpeeds:
-    """Critical speed by both routes, with context values (all m/s).
-
-    Attributes
-    ----------
-    critical_speed : float
-        (a) Where the lowest frequency crosses zero (eigen-solver + root-finding).
-    divergence_speed : float
-        (b) √((T + μ_min)/ρ) from one ``eigsh``.
-    string_speed : float
-        √(T/ρ): moving string / beam without foundation (Wickert & Mote 1990).
-    strip_speed : float
-        √((T + 2√(Dk))/ρ): infinite strip (beam) on the shell foundation.
-    sundaram_benson_speed, paper_speed : float
-        Values quoted by the seed paper: 111 m/s and "just above 100 m/s".
-    info : dict
-        ``evaluations`` of f, ``bracket`` (m/s), ``critical_time`` and ``divergence_time`` (s),
-        ``relative_difference`` |a − b| / b, ``mu`` (N/m).
-    """
-
-    critical_speed: float
-    divergence_speed: float
-    string_speed: float
-    strip_speed: float
-    sundaram_benson_speed: float = SUNDARAM_BENSON_SPEED
-    paper_speed: float = PAPER_SPEED
-    info: dict = field(default_factory=dict, compare=False)
-
-    @property
-    def relative_difference(self) -> float:
-        """|critical − divergence| / divergence."""
-        return abs(self.critical_speed - self.divergence_speed) / self.divergence_speed
-
-    def as_dict(self) -> dict[str, float]:
-        """The speeds (m/s) as a plain dict (JSON-ready)."""
-        return {
-            "critical_speed": self.critical_speed,
-            "divergence_speed": self.divergence_speed,
-            "relative_difference": self.relative_difference,
-            "string_speed": self.string_speed,
-            "strip_speed": self.strip_speed,
-            "sundaram_benson_speed": self.sundaram_benson_speed,
-            "paper_speed": self.paper_speed,
-        }
-
-    def to_xarray(self, *, params=None):
-        """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
-        return storage.to_xarray(self, params=params)
-
-    def save(self, path, *, params=None):
-        """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
-        return storage.save(self, path, params=params)
 
 
 #: The default starting speed is this fraction of the beam estimate √((T + μ_beam)/ρ).

@@ -12,7 +12,6 @@ lowest frequency reaches zero.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse.linalg as spla
@@ -20,6 +19,7 @@ import scipy.sparse.linalg as spla
 from ..core.errors import ConvergenceError, ParameterError
 from ..core.parallel import blas_threads
 from ..linalg.inertia import InertiaFactor, factor_inertia
+from ..results.critical import Divergence
 from ..tape.model import TapeModel
 
 #: Factorizations tried by :func:`safe_shift` before giving up (τ = 0).
@@ -28,25 +28,12 @@ SHIFT_TRIES = 8
 SLOPE_PROBE = 1.01
 #: The extrapolated μ_min is undershot by this fraction of its distance to the last count.
 SHIFT_UNDERSHOOT = 0.1
+#: Default ARPACK relative tolerance of :func:`divergence`.
+DIVERGENCE_TOL = 1e-12
+#: Seed of ARPACK's start vector: reproducible results.
+START_SEED = 12345
 
-
-@dataclass(frozen=True)
-class Divergence:
-    """Result of :func:`divergence`.
-
-    Attributes
-    ----------
-    speed : float
-        Divergence speed V_div, m/s.
-    mu : float
-        Smallest eigenvalue of A φ = μ B φ, N/m (the extra compression the plate resists).
-    mode : numpy.ndarray
-        Buckling mode φ (unknown vector, max |φ| = 1).
-    """
-
-    speed: float
-    mu: float
-    mode: np.ndarray
+__all__ = ["Divergence", "beam_mu_estimate", "divergence", "divergence_speed", "safe_shift"]
 
 
 def beam_mu_estimate(model: TapeModel) -> float:
@@ -94,7 +81,7 @@ def safe_shift(model: TapeModel, *, tries: int = SHIFT_TRIES
     return 0.0, None
 
 
-def divergence(model: TapeModel, *, tol: float = 1e-12, shift: float | None = None
+def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | None = None
                ) -> Divergence:
     """Divergence speed and buckling mode of the discrete model, by one ``eigsh`` call.
 
@@ -125,7 +112,7 @@ def divergence(model: TapeModel, *, tol: float = 1e-12, shift: float | None = No
         raise ParameterError(f"shift {tau:g} N/m is an eigenvalue of A phi = mu B phi; "
                              "choose another")
     opinv = spla.LinearOperator(A.shape, matvec=factor.solve, dtype=float)
-    v0 = np.random.default_rng(12345).standard_normal(A.shape[0])
+    v0 = np.random.default_rng(START_SEED).standard_normal(A.shape[0])
     try:
         with blas_threads(1):
             vals, vecs = spla.eigsh(A, k=1, M=B, sigma=tau, which="LM", tol=tol,
@@ -135,7 +122,7 @@ def divergence(model: TapeModel, *, tol: float = 1e-12, shift: float | None = No
     mu = float(vals[0])
     mode = vecs[:, 0] / vecs[np.argmax(np.abs(vecs[:, 0])), 0]
     p = model.params
-    return Divergence(math.sqrt((p.tension + mu) / p.density), mu, mode)
+    return Divergence(math.sqrt((p.tension + mu) / p.density), mu, mode, model.grid)
 
 
 def divergence_speed(model: TapeModel) -> float:

@@ -5,13 +5,13 @@ undamped eigenvalue is a pair ±iω (ω > 0, rad/s) with eigenvectors φ, φ̄: 
 but neither grows nor decays. Above it some eigenvalues may leave the imaginary axis
 (divergence or flutter), or all stay on it (gyroscopic stabilization).
 
-:func:`modes` is a thin layer over the matrix solver :func:`gyroshell.qep.gyroscopic_modes`
+:func:`modes` is a thin layer over the matrix solver :func:`gyroshell.gyroscopic_modes`
 (method, certificate and accuracy: see there). It adds what the tape knows: the automatic
 shift i·ω_s just below the bottom of the width-uniform travelling-wave band (with σ = 0
 the dozens of long-tape modes within 0.1 % of √(k/ρ) are nearly equal in |1/λ| and converge
 slowly; measured from iω_s they are far apart), the definiteness of K(V) from a bound proved
 once per model (:func:`stiffness_floor`), the damping matrix, and the tape's mirror symmetry
-about its centre line (:mod:`gyroshell.mirror`): below critical and undamped, the symmetric
+about its centre line (:mod:`gyroshell.tape.mirror`): below critical and undamped, the symmetric
 and antisymmetric modes are computed on two problems of half the size, the antisymmetric
 ones only as many as the inertia of their half counts below the symmetric ones
 (:func:`_mirror_modes`).
@@ -21,95 +21,35 @@ from __future__ import annotations
 
 import math
 import weakref
-from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..core.errors import ParameterError
 from ..linalg import cholesky
+from ..linalg.factorization import check_factorization, resolve_factorization
 from ..linalg.inertia import factor_inertia
 from ..linalg.qep import (
     DEFAULT_TOL,
     RESIDUAL_LIMIT,
     SHIFT_MARGIN,
-    _EigenvalueProperties,
-    _normalize,
-    _resolve_factorization,
+    SolverOptions,
     check_count,
-    check_factorization,
-    gyroscopic_modes,
     max_count,
+    normalize,
 )
 from ..linalg.qep import relative_residuals as _matrix_residuals
-from ..results import storage
+from ..results.modes import Modes
 from ..tape.grid import Grid
 from ..tape.mirror import mirror_split
 from ..tape.model import TapeModel
 from ..tape.parameters import TapeParameters, check_velocity
+from .gyroscopic import gyroscopic_modes
 
-__all__ = ["DEFAULT_TOL", "RESIDUAL_LIMIT", "SHIFT_MARGIN", "Modes", "check_speed",
-           "damping_operator",
+__all__ = ["DEFAULT_TOL", "RESIDUAL_LIMIT", "SHIFT_MARGIN", "Modes", "SolverOptions",
+           "check_speed", "damping_operator",
            "frequencies", "max_count", "modes", "relative_residuals", "stiffness_floor",
            "strip_frequency_estimate"]
-
-
-@dataclass(frozen=True)
-class Modes(_EigenvalueProperties):
-    """Lowest eigenpairs of the gyroscopic tape at one speed.
-
-    Attributes
-    ----------
-    grid : Grid
-    velocity : float
-        Tape speed V, m/s.
-    eigenvalues : numpy.ndarray
-        λ (complex, 1/s), one per conjugate pair: +iω below critical (ascending ω); above
-        critical the eigenvalues nearest zero with Re λ >= 0 (ascending |λ|); damped:
-        −δ + iω_d (ascending ω_d).
-    vectors : numpy.ndarray
-        Mode shapes φ, complex, shape (n, count), largest entry 1.
-    residuals : numpy.ndarray
-        Relative residuals ‖Q(λ)φ‖ / ((|λ|²‖M‖ + |λ|‖G + C‖ + ‖K‖) ‖φ‖) (backward errors).
-    supercritical : bool
-        True if K(V) is not positive definite (V at or above the critical speed).
-    info : dict
-        Diagnostics of :func:`gyroshell.qep.gyroscopic_modes`: ``method``, ``shift`` (σ, 1/s),
-        ``below_shift`` (certified number of frequencies below the shift), ``factor_time``
-        and ``solve_time`` (s), ``operator_applications``, ``pair_defect``, ...
-    damped : bool
-        True if computed with damping (``decay_rate``, ``damping_ratio`` then mean something).
-
-    Derived: ``omega`` (rad/s), ``frequency`` (Hz), ``period`` (s), ``growth_rate``,
-    ``decay_rate`` (1/s), ``damping_ratio``, ``stability`` ("stable", "divergence",
-    "flutter").
-    """
-
-    grid: Grid
-    velocity: float
-    eigenvalues: np.ndarray
-    vectors: np.ndarray
-    residuals: np.ndarray
-    supercritical: bool = False
-    info: dict = field(default_factory=dict, compare=False)
-    damped: bool = False
-
-    @property
-    def fields(self) -> np.ndarray:
-        """Complex mode shapes on all nodes, shape (nx + 1, ny + 1, count)."""
-        return self.grid.to_field(self.vectors)
-
-    def field(self, index: int) -> np.ndarray:
-        """Complex mode shape ``index`` on all nodes, shape (nx + 1, ny + 1)."""
-        return self.grid.to_field(self.vectors[:, index])
-
-    def to_xarray(self, *, params=None):
-        """xarray Dataset with units and metadata (see :mod:`gyroshell.persistence`)."""
-        return storage.to_xarray(self, params=params)
-
-    def save(self, path, *, params=None):
-        """Write NetCDF (.nc) whole; ``gyroshell.load(path)`` reads it back exactly."""
-        return storage.save(self, path, params=params)
 
 
 # ----- small pieces -----------------------------------------------------------------------
@@ -136,11 +76,11 @@ def _mass(model) -> sp.dia_matrix:
 def relative_residuals(model: TapeModel, velocity: float, eigenvalues: np.ndarray,
                        vectors: np.ndarray, damping=None) -> np.ndarray:
     """‖(λ²M + λ(G + C) + K)φ‖₂ / ((|λ|²‖M‖₁ + |λ|‖G + C‖₁ + ‖K‖₁) ‖φ‖₂) per pair."""
-    D = model.G(velocity)
+    GC = model.G(velocity)
     C = damping_operator(model, velocity, damping)
     if C is not None:
-        D = D + C
-    return _matrix_residuals(_mass(model), D, model.K(velocity), np.asarray(eigenvalues),
+        GC = GC + C
+    return _matrix_residuals(_mass(model), GC, model.K(velocity), np.asarray(eigenvalues),
                              np.asarray(vectors))
 
 
@@ -218,11 +158,14 @@ def _known_definite(model, velocity: float) -> bool | None:
 
 
 # ----- the solver -------------------------------------------------------------------------
+#: Symmetric modes asked for beyond the previous speed's number (continuation).
+MIRROR_HINT_MARGIN = 1
+
+
 def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
-          sigma: complex | str = "auto", damping=None, tol: float = DEFAULT_TOL,
-          ncv: int | None = None, maxiter: int | None = None, start: Modes | None = None,
-          estimate: float | None = None, method: str = "auto",
-          factorization: str = "auto", symmetry: bool = True) -> Modes:
+          sigma: complex | str = "auto", damping=None, start: Modes | None = None,
+          estimate: float | None = None, symmetry: bool = True,
+          options: SolverOptions | None = None, **tuning) -> Modes:
     """Lowest ``count`` frequencies and complex mode shapes of the tape at speed V.
 
     Parameters
@@ -233,56 +176,64 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     count : int
         Number of frequencies (pairs ±iω), 1 <= count <= :func:`max_count` (n).
     sigma : "auto", 0 or complex i·ω_s
-        Shift, 1/s. ``"auto"``: i·ω_s just below the estimated lowest frequency, moved down
-        until the inertia of Q(iω_s) certifies few modes below it. ``0``: one factorization
-        of K, the ±iω pairs found together.
+        Shift, 1/s. ``"auto"``: just below the estimated lowest frequency, certified by the
+        inertia of Q(iω_s). ``0``: one factorization of K, the ±iω pairs found together.
     damping : Damping, float or (a, b), optional
-        Viscous damping c, N·s/m³ (C = c W), Rayleigh (a 1/s, b s): C = a M + b K(V), or a
-        :class:`gyroshell.damping.Damping` (see :func:`damping_operator`). Damped
-        eigenvalues are −δ + iω_d (``decay_rate`` δ, ``damping_ratio``); the count
-        certificate does not apply to them.
-    tol : float
-        Relative tolerance of the eigen-iteration.
-    ncv, maxiter : int, optional
-        ARPACK's Krylov basis size and restarts (giving either selects ARPACK).
+        See :func:`damping_operator`. Damped eigenvalues are −δ + iω_d (``decay_rate`` δ,
+        ``damping_ratio``); the count certificate does not apply to them.
     start : Modes, optional
         Modes at a nearby speed: their vectors start the iteration (continuation).
     estimate : float, optional
-        Estimate of the lowest frequency, rad/s, for the automatic shift (e.g. extrapolated
-        along a sweep); default the bottom of the travelling-wave band
-        (:func:`strip_frequency_estimate`). The shift is still certified by inertia.
-    method : {"auto", "lanczos", "arpack"}
-        See :func:`gyroshell.qep.gyroscopic_modes`.
-    factorization : {"auto", "cholmod", "superlu"}
-        Sparse factorization of the shift matrix (see
-        :func:`gyroshell.qep.gyroscopic_modes`): "auto" is CHOLMOD's Cholesky where cvxopt
-        is installed (the ``fast`` extra), else SuperLU.
+        Estimate of the lowest frequency for the automatic shift, rad/s (still certified by
+        inertia); default :func:`strip_frequency_estimate`.
     symmetry : bool
-        Use the tape's mirror symmetry about its centre line (same edges on both sides,
-        :mod:`gyroshell.mirror`) below critical without damping: the symmetric half's
-        ``count`` lowest frequencies, the antisymmetric half's below the highest of them
-        (counted by inertia), each on half the unknowns. The same modes as the full problem
-        (to round-off); False solves the full problem.
+        Solve on the mirror-symmetric halves where that applies (module notes; the same
+        modes to round-off); False solves the full problem.
+    options : SolverOptions, optional
+        The tuning knobs together; ``**tuning`` gives any of them (``tol``, ``ncv``,
+        ``maxiter``, ``method``, ``factorization``) by name, replacing the one in ``options``.
 
     Returns
     -------
     Modes
-        Above the critical speed (K(V) indefinite) ``supercritical`` is True and the
-        eigenvalues nearest zero are returned; ``stability`` says whether the tape diverges,
-        flutters or is gyroscopically stable there.
+        Above critical (K(V) indefinite) ``supercritical`` is True, the eigenvalues are
+        those nearest zero, and ``stability`` tells divergence, flutter or stable.
 
     Raises
     ------
     ParameterError
         Bad count, sigma, tol, ncv or damping.
     ConvergenceError
-        The eigen-solver did not converge, or the residuals or the mode count failed.
+        No convergence, or the residuals or the mode count failed.
     """
+    opts = SolverOptions.of(options, **tuning)
     velocity = check_speed(model, velocity)
-    # before any assembly: a refusal costs nothing
-    check_count(count, model.unknowns)
-    factorization = check_factorization(factorization)
+    check_count(count, model.unknowns)  # before any assembly: a refusal costs nothing
+    check_factorization(opts.factorization)
     C = damping_operator(model, velocity, damping)
+    estimate, shift, first = _checked_guesses(model, velocity, sigma, start, estimate)
+    if check_flag("symmetry", symmetry) and C is None and shift is None:
+        result = _try_mirror(model, velocity, count, start, first, estimate, opts)
+        if result is not None:
+            return result
+    result = gyroscopic_modes(_mass(model), model.G(velocity), model.K(velocity), count,
+                              sigma=shift, C=C, estimate=estimate if estimate > 0 else None,
+                              definite=_known_definite(model, velocity), start=first,
+                              options=opts)
+    return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
+                 result.supercritical, result.info, result.damped)
+
+
+def check_flag(name: str, value) -> bool:
+    """``value`` if it is True or False, else a ParameterError naming ``name``."""
+    if not isinstance(value, bool):
+        raise ParameterError(f"{name} must be True or False, got {value!r}")
+    return value
+
+
+def _checked_guesses(model: TapeModel, velocity: float, sigma, start: Modes | None,
+                     estimate: float | None):
+    """(estimate in rad/s, shift or None for automatic, start pairs or None), validated."""
     if estimate is None:
         estimate = strip_frequency_estimate(model.params, model.grid, velocity)
     elif isinstance(estimate, bool) or not isinstance(estimate, (int, float)) or \
@@ -296,36 +247,33 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         if not isinstance(start, Modes) or start.vectors.shape[0] != model.unknowns:
             raise ParameterError("start must be the Modes of the same model")
         first = (start.eigenvalues, start.vectors)
-    if not isinstance(symmetry, bool):
-        raise ParameterError(f"symmetry must be True or False, got {symmetry!r}")
-    if symmetry and C is None and shift is None and method in ("auto", "lanczos") \
-            and ncv is None and maxiter is None and _known_definite(model, velocity):
-        split = mirror_split(model)
-        if split is not None and count <= max_count(split.antisymmetric.shape[1]):
-            # a previous speed's split (continuation) says how many are symmetric
-            hint = (start.info.get("mirror") or {}).get("symmetric") if start else None
-            guess = count if hint is None else min(count, hint + MIRROR_HINT_MARGIN)
-            for symmetric in dict.fromkeys((guess, count)):
-                result = _mirror_modes(model, split, velocity, count, first, estimate,
-                                       symmetric, tol=tol, method=method,
-                                       factorization=factorization)
-                if result is not None:
-                    return result
-    result = gyroscopic_modes(
-        _mass(model), model.G(velocity), model.K(velocity), count, sigma=shift, C=C,
-        estimate=estimate if estimate > 0 else None,
-        definite=_known_definite(model, velocity), tol=tol, ncv=ncv, maxiter=maxiter,
-        start=first, method=method, factorization=factorization)
-    return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
-                 result.supercritical, result.info, result.damped)
+    return estimate, shift, first
 
 
-#: Symmetric modes asked for beyond the previous speed's number (continuation).
-MIRROR_HINT_MARGIN = 1
+def _try_mirror(model: TapeModel, velocity: float, count: int, start: Modes | None, first,
+                estimate: float, options: SolverOptions) -> Modes | None:
+    """The modes from the mirror-symmetric halves (undamped, automatic shift), or None where
+    the halves do not apply: K(V) not proved definite, ARPACK asked for, no mirror symmetry,
+    too many modes for a half, or the counts did not close."""
+    if options.method not in ("auto", "lanczos") or options.ncv is not None or \
+            options.maxiter is not None or not _known_definite(model, velocity):
+        return None
+    split = mirror_split(model)
+    if split is None or count > max_count(split.antisymmetric.shape[1]):
+        return None
+    # a previous speed's split (continuation) says how many are symmetric
+    hint = (start.info.get("mirror") or {}).get("symmetric") if start else None
+    guess = count if hint is None else min(count, hint + MIRROR_HINT_MARGIN)
+    for symmetric in dict.fromkeys((guess, count)):
+        result = _mirror_modes(model, split, velocity, count, first, estimate, symmetric,
+                               options)
+        if result is not None:
+            return result
+    return None
 
 
 def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, estimate,
-                  symmetric: int, **options) -> Modes | None:
+                  symmetric: int, options: SolverOptions) -> Modes | None:
     """The lowest ``count`` modes of a mirror-symmetric tape below critical, from its halves.
 
     The symmetric half gives its ``symmetric`` lowest frequencies, up to ω̄; the inertia of
@@ -341,46 +289,56 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
         M, G, K = split.matrices(model, velocity, which)
         first = None if start is None else (start[0], split.half(which).T @ start[1])
         halves[which] = (M, G, K, first)
+    guess = estimate if estimate > 0 else None
     M, G, K, first = halves["symmetric"]
-    sym = gyroscopic_modes(M, G, K, symmetric, estimate=estimate if estimate > 0 else None,
-                           definite=True, start=first, **options)
+    sym = gyroscopic_modes(M, G, K, symmetric, estimate=guess, definite=True, start=first,
+                           options=options)
     omega_bar = float(sym.omega[-1])
     M, G, K, first = halves["antisymmetric"]
-    below = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
-                         options.get("factorization", "auto"))
+    below, counted_by = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
+                                     options.factorization)
     if below is None or symmetric + below < count:
         return None
     parts = [(sym, split.symmetric)]
     if below:
-        anti = gyroscopic_modes(M, G, K, min(below, count),
-                                estimate=estimate if estimate > 0 else None,
-                                definite=True, start=first, **options)
+        anti = gyroscopic_modes(M, G, K, min(below, count), estimate=guess, definite=True,
+                                start=first, options=options)
         if np.any(anti.omega >= omega_bar):   # the count and the solve disagree
             return None
         parts.append((anti, split.antisymmetric))
+    return _joined(model, velocity, count, parts, {
+        "antisymmetric_below": below, "count_frequency": omega_bar,
+        "count_factorization": counted_by})
+
+
+def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: dict
+            ) -> Modes:
+    """The ``count`` lowest of the halves' modes (``parts``: (result, embedding) pairs, the
+    symmetric first), with the halves' costs summed and ``mirror`` added to the info."""
+    sym = parts[0][0]
     lam = np.concatenate([r.eigenvalues for r, _ in parts])
     vecs = np.hstack([P @ r.vectors for r, P in parts])
     order = np.argsort(np.abs(lam.imag), kind="stable")[:count]
-    lam, vecs = lam[order], _normalize(vecs[:, order])
+    lam, vecs = lam[order], normalize(vecs[:, order])
     res = relative_residuals(model, velocity, lam, vecs)
     info = dict(sym.info)
     for key in ("factor_time", "solve_time", "substitution_time", "operator_applications"):
         info[key] = sum(r.info.get(key, 0) or 0 for r, _ in parts)
     info.update(max_residual=float(res.max()), mirror={
         "symmetric": int(np.count_nonzero(order < sym.count)),
-        "antisymmetric": int(np.count_nonzero(order >= sym.count)),
-        "antisymmetric_below": below, "count_frequency": omega_bar})
+        "antisymmetric": int(np.count_nonzero(order >= sym.count)), **mirror})
     return Modes(model.grid, velocity, lam, vecs, res, False, info, False)
 
 
-def _count_below(Q: sp.spmatrix, factorization: str) -> int | None:
-    """Negative eigenvalues of the Hermitian Q: CHOLMOD's LDLᴴ count (where selected), else
-    (or if it has no answer) SuperLU's pivot count; None if neither is available."""
-    if _resolve_factorization(factorization) == "cholmod":
+def _count_below(Q: sp.spmatrix, factorization: str) -> tuple[int | None, str]:
+    """Negative eigenvalues of the Hermitian Q and the factorization that counted them:
+    CHOLMOD's LDLᴴ count (where selected), else (or if it has no answer) SuperLU's pivot
+    count; None if neither is available."""
+    if resolve_factorization(factorization) == "cholmod":
         count = cholesky.negative_count(Q)
         if count is not None:
-            return count
-    return factor_inertia(Q).negatives
+            return count, "cholmod"
+    return factor_inertia(Q).negatives, "superlu"
 
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options

@@ -38,11 +38,11 @@ from dataclasses import asdict
 import numpy as np
 import scipy.linalg as sl
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from ..core.errors import ParameterError
 from ..core.parallel import blas_threads as limit_blas_threads
 from ..core.progress import progress_bar
+from ..linalg.factorization import splu
 from ..plot import bode
 from ..results.base import Result, dataset, from_json, get, put
 from ..results.frequency_response import FrequencyResponse
@@ -168,10 +168,7 @@ class _Operators:
 
     def factor(self, omega: float):
         """A solver b -> Q(ω)⁻¹ b for complex b (one sparse LU)."""
-        # SuperLU directly: the symmetric mode with a pivot threshold that keeps this cheap
-        # (see PIVOT_THRESHOLD) is not an option of linalg.factorization's back-ends.
-        lu = spla.splu(self.Q(omega), permc_spec="MMD_AT_PLUS_A",
-                       diag_pivot_thresh=PIVOT_THRESHOLD, options={"SymmetricMode": True})
+        lu = splu(self.Q(omega), symmetric_mode=True, pivot_threshold=PIVOT_THRESHOLD)
         if omega != 0.0:
             return lu.solve
         return lambda b: lu.solve(np.ascontiguousarray(b.real)) + 1j * lu.solve(

@@ -2,7 +2,7 @@
 
 The eigen-solver's shift matrix Q(iω_s) = K − ω_s²M + iω_sG is Hermitian, and positive
 definite whenever the shift lies below the lowest frequency (no negative eigenvalue: the
-count certificate of :mod:`gyroshell.qep` is then zero); K(V) is symmetric positive
+count certificate of :mod:`gyroshell.linalg.qep` is then zero); K(V) is symmetric positive
 definite below the critical speed. For such matrices a supernodal Cholesky LLᴴ does half
 the work of an LU and proves definiteness by succeeding. CHOLMOD (SuiteSparse), reached
 through the binary wheels of ``cvxopt`` (the ``fast`` extra), factors the L_x/L_y = 19
@@ -15,7 +15,7 @@ taken from the pool belongs to its :class:`CholeskyFactor` until ``release()`` g
 back (then the factor must not be used); one that is never released is simply collected.
 
 Without cvxopt, :func:`available` is False and callers use SuperLU
-(:func:`gyroshell.inertia.factor_inertia`).
+(:func:`gyroshell.linalg.inertia.factor_inertia`).
 """
 
 from __future__ import annotations
@@ -112,7 +112,7 @@ def _pattern(lower: sp.csc_matrix, typecode: str, supernodal: bool = True) -> _P
 class CholeskyFactor:
     """A CHOLMOD factorization P A Pᵀ = L Lᴴ of a positive definite matrix.
 
-    Duck-compatible with :class:`gyroshell.inertia.InertiaFactor` where the solvers use it:
+    Duck-compatible with :class:`gyroshell.linalg.inertia.InertiaFactor` where the solvers use it:
     ``negatives`` is 0 (proved definite), ``singular`` and ``definite`` follow, ``solve``
     takes real or complex right-hand sides (one vector or columns).
     """
@@ -188,7 +188,7 @@ def negative_count(matrix: sp.spmatrix) -> int | None:
     """Number of negative eigenvalues of a symmetric/Hermitian sparse matrix (Sylvester).
 
     CHOLMOD's simplicial LDLᴴ (a fill-reducing symmetric permutation, no pivoting: the same
-    factorization as :func:`gyroshell.inertia.factor_inertia`'s SuperLU in symmetric mode
+    factorization as :func:`gyroshell.linalg.inertia.factor_inertia`'s SuperLU in symmetric mode
     with diagonal pivots) counts the negative entries of D. About 2.5x faster than SuperLU
     on the tape's half-width shift matrices. None if a pivot is zero or not finite, or
     CHOLMOD fails: the count is then unknown (use SuperLU's).

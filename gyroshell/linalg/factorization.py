@@ -17,12 +17,20 @@ The back-ends compared (``benchmarks/bench_newmark.py`` prints the measured medi
 
 So "auto" is SuperLU: the fastest reliable one, shipped with scipy, always available. The
 others are opt-in by name where installed, and the tests check that all agree.
+
+Every sparse LU of the package goes through :func:`splu` (one place for SuperLU's options).
+The eigen-solvers' symmetric/Hermitian factorizations choose between CHOLMOD's Cholesky and
+SuperLU's LDLᴴ (:data:`gyroshell.linalg.cholesky.BACKENDS`): :func:`resolve_factorization`
+says what ``"auto"`` means at the moment of the call, and :func:`use_factorization` sets
+that for a block of code (every engine below it, inertia counts included, follows).
 """
 
 from __future__ import annotations
 
+import contextvars
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from typing import Protocol
 
 import numpy as np
@@ -31,6 +39,93 @@ import scipy.sparse.linalg as spla
 from scipy.linalg import lapack
 
 from ..core.errors import ParameterError
+from . import cholesky
+
+#: Column ordering of every SuperLU factorization: minimum degree on Aᵀ + A (least fill on
+#: the tape's matrices, whose pattern is symmetric; about 20 % less than COLAMD).
+ORDERING = "MMD_AT_PLUS_A"
+
+
+def splu(matrix: sp.spmatrix, *, symmetric_mode: bool = False, ordering: str = ORDERING,
+         pivot_threshold: float = 0.0) -> spla.SuperLU:
+    """SuperLU of a square sparse matrix, by default with the package's ordering.
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix, shape (n, n)
+        Real or complex.
+    symmetric_mode : bool
+        Prefer diagonal pivots (SuperLU's symmetric mode): with ``pivot_threshold = 0``,
+        P A Pᵀ = L D Lᴴ for a symmetric or Hermitian matrix, whose pivots then give its
+        inertia (:mod:`gyroshell.linalg.inertia`).
+    ordering : str
+        SuperLU's column ordering (``permc_spec``); :data:`ORDERING` unless a caller's
+        matrices are known to fill less under another (the bearing's Jacobian: COLAMD).
+    pivot_threshold : float
+        In symmetric mode, how much smaller than the column's largest a diagonal pivot may
+        be before another is taken (SuperLU's ``diag_pivot_thresh``), 0 to 1.
+
+    Raises
+    ------
+    RuntimeError
+        SuperLU's "Factor is exactly singular".
+    """
+    if symmetric_mode:
+        return spla.splu(sp.csc_matrix(matrix), permc_spec=ordering,
+                         diag_pivot_thresh=pivot_threshold, options={"SymmetricMode": True})
+    return spla.splu(sp.csc_matrix(matrix), permc_spec=ordering)
+
+
+#: What "auto" means for the eigen-solvers' factorizations inside :func:`use_factorization`
+#: (None: CHOLMOD where installed).
+_AUTO_FACTORIZATION: contextvars.ContextVar[str | None] = contextvars.ContextVar(
+    "gyroshell_auto_factorization", default=None)
+
+
+def check_factorization(factorization) -> str:
+    """One of :data:`gyroshell.linalg.cholesky.BACKENDS`; "cholmod" only where cvxopt is
+    installed. Raises ParameterError otherwise."""
+    if factorization not in cholesky.BACKENDS:
+        raise ParameterError(f"factorization must be one of {', '.join(cholesky.BACKENDS)}, "
+                             f"got {factorization!r}")
+    if factorization == "cholmod" and not cholesky.available():
+        raise ParameterError("factorization 'cholmod' needs cvxopt "
+                             "(pip install 'gyroshell[fast]'); use 'superlu' or 'auto'")
+    return factorization
+
+
+def resolve_factorization(factorization: str = "auto") -> str:
+    """"cholmod" or "superlu": what an eigen-solver uses for ``factorization``, now.
+
+    "auto" is the back-end set by an enclosing :func:`use_factorization`, else CHOLMOD where
+    cvxopt is installed (measured faster: module notes of :mod:`gyroshell.linalg.cholesky`),
+    else SuperLU. Read at call time by every caller, so one setting reaches all of them.
+    """
+    if factorization != "auto":
+        return factorization
+    chosen = _AUTO_FACTORIZATION.get()
+    if chosen is not None:
+        return chosen
+    return "cholmod" if cholesky.available() else "superlu"
+
+
+@contextmanager
+def use_factorization(factorization: str) -> Iterator[str]:
+    """Within the block, ``factorization="auto"`` means ``factorization`` ("cholmod" or
+    "superlu") for every eigen-solver, engine and inertia count that resolves it.
+
+    Examples
+    --------
+    >>> with use_factorization("superlu"):
+    ...     resolve_factorization("auto")
+    'superlu'
+    """
+    factorization = check_factorization(factorization)
+    token = _AUTO_FACTORIZATION.set(None if factorization == "auto" else factorization)
+    try:
+        yield resolve_factorization("auto")
+    finally:
+        _AUTO_FACTORIZATION.reset(token)
 
 
 class Factorization(Protocol):
@@ -48,17 +143,16 @@ class SuperLUFactor:
     Parameters
     ----------
     matrix : scipy.sparse matrix
-        Square, real.
-    permc_spec : str
-        Column ordering; ``"MMD_AT_PLUS_A"`` gave the least fill on K_eq (a symmetric
-        pattern), about 20 % less than scipy's default COLAMD.
+        Square, real; ordered by :data:`ORDERING`, which gave the least fill on K_eq.
+    ordering : str
+        Another SuperLU column ordering, for matrices that fill less under it.
     """
 
     name = "superlu"
 
-    def __init__(self, matrix: sp.spmatrix, *, permc_spec: str = "MMD_AT_PLUS_A") -> None:
+    def __init__(self, matrix: sp.spmatrix, *, ordering: str = ORDERING) -> None:
         start = time.perf_counter()
-        self._lu = spla.splu(sp.csc_matrix(matrix), permc_spec=permc_spec)
+        self._lu = splu(matrix, ordering=ordering)
         self.factor_time = time.perf_counter() - start
         self.nnz = int(self._lu.L.nnz + self._lu.U.nnz)
 

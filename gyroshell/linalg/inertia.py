@@ -20,9 +20,9 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-#: Column ordering of the symmetric-mode LU: minimum degree on Aᵀ + A (least fill measured
-#: on the tape's matrices, whose pattern is symmetric).
-ORDERING = "MMD_AT_PLUS_A"
+from .factorization import ORDERING, splu
+
+__all__ = ["ORDERING", "InertiaFactor", "factor_inertia"]
 
 
 @dataclass(frozen=True)
@@ -83,8 +83,7 @@ def factor_inertia(matrix: sp.spmatrix) -> InertiaFactor:
         off the diagonal or met a zero or non-finite pivot; ``lu`` None if exactly singular.
     """
     try:
-        lu = spla.splu(sp.csc_matrix(matrix), permc_spec=ORDERING, diag_pivot_thresh=0.0,
-                       options={"SymmetricMode": True})
+        lu = splu(matrix, symmetric_mode=True)
     except RuntimeError:  # "Factor is exactly singular"
         return InertiaFactor(None, None)
     if not np.array_equal(lu.perm_r, lu.perm_c):

@@ -77,7 +77,7 @@ CHUNKS_PER_WORKER = 4
 def classify_stability(eigenvalues, *args, **kwargs):
     """:func:`gyroshell.qep.classify_stability`, imported on first use (it loads scipy.linalg,
     which the CLI's parser and refusals do not need)."""
-    from ..linalg.qep import classify_stability as classify
+    from .stability import classify_stability as classify
 
     return classify(eigenvalues, *args, **kwargs)
 

@@ -220,7 +220,7 @@ def test_critical_refusals():
 
 def test_modes_text_says_what_is_true():
     from gyroshell.cli.eigen import stability_sentence
-    from gyroshell.linalg.qep import gyroscopic_modes
+    from gyroshell.engines.gyroscopic import gyroscopic_modes
 
     def two_dof(k1, k2, g):
         return gyroscopic_modes(np.eye(2), np.array([[0.0, g], [-g, 0.0]]), np.diag([k1, k2]),

@@ -200,7 +200,7 @@ def test_count_above_the_limit_is_refused_quickly():
     from gyroshell.engines.eigen import max_count
 
     model = _model(length_ratio=19.0)
-    limit = max_count(model.size)
+    limit = max_count(model.unknowns)
     with pytest.raises(ParameterError, match=rf"count must be in \[1, {limit}\]"):
         modes(model, 0.0, limit + 1)
 
@@ -215,4 +215,46 @@ def test_bending_is_positive_semidefinite_so_K_is_definite_below_string_speed(ed
                                      poisson=nu))
     bending = model.A - sp.diags(model.params.k * model.grid.areas)
     shift = 1e-12 * abs(bending).sum(axis=0).max()
-    assert factor_inertia(bending + shift * sp.identity(model.size)).negatives == 0
+    assert factor_inertia(bending + shift * sp.identity(model.unknowns)).negatives == 0
+
+
+def test_every_factorization_reaches_the_mirror_inertia_count(every_factorization):
+    """The fixture's back-end reaches the antisymmetric half's inertia count too (it was
+    CHOLMOD wherever cvxopt is installed, whatever the fixture said): the count reports
+    which factorization made it."""
+    model = _model(length_ratio=2.0)
+    res = modes(model, 10.0, 4)
+    assert res.info["factorization"] == every_factorization
+    assert res.info["mirror"]["count_factorization"] == every_factorization
+    assert res.info["mirror"]["antisymmetric_below"] >= res.info["mirror"]["antisymmetric"]
+
+
+def test_use_factorization_is_read_at_call_time_and_restored(every_factorization):
+    from gyroshell.linalg.factorization import resolve_factorization, use_factorization
+
+    outside = resolve_factorization("auto")
+    assert outside == every_factorization
+    with use_factorization("superlu") as chosen:
+        assert chosen == "superlu" == resolve_factorization("auto")
+        assert resolve_factorization("cholmod") == "cholmod"   # an explicit choice stands
+        assert modes(_model(length_ratio=2.0), 10.0, 2).info["factorization"] == "superlu"
+    assert resolve_factorization("auto") == outside
+    with pytest.raises(ParameterError, match="factorization must be one of"):
+        with use_factorization("mumps"):
+            pass
+
+
+def test_solver_options_group_the_knobs_and_keywords_still_work():
+    from gyroshell.linalg.qep import SolverOptions
+
+    model = _model(length_ratio=2.0)
+    by_keyword = modes(model, 20.0, 3, tol=1e-12, method="arpack", symmetry=False)
+    grouped = modes(model, 20.0, 3, options=SolverOptions(tol=1e-12, method="arpack"),
+                    symmetry=False)
+    assert np.array_equal(by_keyword.eigenvalues, grouped.eigenvalues)
+    assert grouped.info["method"] == "arpack"
+    # a keyword knob replaces the one in options
+    assert modes(model, 20.0, 3, options=SolverOptions(method="arpack"),
+                 method="lanczos", symmetry=False).info["method"] == "lanczos"
+    with pytest.raises(TypeError, match="unexpected keyword argument 'tolerance'"):
+        modes(model, 20.0, 3, tolerance=1e-9)

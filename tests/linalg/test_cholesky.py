@@ -10,7 +10,8 @@ import scipy.sparse as sp
 
 from gyroshell import ParameterError, TapeModel, TapeParameters
 from gyroshell.engines.eigen import modes, strip_frequency_estimate
-from gyroshell.linalg import cholesky, qep
+from gyroshell.linalg import cholesky
+from gyroshell.linalg.factorization import resolve_factorization
 from gyroshell.linalg.inertia import factor_inertia
 
 pytestmark = pytest.mark.skipif(not cholesky.available(), reason="cvxopt not installed")
@@ -118,7 +119,7 @@ def test_factorization_refusals(monkeypatch):
     assert not cholesky.available()
     with pytest.raises(ParameterError, match="needs cvxopt"):
         modes(model, 10.0, 2, factorization="cholmod")
-    assert qep._resolve_factorization("auto") == "superlu"
+    assert resolve_factorization("auto") == "superlu"
     assert modes(model, 10.0, 2).info["factorization"] == "superlu"
 
 

@@ -10,7 +10,9 @@ import scipy.sparse as sp
 
 from gyroshell import ParameterError, TapeModel, TapeParameters
 from gyroshell.engines.eigen import modes
-from gyroshell.linalg.qep import DENSE_LIMIT, classify_stability, gyroscopic_modes, max_count
+from gyroshell.engines.gyroscopic import gyroscopic_modes
+from gyroshell.linalg.qep import DENSE_LIMIT, max_count
+from gyroshell.studies.stability import classify_stability
 
 # Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
 pytestmark = pytest.mark.usefixtures("every_factorization")
@@ -230,12 +232,14 @@ def test_damped_navier_frequencies_converge_second_order():
     assert res.decay_rate == pytest.approx(np.full(3, delta), rel=1e-9)
 
 
-def test_docstring_examples():
+@pytest.mark.parametrize("name", ["gyroshell.studies.stability",
+                                  "gyroshell.linalg.factorization"])
+def test_docstring_examples(name):
     import doctest
+    import importlib
 
-    import gyroshell.linalg.qep
-
-    result = doctest.testmod(gyroshell.linalg.qep, optionflags=doctest.NORMALIZE_WHITESPACE)
+    module = importlib.import_module(name)
+    result = doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE)
     assert result.attempted > 0 and result.failed == 0
 
 
@@ -252,3 +256,21 @@ def test_out_of_range_damping_is_a_clean_convergence_error():
     model = TapeModel(TapeParameters(length_ratio=1.0, spacing=WIDTH / 8))
     with pytest.raises(ConvergenceError, match="out of floating-point range"):
         modes(model, 0.0, 2, damping=1e300)
+
+
+def test_one_superlu_helper_serves_lu_and_inertia(rng):
+    """linalg.factorization.splu is the package's SuperLU: general LU and the symmetric-mode
+    LDLᴴ whose pivots factor_inertia counts."""
+    from gyroshell.linalg.factorization import splu
+    from gyroshell.linalg.inertia import factor_inertia
+
+    X = rng.standard_normal((60, 60))
+    A = sp.csc_matrix(X + X.T - 3.0 * np.eye(60))
+    b = rng.standard_normal(60)
+    assert np.allclose(A @ splu(A).solve(b), b)
+    lu = splu(A, symmetric_mode=True)
+    assert np.array_equal(lu.perm_r, lu.perm_c)   # diagonal pivots only
+    negatives = int(np.count_nonzero(np.linalg.eigvalsh(A.toarray()) < 0))
+    assert factor_inertia(A).negatives in (None, negatives)
+    with pytest.raises(RuntimeError):
+        splu(sp.csc_matrix((3, 3)))
