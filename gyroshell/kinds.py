@@ -11,10 +11,24 @@ import os
 from importlib import import_module
 from pathlib import Path
 
-from .results import base, storage
+from .core.errors import ParameterError
+from .core.files import read_csv_exact
+from .results import base
 
 #: The modules that define result kinds (each registers its kinds when imported).
-KIND_MODULES: tuple[str, ...] = ()
+KIND_MODULES: tuple[str, ...] = (
+    "gyroshell.results.static",
+    "gyroshell.results.transient",
+    "gyroshell.results.modes",
+    "gyroshell.results.critical",
+    "gyroshell.results.frequency_response",
+    "gyroshell.results.tables",
+    "gyroshell.engines.frequency_response",
+    "gyroshell.studies.sweep",
+    "gyroshell.studies.campbell",
+    "gyroshell.studies.parameter_study",
+    "gyroshell.bearing.results",
+)
 
 
 def import_kinds() -> None:
@@ -24,18 +38,42 @@ def import_kinds() -> None:
 
 
 def load(path: str | os.PathLike[str]):
-    """Read a result written by ``save``: the same kind of object, equal to the original.
+    """Read a saved result: the object of the kind the file stores, equal to the original.
 
-    A ``.csv`` or ``.parquet`` file gives a pandas DataFrame; a NetCDF file gives the
-    object named by its ``gyroshell_type`` attribute (a DataFrame for ``table``).
+    Parameters
+    ----------
+    path : path
+        A NetCDF file written by a result's ``save`` (or :func:`save`): the object of its
+        ``gyroshell_type`` (a :class:`pandas.DataFrame` for a ``table``, as the previous
+        release gave); or a ``.csv`` / ``.parquet`` table: a DataFrame, floats exact.
     """
     import_kinds()
-    return storage.load(path)
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix in base.TABLE_SUFFIXES:
+        if not path.is_file():
+            raise FileNotFoundError(f"no such file: {path}")
+        if suffix == ".parquet":
+            import pandas as pd
+
+            return pd.read_parquet(path)
+        return read_csv_exact(path, keep_default_na=False, na_values=["NaN"])
+    result = base.read(path)
+    table = base.kinds().get("table")
+    return result.frame if table is not None and isinstance(result, table) else result
 
 
 def save(result, path: str | os.PathLike[str], *, params=None) -> Path:
-    """Write a result (or a pandas DataFrame) to ``path``: NetCDF (``.nc``) for any result,
-    CSV or Parquet for tables; whole or not at all. Returns the path."""
-    if isinstance(result, base.Result):
-        return result.save(path, params=params)
-    return storage.save(result, path, params=params)
+    """Write a result, or a :class:`pandas.DataFrame`, to ``path``: NetCDF (``.nc``) for
+    any result, CSV or Parquet for tables; whole or not at all. Returns the path.
+
+    ``params`` (a :class:`~gyroshell.TapeParameters`) is stored with results that do not
+    carry their tape."""
+    import pandas as pd
+
+    if isinstance(result, pd.DataFrame):
+        import_kinds()
+        result = base.kinds()["table"](result)
+    if not isinstance(result, base.Result):
+        raise ParameterError(f"cannot save a {type(result).__name__}: not a gyroshell result")
+    return result.save(path, params=params)

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
 
-#: Attributes that hold caches or live solver state, not data a result carries.
+#: Attributes that hold caches or live solver state, not data a result carries (values of
+#: ``functools.cached_property`` are caches too: they are computed again on use).
 TRANSIENT_ATTRIBUTES = ("_cache", "_factor", "_lu", "_solver")
 
 
@@ -27,7 +29,9 @@ def _fields(obj) -> dict:
     for name in getattr(type(obj), "__slots__", ()):
         if hasattr(obj, name):
             state[name] = getattr(obj, name)
-    return {k: v for k, v in state.items() if k not in TRANSIENT_ATTRIBUTES}
+    cls = type(obj)
+    return {k: v for k, v in state.items() if k not in TRANSIENT_ATTRIBUTES
+            and not isinstance(getattr(cls, k, None), functools.cached_property)}
 
 
 def assert_same(a, b, where: str = "result", _seen: set | None = None) -> None:

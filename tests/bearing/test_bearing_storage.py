@@ -1,4 +1,4 @@
-"""A steady bearing state survives save/load (NetCDF via gyroshell.results.storage): the same
+"""A steady bearing state survives save/load (NetCDF, the result protocol): the same
 fields, summary and model, and the reloaded state is still a steady state."""
 
 from __future__ import annotations

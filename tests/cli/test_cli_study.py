@@ -70,7 +70,7 @@ def test_save_option_writes_a_loadable_result(tmp_path, command, capsys):
         assert np.array_equal(back.eigenvalues, modes(model, 40.0, 3).eigenvalues)
     else:
         assert list(back["velocity"].unique()) == [0.0, 50.0]
-    assert gyroshell.results.storage.metadata(path)["parameters"] == BASE
+    assert gyroshell.results.base.metadata(path)["parameters"] == BASE
 
 
 def test_transient_save(tmp_path, capsys):

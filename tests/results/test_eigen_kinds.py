@@ -10,8 +10,7 @@ import numpy as np
 import pytest
 from examples_eigen import EXAMPLES, PARAMS, damped_modes_example
 
-from gyroshell.results import storage
-from gyroshell.results.base import from_dataset, kinds, read
+from gyroshell.results.base import from_dataset, kinds, metadata, read
 from gyroshell.results.critical import CriticalSpeeds, Divergence
 from gyroshell.results.modes import GyroscopicModes, Modes
 
@@ -47,7 +46,7 @@ def test_every_kind_round_trips_exactly(built, kind, tmp_path):
     path = result.save(tmp_path / f"{kind}.nc", params=PARAMS)
     back = read(path)
     same_result(result, back)
-    assert storage.metadata(path)["parameters"] == PARAMS
+    assert metadata(path)["parameters"] == PARAMS
 
 
 def test_damped_modes_round_trip(tmp_path):
@@ -77,17 +76,6 @@ def test_critical_summary_carries_the_routes(built):
     assert s["eigen_solves"] == c.info["evaluations"] and s["mu"] == c.info["mu"]
     assert from_dataset(c.to_xarray()).info["bracket"] == c.info["bracket"]
     assert isinstance(from_dataset(c.to_xarray()).info["bracket"], tuple)
-
-
-def test_previous_release_files_still_load(built):
-    """The old converters' datasets (kinds "modes" and "critical") read as the new kinds."""
-    if not hasattr(storage, "_modes"):
-        pytest.skip("the previous release's converters are gone")
-    for kind in ("modes", "critical"):
-        old = storage._modes(built[kind], PARAMS) if kind == "modes" else \
-            storage._critical(built[kind], PARAMS)
-        same_result(built[kind], from_dataset(old))
-        assert set(old.variables) == set(built[kind].to_xarray().variables)
 
 
 def test_frames_and_plots(built):

@@ -64,8 +64,9 @@ def test_save_and_load_give_the_same_object(kind, tmp_path):
     result = EXAMPLES[kind]()
     assert type(result).kind == kind
     path = result.save(tmp_path / f"{kind}.nc")
-    loaded = gyroshell.load(path)
-    assert_same(result, loaded, kind)
+    assert_same(result, base.read(path), kind)
+    loaded = gyroshell.load(path)  # the same, but a table is given back as its DataFrame
+    assert_same(result.to_frame() if kind == "table" else result, loaded, kind)
 
 
 @pytest.mark.parametrize("kind", KINDS)

@@ -19,7 +19,7 @@ from gyroshell import (
     sweep,
 )
 from gyroshell.core.errors import ParameterError
-from gyroshell.results.storage import metadata
+from gyroshell.results.base import metadata
 
 PARAMS = TapeParameters(length_ratio=4, spacing=6.35e-3 / 10)
 
@@ -82,7 +82,7 @@ def test_critical_round_trip(model, tmp_path):
     crit = critical_speeds(model)
     back = gyroshell.load(crit.save(tmp_path / "crit.nc", params=PARAMS))
     assert back.as_dict() == crit.as_dict()
-    assert back.info["bracket"] == list(crit.info["bracket"])
+    assert back.info["bracket"] == crit.info["bracket"]
 
 
 @pytest.mark.parametrize("energy, keep", [(True, True), (False, True), (False, False)])

@@ -18,12 +18,12 @@ import pytest
 sys.path.insert(0, str(Path(__file__).parent))
 from examples_studies import EXAMPLES, TINY  # noqa: E402
 
-from gyroshell.results import base, storage  # noqa: E402
+import gyroshell  # noqa: E402
+from gyroshell.results import base  # noqa: E402
 from gyroshell.studies.campbell import (  # noqa: E402
     CampbellDiagram,
     _crossings_and_veerings,
 )
-from gyroshell.studies.parameter_study import StudyResult  # noqa: E402
 from gyroshell.studies.sweep import SweepResult  # noqa: E402
 
 pytest.importorskip("xarray")
@@ -74,7 +74,7 @@ def test_every_kind_round_trips_through_a_dataset(example):
 @pytest.mark.parametrize("suffix", [".csv", ".parquet"])
 def test_tables_go_to_csv_and_parquet(example, tmp_path, suffix):
     path = example.save(tmp_path / f"t{suffix}")
-    back = storage.load(path)
+    back = gyroshell.load(path)
     pd.testing.assert_frame_equal(back, example.to_frame(), check_exact=True)
 
 
@@ -115,18 +115,9 @@ def test_a_campbell_diagram_with_crossings_and_veerings_round_trips(tmp_path):
     assert back.critical_speed is None
 
 
-def test_old_study_files_still_load(tmp_path):
-    study = EXAMPLES["study"]()
-    old = storage.to_xarray(study)  # the previous release's converter
-    same_fields(study, StudyResult.from_xarray(old))
-    path = tmp_path / "old.nc"
-    storage.save(study, path)
-    same_fields(study, base.read(path))
-
-
 def test_old_sweep_and_campbell_tables_load_as_tables(tmp_path):
     """Before, a sweep and a Campbell diagram were saved as their table (kind "table")."""
     for result in (EXAMPLES["sweep"](), EXAMPLES["campbell"]()):
-        path = storage.save(result.to_frame(), tmp_path / "old.nc")
-        pd.testing.assert_frame_equal(storage.load(path), result.to_frame(),
+        path = gyroshell.save(result.to_frame(), tmp_path / "old.nc")
+        pd.testing.assert_frame_equal(gyroshell.load(path), result.to_frame(),
                                       check_exact=True)

@@ -16,8 +16,7 @@ import gyroshell
 from gyroshell.core.errors import ParameterError
 from gyroshell.engines.frequency_response import ReducedModel, frequency_response
 from gyroshell.engines.newmark import Newmark
-from gyroshell.results import storage
-from gyroshell.results.base import from_dataset, read
+from gyroshell.results.base import read
 from gyroshell.results.frequency_response import FrequencyResponse
 from gyroshell.results.static import StaticSolution
 from gyroshell.results.tables import Table
@@ -120,20 +119,6 @@ def test_table_reads_back_as_the_dataframe(tmp_path):
     assert table.summary() == {"rows": 3, "columns": ["velocity", "omega", "stability"]}
     csv = table.save(tmp_path / "table.csv")
     pd.testing.assert_frame_equal(pd.read_csv(csv), table.frame, check_exact=True)
-
-
-@pytest.mark.parametrize("kind", ["static", "transient"])
-def test_files_of_the_previous_release_still_load(kind, tmp_path):
-    """The old converters (results.storage) wrote the same variables; a transient then had
-    no head histories and a static solution no parameters of its own."""
-    original = EXAMPLES[kind]()
-    old = storage.to_xarray(original, params=PARAMS)
-    loaded = from_dataset(old)
-    if kind == "static":
-        same_fields(dataclasses.replace(original, params=PARAMS), loaded)
-    else:
-        assert "head_displacements" not in old
-        same_fields(dataclasses.replace(original, head_displacements=None), loaded)
 
 
 def test_summaries_are_plain_json_values():

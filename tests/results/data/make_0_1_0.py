@@ -17,10 +17,11 @@ WRAP = np.radians(15.0)
 
 
 def main(out: Path) -> None:
+    from gyroshell.campbell import campbell
+
     import gyroshell as g
     from gyroshell import bearing
     from gyroshell.bearing import storage
-    from gyroshell.campbell import campbell
 
     out.mkdir(parents=True, exist_ok=True)
     p = g.TapeParameters(length_ratio=2, spacing=WIDTH / 8)
