@@ -14,6 +14,9 @@ from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.steady import solve_steady
 
+# Slow as a whole: 2-D bearing states on refined graded grids (about 20 s of module fixtures).
+pytestmark = pytest.mark.slow
+
 WRAP = math.radians(15.0)
 SPAN = 2e-3
 
@@ -52,6 +55,7 @@ def test_edge_spacing_converges_under_refinement():
     assert abs(edge[-1] - edge[-2]) < 0.06 * edge[-1]
 
 
+@pytest.mark.slow
 def test_contact_set_converges_without_stalling():
     """A coarse grid leaves the edge rows unsupported: they touch down and Newton's active
     set settles; the contact force balances what the air cannot carry."""
@@ -105,6 +109,7 @@ def test_edge_minimum_converges_at_second_order_on_graded_grids(graded_sequence)
         assert y_min == 0.0 and 0.0 < x_min - 0.5 * s.model.params.radius * WRAP < 0.3e-3
 
 
+@pytest.mark.slow
 def test_graded_grid_matches_the_uniform_grid_of_its_finest_spacing(graded_sequence):
     """The graded grid with the finest spacing of a uniform one (about 24 µm along at the
     corners, 30 µm across at the edges) gives the same flying state with a quarter of the

@@ -21,6 +21,9 @@ from convergence import observed_order
 from gyroshell.bearing import BearingModel, Grading
 from gyroshell.bearing.steady import solve_steady
 
+# Slow as a whole: the foil-bearing constants from refined strips (about 11 s of module fixtures).
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def constants():
@@ -34,6 +37,7 @@ def test_classical_constants_are_the_known_ones(constants):
     assert h_min == pytest.approx(0.716, abs=1e-3)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("velocity", [2.0, 8.0])
 def test_central_spacing_follows_two_thirds_law(constants, velocity):
     C, _ = constants
@@ -51,6 +55,7 @@ def test_exit_constriction_depth(constants):
     assert 0.5 * half_wrap < x_min < 1.5 * half_wrap    # at the exit, downstream
 
 
+@pytest.mark.slow
 def test_spacing_scales_with_speed_to_the_two_thirds():
     """h₀ ∝ (6μV/(T − ρV²))^(2/3): the slope against ε on log-log axes."""
     models = [flexible_model(1600, velocity=v) for v in (2.0, 4.0, 8.0)]
@@ -60,6 +65,7 @@ def test_spacing_scales_with_speed_to_the_two_thirds():
     assert slope == pytest.approx(2 / 3, abs=3e-3)
 
 
+@pytest.mark.slow
 def test_second_order_convergence_flexible():
     nxs = [400, 800, 1600, 3200]
     h = np.array([solve_steady(flexible_model(n)).central_spacing for n in nxs])

@@ -16,6 +16,9 @@ from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.steady import newton, pseudo_transient, solve_steady
 from gyroshell.core.errors import ConvergenceError
 
+# Slow as a whole: a touch-down on nested grids (about 20 s of module fixtures).
+pytestmark = pytest.mark.slow
+
 WRAP = math.radians(15.0)
 #: A 3 mm Table 1 tape at 0.2 m/s: its edges touch down between the wrap centre and the
 #: exit corner (the flying height is ~0.3 µm, the edge layer's dip reaches σ = 20 nm).
@@ -63,6 +66,7 @@ def test_edges_touch_down_and_newton_settles_the_contact_set_directly(touch_down
         assert np.all((0.0 < x) & (x < 1.1 * half_wrap))   # downstream half of the wrap
 
 
+@pytest.mark.slow
 def test_contact_force_converges_under_refinement(touch_down):
     """The total contact force (N) converges as the grid is refined (observed order about
     1.5: the edge of the contact zone is a free boundary, so less than the scheme's 2),

@@ -91,6 +91,7 @@ def _boundary_outflow(film, P, H):
             + (fy.flux[1:-1, -1] - fy.flux[1:-1, 0]) @ wx[1:-1]), fx.flux[0, 1:-1] @ wy[1:-1]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("grading", ["uniform", None], ids=["uniform", "graded"])
 def test_fluxes_balance_to_round_off_2d(grading, rng):
     """Conservation: the node balances of any fields sum to the net outflow through the

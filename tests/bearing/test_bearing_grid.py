@@ -83,6 +83,7 @@ def _sine_response(params, velocity, nx, ny, m=2):
     return x, y, w, alpha
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("case", ["levy-free-edges", "beam-on-foundation"])
 def test_graded_plate_converges_to_closed_forms_at_second_order(case):
     """Free lateral edges on graded nodes: ν = 0.3 against Lévy's solution (the free-edge

@@ -40,6 +40,7 @@ def test_slip_lowers_the_spacing(compressible):
     assert drops[1] / drops[0] == pytest.approx(4.0, rel=0.25)   # first order in λ
 
 
+@pytest.mark.slow
 def test_faster_tape_flies_higher_and_heavier_tension_lower():
     base = _spacing(AirParameters())
     assert _spacing(AirParameters(), velocity=8.0) > base

@@ -17,6 +17,7 @@ from gyroshell.bearing.storage import load, save, to_xarray  # noqa: E402
 from gyroshell.core.errors import ParameterError  # noqa: E402
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("wide", [True, False])
 def test_round_trip_is_exact_and_still_steady(tmp_path, wide):
     params = TapeParameters(width=3e-3, foundation_stiffness=0.0)

@@ -24,6 +24,7 @@ def model():
                         wrap_angle=math.radians(15), infinitely_wide=True, nx=160)
 
 
+@pytest.mark.slow
 def test_tension_step_moves_to_the_new_steady_spacing(model):
     before = solve_steady(model)
     after = solve_steady(model, tension=120.0)
@@ -36,6 +37,7 @@ def test_tension_step_moves_to_the_new_steady_spacing(model):
     assert after.central_spacing < before.central_spacing   # pulled closer to the head
 
 
+@pytest.mark.slow
 def test_disturbed_tape_settles_back(model):
     steady = solve_steady(model)
     bump = 0.3 * steady.central_spacing * np.exp(-((steady.x[1:-1] / 1e-3) ** 2))
@@ -51,6 +53,7 @@ def test_refuses_unstable_newmark_parameters(model):
         march(solve_steady(model), dt=1e-6, steps=1, beta=0.1, gamma=0.5)
 
 
+@pytest.mark.slow
 def test_load_crossing_the_head_presses_the_tape_down_where_it_passes(model):
     """A narrow pad of 2 kPa sweeping along x at 2 m/s: the spacing below it drops while it
     crosses the wrap, and the tape flies at its steady spacing again once it has left."""
@@ -78,6 +81,7 @@ def _harmonic_fit(run, frequency, skip):
     return a, math.hypot(b, c), math.atan2(c, b)
 
 
+@pytest.mark.slow
 def test_slow_harmonic_tension_follows_the_steady_sensitivity(model):
     """T = 90 + 2 sin ωt N/m, slow against the film's settling time: the central spacing
     swings by |dh/dT| ΔT (dh/dT from two steady solves, a central difference), in
@@ -102,6 +106,7 @@ def test_slow_harmonic_tension_follows_the_steady_sensitivity(model):
     assert fits[1][0] == pytest.approx(steady.central_spacing, rel=1e-3)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("grading", ["uniform", None], ids=["uniform", "graded"])
 def test_disturbed_2d_tape_settles_back_onto_the_2d_steady_state(grading):
     """A free-edged 3 mm tape: a bump across the whole width decays and the march ends on

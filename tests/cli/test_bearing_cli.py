@@ -25,6 +25,7 @@ def test_infinitely_wide_json(capsys):
     assert out["central_pressure"] > out["wrap_pressure"] > 0
 
 
+@pytest.mark.slow
 def test_touch_down_reported_in_json(capsys):
     """A slow 3 mm tape touches down: the JSON reports the contact force and nodes, the
     minimum at the roughness height, and that Newton reached it directly."""
@@ -36,6 +37,7 @@ def test_touch_down_reported_in_json(capsys):
     assert out["air_force"] > 0.0
 
 
+@pytest.mark.slow
 def test_two_dimensional_json_files_and_plot(capsys, tmp_path):
     png = tmp_path / "b.png"
     out = _json(capsys, ["bearing", "--velocity", "4", "--wrap-angle", "15", "--nx", "80",
@@ -81,6 +83,7 @@ def test_velocity_is_required(capsys):
     assert "velocity must be > 0" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("argv, message", [
     (["--velocity", "0"], "velocity must be > 0"),
     (["--velocity", "-3"], "velocity must be > 0"),

@@ -56,6 +56,7 @@ def test_user_errors_exit_2_with_one_line(capsys, argv, match):
     assert "Traceback" not in err
 
 
+@pytest.mark.slow
 def test_python_dash_m_entry_point_runs():
     proc = subprocess.run([sys.executable, "-m", "gyroshell", "static", *COARSE, "--json"],
                           capture_output=True, text=True, timeout=120)
@@ -63,6 +64,7 @@ def test_python_dash_m_entry_point_runs():
     assert json.loads(proc.stdout)["load_point_deflection"] > 0
 
 
+@pytest.mark.slow
 def test_user_error_from_subprocess_has_no_traceback():
     proc = subprocess.run([sys.executable, "-m", "gyroshell", "static", "--density", "0"],
                           capture_output=True, text=True, timeout=120)

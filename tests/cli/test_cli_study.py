@@ -25,6 +25,7 @@ def exit_code(argv: list[str]) -> int:
         return int(exc.code)
 
 
+@pytest.mark.slow
 def test_study_csv_nc_png_and_the_same_rows_as_the_api(tmp_path, capsys):
     out, nc, png = tmp_path / "s.csv", tmp_path / "s.nc", tmp_path / "map.png"
     argv = ["study", *COARSE, "--vary", "velocity=0,60,104", "--vary", "tension=70:90:2",
@@ -56,6 +57,7 @@ def test_config_file_sets_the_tape_and_options_override_it(tmp_path, capsys):
                                                         ).load_point_deflection
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("command", [["static"], ["modes", "--count", "3"],
                                      ["sweep", "--velocities", "0,50", "--count", "2"]])
 def test_save_option_writes_a_loadable_result(tmp_path, command, capsys):
@@ -73,6 +75,7 @@ def test_save_option_writes_a_loadable_result(tmp_path, command, capsys):
     assert gyroshell.results.base.metadata(path)["parameters"] == BASE
 
 
+@pytest.mark.slow
 def test_transient_save(tmp_path, capsys):
     path = tmp_path / "t.nc"
     assert main(["transient", *COARSE, "--velocity", "40", "--steps", "20", "--dt", "2e-6",
@@ -125,6 +128,7 @@ def test_vary_values_may_carry_units(tmp_path, capsys):
     assert "unit 'N' is not a unit of m" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_campbell_command(tmp_path, capsys):
     out, png = tmp_path / "c.csv", tmp_path / "c.png"
     assert main(["campbell", "--length-ratio", "1.5", "--spacing", str(6.35e-3 / 10),
@@ -140,6 +144,7 @@ def test_campbell_command(tmp_path, capsys):
     assert "--orders must be integers" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_study_and_campbell_json_print_the_results_summary(tmp_path, capsys):
     from gyroshell.studies.campbell import campbell
 
@@ -160,6 +165,7 @@ def test_study_and_campbell_json_print_the_results_summary(tmp_path, capsys):
     assert out["branches"] == 2 and out["speeds"] == 3 and out["critical_speed"] > 10.0
 
 
+@pytest.mark.slow
 def test_campbell_saves_the_whole_diagram_and_runs_on_workers(tmp_path, capsys):
     from gyroshell.results.base import read
 

@@ -99,6 +99,7 @@ def test_memory_limit_comes_from_the_environment(cli, monkeypatch):
     assert run.code == 2 and "more than the limit 100 kB" in run.err
 
 
+@pytest.mark.slow
 def test_refusal_in_a_fresh_process_is_one_line(cli_process, tmp_path):
     run = cli_process(["sweep", "--velocities", "0:100:1e-12", "--out", "s.csv"],
                       cwd=tmp_path)
@@ -143,6 +144,7 @@ def test_sweep_list_of_speeds_is_limited_too(cli):
     assert run.code == 2 and "gives 1e+04 speeds" in run.err
 
 
+@pytest.mark.slow
 def test_import_and_refusals_do_not_load_the_engines():
     """`import gyroshell` loads neither scipy, pandas nor matplotlib; a refusal loads neither
     pandas nor matplotlib (building the parser imports what sub-commands need for their
@@ -182,6 +184,7 @@ EXTREME_VALUES = ("5e-324", "1e-308", "1e-300", "1e-150", "1e-30", "1e30", "1e15
                   "1.7e308", "0", "-0", "-1e-300")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("command", [["static"], ["modes", "--count", "2"]],
                          ids=["static", "modes"])
 def test_every_option_at_every_extreme_answers_or_refuses_in_one_line(cli, command):

@@ -70,6 +70,7 @@ def test_transient_load_errors_exit_2_with_one_line(tmp_path, capsys, extra, mat
     assert not out.exists()
 
 
+@pytest.mark.slow
 def test_frf_json_csv_and_plot(tmp_path, capsys):
     out, plot = tmp_path / "frf.csv", tmp_path / "frf.png"
     argv = ["frf", *COARSE, "--velocity", "50", "--frequencies", "0:2e5:60", "--damping",

@@ -145,6 +145,7 @@ def test_new_file_gets_the_usual_permissions(tmp_path):
 
 
 # ----- all outputs or none ----------------------------------------------------------------
+@pytest.mark.slow
 def test_sweep_whose_plot_fails_leaves_no_csv(cli, tmp_path, monkeypatch):
     import matplotlib.figure
 
@@ -160,6 +161,7 @@ def test_sweep_whose_plot_fails_leaves_no_csv(cli, tmp_path, monkeypatch):
     assert listing(tmp_path) == []
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("argv", [
     ["frf", *COARSE, "--frequencies", "0:1e5:3"],
     ["study", *COARSE, "--vary", "tension=80,90", "--compute", "static"],
@@ -255,6 +257,7 @@ SLOW_WRITE = textwrap.dedent("""
 """)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("signum", "code", "message"), [
     (signal.SIGTERM, 143, "gyroshell: error: terminated by SIGTERM; no output written"),
     (signal.SIGHUP, 129, "gyroshell: error: terminated by SIGHUP; no output written"),
@@ -301,6 +304,7 @@ ANNOUNCED_SWEEP = textwrap.dedent("""
 """)
 
 
+@pytest.mark.slow
 def test_sigterm_during_computation_exits_cleanly(tmp_path):
     argv = ["sweep", *map(str, COARSE), "--velocities", "0:100:0.02", "--out", "s.csv"]
     proc = subprocess.Popen([sys.executable, "-c", ANNOUNCED_SWEEP, *argv], cwd=tmp_path,
@@ -317,6 +321,7 @@ def test_sigterm_during_computation_exits_cleanly(tmp_path):
     assert listing(tmp_path) == []
 
 
+@pytest.mark.slow
 def test_plot_formats_are_ones_matplotlib_writes(tmp_path):
     import matplotlib.pyplot as plt
     from matplotlib.backend_bases import FigureCanvasBase
@@ -331,6 +336,7 @@ def test_plot_formats_are_ones_matplotlib_writes(tmp_path):
     assert listing(tmp_path) == ["f.pdf", "f.png", "f.svg"]
 
 
+@pytest.mark.slow
 def test_reproduce_run_whose_last_study_fails_leaves_none_of_its_files(cli, tmp_path,
                                                                         monkeypatch):
     import gyroshell.reproduce.fig3 as fig3

@@ -27,6 +27,7 @@ SMALL = ["--spacing", str(WIDTH / 8), "--length-ratio", "2"]
 
 
 # ----- (a) = (b) ----------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("edges", ["free", "simply-supported"])
 @pytest.mark.parametrize("ratio", [1.0, 3.0])
 def test_critical_and_divergence_agree(edges, ratio):
@@ -101,6 +102,7 @@ def test_parse_velocities():
             parse_velocities(bad)
 
 
+@pytest.mark.slow
 def test_sweep_tracks_branches(tmp_path):
     model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
     frame = sweep(model, [0, 2, 4, 6, 8], 4).table
@@ -136,6 +138,7 @@ def test_cli_modes_text_and_supercritical(capsys):
     assert "the tape diverges" in out and "K(V) indefinite" in out
 
 
+@pytest.mark.slow
 def test_cli_critical_json(capsys):
     assert main(["critical", *SMALL, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -144,12 +147,14 @@ def test_cli_critical_json(capsys):
         assert key in out
 
 
+@pytest.mark.slow
 def test_cli_critical_text(capsys):
     assert main(["critical", *SMALL]) == 0
     text = capsys.readouterr().out
     assert "critical speed (a)" in text and "divergence speed (b)" in text
 
 
+@pytest.mark.slow
 def test_cli_sweep_files(tmp_path, capsys):
     csv, png = tmp_path / "s.csv", tmp_path / "s.png"
     assert main(["sweep", *SMALL, "--velocities", "0:20:10", "--count", "2",
@@ -181,6 +186,7 @@ def _bending_only(ny: int) -> TapeModel:
     return TapeModel(p, Grid(p.length, p.width, 2 * ny, ny, "free"))
 
 
+@pytest.mark.slow
 def test_critical_speed_without_tension_and_foundation():
     """T = 0, k = 0, ν = 0, free edges: K(V) = A − ρV²B with width-uniform modes sin(mπx/L):
     μ = D α² (continuous), so V_c = (π/L_x) √(D/ρ); the discrete model has α² → a₁² =
@@ -199,6 +205,7 @@ def test_critical_speed_without_tension_and_foundation():
     assert observed_order(steps, errs) == pytest.approx(2.0, abs=0.1)
 
 
+@pytest.mark.slow
 def test_cli_critical_without_tension_and_foundation(capsys):
     assert main(["critical", *SMALL, "--tension", "0", "--foundation-stiffness", "0",
                  "--json"]) == 0
@@ -241,6 +248,7 @@ def test_cli_modes_damped_json(capsys):
 
 
 # ----- continuation ------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_continuation_sweep_equals_independent_solves():
     model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
     speeds = np.linspace(0, 95, 8)
@@ -281,6 +289,7 @@ def test_continuation_shift_extrapolates_omega1_in_v_squared():
         omega1(50) + (omega1(50) - omega1(45)) * (55**2 - 50**2) / (50**2 - 45**2), rel=1e-12)
 
 
+@pytest.mark.slow
 def test_continuation_shift_is_certified_and_close_below_omega1():
     model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
     from gyroshell.engines.eigen import modes
@@ -297,6 +306,7 @@ def test_continuation_shift_is_certified_and_close_below_omega1():
 
 
 # ----- the mirror-symmetric halves in the root search -------------------------------------
+@pytest.mark.slow
 def test_halves_give_the_full_critical_function_and_speed(monkeypatch):
     import gyroshell.engines.critical as crit
     from gyroshell.engines.critical import _HalfCritical, critical_function, critical_speed_eigen

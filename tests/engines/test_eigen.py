@@ -98,6 +98,7 @@ def test_moving_string_second_order():
 
 
 # ----- structure: pairs, agreement of shifts, clusters --------------------------------------
+@pytest.mark.slow
 def test_pairs_and_shift_independence():
     model = _model(length_ratio=3.0)
     auto = modes(model, 60.0, 5)
@@ -122,6 +123,7 @@ def test_gyroscopic_mode_is_complex_travelling():
     assert np.linalg.norm(phi.imag) > 0.05 * np.linalg.norm(phi.real)
 
 
+@pytest.mark.slow
 def test_clustered_long_tape_converges():
     model = _model(length_ratio=19.0)
     p = model.params

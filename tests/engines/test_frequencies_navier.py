@@ -30,6 +30,7 @@ def _params(n: int) -> TapeParameters:
                           foundation_stiffness=1.0e6)
 
 
+@pytest.mark.slow
 def test_navier_frequencies_converge_at_second_order():
     p = _params(8)
     exact = np.sort([navier_frequency(p, m, n) for m in range(1, 9) for n in range(1, 5)])

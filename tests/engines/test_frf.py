@@ -69,6 +69,7 @@ def test_damped_navier_plate_with_order_two():
     assert observed_order(spacings, errors) == pytest.approx(2.0, abs=0.1)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("velocity", [0.0, 50.0])
 def test_peaks_sit_at_the_undamped_frequencies(velocity):
     """Lightly damped (ζ ~ 1e-4), the amplitude peaks at the eigen-solver's ω_j."""
@@ -89,6 +90,7 @@ def test_peaks_sit_at_the_undamped_frequencies(velocity):
         assert np.all(found < modes(model, 0.0, 4).omega)
 
 
+@pytest.mark.slow
 def test_frf_is_the_steady_state_of_a_long_damped_newmark_run(small):
     """F sin ωt from rest, damped: after the start-up dies out the load point moves as
     Im(H e^{iωt}); amplitude and phase from a least-squares fit over the last period."""
@@ -112,6 +114,7 @@ def test_frf_is_the_steady_state_of_a_long_damped_newmark_run(small):
     assert observed_order(dts, errors) == pytest.approx(2.0, abs=0.2)
 
 
+@pytest.mark.slow
 def test_reduced_model_matches_direct_solves_within_its_estimate():
     model = TapeModel(TapeParameters(length_ratio=4, spacing=WIDTH / 12))
     omega = np.linspace(0.0, 2.0e5, 400)
@@ -128,6 +131,7 @@ def test_reduced_model_matches_direct_solves_within_its_estimate():
     assert res.error_estimate.max() <= 1e-6
 
 
+@pytest.mark.slow
 def test_auto_falls_back_to_direct_solves_where_the_estimate_is_too_large():
     model = TapeModel(TapeParameters(length_ratio=4, spacing=WIDTH / 12))
     omega = np.linspace(0.0, 2.0e5, 60)

@@ -94,6 +94,7 @@ def test_a_user_shape_is_integrated_through_its_antiderivative():
 
 
 # ----- Frýba's moving load ----------------------------------------------------------------
+@pytest.mark.slow
 def test_moving_load_matches_fryba_with_order_two():
     """U = 50 m/s, V = 0: the steady travelling deflection, h and Δt halved twice."""
     errors, spacings = [], []
@@ -107,6 +108,7 @@ def test_moving_load_matches_fryba_with_order_two():
     assert observed_order(spacings, errors) == pytest.approx(2.0, abs=0.15)
 
 
+@pytest.mark.slow
 def test_moving_load_on_a_moving_tape_matches_fryba():
     """V = 40 m/s, the load moving upstream at U = −20 m/s: relative speed 60 m/s."""
     err, _ = steady_line_error(beam_model(128), 40.0, -20.0, 1000.0, dt=1e-6,
@@ -114,6 +116,7 @@ def test_moving_load_on_a_moving_tape_matches_fryba():
     assert err < 2e-3
 
 
+@pytest.mark.slow
 def test_resonant_load_speed_amplifies_and_converges():
     """At U = √((T + 2√(Dk))/ρ), the undamped resonance, the deflection peaks: the damped
     Newmark answer matches the closed form with order two and beats slower and faster loads."""
@@ -139,6 +142,7 @@ def test_resonant_load_speed_amplifies_and_converges():
     assert peaks[1.0] > max(peaks[0.6], peaks[1.4])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("velocity", "load_speed"), [(40.0, 15.0), (10.0, 25.0)])
 def test_load_moving_at_u_settles_to_the_static_solution_at_v_minus_u(velocity, load_speed):
     """In the load's frame the equation is the static one at speed V − U plus the lab-frame

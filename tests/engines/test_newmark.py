@@ -26,6 +26,7 @@ def static_energy_scale(model: TapeModel, velocity: float) -> float:
 
 
 # ----- energy --------------------------------------------------------------------------
+@pytest.mark.slow
 @pytest.mark.parametrize("start", ["rest", "moving"])
 def test_trapezoidal_rule_conserves_energy_with_gyroscopic_forces(small, start, rng):
     """β = 1/4, γ = 1/2, constant load, V > 0: E = ½vᵀMv + ½wᵀKw − Fᵀw is constant."""

@@ -80,6 +80,7 @@ def test_symbolic_analysis_is_reused_for_a_pattern(rng):
         second.solve(b)
 
 
+@pytest.mark.slow
 def test_tape_modes_agree_with_the_superlu_path_and_keep_the_certificate():
     model = TapeModel(TapeParameters(length_ratio=4))
     for velocity in (0.0, 50.0, 95.0):
@@ -92,6 +93,7 @@ def test_tape_modes_agree_with_the_superlu_path_and_keep_the_certificate():
         assert fast.residuals.max() < 1e-14
 
 
+@pytest.mark.slow
 def test_a_shift_above_frequencies_falls_back_to_the_inertia_count():
     model = TapeModel(TapeParameters(length_ratio=4))
     ref = modes(model, 50.0, 6, factorization="superlu")
@@ -101,6 +103,7 @@ def test_a_shift_above_frequencies_falls_back_to_the_inertia_count():
     assert np.max(np.abs(res.omega - ref.omega[:4]) / ref.omega[:4]) < 1e-10
 
 
+@pytest.mark.slow
 def test_shift_matrix_below_the_lowest_frequency_is_positive_definite():
     model = TapeModel(TapeParameters(length_ratio=4))
     v = 50.0
@@ -111,6 +114,7 @@ def test_shift_matrix_below_the_lowest_frequency_is_positive_definite():
     assert strip_frequency_estimate(model.params, model.grid, v) < omega_1
 
 
+@pytest.mark.slow
 def test_factorization_refusals(monkeypatch):
     model = TapeModel(TapeParameters(length_ratio=4))
     with pytest.raises(ParameterError, match="factorization must be one of"):

@@ -205,6 +205,7 @@ def test_count_limit_is_finite_for_large_problems():
     assert max_count(10**6) == max_count(10**5) < 10**3
 
 
+@pytest.mark.slow
 def test_damped_navier_frequencies_converge_second_order():
     """All sides simply supported, V = 0, C = cW: λ = −c/2ρ ± i√(ω_mn² − (c/2ρ)²) with the
     Navier ω_mn; the discrete damped frequencies converge to it at second order."""

@@ -119,6 +119,7 @@ def test_string_beyond_string_speed_keeps_imaginary_spectrum(ratio):
     assert errs[-1].max() < 1e-2  # mode 3 (error grows like n²)
 
 
+@pytest.mark.slow
 def test_odd_morse_index_just_above_divergence_diverges():
     p = TapeParameters(length_ratio=4, spacing=WIDTH / 8)
     model = TapeModel(p)
@@ -165,6 +166,7 @@ def test_discrete_string_growth_rate_scales_with_one_over_h():
     assert tape_stability(s, V) == "flutter"
 
 
+@pytest.mark.slow
 def test_tape_stability_below_and_above_critical():
     p = TapeParameters(length_ratio=4, spacing=WIDTH / 8)
     model = TapeModel(p)
@@ -176,6 +178,7 @@ def test_tape_stability_below_and_above_critical():
         assert tape_stability(model, V) == classify_stability(lam) != "stable"
 
 
+@pytest.mark.slow
 def test_eigenvalues_nearest_zero_can_miss_the_instability():
     # Far above critical the growing modes are not among the few nearest zero: a verdict
     # from modes(...)'s eigenvalues alone would call this speed stable.

@@ -30,6 +30,7 @@ def saved(ax, path) -> bytes:
     return path.read_bytes()[:8]
 
 
+@pytest.mark.slow
 def test_mode_shape_parts_are_the_real_and_imaginary_fields(model, tmp_path):
     res = modes(model, 60.0, 2)
     fig, (a, b) = plt.subplots(2, 1)
@@ -48,6 +49,7 @@ def test_mode_shape_parts_are_the_real_and_imaginary_fields(model, tmp_path):
         gplot.mode_shape(res, 5)
 
 
+@pytest.mark.slow
 def test_field_of_a_static_solution(model, tmp_path):
     sol = solve_static(model, 50.0)
     ax = gplot.field(sol, title="static")
@@ -57,6 +59,7 @@ def test_field_of_a_static_solution(model, tmp_path):
         gplot.field(np.zeros((3, 3)), np.zeros(2), np.zeros(3))
 
 
+@pytest.mark.slow
 def test_stability_map_and_study_lines(tmp_path):
     study = run_study(PARAMS, vary={"velocity": [0.0, 104.0, 120.0], "tension": [70.0, 90.0]},
                       compute=["modes", "critical"], workers=1)
@@ -74,6 +77,7 @@ def test_stability_map_and_study_lines(tmp_path):
                                       compute="critical", workers=1))
 
 
+@pytest.mark.slow
 def test_campbell_plot_marks_what_it_found(tmp_path):
     p = TapeParameters(length_ratio=1.5, spacing=6.35e-3 / 10, edges="simply-supported",
                        foundation_stiffness=0.0)
@@ -85,6 +89,7 @@ def test_campbell_plot_marks_what_it_found(tmp_path):
     assert saved(ax, tmp_path / "campbell.png") == PNG
 
 
+@pytest.mark.slow
 def test_gif_animations(model, tmp_path):
     res = modes(model, 60.0, 1)
     ax = gplot.animate_mode(res, tmp_path / "mode.gif", frames=4)
@@ -98,6 +103,7 @@ def test_gif_animations(model, tmp_path):
     assert not list(tmp_path.glob(".*")), "temporary files left behind"
 
 
+@pytest.mark.slow
 def test_import_gyroshell_does_not_import_matplotlib_xarray_or_dask():
     code = ("import sys, gyroshell, gyroshell.plot, gyroshell.studies.parameter_study, "
             "gyroshell.studies.campbell, gyroshell.studies.sweep; "
@@ -108,6 +114,7 @@ def test_import_gyroshell_does_not_import_matplotlib_xarray_or_dask():
     assert out.strip() == "[]"
 
 
+@pytest.mark.slow
 def test_stability_map_over_a_word_parameter(tmp_path):
     study = run_study(PARAMS, vary={"edges": ["free", "simply-supported"],
                                     "velocity": [50.0, 120.0]},
@@ -117,6 +124,7 @@ def test_stability_map_over_a_word_parameter(tmp_path):
     assert saved(ax, tmp_path / "edges.png") == PNG
 
 
+@pytest.mark.slow
 def test_sweep_plot_of_a_result_or_its_table_and_the_figure_saver(model, tmp_path):
     from gyroshell import sweep
 
@@ -145,6 +153,7 @@ def test_sweep_plot_of_a_result_or_its_table_and_the_figure_saver(model, tmp_pat
     assert not plt.fignum_exists(other.figure.number), "closed also when writing failed"
 
 
+@pytest.mark.slow
 def test_study_lines_pick_the_first_computed_quantity_without_importing_studies():
     one = run_study(PARAMS, vary={"tension": [70.0, 90.0]}, compute=["modes", "critical"],
                     count=2, workers=1)

@@ -149,6 +149,7 @@ def test_spectra_are_normalized_stacked_and_scaled_by_their_reference():
         gplot.spectra(["a", "b"], [om], [amps[0]])
 
 
+@pytest.mark.slow
 def test_head_histories_draw_w_only_while_in_contact():
     t = np.linspace(0.0, 1e-3, 101)
     contact = np.column_stack([(t < 5e-4).astype(float), (t >= 5e-4).astype(float)])

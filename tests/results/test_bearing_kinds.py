@@ -57,6 +57,7 @@ def test_kinds_are_registered():
     assert set(EXAMPLES) == {"bearing", "bearing_transient"}
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("build", [steady, steady_2d], ids=["1-D", "2-D-graded"])
 def test_steady_round_trip_is_bit_exact(tmp_path, build):
     sol = build()
@@ -66,6 +67,7 @@ def test_steady_round_trip_is_bit_exact(tmp_path, build):
     assert back.info.step_norms and back.info.residual_norms
 
 
+@pytest.mark.slow
 def test_transient_round_trip_is_bit_exact(tmp_path):
     run = EXAMPLES["bearing_transient"]()
     back = read(run.save(tmp_path / "t.nc"))
@@ -108,6 +110,7 @@ def _previous_release_dataset(sol: BearingSolution, *, with_grading: bool = True
     return xr.Dataset(data, coords={"x": ("x", sol.x), "y": ("y", y)}, attrs=attrs)
 
 
+@pytest.mark.slow
 def test_previous_release_files_load(tmp_path):
     sol = steady()
     ds = _previous_release_dataset(sol)
@@ -120,6 +123,7 @@ def test_previous_release_files_load(tmp_path):
                                                                       with_grading=False)))
 
 
+@pytest.mark.slow
 def test_mismatched_coordinates_are_refused():
     sol = steady()
     ds = sol.to_xarray()
@@ -128,6 +132,7 @@ def test_mismatched_coordinates_are_refused():
         from_dataset(ds)
 
 
+@pytest.mark.slow
 def test_storage_wrappers(tmp_path):
     sol = steady()
     back = storage.load(storage.save(sol, tmp_path / "b.nc"))
@@ -139,6 +144,7 @@ def test_storage_wrappers(tmp_path):
         storage.load(tmp_path / "t.nc")
 
 
+@pytest.mark.slow
 def test_summary_table_and_plot(tmp_path):
     import matplotlib.axes
 

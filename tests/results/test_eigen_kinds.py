@@ -38,6 +38,7 @@ def same_result(a, b):
         same_field(getattr(a, f.name), getattr(b, f.name), f.name)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", sorted(EXAMPLES))
 def test_every_kind_round_trips_exactly(built, kind, tmp_path):
     result = built[kind]
@@ -49,12 +50,14 @@ def test_every_kind_round_trips_exactly(built, kind, tmp_path):
     assert metadata(path)["parameters"] == PARAMS
 
 
+@pytest.mark.slow
 def test_damped_modes_round_trip(tmp_path):
     result = damped_modes_example()
     assert result.damped
     same_result(result, read(result.save(tmp_path / "damped.nc")))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", sorted(EXAMPLES))
 def test_summaries_are_plain_json(built, kind):
     summary = built[kind].summary()

@@ -41,6 +41,7 @@ KINDS = sorted(base.kinds())
 EXAMPLES = _examples()
 
 
+@pytest.mark.slow
 def test_the_kinds_module_imports_every_kind_the_package_defines():
     code = ("import importlib, pkgutil, gyroshell\n"
             "from gyroshell.results import base\n"
@@ -57,6 +58,7 @@ def test_kind_has_an_example(kind):
     assert kind in EXAMPLES, f"result kind {kind!r} has no example in tests/results/examples_*.py"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", KINDS)
 def test_save_and_load_give_the_same_object(kind, tmp_path):
     if kind not in EXAMPLES:
@@ -69,6 +71,7 @@ def test_save_and_load_give_the_same_object(kind, tmp_path):
     assert_same(result.to_frame() if kind == "table" else result, loaded, kind)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", KINDS)
 def test_summary_is_plain_json(kind):
     import json

@@ -41,6 +41,7 @@ def test_modes_file(tape):
     np.testing.assert_allclose(old.omega, g.modes(model, 10.0, count=4).omega, rtol=RTOL)
 
 
+@pytest.mark.slow
 def test_critical_file(tape):
     params, model = tape
     old = g.load(DATA / "critical.nc")
@@ -50,6 +51,7 @@ def test_critical_file(tape):
     assert old.divergence_speed == pytest.approx(new.divergence_speed, rel=RTOL)
 
 
+@pytest.mark.slow
 def test_transient_file(tape):
     params, model = tape
     old = g.load(DATA / "transient.nc")
@@ -62,6 +64,7 @@ def test_transient_file(tape):
     assert old.head_displacements is None
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["sweep_table.nc", "sweep_table.csv"])
 def test_sweep_table_files_are_tables(tape, name):
     params, model = tape
@@ -86,6 +89,7 @@ def test_campbell_table_file_is_a_table():
     assert isinstance(old, pd.DataFrame) and {"velocity", "omega"} <= set(old.columns)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["bearing.nc", "bearing_2d.nc"])
 def test_bearing_files(name):
     old = g.load(DATA / name)

@@ -47,6 +47,7 @@ def test_static_round_trip(model, tmp_path):
     assert meta["gyroshell_version"] == gyroshell.__version__
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("velocity", [30.0, 120.0])  # ±iω pairs, and complex/real above
 def test_modes_round_trip_keeps_complex_values(model, tmp_path, velocity):
     res = modes(model, velocity, 4)
@@ -59,6 +60,7 @@ def test_modes_round_trip_keeps_complex_values(model, tmp_path, velocity):
     assert back.info == res.info  # complex shift survives the JSON metadata
 
 
+@pytest.mark.slow
 def test_damped_modes_round_trip(model, tmp_path):
     res = modes(model, 30.0, 3, damping=20.0)
     back = gyroshell.load(res.save(tmp_path / "damped.nc"))
@@ -67,6 +69,7 @@ def test_damped_modes_round_trip(model, tmp_path):
     same_array(back.decay_rate, res.decay_rate)
 
 
+@pytest.mark.slow
 def test_netcdf_stores_complex_as_real_and_imaginary_parts(model, tmp_path):
     res = modes(model, 120.0, 3)
     path = res.save(tmp_path / "m.nc")
@@ -78,6 +81,7 @@ def test_netcdf_stores_complex_as_real_and_imaginary_parts(model, tmp_path):
         assert ds["x"].attrs["units"] == "m"
 
 
+@pytest.mark.slow
 def test_critical_round_trip(model, tmp_path):
     crit = critical_speeds(model)
     back = gyroshell.load(crit.save(tmp_path / "crit.nc", params=PARAMS))
@@ -85,6 +89,7 @@ def test_critical_round_trip(model, tmp_path):
     assert back.info["bracket"] == crit.info["bracket"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("energy, keep", [(True, True), (False, True), (False, False)])
 def test_transient_round_trip(model, tmp_path, energy, keep):
     extra = {"snapshot_every": 20, "centerline_times": [2e-5, 4e-5]} if keep else {}
@@ -102,6 +107,7 @@ def test_transient_round_trip(model, tmp_path, energy, keep):
     assert back.info == run.info
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("suffix", [".nc", ".csv", ".parquet"])
 def test_sweep_table_round_trip(model, tmp_path, suffix):
     frame = sweep(model, [0.0, 60.0, 110.0], 3, progress=False).table
@@ -109,6 +115,7 @@ def test_sweep_table_round_trip(model, tmp_path, suffix):
     pd.testing.assert_frame_equal(back, frame, check_exact=True)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("suffix", [".nc", ".csv", ".parquet"])
 def test_study_round_trip(tmp_path, suffix):
     study = run_study(PARAMS, vary={"velocity": [0.0, 100.5], "tension": [70.0, 90.0]},
@@ -137,6 +144,7 @@ def test_refusals(tmp_path, model):
     assert not list(tmp_path.glob(".*")), "temporary files left behind"
 
 
+@pytest.mark.slow
 def test_study_gridded_view_has_one_dimension_per_varied_parameter():
     study = run_study(PARAMS, vary={"velocity": [0.0, 50.0, 100.5], "tension": [70.0, 90.0]},
                       compute="modes", count=1, workers=1)

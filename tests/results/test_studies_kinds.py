@@ -59,6 +59,7 @@ def example(request):
     return EXAMPLES[request.param]()
 
 
+@pytest.mark.slow
 def test_every_kind_round_trips_through_netcdf(example, tmp_path):
     path = example.save(tmp_path / f"{example.kind}.nc")
     back = base.read(path)
@@ -67,6 +68,7 @@ def test_every_kind_round_trips_through_netcdf(example, tmp_path):
     assert back.summary() == example.summary()
 
 
+@pytest.mark.slow
 def test_every_kind_round_trips_through_a_dataset(example):
     same_fields(example, base.from_dataset(example.to_xarray()))
 
@@ -95,6 +97,7 @@ def test_sweep_stores_its_settings_and_the_tape():
     assert ds["velocities"].attrs["units"] == "m/s" and ds["omega"].attrs["units"] == "rad/s"
 
 
+@pytest.mark.slow
 def test_a_campbell_diagram_with_crossings_and_veerings_round_trips(tmp_path):
     # the closed-form pair of test_campbell: two crossing lines, then a veering pair
     s = np.linspace(0.0, 1.0, 21)
@@ -115,6 +118,7 @@ def test_a_campbell_diagram_with_crossings_and_veerings_round_trips(tmp_path):
     assert back.critical_speed is None
 
 
+@pytest.mark.slow
 def test_old_sweep_and_campbell_tables_load_as_tables(tmp_path):
     """Before, a sweep and a Campbell diagram were saved as their table (kind "table")."""
     for result in (EXAMPLES["sweep"](), EXAMPLES["campbell"]()):

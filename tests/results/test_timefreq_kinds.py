@@ -46,12 +46,14 @@ def round_trip(result, tmp_path, name="result.nc"):
     return read(result.save(tmp_path / name))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["static", "transient", "frequency_response"])
 def test_dataclass_kinds_round_trip_bit_exactly(kind, tmp_path):
     original = EXAMPLES[kind]()
     same_fields(original, round_trip(original, tmp_path))
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["static", "transient", "frequency_response",
                                   "reduced_model"])
 def test_loaded_results_hold_the_same_data_deeply(kind, tmp_path):
@@ -67,6 +69,7 @@ def test_static_solution_carries_its_parameters(tmp_path):
     same_array(loaded.field, sol.field)
 
 
+@pytest.mark.slow
 def test_transient_keeps_head_histories_energy_and_snapshots(tmp_path):
     run = EXAMPLES["transient"]()
     assert run.head_displacements.shape == (run.steps + 1, 2)
@@ -79,6 +82,7 @@ def test_transient_keeps_head_histories_energy_and_snapshots(tmp_path):
     assert loaded.info == run.info and loaded.info["moving_load"] is True
 
 
+@pytest.mark.slow
 def test_frequency_response_with_direct_and_reduced_frequencies(tmp_path):
     mixed = frequency_response(model(), 10.0, OMEGA, damping=200.0, max_points=2,
                                progress=False)
@@ -88,6 +92,7 @@ def test_frequency_response_with_direct_and_reduced_frequencies(tmp_path):
     assert loaded.info == mixed.info
 
 
+@pytest.mark.slow
 def test_reduced_model_loaded_evaluates_identically(tmp_path):
     original = EXAMPLES["reduced_model"]()
     loaded = round_trip(original, tmp_path)
@@ -121,6 +126,7 @@ def test_table_reads_back_as_the_dataframe(tmp_path):
     pd.testing.assert_frame_equal(pd.read_csv(csv), table.frame, check_exact=True)
 
 
+@pytest.mark.slow
 def test_summaries_are_plain_json_values():
     import json
 
@@ -129,6 +135,7 @@ def test_summaries_are_plain_json_values():
     assert frequency().summary()["unknowns"] == model().unknowns
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", sorted(EXAMPLES))
 def test_every_kind_plots(kind):
     import matplotlib.pyplot as plt

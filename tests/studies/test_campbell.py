@@ -33,6 +33,7 @@ def y_index(model: TapeModel, phi: np.ndarray) -> int:
     return int(np.argmax(energy)) + 1
 
 
+@pytest.mark.slow
 def test_branches_keep_their_shape_and_cross_only_other_shapes():
     # All-sides simply supported: the across-width sine index n is exact for every V
     # (G acts along x only), so modes of different n are orthogonal and may cross.
@@ -64,6 +65,7 @@ def test_branches_keep_their_shape_and_cross_only_other_shapes():
     assert d.critical_speed is None
 
 
+@pytest.mark.slow
 def test_string_branches_and_resonances_match_closed_forms():
     p = TapeParameters(foundation_stiffness=0.0, bending_rigidity=1e-14, poisson=0.0,
                        length_ratio=2.0, spacing=WIDTH / 8)
@@ -118,6 +120,7 @@ def test_refusals():
         CampbellDiagram.excitation(1, -1.0, 3.0)
 
 
+@pytest.mark.slow
 def test_continued_and_two_process_diagrams_equal_the_independent_one():
     """Campbell shares the sweep's continuation and workers: the same branches, crossings
     and MAC, and the frequencies to the sweep tests' tolerance."""

@@ -31,6 +31,7 @@ def serial():
     return run_study(BASE, vary=VARY, compute=COMPUTE, count=3, workers=1)
 
 
+@pytest.mark.slow
 def test_grid_rows_and_columns(serial):
     t = serial.table
     assert len(t) == 6 and list(t["point"]) == list(range(6))
@@ -42,6 +43,7 @@ def test_grid_rows_and_columns(serial):
             } <= set(t.columns)
 
 
+@pytest.mark.slow
 def test_rows_equal_one_by_one_runs_exactly(serial):
     for row in serial.table.itertuples():
         model = TapeModel(BASE.replace(tension=row.tension))
@@ -68,12 +70,14 @@ def test_rows_equal_one_by_one_runs_exactly(serial):
     assert set(serial.table["stability"]) == {"stable", "divergence"}
 
 
+@pytest.mark.slow
 def test_local_processes_give_identical_rows(serial):
     again = run_study(BASE, vary=VARY, compute=COMPUTE, count=3, workers=2)
     assert again.info["executor"] == "processes(2)"
     pd.testing.assert_frame_equal(again.table, serial.table, check_exact=True)
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_gives_identical_rows(serial):
     distributed = pytest.importorskip("distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
@@ -84,6 +88,7 @@ def test_dask_local_cluster_gives_identical_rows(serial):
     pd.testing.assert_frame_equal(again.table, serial.table, check_exact=True)
 
 
+@pytest.mark.slow
 def test_point_list_and_unreachable_scheduler(monkeypatch):
     monkeypatch.setattr(study_module, "CONNECT_TIMEOUT", "1s")
     pts = [{"tension": 80.0, "velocity": 10.0}, {"youngs-modulus": 3e9}]
@@ -105,6 +110,7 @@ def quick():
     return run_study(BASE, **QUICK)
 
 
+@pytest.mark.slow
 def test_resume_recomputes_nothing_done(tmp_path, monkeypatch, quick):
     calls: list[dict] = []
     interrupt = [True]
@@ -136,6 +142,7 @@ def test_resume_recomputes_nothing_done(tmp_path, monkeypatch, quick):
     assert len(calls) == 6
 
 
+@pytest.mark.slow
 def test_cut_short_cache_line_is_recomputed(tmp_path, quick):
     cache = tmp_path / "c.jsonl"
     run_study(BASE, **QUICK, cache=cache)

@@ -13,6 +13,7 @@ from gyroshell.studies.signal import (
 )
 
 
+@pytest.mark.slow
 def test_dominant_period_of_a_decaying_mixture_with_drift():
     t = np.arange(2000) * 2e-6
     w = (1.0 + 0.3 * np.exp(-t / 3e-3) * np.cos(2 * np.pi * t / 50e-6)
@@ -20,6 +21,7 @@ def test_dominant_period_of_a_decaying_mixture_with_drift():
     assert dominant_period(t, w) == pytest.approx(50e-6, rel=2e-3)
 
 
+@pytest.mark.slow
 def test_lowest_peak_period_picks_the_band_edge():
     t = np.arange(4000) * 2e-6
     w = 0.5 * np.cos(2 * np.pi * t / 200e-6) + 1.0 * np.cos(2 * np.pi * t / 150e-6)

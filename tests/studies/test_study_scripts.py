@@ -13,6 +13,10 @@ import pytest
 from gyroshell.cli import main
 from gyroshell.reproduce import STUDIES
 
+# Slow as a whole: every test reads the studies' outputs, which a module fixture
+# computes (about 30 s).
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
@@ -52,6 +56,7 @@ def test_each_study_writes_csv_and_png(quick_results, name):
         "temporary files left behind"
 
 
+@pytest.mark.slow
 def test_helical_heads_alternate_and_each_sees_a_spacing_variation(quick_results):
     contacts = pd.read_csv(quick_results / "helical_contacts.csv")
     assert set(contacts["head"]) == {0, 1}
@@ -123,7 +128,6 @@ def test_study_script_runs_as_a_program(tmp_path):
     assert (tmp_path / "fig3_wireframes.png").exists()
 
 
-@pytest.mark.slow
 def test_full_reproduction_of_fig2(tmp_path):
     assert main(["reproduce", "fig2", "--out", str(tmp_path), "--quiet"]) == 0
     steady = pd.read_csv(tmp_path / "fig2_steady_state.csv")

@@ -14,6 +14,7 @@ from gyroshell.studies.sweep import sweep
 WIDTH = TapeParameters().width
 
 
+@pytest.mark.slow
 def test_two_processes_give_the_one_process_sweep():
     model = TapeModel(TapeParameters(length_ratio=4.0, spacing=WIDTH / 8))
     speeds = np.linspace(0, 95, 7)
@@ -24,6 +25,7 @@ def test_two_processes_give_the_one_process_sweep():
     assert (two.branch == one.branch).all() and (two["rank"] == one["rank"]).all()
 
 
+@pytest.mark.slow
 def test_cli_sweep_workers(cli, tmp_path):
     out1, out2 = tmp_path / "one.csv", tmp_path / "two.csv"
     base = ["sweep", "--length-ratio", "2", "--velocities", "0:60:20", "--count", "3"]
@@ -61,6 +63,7 @@ def test_a_sweep_result_still_behaves_like_its_table_with_a_warning():
         _ = result._not_a_field  # private probes are not sent to the table
 
 
+@pytest.mark.slow
 def test_process_pool_cancels_the_queue_when_the_block_fails():
     from gyroshell.core.parallel import process_pool
 

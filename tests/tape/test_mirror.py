@@ -58,6 +58,7 @@ def test_navier_modes_split_by_the_parity_of_n():
         assert np.linalg.norm(R @ phi - parity * phi) < 1e-10 * np.linalg.norm(phi)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("velocity", [0.0, 50.0, 90.0])
 def test_halves_give_the_full_problem(velocity):
     model = TapeModel(TapeParameters(length_ratio=4.0))
@@ -85,6 +86,7 @@ def test_models_without_the_symmetry_use_the_full_problem():
               symmetry="yes")
 
 
+@pytest.mark.slow
 def test_a_previous_speeds_split_guides_the_next_and_a_wrong_guess_is_caught():
     """Continuation asks the symmetric half for one more mode than the previous speed had;
     if that and the counted antisymmetric ones do not reach ``count``, it asks again."""
