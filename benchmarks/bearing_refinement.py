@@ -39,7 +39,7 @@ def solve(width: float, nx: int, ny: int, grading, span=None) -> dict:
     seconds = time.perf_counter() - start
     dx, dy = np.diff(model.x), np.diff(model.y)
     x_min, y_min = sol.minimum_location
-    return {"nx": nx, "ny": ny, "unknowns": model.size, "hx": [dx.min(), dx.max()],
+    return {"nx": nx, "ny": ny, "unknowns": model.unknowns, "hx": [dx.min(), dx.max()],
             "hy": [dy.min(), dy.max()], "h_c": sol.central_spacing,
             "h_edge": float(sol.cross_width_spacing[0]), "h_min": sol.minimum_spacing,
             "x_min": x_min, "y_min": y_min, "iterations": sol.info.iterations,

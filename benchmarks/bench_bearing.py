@@ -88,10 +88,10 @@ def main(argv: list[str] | None = None) -> int:
                          wrap_angle=wrap)
     uniform = (BearingModel(TapeParameters(width=args.width), AirParameters(), velocity=4.0,
                             wrap_angle=wrap, grading="uniform") if args.uniform else None)
-    print(f"1-D: {strip!r}, {strip.size} unknowns")
+    print(f"1-D: {strip!r}, {strip.unknowns} unknowns")
     for name, m in (("2-D", plate), ("2-D uniform", uniform)):
         if m is not None:
-            print(f"{name}: {m!r}, {m.size} unknowns ({len(m.mirror[1])} solved, half "
+            print(f"{name}: {m!r}, {m.unknowns} unknowns ({len(m.mirror[1])} solved, half "
                   f"width); spacing {1e6 * np.diff(m.x).min():.1f}-"
                   f"{1e6 * np.diff(m.x).max():.1f} um along, "
                   f"{1e6 * np.diff(m.y).min():.1f}-{1e6 * np.diff(m.y).max():.1f} um across")

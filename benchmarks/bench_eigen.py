@@ -164,7 +164,7 @@ def bench_sweep(args) -> None:
     def continuation():
         model = fresh_model(args.length_ratio)
         t0 = time.perf_counter()
-        frame = sweep(model, speeds, args.count, continuation=True)
+        frame = sweep(model, speeds, args.count, continuation=True).table
         cont_times.append(time.perf_counter() - t0)
         return frame
 
@@ -177,7 +177,7 @@ def bench_sweep(args) -> None:
     def parallel():
         model = fresh_model(args.length_ratio)
         t0 = time.perf_counter()
-        frame = sweep(model, speeds, args.count, continuation=True, workers=2)
+        frame = sweep(model, speeds, args.count, continuation=True, workers=2).table
         par_times.append(time.perf_counter() - t0)
         return frame
 

@@ -39,7 +39,7 @@ def main() -> None:
     omega = np.linspace(0.0, OMEGA_MAX, COUNT)
     sample = np.linspace(0, COUNT - 1, args.sample).astype(int)
     print(f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores; L_x/L_y = "
-          f"{ratio:g}, {model.size} unknowns, V = {VELOCITY:g} m/s, c = {DAMPING:g} N s/m^3, "
+          f"{ratio:g}, {model.unknowns} unknowns, V = {VELOCITY:g} m/s, c = {DAMPING:g} N s/m^3, "
           f"{COUNT} frequencies in [0, {OMEGA_MAX:g}] rad/s")
     reduced_t, direct_t, errors, estimates, info = [], [], [], [], {}
     for _ in range(args.repeats):

@@ -36,7 +36,7 @@ def head(model: TapeModel) -> MovingLoad:
 
 def update_times(model: TapeModel, repeats: int = 2000) -> tuple[float, float]:
     """Median seconds per call: fixed rhs += s f(t) F versus the moving head's add()."""
-    rhs, tmp, force = np.zeros(model.size), np.empty(model.size), model.load
+    rhs, tmp, force = np.zeros(model.unknowns), np.empty(model.unknowns), model.force
     prepared = PreparedLoads(model, [head(model)], DT * np.arange(repeats))
 
     def fixed(n):
@@ -75,7 +75,7 @@ def main() -> None:
                             .info["step_time"])
         a, b = statistics.median(fixed_t), statistics.median(moving_t)
         fu, mu = update_times(model)
-        print(f"L_x/L_y = {ratio:g} ({model.size} unknowns, {steps} steps): step load "
+        print(f"L_x/L_y = {ratio:g} ({model.unknowns} unknowns, {steps} steps): step load "
               f"{1e3 * a:.3f} ms/step, moving intermittent head {1e3 * b:.3f} ms/step, "
               f"ratio {b / a:.3f}; load update alone: fixed {1e6 * fu:.1f} us, "
               f"moving head {1e6 * mu:.1f} us")
