@@ -76,7 +76,7 @@ class PlateOperators:
     """A, B, M, G and W of the free-edged plate on the tensor grid ``x`` × ``y`` (m).
 
     Unknowns: the interior x-lines i = 1..nx−1, every node across (j fastest), as in
-    :class:`gyroshell.grid.Grid` with free edges. The bending energy is that of
+    :class:`gyroshell.Grid` with free edges. The bending energy is that of
     :func:`gyroshell.tape.operators.bending_foundation`: D/2 Σ W [w_xx² + w_yy² + 2ν w_xx w_yy]
     at the interior nodes, D/2 Σ W (1 − ν²) w_xx² at the edge nodes (the edge moment M_y
     is zero: free-edge conditions as natural boundary conditions), D (1 − ν) Σ a w_xy²

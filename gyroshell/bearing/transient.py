@@ -1,7 +1,7 @@
 """Transient flight: the tape marched by Newmark's method, the film by backward Euler with
 its squeeze term, solved together (monolithic Newton) at every step.
 
-Per step the tape's Newmark predictors (paper Eqs. 10-11, as in :mod:`gyroshell.newmark`)
+Per step the tape's Newmark predictors (paper Eqs. 10-11, as in :mod:`gyroshell.engines.newmark`)
 
     ũ = uⁿ + Δt vⁿ + (½ − β) Δt² aⁿ,        ṽ = vⁿ + (1 − γ) Δt aⁿ,
 

@@ -63,7 +63,7 @@ def positive_int(text: str) -> int:
 
 
 def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
-    """Speeds, m/s, from an option's text: :func:`gyroshell.sweep.parse_velocities`."""
+    """Speeds, m/s, from an option's text: :func:`gyroshell.studies.sweep.parse_velocities`."""
     from ..studies.sweep import parse_velocities as parse
 
     return parse(text, option=option)

@@ -65,7 +65,7 @@ _HALF_OPTIONS = {"factorization", "tol"}
 
 
 class _HalfCritical:
-    """f on the mirror-symmetric half (:mod:`gyroshell.mirror`) that reaches zero first.
+    """f on the mirror-symmetric half (:mod:`gyroshell.tape.mirror`) that reaches zero first.
 
     The two halves' frequencies together are the tape's, so f = min(f_s, f_a). The first
     evaluation computes both and keeps the half with the smaller f; later evaluations solve
@@ -112,7 +112,7 @@ def critical_function(model: TapeModel, velocity: float, *, count: int = 1,
                       **options) -> float:
     """f(V), 1/s²: ω₁² below the critical speed, −γ² above (γ the largest growth rate).
 
-    The ``count`` eigenvalue pairs nearest zero come from :func:`gyroshell.eigen.modes` with
+    The ``count`` eigenvalue pairs nearest zero come from :func:`gyroshell.modes` with
     shift-invert about σ = 0 (one factorization of K(V); near critical the small eigenvalue
     is well separated, so this is fast); ``options`` go to ``modes``. Near the root the
     eigenvalue nearest zero is the one crossing, so f = −λ₀² there, smooth in V. Farther
@@ -134,7 +134,7 @@ def default_guess(model: TapeModel) -> float:
     """A starting speed just below critical, m/s: GUESS_FRACTION √((T + μ_beam)/ρ).
 
     μ_beam = min_m (D a_m² + k/a_m²) over the width-uniform (beam) modes of the discrete
-    model (:func:`gyroshell.divergence.beam_mu_estimate`): exact for ν = 0 and free edges,
+    model (:func:`gyroshell.engines.divergence.beam_mu_estimate`): exact for ν = 0 and free edges,
     close otherwise, and positive also without tension and foundation (then D a₁²).
     """
     p = model.params

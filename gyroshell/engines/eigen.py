@@ -85,9 +85,9 @@ def relative_residuals(model: TapeModel, velocity: float, eigenvalues: np.ndarra
 
 
 def damping_operator(model, velocity: float, damping) -> sp.spmatrix | None:
-    """C, kg/s, for ``damping`` at speed V (None: undamped), via :mod:`gyroshell.damping`.
+    """C, kg/s, for ``damping`` at speed V (None: undamped), via :mod:`gyroshell.tape.damping`.
 
-    ``damping`` is a :class:`gyroshell.damping.Damping`, a viscous coefficient c >= 0 in
+    ``damping`` is a :class:`gyroshell.Damping`, a viscous coefficient c >= 0 in
     N·s/m³ (C = c W, a damping pressure c ∂w/∂t), or a pair (a, b) for Rayleigh damping
     C = a M + b K(V) with a >= 0 in 1/s and b >= 0 in s.
     """
@@ -124,7 +124,7 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
     definite whenever ρV² − T < τ: one proof per model certifies every such speed, and the
     eigen-solver skips factoring K(V). τ = 0 holds by construction when k > 0: the bending
     part of A is a sum of Gram forms (w_xx, w_yy)ᵀ[[1, ν], [ν, 1]](w_xx, w_yy) + ... with
-    |ν| < 1 (:func:`gyroshell.operators.bending_foundation`), so A >= kW > 0; otherwise a
+    |ν| < 1 (:func:`gyroshell.bending_foundation`), so A >= kW > 0; otherwise a
     factorization of A decides. With ``near_divergence``, τ is the inertia-proved shift just
     below μ_min of the divergence solver (a few factorizations, worth it for sweeps).
     Cached per model.

@@ -12,7 +12,7 @@ def field(values, x=None, y=None, *, ax=None, title: str | None = None, label="w
           cmap="RdBu_r", symmetric: bool = True):
     """Filled contours of a field on the tape, x along and y across (axes in mm).
 
-    ``values`` is a :class:`~gyroshell.static.StaticSolution` (its deflection) or an array
+    ``values`` is a :class:`~gyroshell.StaticSolution` (its deflection) or an array
     of shape (nx + 1, ny + 1) with the node coordinates ``x``, ``y`` (m).
     """
     if hasattr(values, "grid") and hasattr(values, "field"):

@@ -439,7 +439,7 @@ def bode(omega, response=None, phase=None, *, axes=None, label: str | None = Non
     Parameters
     ----------
     omega : array_like or FrequencyResponse
-        Angular frequencies, rad/s; or a :class:`~gyroshell.frf.FrequencyResponse`
+        Angular frequencies, rad/s; or a :class:`~gyroshell.FrequencyResponse`
         (its load-point column is drawn; omit ``response``).
     response : array_like, optional
         Complex displacement amplitude, m, or its modulus |W| (then give ``phase``).

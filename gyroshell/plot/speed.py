@@ -13,7 +13,7 @@ def campbell(diagram, *, ax=None, circumference: float | None = None,
              orders=(1, 2, 3), title: str | None = None):
     """Campbell diagram: ω (rad/s) against V (m/s), one line per MAC-tracked branch.
 
-    ``diagram`` is a :class:`gyroshell.campbell.CampbellDiagram`. Crossings are marked with
+    ``diagram`` is a :class:`gyroshell.CampbellDiagram`. Crossings are marked with
     circles, veerings with diamonds, growth rates above critical with crosses, the critical
     speed with a vertical line, and with ``circumference`` ℓ (m) of a roller or capstan the
     excitation lines ω = n·2πV/ℓ for n in ``orders``.
@@ -55,7 +55,7 @@ def campbell(diagram, *, ax=None, circumference: float | None = None,
 def sweep(result, *, ax=None, title: str | None = None):
     """Sweep: ω (rad/s) against V (m/s), one line per tracked branch; returns the Axes.
 
-    ``result`` is a :class:`~gyroshell.sweep.SweepResult` (or its table, with columns
+    ``result`` is a :class:`~gyroshell.SweepResult` (or its table, with columns
     ``velocity``, ``branch``, ``omega`` and optionally ``rank`` and ``growth_rate``). The
     k-th lowest frequencies are drawn in grey beneath (continuous where branches end), and
     growth rates above critical as crosses.

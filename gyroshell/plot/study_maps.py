@@ -17,7 +17,7 @@ def stability_map(study, *, x: str | None = None, y: str | None = None, ax=None,
                   title: str | None = None):
     """Stable / divergence / flutter over two varied parameters of a study.
 
-    ``study`` is a :class:`~gyroshell.study.StudyResult` (or its table); ``x`` and ``y``
+    ``study`` is a :class:`~gyroshell.StudyResult` (or its table); ``x`` and ``y``
     default to the first two varied parameters (x: the first). Each point is a coloured
     cell; the critical speed, if computed and x or y is the velocity, is drawn over it.
     """

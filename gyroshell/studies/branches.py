@@ -77,5 +77,5 @@ class BranchTracker:
 
 
 def track(results, tracker: BranchTracker) -> list[Match]:
-    """The matches of consecutive speeds' :class:`~gyroshell.eigen.Modes`, in order."""
+    """The matches of consecutive speeds' :class:`~gyroshell.Modes`, in order."""
     return [tracker.match(res.vectors) for res in results]

@@ -1,6 +1,6 @@
 """Campbell diagrams: frequencies against tape speed, branches tracked by MAC.
 
-At each speed the lowest ``count`` modes are computed (:func:`gyroshell.eigen.modes`) and
+At each speed the lowest ``count`` modes are computed (:func:`gyroshell.modes`) and
 matched to the previous speed's by the modal assurance criterion
 
     MAC(φ_a, φ_b) = |φ_aᴴ φ_b|² / ((φ_aᴴ φ_a)(φ_bᴴ φ_b))   (0: orthogonal, 1: the same shape)
@@ -241,7 +241,7 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     veering_gap : float
         Largest relative gap at a veering.
     critical_speed : True, float or None
-        True: compute it (:func:`gyroshell.critical.critical_speeds`); a number: use it;
+        True: compute it (:func:`gyroshell.critical_speeds`); a number: use it;
         None/False: none.
     progress : bool or None
         Progress bar on stderr; None: only if stderr is a terminal.
@@ -253,7 +253,7 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
         Local processes (>= 1), each solving a contiguous run of the speeds, as in
         :func:`gyroshell.sweep`.
     **options
-        Passed to :func:`gyroshell.eigen.modes`.
+        Passed to :func:`gyroshell.modes`.
     """
     from .sweep import check_velocities, check_workers, solve_speeds
 

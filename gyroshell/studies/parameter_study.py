@@ -1,21 +1,21 @@
 """Parameter studies: vary tape parameters over a grid or a list of points, one row each.
 
-A study takes a base tape (:class:`~gyroshell.parameters.TapeParameters` and a speed V), a
+A study takes a base tape (:class:`~gyroshell.TapeParameters` and a speed V), a
 set of points (each point changes some fields, and possibly ``velocity``) and what to compute
 at every point:
 
 ``critical``
     ``critical_speed`` (m/s, where the lowest frequency reaches zero) and
     ``divergence_speed`` (m/s, where K(V) loses definiteness) from
-    :func:`gyroshell.critical.critical_speeds`.
+    :func:`gyroshell.critical_speeds`.
 ``modes``
     ``omega_1`` ... ``omega_<count>`` (rad/s, the lowest frequencies from
-    :func:`gyroshell.eigen.modes`; above the critical speed the eigenvalues nearest zero),
+    :func:`gyroshell.modes`; above the critical speed the eigenvalues nearest zero),
     ``growth_rate`` (largest Re λ among them, 1/s) and ``stability``
     (:func:`tape_stability`: ``stable``, ``divergence`` or ``flutter``).
 ``static``
     ``load_point_deflection`` and ``max_deflection`` (m) from
-    :func:`gyroshell.static.solve_static` (a speed at or above critical fails in its row).
+    :func:`gyroshell.solve_static` (a speed at or above critical fails in its row).
 ``period``
     ``period`` = 2π/ω₁ (s), the dominant period of the load-point response (the band edge
     of its spectrum; see :mod:`gyroshell.reproduce.period`), and ``stability``.
@@ -75,7 +75,7 @@ CHUNKS_PER_WORKER = 4
 
 # ----- stability ---------------------------------------------------------------------------
 def classify_stability(eigenvalues, *args, **kwargs):
-    """:func:`gyroshell.qep.classify_stability`, imported on first use (it loads scipy.linalg,
+    """:func:`gyroshell.classify_stability`, imported on first use (it loads scipy.linalg,
     which the CLI's parser and refusals do not need)."""
     from .stability import classify_stability as classify
 
@@ -112,7 +112,7 @@ def tape_stability(model, velocity: float, eigenvalues=None) -> str:
     With an even, non-zero number, G may stabilize the tape or not: the whole spectrum is
     computed densely (up to :data:`DENSE_LIMIT` unknowns) and classified by
     :func:`classify_stability`. On larger grids the ``eigenvalues`` given (those nearest
-    zero, from :func:`gyroshell.eigen.modes`) decide if one of them grows, else the answer
+    zero, from :func:`gyroshell.modes`) decide if one of them grows, else the answer
     is ``undetermined``: the modes nearest zero do not show a far-off growing one.
     """
     from ..linalg.inertia import factor_inertia
@@ -349,7 +349,7 @@ class StudyResult(results_base.Result, kind="study"):
     ----------
     table : pandas.DataFrame
         One row per point: ``point`` (index), the varied parameters (SI, named as in
-        :class:`~gyroshell.parameters.TapeParameters`, plus ``velocity`` in m/s), the
+        :class:`~gyroshell.TapeParameters`, plus ``velocity`` in m/s), the
         computed columns (:func:`result_columns`) and ``error`` ("" if the point succeeded).
     base : TapeParameters
         The tape the points change.

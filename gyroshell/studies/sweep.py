@@ -1,6 +1,6 @@
 """Frequencies against tape speed, with mode tracking, as a :class:`SweepResult` and a plot.
 
-At each speed the lowest ``count`` modes are computed (:func:`gyroshell.eigen.modes`) and
+At each speed the lowest ``count`` modes are computed (:func:`gyroshell.modes`) and
 matched to the previous speed's by mode-shape correlation
 
     C_ij = |φ_iᴴ M ψ_j| / (‖φ_i‖_M ‖ψ_j‖_M),
@@ -157,7 +157,7 @@ class SweepResult(base.Result, kind="sweep"):
 def parse_velocities(text: str, *, option: str = "velocities") -> list[float]:
     """Speeds, m/s, from ``"start:stop:step"`` (stop included) or ``"v1,v2,..."``.
 
-    The number of speeds is checked against :data:`gyroshell.budget.MAX_SWEEP_SPEEDS`
+    The number of speeds is checked against :data:`gyroshell.core.budget.MAX_SWEEP_SPEEDS`
     before the list is built, so ``0:100:1e-12`` is refused at once.
 
     Raises
@@ -229,17 +229,17 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         Move the shift with the tracked lowest frequency (extrapolated from the previous
         speeds, see :func:`_continuation_options`), start each solve from the previous
         speed's modes and, when several speeds lie above √(T/ρ), certify K(V) > 0 once for
-        the model (:func:`gyroshell.eigen.stiffness_floor`) instead of factoring K(V) at each
-        of them. The results are those of independent solves (to round-off); the saving is
-        Lanczos steps (a shift close below ω₁ separates the clustered long-tape frequencies)
-        and those factorizations.
+        the model (:func:`gyroshell.engines.eigen.stiffness_floor`) instead of factoring
+        K(V) at each of them. The results are those of independent solves (to round-off);
+        the saving is Lanczos steps (a shift close below ω₁ separates the clustered
+        long-tape frequencies) and those factorizations.
     workers : int
         Local processes (>= 1). With more than one, the speeds are split into that many
         contiguous runs, each solved with continuation in its own process, and the branches
         are tracked across them afterwards; the frequencies are the same as on one process
         (to round-off: each run starts its continuation afresh).
     **options
-        Passed to :func:`gyroshell.eigen.modes` (``sigma``, ``tol``, ``damping``, ...).
+        Passed to :func:`gyroshell.modes` (``sigma``, ``tol``, ``damping``, ...).
 
     Returns
     -------
@@ -292,7 +292,7 @@ def solve_speeds(model, velocities: list[float], count: int, *, continuation: bo
 
     One process continues each speed from the previous ones (``continuation``); several
     ``workers`` each continue one contiguous run of the speeds. ``options`` go to
-    :func:`gyroshell.eigen.modes`; the bar is labelled ``description``.
+    :func:`gyroshell.modes`; the bar is labelled ``description``.
     """
     with progress_bar(len(velocities), description, progress=progress, unit="speed") as bar:
         if workers == 1:

@@ -19,7 +19,7 @@ string ``"<number> <unit>"``::
     load = "200 Pa"
     velocity = "50 m/s"           # optional: the default tape speed
 
-Keys are the :class:`~gyroshell.parameters.TapeParameters` fields plus ``velocity`` and
+Keys are the :class:`~gyroshell.TapeParameters` fields plus ``velocity`` and
 ``name``; they may also sit at the top level instead of under ``[tape]``. Missing keys take
 the Table 1 defaults. An unknown key, an unknown or mismatched unit, or a value out of range
 raises :class:`~gyroshell.ParameterError` naming the file and the key.

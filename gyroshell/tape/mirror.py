@@ -11,7 +11,7 @@ the problem splits exactly into two of half the size, (λ²M_s + λG_s + K_s)ψ 
 M_s = P_sᵀMP_s (diagonal), G_s = P_sᵀGP_s (skew), K_s = P_sᵀKP_s (symmetric), and the same
 for P_a; φ = P_s ψ. On the long tape a half-width solve costs half a full one (its
 factorization has half the entries) and needs fewer Lanczos steps, each half as long
-(:func:`gyroshell.eigen.modes` uses the split; module notes there).
+(:func:`gyroshell.modes` uses the split; module notes there).
 """
 
 from __future__ import annotations

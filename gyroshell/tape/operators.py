@@ -3,7 +3,7 @@
     M a + G(V) v + K(V) w = F,      K(V) = A + (T − ρV²) B
 
 The speed-independent parts A, B and M are assembled here; K(V) itself is formed by
-:meth:`gyroshell.model.TapeModel.K`, which caches A and B across speeds.
+:meth:`gyroshell.TapeModel.K`, which caches A and B across speeds.
 
 Every matrix is assembled from a discrete *energy* (or power) with trapezoid weights, so the
 structure that the physics guarantees holds by construction, not by luck:

@@ -258,7 +258,7 @@ class TapeParameters:
     @property
     def load_pressure(self) -> float:
         """Peak pressure P_0 of the Gaussian load, Pa (the field ``load``; a pressure, unlike
-        the nodal forces :attr:`gyroshell.model.TapeModel.force` in N)."""
+        the nodal forces :attr:`gyroshell.TapeModel.force` in N)."""
         return self.load
 
     # ----- derived quantities ------------------------------------------------------------
