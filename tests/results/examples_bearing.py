@@ -43,6 +43,6 @@ def transient() -> Result:
 
 
 EXAMPLES: dict[str, Callable[[], Result]] = {
-    "bearing": steady,
+    "bearing": steady_2d,      # the 2-D state (graded y nodes, mirror fold); 1-D: test_bearing_kinds
     "bearing_transient": transient,
 }
