@@ -43,6 +43,6 @@ def transient() -> Result:
 
 
 EXAMPLES: dict[str, Callable[[], Result]] = {
-    "bearing": steady_2d,      # the 2-D state (graded y nodes, mirror fold); 1-D: test_bearing_kinds
+    "bearing": steady_2d,  # the 2-D state (graded y, mirror fold); 1-D in test_bearing_kinds
     "bearing_transient": transient,
 }
