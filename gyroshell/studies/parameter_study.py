@@ -209,14 +209,12 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         Address of a running Dask distributed scheduler (``tcp://HOST:PORT``); the points
         run on its workers instead (needs ``pip install "gyroshell[cluster]"``).
     connect_timeout : float
-        Seconds to wait for the ``scheduler`` to answer (default
-        :data:`~gyroshell.studies.executors.CONNECT_TIMEOUT`).
+        Seconds to wait for the ``scheduler`` to answer.
     cache : path, optional
         JSON Lines file of finished points; a repeated study skips them.
     chunk_size : int, optional
-        Points per task; default about
-        :data:`~gyroshell.studies.executors.CHUNKS_PER_WORKER` tasks per worker (1 in this
-        process).
+        Points per task; default about ``CHUNKS_PER_WORKER`` tasks per worker (1 in this
+        process; :data:`gyroshell.studies.executors.CHUNKS_PER_WORKER`).
     progress : bool, optional
         Progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`); default
         only when stderr is a terminal.
@@ -237,8 +235,6 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     ...                   points=[{"tension": 80.0}], compute="critical", workers=1)
     >>> list(study.table.columns)
     ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
-    >>> study.info["executor"], len(study.failed)
-    ('serial', 0)
     """
     plan = _plan(base, vary, points, compute, velocity, count)
     where = check_executor(workers, scheduler, chunk_size, connect_timeout)
