@@ -12,7 +12,8 @@ at every point:
     ``omega_1`` ... ``omega_<count>`` (rad/s, the lowest frequencies from
     :func:`gyroshell.modes`; above the critical speed the eigenvalues nearest zero),
     ``growth_rate`` (largest Re λ among them, 1/s) and ``stability``
-    (:func:`tape_stability`: ``stable``, ``divergence`` or ``flutter``).
+    (:func:`gyroshell.studies.stability.tape_stability`: ``stable``, ``divergence`` or
+    ``flutter``).
 ``static``
     ``load_point_deflection`` and ``max_deflection`` (m) from
     :func:`gyroshell.solve_static` (a speed at or above critical fails in its row).
@@ -27,320 +28,52 @@ same in every case. A point that fails is reported in its row (``error``, the ot
 NaN) and the study goes on. With ``cache=PATH`` each finished point is appended to a JSON
 Lines file, and a study started again with the same cache computes only the points that are
 missing (rows are read back bit for bit: JSON keeps float64 exactly).
+
+This module holds the study's result and :func:`run_study`; the pieces live beside it:
+:mod:`~gyroshell.studies.points` (what may vary, grids, checks),
+:mod:`~gyroshell.studies.evaluation` (what one point computes),
+:mod:`~gyroshell.studies.cache` (the JSON Lines cache) and
+:mod:`~gyroshell.studies.executors` (this process, local processes, Dask).
 """
 
 from __future__ import annotations
 
 import dataclasses
-import hashlib
-import itertools
 import json
-import math
 import os
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import TYPE_CHECKING
 
-import numpy as np
-
-from ..core import budget
 from ..core.errors import ParameterError
-from ..core.parallel import process_pool
 from ..core.progress import progress_bar
 from ..core.units import unit_of
 from ..results import base as results_base
 from ..tape.parameters import TapeParameters, check_velocity
+from .cache import PointCache, point_key
+from .evaluation import COMPUTE_CHOICES, check_compute, result_columns
+from .executors import CONNECT_TIMEOUT, Executor, StudyTask, check_executor, execute
+from .points import VARIABLE_NAMES, canonical_name, check_points, grid_points
 
 if TYPE_CHECKING:
     import pandas as pd
 
-#: What a study can compute at each point.
-COMPUTE_CHOICES: tuple[str, ...] = ("critical", "modes", "static", "period")
-#: Parameters a study can vary: every TapeParameters field, plus the tape speed.
-VARIABLE_NAMES: tuple[str, ...] = ("velocity",) + tuple(
-    f.name for f in dataclasses.fields(TapeParameters))
+__all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "StudyResult", "run_study"]
 
-STABLE, DIVERGENCE, FLUTTER = "stable", "divergence", "flutter"
-#: K(V) indefinite with an even index and no growing eigenvalue among those computed.
-UNDETERMINED = "undetermined"
-#: Largest number of unknowns for which a point's whole spectrum is computed densely.
-DENSE_LIMIT = 700
-#: How long to wait for a Dask scheduler to answer.
-CONNECT_TIMEOUT = "10s"
-#: Chunks per worker when chunk size is automatic (balances load against overhead).
-CHUNKS_PER_WORKER = 4
+#: Names of :mod:`gyroshell.studies.stability` also read from here; that module loads
+#: scipy, so it is imported only when one of them is asked for.
+_STABILITY_NAMES = ("classify_stability", "quadratic_eigenvalues", "tape_stability")
 
 
-# ----- stability ---------------------------------------------------------------------------
-def classify_stability(eigenvalues, *args, **kwargs):
-    """:func:`gyroshell.classify_stability`, imported on first use (it loads scipy.linalg,
-    which the CLI's parser and refusals do not need)."""
-    from .stability import classify_stability as classify
+def __getattr__(name: str):
+    if name in _STABILITY_NAMES:
+        from . import stability
 
-    return classify(eigenvalues, *args, **kwargs)
-
-
-def quadratic_eigenvalues(M, G, K) -> np.ndarray:
-    """All 2n eigenvalues λ (1/s) of det(λ²M + λG + K) = 0, dense (M diagonal or full)."""
-    M, G, K = (np.asarray(a.toarray() if hasattr(a, "toarray") else a, dtype=float)
-               for a in (M, G, K))
-    n = len(K)
-    Minv = np.linalg.inv(M)
-    companion = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ G]])
-    import scipy.linalg as la
-
-    from ..core.parallel import blas_threads
-
-    with blas_threads(1):  # studies run one point per core
-        return la.eigvals(companion)
+        return getattr(stability, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-def tape_stability(model, velocity: float, eigenvalues=None) -> str:
-    """Stability of the moving tape at speed V: ``stable``, ``divergence`` or ``flutter``.
-
-    The tape is a conservative gyroscopic system (G skew, K symmetric), so two facts decide
-    most speeds without eigenvalues, from the inertia of K(V) (negative pivots of its LDLᵀ):
-
-    * K(V) positive definite (below the critical speed): stable, by the energy
-      ½vᵀMv + ½wᵀKw, which is conserved and positive definite.
-    * An odd number of negative eigenvalues of K(V): det Q(λ) = det(λ²M + λG + K) is
-      negative at λ = 0 and positive for large real λ, so a real positive eigenvalue exists:
-      divergence.
-
-    With an even, non-zero number, G may stabilize the tape or not: the whole spectrum is
-    computed densely (up to :data:`DENSE_LIMIT` unknowns) and classified by
-    :func:`classify_stability`. On larger grids the ``eigenvalues`` given (those nearest
-    zero, from :func:`gyroshell.modes`) decide if one of them grows, else the answer
-    is ``undetermined``: the modes nearest zero do not show a far-off growing one.
-    """
-    from ..linalg.inertia import factor_inertia
-
-    K = model.K(velocity)
-    negatives = factor_inertia(K).negatives
-    if negatives is None:  # pivoting happened: count the negative eigenvalues densely
-        if model.unknowns > DENSE_LIMIT:
-            negatives = -1
-        else:
-            negatives = int(np.count_nonzero(np.linalg.eigvalsh(K.toarray()) < 0))
-    if negatives == 0:
-        return STABLE
-    if negatives > 0 and negatives % 2 == 1:
-        return DIVERGENCE
-    if model.unknowns <= DENSE_LIMIT:
-        return classify_stability(quadratic_eigenvalues(model.M, model.G(velocity), K))
-    if eigenvalues is not None:
-        verdict = classify_stability(eigenvalues)
-        if verdict != STABLE:
-            return verdict
-    return UNDETERMINED
-
-
-# ----- points ------------------------------------------------------------------------------
-def _canonical(name: str) -> str:
-    key = str(name).strip().replace("-", "_")
-    if key not in VARIABLE_NAMES:
-        raise ParameterError(f"cannot vary {name!r}: choose from {', '.join(VARIABLE_NAMES)}")
-    return key
-
-
-def grid_points(vary: Mapping[str, Sequence]) -> list[dict]:
-    """All combinations of the values in ``vary`` (the first name varies slowest).
-
-    Examples
-    --------
-    >>> grid_points({"velocity": [0.0, 50.0], "youngs-modulus": [4e9]})
-    [{'velocity': 0.0, 'youngs_modulus': 4000000000.0},
-     {'velocity': 50.0, 'youngs_modulus': 4000000000.0}]
-    """
-    names = [_canonical(n) for n in vary]
-    values = []
-    for name, vals in zip(names, vary.values(), strict=True):
-        vals = list(vals) if not isinstance(vals, str) else [vals]
-        if not vals:
-            raise ParameterError(f"{name} needs at least one value")
-        values.append(vals)
-    budget.check_study_points(math.prod(len(v) for v in values))
-    return [dict(zip(names, combo, strict=True)) for combo in itertools.product(*values)]
-
-
-def _check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping]
-                  ) -> tuple[list[dict], tuple[str, ...]]:
-    """Canonical names, validated values (ParameterError names the point), varied names."""
-    out, names = [], []
-    for i, point in enumerate(points):
-        clean = {}
-        for name, value in point.items():
-            key = _canonical(name)
-            if isinstance(value, np.generic):
-                value = value.item()
-            clean[key] = value
-            if key not in names:
-                names.append(key)
-        try:
-            params, v = _parameters_of(base, velocity, clean)
-        except ParameterError as exc:
-            raise ParameterError(f"point {i} {clean}: {exc}") from None
-        clean = {k: (v if k == "velocity" else getattr(params, k)) for k in clean}
-        out.append(clean)
-    if not out:
-        raise ParameterError("a study needs at least one point")
-    return out, tuple(names)
-
-
-def _parameters_of(base: TapeParameters, velocity: float, point: Mapping
-                   ) -> tuple[TapeParameters, float]:
-    changes = {k: v for k, v in point.items() if k != "velocity"}
-    v = check_velocity(point.get("velocity", velocity))
-    return (base.replace(**changes) if changes else base), v
-
-
-# ----- one point ---------------------------------------------------------------------------
-def result_columns(compute: Sequence[str], count: int) -> list[str]:
-    """Names of the computed columns, in order, for ``compute`` and ``count``."""
-    cols: list[str] = []
-    if "critical" in compute:
-        cols += ["critical_speed", "divergence_speed"]
-    if "modes" in compute:
-        cols += [f"omega_{j + 1}" for j in range(count)] + ["growth_rate"]
-    if "static" in compute:
-        cols += ["load_point_deflection", "max_deflection"]
-    if "period" in compute:
-        cols += ["period"]
-    if "modes" in compute or "period" in compute:
-        cols += ["stability"]
-    return cols + ["error"]
-
-
-def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
-             count: int) -> dict:
-    """Compute one point; returns the computed columns (see :func:`result_columns`).
-
-    ``base`` holds the base TapeParameters fields. Each quantity is computed on its own: a
-    failure (e.g. ``static`` above the critical speed) leaves NaN in that quantity's columns
-    and is reported in ``error`` (``"static: SupercriticalError: message"``; several joined
-    by " | "), while the other quantities of the point are kept.
-    """
-    row: dict = {c: math.nan for c in result_columns(compute, count)}
-    if "stability" in row:
-        row["stability"] = ""
-    errors: list[str] = []
-
-    def attempt(name: str, fn: Callable, *args) -> None:
-        try:
-            fn(*args)
-        except Exception as exc:  # reported in the row; the study goes on
-            errors.append(f"{name}: {type(exc).__name__}: {exc}".replace("\n", " "))
-
-    built: list = []
-    attempt("model", lambda: built.append(_model_of(base, velocity, point)))
-    if built:
-        model, v = built[0]
-        eigen_name = "modes" if "modes" in compute else "period"
-        for name, wanted, columns in (
-                ("critical", "critical" in compute, _critical_columns),
-                (eigen_name, "modes" in compute or "period" in compute, _eigen_columns),
-                ("static", "static" in compute, _static_columns)):
-            if wanted:
-                attempt(name, columns, model, v, row, compute, count)
-    row["error"] = " | ".join(errors)
-    return row
-
-
-def _model_of(base: dict, velocity: float, point: dict):
-    """The point's TapeModel and speed V (m/s)."""
-    from ..tape.model import TapeModel
-
-    params, v = _parameters_of(TapeParameters(**base), velocity, point)
-    return TapeModel(params), v
-
-
-def _critical_columns(model, v: float, row: dict, compute, count: int) -> None:
-    """``critical_speed`` and ``divergence_speed`` (m/s) into ``row``."""
-    from ..engines.critical import critical_speeds
-
-    c = critical_speeds(model)
-    row.update(critical_speed=c.critical_speed, divergence_speed=c.divergence_speed)
-
-
-def _eigen_columns(model, v: float, row: dict, compute, count: int) -> None:
-    """``omega_k`` and ``growth_rate`` (modes), ``period`` and ``stability`` into ``row``,
-    each as soon as it is known (a later failure keeps them)."""
-    from ..engines.eigen import modes
-
-    res = modes(model, v, count if "modes" in compute else 1)
-    if "modes" in compute:
-        for j, w in enumerate(res.omega):
-            row[f"omega_{j + 1}"] = float(w)
-        row["growth_rate"] = float(np.max(res.eigenvalues.real.clip(min=0.0)))
-    if "period" in compute:
-        row["period"] = float(res.period[0])
-    row["stability"] = tape_stability(model, v, res.eigenvalues)
-
-
-def _static_columns(model, v: float, row: dict, compute, count: int) -> None:
-    """``load_point_deflection`` and ``max_deflection`` (m) into ``row``."""
-    from ..engines.static import solve_static
-
-    s = solve_static(model, v)
-    row.update(load_point_deflection=s.load_point_deflection,
-               max_deflection=s.max_deflection)
-
-
-def _evaluate_chunk(base: dict, velocity: float, tasks: list[tuple[int, dict]],
-                    compute: tuple[str, ...], count: int) -> list[tuple[int, dict]]:
-    """Evaluate several points in one task (amortizes the per-task scheduling cost)."""
-    return [(i, evaluate(base, velocity, point, compute, count)) for i, point in tasks]
-
-
-# ----- cache -------------------------------------------------------------------------------
-def _point_key(spec: str, point: dict) -> str:
-    text = spec + json.dumps(point, sort_keys=True, default=repr)
-    return hashlib.sha256(text.encode()).hexdigest()[:32]
-
-
-class _Cache:
-    """Finished points in a JSON Lines file (one ``{"key", "row"}`` object per line)."""
-
-    def __init__(self, path: str | os.PathLike[str] | None) -> None:
-        self.path = None if path is None else Path(path)
-        self._file = None
-        if self.path is not None and not self.path.parent.is_dir():
-            raise FileNotFoundError(f"cache folder does not exist: {self.path.parent}")
-
-    def done(self) -> dict[str, dict]:
-        """Rows already computed, by key; a line cut short by an interruption is skipped
-        (that point runs again)."""
-        rows: dict[str, dict] = {}
-        if self.path is None or not self.path.exists():
-            return rows
-        with open(self.path, encoding="utf-8") as fh:
-            for line in fh:
-                try:
-                    entry = json.loads(line)
-                    rows[entry["key"]] = entry["row"]
-                except (json.JSONDecodeError, KeyError, TypeError):
-                    continue
-        return rows
-
-    def __enter__(self) -> _Cache:
-        if self.path is not None:
-            self._file = open(self.path, "a", encoding="utf-8")
-        return self
-
-    def add(self, entries: list[tuple[str, dict]]) -> None:
-        if self._file is not None:
-            for key, row in entries:
-                self._file.write(json.dumps({"key": key, "row": row}) + "\n")
-            self._file.flush()
-
-    def __exit__(self, *exc) -> None:
-        if self._file is not None:
-            self._file.close()
-
-
-# ----- the result --------------------------------------------------------------------------
 @dataclass(frozen=True, eq=False)
 class StudyResult(results_base.Result, kind="study"):
     """The rows of a parameter study and what made them.
@@ -349,8 +82,9 @@ class StudyResult(results_base.Result, kind="study"):
     ----------
     table : pandas.DataFrame
         One row per point: ``point`` (index), the varied parameters (SI, named as in
-        :class:`~gyroshell.TapeParameters`, plus ``velocity`` in m/s), the
-        computed columns (:func:`result_columns`) and ``error`` ("" if the point succeeded).
+        :class:`~gyroshell.TapeParameters`, plus ``velocity`` in m/s), the computed
+        columns (:func:`~gyroshell.studies.evaluation.result_columns`) and ``error`` ("" if
+        the point succeeded).
     base : TapeParameters
         The tape the points change.
     velocity : float
@@ -358,7 +92,7 @@ class StudyResult(results_base.Result, kind="study"):
     varied : tuple of str
         Names of the varied parameters (table columns).
     compute : tuple of str
-        What was computed (subset of :data:`COMPUTE_CHOICES`).
+        What was computed (subset of :data:`~gyroshell.studies.evaluation.COMPUTE_CHOICES`).
     count : int
         Frequencies per point for ``modes``.
     info : dict
@@ -445,36 +179,13 @@ class StudyResult(results_base.Result, kind="study"):
                    int(from_json(attrs["count"])), from_json(attrs.get("info", "{}")))
 
 
-# ----- running -----------------------------------------------------------------------------
-def _check_compute(compute) -> tuple[str, ...]:
-    items = (compute,) if isinstance(compute, str) else tuple(compute)
-    bad = [c for c in items if c not in COMPUTE_CHOICES]
-    if bad or not items:
-        raise ParameterError(f"compute must be one or more of {', '.join(COMPUTE_CHOICES)}, "
-                             f"got {', '.join(map(repr, bad)) or 'nothing'}")
-    return tuple(dict.fromkeys(items))
-
-
-def _check_workers(workers) -> int:
-    if workers is None:
-        return max(1, os.cpu_count() or 1)
-    if isinstance(workers, bool) or int(workers) != workers or workers < 1:
-        raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
-    return int(workers)
-
-
-def _chunks(tasks: list, size: int) -> list[list]:
-    """Tasks dealt round-robin into chunks of about ``size``: neighbouring points (similar
-    cost, e.g. all the supercritical speeds) spread over the chunks, balancing the load."""
-    n = max(1, math.ceil(len(tasks) / size))
-    return [tasks[i::n] for i in range(n) if tasks[i::n]]
-
 
 def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence] | None = None,
               points: Sequence[Mapping] | None = None, compute: str | Sequence[str] = "critical",
               velocity: float = 0.0, count: int = 3, workers: int | None = None,
-              scheduler: str | None = None, cache: str | os.PathLike[str] | None = None,
-              chunk_size: int | None = None, progress: bool | None = None) -> StudyResult:
+              scheduler: str | None = None, connect_timeout: float = CONNECT_TIMEOUT,
+              cache: str | os.PathLike[str] | None = None, chunk_size: int | None = None,
+              progress: bool | None = None) -> StudyResult:
     """Run a parameter study; one row per point.
 
     Parameters
@@ -497,11 +208,13 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     scheduler : str, optional
         Address of a running Dask distributed scheduler (``tcp://HOST:PORT``); the points
         run on its workers instead (needs ``pip install "gyroshell[cluster]"``).
+    connect_timeout : float
+        Seconds to wait for the ``scheduler`` to answer.
     cache : path, optional
         JSON Lines file of finished points; a repeated study skips them.
     chunk_size : int, optional
-        Points per task; default about ``CHUNKS_PER_WORKER`` tasks per worker (1 in
-        this process).
+        Points per task; default about ``CHUNKS_PER_WORKER`` tasks per worker (1 in this
+        process; :data:`gyroshell.studies.executors.CHUNKS_PER_WORKER`).
     progress : bool, optional
         Progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`); default
         only when stderr is a terminal.
@@ -513,16 +226,25 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     Raises
     ------
     ParameterError
-        Unknown parameter names, invalid values (naming the point), bad options.
+        Unknown parameter names, invalid values (naming the point), bad options, an
+        unreachable scheduler or workers running another gyroshell version.
+
+    Examples
+    --------
+    >>> study = run_study(TapeParameters(length_ratio=1, spacing=6.35e-3 / 8),
+    ...                   points=[{"tension": 80.0}], compute="critical", workers=1)
+    >>> list(study.table.columns)
+    ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
     """
     plan = _plan(base, vary, points, compute, velocity, count)
-    return _run(plan, _check_executor(workers, scheduler, chunk_size), cache, progress)
+    where = check_executor(workers, scheduler, chunk_size, connect_timeout)
+    return _run(plan, where, cache, progress)
 
 
 @dataclass(frozen=True)
 class _Plan:
-    """A validated study: the base tape's fields, the speed (m/s) where a point sets none,
-    the points, the varied names, what to compute and how many frequencies."""
+    """A validated study: the base tape, the speed (m/s) where a point sets none, the
+    points, the varied names, what to compute and how many frequencies."""
 
     base: TapeParameters
     velocity: float
@@ -532,25 +254,19 @@ class _Plan:
     count: int
 
     @property
-    def base_fields(self) -> dict:
-        return {f.name: getattr(self.base, f.name) for f in dataclasses.fields(self.base)}
+    def task(self) -> StudyTask:
+        """What every point's evaluation shares (the base tape as plain fields)."""
+        fields = {f.name: getattr(self.base, f.name) for f in dataclasses.fields(self.base)}
+        return StudyTask(fields, self.velocity, self.compute, self.count)
 
     def keys(self) -> list[str]:
         """Each point's cache key: its values, the rest of the study and the version."""
         from ..core.version import __version__
 
-        spec = json.dumps([self.base_fields, self.velocity, self.compute, self.count,
-                           __version__], sort_keys=True, default=repr)
-        return [_point_key(spec, p) for p in self.points]
-
-
-@dataclass(frozen=True)
-class _Executor:
-    """Where the points run: ``workers`` local processes, or a Dask ``scheduler``."""
-
-    workers: int | None
-    scheduler: str | None
-    chunk_size: int | None
+        task = self.task
+        spec = json.dumps([task.base, self.velocity, self.compute, self.count, __version__],
+                          sort_keys=True, default=repr)
+        return [point_key(spec, p) for p in self.points]
 
 
 def _plan(base, vary, points, compute, velocity, count) -> _Plan:
@@ -559,37 +275,24 @@ def _plan(base, vary, points, compute, velocity, count) -> _Plan:
     if not isinstance(base, TapeParameters):
         raise ParameterError("base must be a TapeParameters")
     velocity = check_velocity(velocity)
-    compute = _check_compute(compute)
+    compute = check_compute(compute)
     if isinstance(count, bool) or int(count) != count or count < 1:
         raise ParameterError(f"count must be an integer >= 1, got {count!r}")
     if (vary is None) == (points is None):
         raise ParameterError("give either vary (a grid) or points (a list), not both")
     raw = grid_points(vary) if vary is not None else list(points)
-    pts, varied = _check_points(base, velocity, raw)
+    pts, varied = check_points(base, velocity, raw)
     if vary is not None:
-        varied = tuple(_canonical(n) for n in vary)
+        varied = tuple(canonical_name(n) for n in vary)
     return _Plan(base, velocity, pts, varied, compute, int(count))
 
 
-def _check_executor(workers, scheduler, chunk_size) -> _Executor:
-    if scheduler is not None and (not isinstance(scheduler, str) or "://" not in scheduler):
-        raise ParameterError(f"scheduler must be an address like tcp://HOST:PORT, got "
-                             f"{scheduler!r}")
-    if scheduler is not None and workers is not None:
-        raise ParameterError("give workers (local processes) or scheduler (a Dask cluster, "
-                             "whose workers run the points), not both")
-    workers = _check_workers(workers) if scheduler is None else None
-    if chunk_size is not None and (int(chunk_size) != chunk_size or chunk_size < 1):
-        raise ParameterError(f"chunk_size must be an integer >= 1, got {chunk_size!r}")
-    return _Executor(workers, scheduler, chunk_size)
-
-
-def _run(plan: _Plan, where: _Executor, cache, progress: bool | None) -> StudyResult:
+def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyResult:
     """Compute the points the cache lacks, where asked, and gather the rows."""
     import pandas as pd
 
     keys, pts = plan.keys(), plan.points
-    cache = _Cache(cache)
+    cache = PointCache(cache)
     done = cache.done()
     rows: dict[int, dict] = {i: done[k] for i, k in enumerate(keys) if k in done}
     todo = [(i, pts[i]) for i in range(len(pts)) if i not in rows]
@@ -601,7 +304,7 @@ def _run(plan: _Plan, where: _Executor, cache, progress: bool | None) -> StudyRe
             cache.add([(keys[i], row) for i, row in results])
             bar.update(len(results))
 
-        executor, size = _execute(todo, record, plan, where)
+        executor, size = execute(todo, record, plan.task, where)
     columns = result_columns(plan.compute, plan.count)
     records = [{"point": i, **pts[i], **{c: rows[i][c] for c in columns}}
                for i in range(len(pts))]
@@ -610,77 +313,3 @@ def _run(plan: _Plan, where: _Executor, cache, progress: bool | None) -> StudyRe
             "seconds": time.perf_counter() - t0, "executor": executor, "chunk_size": size}
     return StudyResult(table, plan.base, plan.velocity, plan.varied, plan.compute,
                        plan.count, info)
-
-
-def _execute(todo, record: Callable, plan: _Plan, where: _Executor) -> tuple[str, int]:
-    """Run the tasks where asked; ``record`` gets each finished chunk's (index, row)s.
-    Returns the executor's name and the chunk size."""
-    args = (plan.base_fields, plan.velocity)
-    compute, count, chunk_size = plan.compute, plan.count, where.chunk_size
-    if not todo:
-        return "cache", 0
-    if where.scheduler is not None:
-        return _execute_dask(todo, record, args, compute, count, where.scheduler, chunk_size)
-    if where.workers == 1:
-        size = chunk_size or 1
-        for chunk in _chunks(todo, size):
-            record(_evaluate_chunk(*args, chunk, compute, count))
-        return "serial", size
-    from concurrent.futures import as_completed
-
-    workers = where.workers
-    size = chunk_size or max(1, math.ceil(len(todo) / (workers * CHUNKS_PER_WORKER)))
-    with process_pool(workers) as pool:
-        futures = [pool.submit(_evaluate_chunk, *args, chunk, compute, count)
-                   for chunk in _chunks(todo, size)]
-        for fut in as_completed(futures):
-            record(fut.result())
-    return f"processes({workers})", size
-
-
-def _worker_version() -> str:
-    try:
-        from ..core.version import __version__
-    except ImportError:
-        return "not installed"
-    return __version__
-
-
-def _check_worker_versions(client, scheduler: str) -> None:
-    """Refuse workers that run another gyroshell: their rows would not be this version's."""
-    from ..core.version import __version__
-
-    versions = client.run(_worker_version)
-    if not versions:
-        raise ParameterError(f"the Dask scheduler at {scheduler} has no workers: start some "
-                             f"with 'dask worker {scheduler}'")
-    other = {addr: v for addr, v in versions.items() if v != __version__}
-    if other:
-        addr, v = next(iter(other.items()))
-        raise ParameterError(f"Dask worker {addr} runs gyroshell {v}, this process "
-                             f"{__version__}: install the same version on every worker")
-
-
-def _execute_dask(todo, record, args, compute, count, scheduler, chunk_size
-                  ) -> tuple[str, int]:
-    try:
-        from distributed import Client, as_completed
-    except ImportError:
-        raise ParameterError('--scheduler needs Dask: pip install "gyroshell[cluster]"'
-                             ) from None
-    try:
-        client = Client(scheduler, timeout=CONNECT_TIMEOUT)
-    except (OSError, TimeoutError) as exc:
-        raise ParameterError(f"cannot reach the Dask scheduler at {scheduler}: {exc}"
-                             ) from None
-    try:
-        _check_worker_versions(client, scheduler)
-        threads = max(1, sum(client.nthreads().values()))
-        size = chunk_size or max(1, math.ceil(len(todo) / (threads * CHUNKS_PER_WORKER)))
-        futures = [client.submit(_evaluate_chunk, *args, chunk, compute, count, pure=False)
-                   for chunk in _chunks(todo, size)]
-        for fut in as_completed(futures):
-            record(fut.result())
-    finally:
-        client.close()
-    return f"dask({scheduler})", size

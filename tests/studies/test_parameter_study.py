@@ -7,9 +7,10 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
-from test_stability import quadratic_eigenvalues  # the tests' own dense solver
+import scipy.linalg as la
 
-import gyroshell.studies.parameter_study as study_module
+import gyroshell.studies.evaluation
+import gyroshell.studies.executors
 from gyroshell import (
     TapeModel,
     TapeParameters,
@@ -24,6 +25,18 @@ from gyroshell.core.errors import ParameterError, SupercriticalError
 BASE = TapeParameters(length_ratio=4, spacing=6.35e-3 / 8)
 VARY = {"velocity": [0.0, 60.0, 104.0], "tension": [70.0, 90.0]}
 COMPUTE = ("critical", "modes", "static", "period")
+
+
+def quadratic_eigenvalues(M, G, K) -> np.ndarray:
+    """All 2n roots of det(λ²M + λG + K) = 0, by the tests' own dense solver: the
+    generalized companion pencil (no inverse of M, unlike the package's)."""
+    from threadpoolctl import threadpool_limits
+
+    n = len(M)
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -G]])
+    B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), M]])
+    with threadpool_limits(1):  # one BLAS thread: much faster on a shared machine
+        return la.eig(A, B, right=False)
 
 
 @pytest.fixture(scope="module")
@@ -89,8 +102,7 @@ def test_dask_local_cluster_gives_identical_rows(serial):
 
 
 @pytest.mark.slow
-def test_point_list_and_unreachable_scheduler(monkeypatch):
-    monkeypatch.setattr(study_module, "CONNECT_TIMEOUT", "1s")
+def test_point_list_and_unreachable_scheduler():
     pts = [{"tension": 80.0, "velocity": 10.0}, {"youngs-modulus": 3e9}]
     res = run_study(BASE, points=pts, compute="period", workers=1)
     assert list(res.table.columns) == ["point", "tension", "velocity", "youngs_modulus",
@@ -99,7 +111,8 @@ def test_point_list_and_unreachable_scheduler(monkeypatch):
         TapeModel(BASE.replace(tension=80.0)), 10.0, 1).period[0]
     assert np.isnan(res.table.loc[1, "tension"])
     with pytest.raises(ParameterError, match="cannot reach the Dask scheduler"):
-        run_study(BASE, points=pts, compute="period", scheduler="tcp://127.0.0.1:9")
+        run_study(BASE, points=pts, compute="period", scheduler="tcp://127.0.0.1:9",
+                  connect_timeout=1.0)
 
 
 QUICK = {"vary": VARY, "compute": ("modes", "static"), "count": 2, "workers": 1}
@@ -114,7 +127,7 @@ def quick():
 def test_resume_recomputes_nothing_done(tmp_path, monkeypatch, quick):
     calls: list[dict] = []
     interrupt = [True]
-    real = study_module.evaluate
+    real = gyroshell.studies.evaluation.evaluate
 
     def counting(*args):
         calls.append(args[2])
@@ -123,7 +136,8 @@ def test_resume_recomputes_nothing_done(tmp_path, monkeypatch, quick):
             raise KeyboardInterrupt  # the user stops the study after three points
         return real(*args)
 
-    monkeypatch.setattr(study_module, "evaluate", counting)
+    # the one patch left: an interruption in the middle of a study has no public trigger
+    monkeypatch.setattr(gyroshell.studies.evaluation, "evaluate", counting)
     cache = tmp_path / "study.jsonl"
     with pytest.raises(KeyboardInterrupt):
         run_study(BASE, **QUICK, cache=cache)
@@ -135,11 +149,11 @@ def test_resume_recomputes_nothing_done(tmp_path, monkeypatch, quick):
     pd.testing.assert_frame_equal(done.table, quick.table, check_exact=True)
     calls.clear()
     again = run_study(BASE, **QUICK, cache=cache)
-    assert calls == [] and again.info["cached"] == 6
+    assert calls == [] and again.info["cached"] == 6 and again.info["computed"] == 0
     pd.testing.assert_frame_equal(again.table, quick.table, check_exact=True)
     # a different study does not reuse those rows
-    run_study(BASE, **{**QUICK, "count": 3}, cache=cache)
-    assert len(calls) == 6
+    other = run_study(BASE, **{**QUICK, "count": 3}, cache=cache)
+    assert len(calls) == 6 and other.info["computed"] == 6
 
 
 @pytest.mark.slow
@@ -165,6 +179,8 @@ def test_cut_short_cache_line_is_recomputed(tmp_path, quick):
     ({}, "either vary"),
     ({"vary": {"tension": [1.0]}, "scheduler": "localhost"}, "tcp://HOST:PORT"),
     ({"vary": {"tension": [1.0]}, "scheduler": "tcp://a:1", "workers": 2}, "not both"),
+    ({"vary": {"tension": [1.0]}, "connect_timeout": 0}, "connect_timeout must be"),
+    ({"vary": {"tension": [1.0]}, "chunk_size": 0}, "chunk_size must be an integer >= 1"),
 ])
 def test_refusals_name_the_problem(kwargs, match):
     with pytest.raises(ParameterError, match=match):
@@ -173,9 +189,23 @@ def test_refusals_name_the_problem(kwargs, match):
 
 def test_dask_workers_must_run_this_gyroshell(monkeypatch):
     distributed = pytest.importorskip("distributed")
-    monkeypatch.setattr(study_module, "_worker_version", lambda: "0.0-other")
+    # a worker of another release is simulated by what the version check runs on it
+    monkeypatch.setattr(gyroshell.studies.executors, "worker_version", lambda: "0.0-other")
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
                                   dashboard_address=None) as cluster:
         with pytest.raises(ParameterError, match="runs gyroshell 0.0-other"):
             run_study(BASE, vary={"tension": [80.0]}, compute="modes",
                       scheduler=cluster.scheduler_address)
+
+
+def test_importing_the_study_module_loads_neither_scipy_nor_pandas():
+    """The CLI's parser imports it for its choices: the solvers load only with the work."""
+    import subprocess
+    import sys
+
+    code = ("import sys, gyroshell.studies.parameter_study as m; "
+            "print([n for n in ('scipy', 'pandas', 'distributed') if n in sys.modules]); "
+            "print(m.tape_stability.__module__)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["[]", "gyroshell.studies.stability"]

@@ -1,0 +1,196 @@
+"""Where the points of a parameter study run: in this process, in local worker processes
+(:func:`gyroshell.core.parallel.process_pool`), or on a Dask distributed cluster that the
+user started. The rows are the same on every executor.
+
+Points are sent in chunks (several points per task) to amortize the cost of scheduling a
+task; a chunk takes points spread over the study, so that chunks cost about the same.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from ..core.errors import ParameterError
+from ..core.parallel import process_pool
+from . import evaluation
+
+__all__ = ["CHUNKS_PER_WORKER", "CONNECT_TIMEOUT", "Executor", "StudyTask", "check_executor",
+           "chunks", "evaluate_chunk", "execute", "worker_version"]
+
+#: How long to wait for a Dask scheduler to answer, s.
+CONNECT_TIMEOUT = 10.0
+#: Chunks per worker when chunk size is automatic (balances load against overhead).
+CHUNKS_PER_WORKER = 4
+
+#: A finished chunk: (index of the point in the study, its row) pairs.
+Rows = list[tuple[int, dict]]
+
+
+@dataclass(frozen=True)
+class Executor:
+    """Where the points run: ``workers`` local processes (1: this process), or a Dask
+    ``scheduler``; ``chunk_size`` points per task (None: automatic) and how long to wait for
+    the scheduler, ``connect_timeout`` (s)."""
+
+    workers: int | None
+    scheduler: str | None
+    chunk_size: int | None
+    connect_timeout: float = CONNECT_TIMEOUT
+
+
+@dataclass(frozen=True)
+class StudyTask:
+    """What every point of a study shares: the base tape's fields, the speed V (m/s) where
+    a point sets none, what to compute and how many frequencies (see
+    :func:`gyroshell.studies.evaluation.evaluate`)."""
+
+    base: dict
+    velocity: float
+    compute: tuple[str, ...]
+    count: int
+
+
+def check_executor(workers: int | None, scheduler: str | None, chunk_size: int | None,
+                   connect_timeout: float = CONNECT_TIMEOUT) -> Executor:
+    """The executor asked for, validated; ``workers=None`` without a scheduler means one
+    process per CPU.
+
+    Raises
+    ------
+    ParameterError
+        For a malformed address, both ``workers`` and ``scheduler``, or a count or timeout
+        out of range.
+    """
+    if scheduler is not None and (not isinstance(scheduler, str) or "://" not in scheduler):
+        raise ParameterError(f"scheduler must be an address like tcp://HOST:PORT, got "
+                             f"{scheduler!r}")
+    if scheduler is not None and workers is not None:
+        raise ParameterError("give workers (local processes) or scheduler (a Dask cluster, "
+                             "whose workers run the points), not both")
+    workers = _check_workers(workers) if scheduler is None else None
+    if chunk_size is not None and (int(chunk_size) != chunk_size or chunk_size < 1):
+        raise ParameterError(f"chunk_size must be an integer >= 1, got {chunk_size!r}")
+    if (isinstance(connect_timeout, bool) or not isinstance(connect_timeout, int | float)
+            or not 0 < connect_timeout < math.inf):
+        raise ParameterError(f"connect_timeout must be a number of seconds > 0, got "
+                             f"{connect_timeout!r}")
+    return Executor(workers, scheduler, chunk_size, float(connect_timeout))
+
+
+def _check_workers(workers) -> int:
+    if workers is None:
+        return max(1, os.cpu_count() or 1)
+    if isinstance(workers, bool) or int(workers) != workers or workers < 1:
+        raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
+    return int(workers)
+
+
+def chunks(tasks: list, size: int) -> list[list]:
+    """Tasks dealt round-robin into chunks of about ``size``: neighbouring points (similar
+    cost, e.g. all the supercritical speeds) spread over the chunks, balancing the load.
+
+    Examples
+    --------
+    >>> chunks(list(range(5)), 2)
+    [[0, 3], [1, 4], [2]]
+    """
+    n = max(1, math.ceil(len(tasks) / size))
+    return [tasks[i::n] for i in range(n) if tasks[i::n]]
+
+
+def _automatic_size(todo: list, slots: int, chunk_size: int | None) -> int:
+    """``chunk_size``, or about :data:`CHUNKS_PER_WORKER` chunks for each of ``slots``."""
+    return chunk_size or max(1, math.ceil(len(todo) / (slots * CHUNKS_PER_WORKER)))
+
+
+def evaluate_chunk(task: StudyTask, points: list[tuple[int, dict]]) -> Rows:
+    """Evaluate several points of one study in one task (:func:`evaluation.evaluate
+    <gyroshell.studies.evaluation.evaluate>` on each)."""
+    return [(i, evaluation.evaluate(task.base, task.velocity, point, task.compute, task.count))
+            for i, point in points]
+
+
+def execute(todo: list[tuple[int, dict]], record: Callable[[Rows], None], task: StudyTask,
+            where: Executor) -> tuple[str, int]:
+    """Run the points ``todo`` ((index, point) pairs) where asked; ``record`` gets each
+    finished chunk's rows as it finishes.
+
+    Returns
+    -------
+    executor : str
+        ``cache`` (nothing to do), ``serial``, ``processes(N)`` or ``dask(ADDRESS)``.
+    chunk_size : int
+        Points per task (0 with nothing to do).
+    """
+    if not todo:
+        return "cache", 0
+    if where.scheduler is not None:
+        return _execute_dask(todo, record, task, where)
+    if where.workers == 1:
+        size = where.chunk_size or 1
+        for chunk in chunks(todo, size):
+            record(evaluate_chunk(task, chunk))
+        return "serial", size
+    from concurrent.futures import as_completed
+
+    size = _automatic_size(todo, where.workers, where.chunk_size)
+    with process_pool(where.workers) as pool:
+        futures = [pool.submit(evaluate_chunk, task, chunk) for chunk in chunks(todo, size)]
+        for fut in as_completed(futures):
+            record(fut.result())
+    return f"processes({where.workers})", size
+
+
+def worker_version() -> str:
+    """The gyroshell version of the process that runs this (a Dask worker), or ``not
+    installed``."""
+    try:
+        from ..core.version import __version__
+    except ImportError:
+        return "not installed"
+    return __version__
+
+
+def _check_worker_versions(client, scheduler: str) -> None:
+    """Refuse workers that run another gyroshell: their rows would not be this version's."""
+    from ..core.version import __version__
+
+    versions = client.run(worker_version)
+    if not versions:
+        raise ParameterError(f"the Dask scheduler at {scheduler} has no workers: start some "
+                             f"with 'dask worker {scheduler}'")
+    other = {addr: v for addr, v in versions.items() if v != __version__}
+    if other:
+        addr, v = next(iter(other.items()))
+        raise ParameterError(f"Dask worker {addr} runs gyroshell {v}, this process "
+                             f"{__version__}: install the same version on every worker")
+
+
+def _execute_dask(todo, record: Callable[[Rows], None], task: StudyTask, where: Executor
+                  ) -> tuple[str, int]:
+    """The points on the workers of the Dask scheduler ``where.scheduler``."""
+    try:
+        from distributed import Client, as_completed
+    except ImportError:
+        raise ParameterError('--scheduler needs Dask: pip install "gyroshell[cluster]"'
+                             ) from None
+    scheduler = where.scheduler
+    try:
+        client = Client(scheduler, timeout=where.connect_timeout)
+    except (OSError, TimeoutError) as exc:
+        raise ParameterError(f"cannot reach the Dask scheduler at {scheduler}: {exc}"
+                             ) from None
+    try:
+        _check_worker_versions(client, scheduler)
+        threads = max(1, sum(client.nthreads().values()))
+        size = _automatic_size(todo, threads, where.chunk_size)
+        futures = [client.submit(evaluate_chunk, task, chunk, pure=False)
+                   for chunk in chunks(todo, size)]
+        for fut in as_completed(futures):
+            record(fut.result())
+    finally:
+        client.close()
+    return f"dask({scheduler})", size
