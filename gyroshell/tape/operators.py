@@ -30,6 +30,8 @@ vector (N) and w, v, a are in m, m/s, m/s².
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import scipy.sparse as sp
 
@@ -37,49 +39,22 @@ from .grid import Grid
 from .parameters import TapeParameters, check_velocity
 
 
-def _second_difference(n_unknowns: int, h: float) -> sp.csr_matrix:
-    """δ² on the interior nodes of a line with zero values at both ends, (n, n)."""
-    e = np.ones(n_unknowns)
-    return sp.diags([e[1:], -2 * e, e[1:]], [-1, 0, 1], format="csr") / h**2
-
-
-def _forward_difference(n_nodes: int, h: float, dirichlet: bool) -> sp.csr_matrix:
-    """δ⁺ from nodes to the n_intervals midpoints.
-
-    With ``dirichlet`` the unknowns are the n_nodes − 2 interior nodes (end values zero),
-    otherwise all n_nodes nodes are unknown.
-    """
-    n_int = n_nodes - 1
-    full = sp.diags([-np.ones(n_int), np.ones(n_int)], [0, 1], shape=(n_int, n_nodes),
-                    format="csr") / h
-    return full[:, 1:-1] if dirichlet else full
-
-
-def _y_second_difference(grid: Grid) -> sp.csr_matrix:
-    """δy² at the interior nodes j = 1..ny−1, acting on the unknowns of one x-line."""
-    if not grid.free_edges:
-        return _second_difference(grid.ny - 1, grid.hy)
-    d = _forward_difference(grid.ny + 1, grid.hy, dirichlet=False)
-    return (d[1:] - d[:-1]) / grid.hy
-
-
-def _y_selector(grid: Grid, rows: np.ndarray) -> sp.csr_matrix:
-    """Rows picking node indices ``rows`` (in 0..ny) out of one x-line's unknowns."""
-    offset = 0 if grid.free_edges else 1
-    cols = rows - offset
-    return sp.csr_matrix((np.ones(len(rows)), (np.arange(len(rows)), cols)),
-                         shape=(len(rows), grid.n_across))
-
-
 def weighted_gram(op: sp.spmatrix, weights: np.ndarray) -> sp.csr_matrix:
-    """opᵀ diag(weights) op: the matrix of the quadratic form Σ weights (op w)²."""
-    return (op.T @ sp.diags(weights) @ op).tocsr()
+    """opᵀ diag(weights) op: the matrix of the quadratic form Σ weights (op w)².
+
+    Exactly symmetric: the product's mirrored entries sum the same terms in different
+    orders (equal only to round-off on a graded line), so its symmetric part is returned;
+    where they are already equal that part is the product bit for bit.
+    """
+    gram = (op.T @ sp.diags(weights) @ op).tocsr()
+    return (0.5 * (gram + gram.T)).tocsr()
 
 
 # ----- node-coordinate assembly (uniform or graded lines) ---------------------------------
 # The tape's grid is uniform; the air bearing's (gyroshell.bearing.tape) is graded. Both
-# assemble M, G and B here from their node coordinates: each term of the energy weighted by
-# its own length or area, so M stays diagonal, G skew and B symmetric for any spacing.
+# assemble M, G, B and A here from their node coordinates: each term of the energy weighted
+# by its own length or area, so M stays diagonal, G skew and B, A exactly symmetric for any
+# spacing.
 def dual_widths(t: np.ndarray) -> np.ndarray:
     """Control-volume widths of the nodes t (m): half the two neighbouring intervals
     (one half-interval at the ends)."""
@@ -146,6 +121,76 @@ def nodal_membrane(x: np.ndarray, wy: np.ndarray) -> sp.csr_matrix:
                    sp.diags(wy)).tocsr()
 
 
+@dataclass(frozen=True)
+class PlateCurvatures:
+    """The discrete curvatures of the plate's bending energy on the node lines x × y, each
+    with the weights (m²) that sum its square over the plate.
+
+    Unknowns: the interior x-lines, and across every node (free edges) or the interior ones
+    (simply supported edges), j fastest, as in :class:`Grid`. Build with :meth:`on_nodes`.
+
+    Attributes
+    ----------
+    dxx, dyy : scipy.sparse.csr_matrix
+        w_xx and w_yy at the interior nodes (1/m² per m of w), weighted by ``w_inner``,
+        their control areas.
+    dxx_edge : scipy.sparse.csr_matrix or None
+        w_xx at the free-edge nodes (j = 0, n_y), weighted by ``w_edge`` (None with
+        supported edges).
+    dxy : scipy.sparse.csr_matrix
+        The twist w_xy at the cell centres, weighted by ``w_cell``, the cell areas.
+    areas : numpy.ndarray
+        Control areas of the unknown nodes, m² (the foundation's weights).
+    """
+
+    dxx: sp.csr_matrix
+    dyy: sp.csr_matrix
+    dxx_edge: sp.csr_matrix | None
+    dxy: sp.csr_matrix
+    w_inner: np.ndarray
+    w_edge: np.ndarray | None
+    w_cell: np.ndarray
+    areas: np.ndarray
+
+    @classmethod
+    def on_nodes(cls, x: np.ndarray, y: np.ndarray, free_edges: bool) -> PlateCurvatures:
+        """The curvatures on the node abscissae ``x`` and ordinates ``y`` (m, uniform or
+        graded), pinned ends x = x₀, x_n and free or simply supported lateral edges."""
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        ny = len(y) - 1
+        wx, wy = dual_widths(x)[1:-1], dual_widths(y)
+        lxx = second_difference(x)
+        across = sp.identity(ny + 1 if free_edges else ny - 1, format="csr")
+        inner = across[1:-1] if free_edges else across
+        dxx = sp.kron(lxx, inner, format="csr")
+        dyy = sp.kron(sp.identity(len(x) - 2, format="csr"),
+                      second_difference(y, dirichlet=not free_edges), format="csr")
+        dxx_edge = sp.kron(lxx, across[[0, ny]], format="csr") if free_edges else None
+        dxy = sp.kron(forward_difference(x, dirichlet=True),
+                      forward_difference(y, dirichlet=not free_edges), format="csr")
+        return cls(dxx, dyy, dxx_edge, dxy, np.kron(wx, wy[1:-1]),
+                   np.kron(wx, wy[[0, ny]]) if free_edges else None,
+                   np.kron(np.diff(x), np.diff(y)),
+                   np.kron(wx, unknown_widths(y, free_edges)))
+
+    def stiffness(self, rigidity: float, poisson: float, foundation: float
+                  ) -> sp.csr_matrix:
+        """A, N/m: the bending energy D/2 Σ [w_xx² + w_yy² + 2ν w_xx w_yy + 2(1−ν) w_xy²]
+        (the edge rows: (1 − ν²) w_xx², see the module notes) plus k/2 Σ W w², with the
+        rigidity D (N·m), Poisson ratio ν and foundation stiffness k (N/m³).
+
+        The interior density is written as the squares (w_yy + ν w_xx)² + (1 − ν²) w_xx²,
+        so A is a sum of weighted Gram matrices and exactly symmetric.
+        """
+        nu = poisson
+        bend = (weighted_gram(self.dyy + nu * self.dxx, self.w_inner)
+                + (1 - nu**2) * weighted_gram(self.dxx, self.w_inner)
+                + 2 * (1 - nu) * weighted_gram(self.dxy, self.w_cell))
+        if self.dxx_edge is not None:
+            bend = bend + (1 - nu**2) * weighted_gram(self.dxx_edge, self.w_edge)
+        return (rigidity * bend + sp.diags(foundation * self.areas)).tocsr()
+
+
 def mass(grid: Grid, params: TapeParameters) -> sp.dia_matrix:
     """Mass matrix M = ρ W, kg: diagonal, positive (lumped areal density × control area).
 
@@ -187,23 +232,9 @@ def bending_foundation(grid: Grid, params: TapeParameters) -> sp.csr_matrix:
     """A: plate bending plus shell foundation, N/m: symmetric positive definite.
 
     The quadratic form ½ wᵀ A w is the discrete D/2 ∫ [w_xx² + w_yy² + 2ν w_xx w_yy
-    + 2(1−ν) w_xy²] dA + k/2 ∫ w² dA (see the module notes for the free edges).
+    + 2(1−ν) w_xy²] dA + k/2 ∫ w² dA (see the module notes for the free edges), assembled
+    from the grid's node coordinates by :class:`PlateCurvatures`, as on the air bearing's
+    graded grids.
     """
-    D, nu, k = params.D, params.poisson, params.k
-    hx, hy = grid.hx, grid.hy
-    n_lines, ny = grid.n_lines, grid.ny
-    Ix = sp.identity(n_lines, format="csr")
-    lxx = _second_difference(n_lines, hx)                       # x: i = 1..nx−1
-    interior = np.arange(1, ny)
-    s_int = _y_selector(grid, interior)                          # y: j = 1..ny−1
-    dxx = sp.kron(lxx, s_int)                                    # w_xx at interior nodes
-    dyy = sp.kron(Ix, _y_second_difference(grid))               # w_yy at interior nodes
-    area = hx * hy
-    bend = area * (dxx.T @ dxx + dyy.T @ dyy + nu * (dxx.T @ dyy + dyy.T @ dxx))
-    if grid.free_edges:
-        dxx_edge = sp.kron(lxx, _y_selector(grid, np.array([0, ny])))
-        bend = bend + (1 - nu**2) * 0.5 * area * (dxx_edge.T @ dxx_edge)
-    dxy = sp.kron(_forward_difference(grid.nx + 1, hx, dirichlet=True),
-                  _forward_difference(grid.ny + 1, hy, dirichlet=not grid.free_edges))
-    bend = bend + 2 * (1 - nu) * area * (dxy.T @ dxy)
-    return (D * bend + sp.diags(params.k * grid.areas)).tocsr() if k else (D * bend).tocsr()
+    curvatures = PlateCurvatures.on_nodes(grid.x, grid.y, grid.free_edges)
+    return curvatures.stiffness(params.D, params.poisson, params.k)
