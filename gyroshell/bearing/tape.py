@@ -96,7 +96,7 @@ class PlateOperators:
         self.n = (len(x) - 2) * len(y)
         self.wx, self.wy = wx, wy
         self.W = np.kron(wx, wy)
-        curvatures = PlateCurvatures.on_nodes(x, y, free_edges=True)
+        curvatures = PlateCurvatures(x, y, free_edges=True)
         self._dxx, self._dyy = curvatures.dxx, curvatures.dyy
         self._dxx_edge = curvatures.dxx_edge
         self._w_inner, self._w_edge = curvatures.w_inner, curvatures.w_edge

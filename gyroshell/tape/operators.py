@@ -30,8 +30,6 @@ vector (N) and w, v, a are in m, m/s, m/s².
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import scipy.sparse as sp
 
@@ -121,57 +119,58 @@ def nodal_membrane(x: np.ndarray, wy: np.ndarray) -> sp.csr_matrix:
                    sp.diags(wy)).tocsr()
 
 
-@dataclass(frozen=True)
 class PlateCurvatures:
-    """The discrete curvatures of the plate's bending energy on the node lines x × y, each
-    with the weights (m²) that sum its square over the plate.
+    """The discrete curvatures of the plate's bending energy on the node lines ``x`` × ``y``
+    (m, uniform or graded), with the weights (m²) that sum their squares over the plate.
 
-    Unknowns: the interior x-lines, and across every node (free edges) or the interior ones
-    (simply supported edges), j fastest, as in :class:`Grid`. Build with :meth:`on_nodes`.
+    Unknowns: the interior x-lines (pinned ends), and across every node (``free_edges``)
+    or the interior ones (simply supported edges), j fastest, as in :class:`Grid`. Every
+    curvature is a tensor product of line operators and every weight a product of line
+    widths, so each term of the energy is the Kronecker product of two one-dimensional
+    weighted Gram matrices: A is assembled from those without any two-dimensional product.
 
     Attributes
     ----------
-    dxx, dyy : scipy.sparse.csr_matrix
-        w_xx and w_yy at the interior nodes (1/m² per m of w), weighted by ``w_inner``,
-        their control areas.
-    dxx_edge : scipy.sparse.csr_matrix or None
-        w_xx at the free-edge nodes (j = 0, n_y), weighted by ``w_edge`` (None with
-        supported edges).
-    dxy : scipy.sparse.csr_matrix
-        The twist w_xy at the cell centres, weighted by ``w_cell``, the cell areas.
+    w_inner, w_edge : numpy.ndarray
+        Control areas (m²) of the interior-across nodes and of the free-edge nodes
+        (j = 0, n_y; None with supported edges), the weights of :attr:`dxx`, :attr:`dyy`
+        and :attr:`dxx_edge`.
     areas : numpy.ndarray
         Control areas of the unknown nodes, m² (the foundation's weights).
     """
 
-    dxx: sp.csr_matrix
-    dyy: sp.csr_matrix
-    dxx_edge: sp.csr_matrix | None
-    dxy: sp.csr_matrix
-    w_inner: np.ndarray
-    w_edge: np.ndarray | None
-    w_cell: np.ndarray
-    areas: np.ndarray
-
-    @classmethod
-    def on_nodes(cls, x: np.ndarray, y: np.ndarray, free_edges: bool) -> PlateCurvatures:
-        """The curvatures on the node abscissae ``x`` and ordinates ``y`` (m, uniform or
-        graded), pinned ends x = x₀, x_n and free or simply supported lateral edges."""
+    def __init__(self, x: np.ndarray, y: np.ndarray, free_edges: bool) -> None:
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         ny = len(y) - 1
-        wx, wy = dual_widths(x)[1:-1], dual_widths(y)
-        lxx = second_difference(x)
+        self.free_edges = bool(free_edges)
+        self._lxx = second_difference(x)
+        self._wx, wy = dual_widths(x)[1:-1], dual_widths(y)
         across = sp.identity(ny + 1 if free_edges else ny - 1, format="csr")
-        inner = across[1:-1] if free_edges else across
-        dxx = sp.kron(lxx, inner, format="csr")
-        dyy = sp.kron(sp.identity(len(x) - 2, format="csr"),
-                      second_difference(y, dirichlet=not free_edges), format="csr")
-        dxx_edge = sp.kron(lxx, across[[0, ny]], format="csr") if free_edges else None
-        dxy = sp.kron(forward_difference(x, dirichlet=True),
-                      forward_difference(y, dirichlet=not free_edges), format="csr")
-        return cls(dxx, dyy, dxx_edge, dxy, np.kron(wx, wy[1:-1]),
-                   np.kron(wx, wy[[0, ny]]) if free_edges else None,
-                   np.kron(np.diff(x), np.diff(y)),
-                   np.kron(wx, unknown_widths(y, free_edges)))
+        self._inner = across[1:-1] if free_edges else across
+        self._edge = across[[0, ny]] if free_edges else None
+        self._lyy = second_difference(y, dirichlet=not free_edges)
+        self._wy_inner, self._wy_edge = wy[1:-1], wy[[0, ny]] if free_edges else None
+        self._fx = forward_difference(x, dirichlet=True)
+        self._fy = forward_difference(y, dirichlet=not free_edges)
+        self._hx, self._hy = np.diff(x), np.diff(y)
+        self.w_inner = np.kron(self._wx, self._wy_inner)
+        self.w_edge = np.kron(self._wx, self._wy_edge) if free_edges else None
+        self.areas = np.kron(self._wx, unknown_widths(y, free_edges))
+
+    @property
+    def dxx(self) -> sp.csr_matrix:
+        """w_xx at the interior-across nodes, 1/m² per m of w."""
+        return sp.kron(self._lxx, self._inner, format="csr")
+
+    @property
+    def dyy(self) -> sp.csr_matrix:
+        """w_yy at the interior-across nodes, 1/m² per m of w."""
+        return sp.kron(sp.identity(len(self._wx), format="csr"), self._lyy, format="csr")
+
+    @property
+    def dxx_edge(self) -> sp.csr_matrix | None:
+        """w_xx at the free-edge nodes (None with supported edges)."""
+        return None if self._edge is None else sp.kron(self._lxx, self._edge, format="csr")
 
     def stiffness(self, rigidity: float, poisson: float, foundation: float
                   ) -> sp.csr_matrix:
@@ -179,15 +178,20 @@ class PlateCurvatures:
         (the edge rows: (1 − ν²) w_xx², see the module notes) plus k/2 Σ W w², with the
         rigidity D (N·m), Poisson ratio ν and foundation stiffness k (N/m³).
 
-        The interior density is written as the squares (w_yy + ν w_xx)² + (1 − ν²) w_xx²,
-        so A is a sum of weighted Gram matrices and exactly symmetric.
+        Exactly symmetric: the one-dimensional Gram matrices are, so are their Kronecker
+        products, and the mixed term 2ν w_xx w_yy enters as C + Cᵀ.
         """
-        nu = poisson
-        bend = (weighted_gram(self.dyy + nu * self.dxx, self.w_inner)
-                + (1 - nu**2) * weighted_gram(self.dxx, self.w_inner)
-                + 2 * (1 - nu) * weighted_gram(self.dxy, self.w_cell))
-        if self.dxx_edge is not None:
-            bend = bend + (1 - nu**2) * weighted_gram(self.dxx_edge, self.w_edge)
+        nu, wx = poisson, self._wx
+        across = weighted_gram(self._inner, self._wy_inner)           # diagonal
+        if self._edge is not None:
+            across = across + (1 - nu**2) * weighted_gram(self._edge, self._wy_edge)
+        mixed = sp.kron(self._lxx.T @ sp.diags(wx),
+                        self._inner.T @ sp.diags(self._wy_inner) @ self._lyy, format="csr")
+        bend = (sp.kron(weighted_gram(self._lxx, wx), across)
+                + sp.kron(sp.diags(wx), weighted_gram(self._lyy, self._wy_inner))
+                + nu * (mixed + mixed.T)
+                + 2 * (1 - nu) * sp.kron(weighted_gram(self._fx, self._hx),
+                                         weighted_gram(self._fy, self._hy)))
         return (rigidity * bend + sp.diags(foundation * self.areas)).tocsr()
 
 
@@ -236,5 +240,5 @@ def bending_foundation(grid: Grid, params: TapeParameters) -> sp.csr_matrix:
     from the grid's node coordinates by :class:`PlateCurvatures`, as on the air bearing's
     graded grids.
     """
-    curvatures = PlateCurvatures.on_nodes(grid.x, grid.y, grid.free_edges)
+    curvatures = PlateCurvatures(grid.x, grid.y, grid.free_edges)
     return curvatures.stiffness(params.D, params.poisson, params.k)
