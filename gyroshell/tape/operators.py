@@ -13,7 +13,8 @@ structure that the physics guarantees holds by construction, not by luck:
   no work).
 * ``B`` from Σ (δx⁺w)² over x-edges, the discrete ∫ w_x² dA: symmetric positive definite.
 * ``A`` from the plate bending energy plus the foundation ½ k ∫ w² dA: symmetric positive
-  definite.
+  definite, assembled from the node coordinates (uniform or graded) by
+  :class:`PlateCurvatures`, exactly symmetric on any spacing.
 
 The bending energy density D/2 [w_xx² + w_yy² + 2ν w_xx w_yy + 2(1−ν) w_xy²] is summed with
 second differences at nodes and the twist w_xy at cell centres. In the interior this gives
