@@ -17,10 +17,11 @@ The operators are those of :mod:`gyroshell.tape.operators`, written for non-unif
 from the same discrete energies: second differences
 δ²w_i = [(w_{i+1} − w_i)/h_i − (w_i − w_{i−1})/h_{i−1}] / w_i (w_i the node's
 control width, half the two neighbouring intervals), first differences and the twist on
-the intervals and cells, each term weighted by its own length or area. A, B are therefore
-symmetric for any spacing, G = 2ρV W C_x is skew (W C_x is ρV times the antisymmetric
-shift, whatever the spacing) and on a uniform grid every matrix equals the core one. On a
-smoothly graded grid the second difference is second-order accurate.
+the intervals and cells, each term weighted by its own length or area. A, B are sums of
+weighted Gram matrices and therefore exactly symmetric for any spacing, G = 2ρV W C_x is
+skew (W C_x is ρV times the antisymmetric shift, whatever the spacing) and on a uniform
+grid every matrix equals the core one to round-off. On a smoothly graded grid the second
+difference is second-order accurate.
 """
 
 from __future__ import annotations
@@ -30,8 +31,8 @@ import scipy.sparse as sp
 
 from ..tape.grid import Grid
 from ..tape.operators import (
+    PlateCurvatures,
     dual_widths,
-    forward_difference,
     nodal_gyroscopic,
     nodal_mass,
     nodal_membrane,
@@ -76,11 +77,12 @@ class PlateOperators:
     """A, B, M, G and W of the free-edged plate on the tensor grid ``x`` × ``y`` (m).
 
     Unknowns: the interior x-lines i = 1..nx−1, every node across (j fastest), as in
-    :class:`gyroshell.Grid` with free edges. The bending energy is that of
-    :func:`gyroshell.tape.operators.bending_foundation`: D/2 Σ W [w_xx² + w_yy² + 2ν w_xx w_yy]
-    at the interior nodes, D/2 Σ W (1 − ν²) w_xx² at the edge nodes (the edge moment M_y
-    is zero: free-edge conditions as natural boundary conditions), D (1 − ν) Σ a w_xy²
-    over the cells (a their areas), plus k/2 Σ W w².
+    :class:`gyroshell.Grid` with free edges. A is assembled by
+    :class:`gyroshell.tape.operators.PlateCurvatures`, the one assembly of the tape's
+    :func:`gyroshell.tape.operators.bending_foundation`: D/2 Σ W [w_xx² + w_yy²
+    + 2ν w_xx w_yy] at the interior nodes, D/2 Σ W (1 − ν²) w_xx² at the edge nodes (the
+    edge moment M_y is zero: free-edge conditions as natural boundary conditions),
+    D (1 − ν) Σ a w_xy² over the cells (a their areas), plus k/2 Σ W w².
     """
 
     def __init__(self, params: TapeParameters, x, y=None) -> None:
@@ -90,29 +92,15 @@ class PlateOperators:
             x, y = x.x, x.y
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         self.x, self.y, self.params = x, y, params
-        D, nu = params.D, params.poisson
-        nl, ny = len(x) - 2, len(y) - 1
         wx, wy = dual_widths(x)[1:-1], dual_widths(y)
-        self.n = nl * (ny + 1)
+        self.n = (len(x) - 2) * len(y)
         self.wx, self.wy = wx, wy
         self.W = np.kron(wx, wy)
-        lxx = second_difference(x)
-        ix = sp.identity(nl, format="csr")
-        inner = sp.identity(ny + 1, format="csr")[1:-1]
-        edge = sp.identity(ny + 1, format="csr")[[0, ny]]
-        self._dxx = sp.kron(lxx, inner, format="csr")
-        self._dyy = sp.kron(ix, second_difference(y, dirichlet=False), format="csr")
-        self._dxx_edge = sp.kron(lxx, edge, format="csr")
-        self._w_inner = np.kron(wx, wy[1:-1])
-        self._w_edge = np.kron(wx, wy[[0, ny]])
-        dxx, dyy = self._dxx, self._dyy
-        bend = (dxx.T @ sp.diags(self._w_inner) @ (dxx + nu * dyy)
-                + dyy.T @ sp.diags(self._w_inner) @ (dyy + nu * dxx)
-                + (1 - nu**2) * weighted_gram(self._dxx_edge, self._w_edge))
-        dxy = sp.kron(forward_difference(x, dirichlet=True),
-                      forward_difference(y, dirichlet=False), format="csr")
-        bend = bend + 2 * (1 - nu) * weighted_gram(dxy, np.kron(np.diff(x), np.diff(y)))
-        self.A = (D * bend + sp.diags(params.k * self.W)).tocsr()
+        curvatures = PlateCurvatures(x, y, free_edges=True)
+        self._dxx, self._dyy = curvatures.dxx, curvatures.dyy
+        self._dxx_edge = curvatures.dxx_edge
+        self._w_inner, self._w_edge = curvatures.w_inner, curvatures.w_edge
+        self.A = curvatures.stiffness(params.D, params.poisson, params.k)
         self.B = nodal_membrane(x, wy)
         self.M = nodal_mass(params.density, wx, wy)
 

@@ -13,7 +13,8 @@ structure that the physics guarantees holds by construction, not by luck:
   no work).
 * ``B`` from Σ (δx⁺w)² over x-edges, the discrete ∫ w_x² dA: symmetric positive definite.
 * ``A`` from the plate bending energy plus the foundation ½ k ∫ w² dA: symmetric positive
-  definite.
+  definite, assembled from the node coordinates (uniform or graded) by
+  :class:`PlateCurvatures`, exactly symmetric on any spacing.
 
 The bending energy density D/2 [w_xx² + w_yy² + 2ν w_xx w_yy + 2(1−ν) w_xy²] is summed with
 second differences at nodes and the twist w_xy at cell centres. In the interior this gives
@@ -37,49 +38,22 @@ from .grid import Grid
 from .parameters import TapeParameters, check_velocity
 
 
-def _second_difference(n_unknowns: int, h: float) -> sp.csr_matrix:
-    """δ² on the interior nodes of a line with zero values at both ends, (n, n)."""
-    e = np.ones(n_unknowns)
-    return sp.diags([e[1:], -2 * e, e[1:]], [-1, 0, 1], format="csr") / h**2
-
-
-def _forward_difference(n_nodes: int, h: float, dirichlet: bool) -> sp.csr_matrix:
-    """δ⁺ from nodes to the n_intervals midpoints.
-
-    With ``dirichlet`` the unknowns are the n_nodes − 2 interior nodes (end values zero),
-    otherwise all n_nodes nodes are unknown.
-    """
-    n_int = n_nodes - 1
-    full = sp.diags([-np.ones(n_int), np.ones(n_int)], [0, 1], shape=(n_int, n_nodes),
-                    format="csr") / h
-    return full[:, 1:-1] if dirichlet else full
-
-
-def _y_second_difference(grid: Grid) -> sp.csr_matrix:
-    """δy² at the interior nodes j = 1..ny−1, acting on the unknowns of one x-line."""
-    if not grid.free_edges:
-        return _second_difference(grid.ny - 1, grid.hy)
-    d = _forward_difference(grid.ny + 1, grid.hy, dirichlet=False)
-    return (d[1:] - d[:-1]) / grid.hy
-
-
-def _y_selector(grid: Grid, rows: np.ndarray) -> sp.csr_matrix:
-    """Rows picking node indices ``rows`` (in 0..ny) out of one x-line's unknowns."""
-    offset = 0 if grid.free_edges else 1
-    cols = rows - offset
-    return sp.csr_matrix((np.ones(len(rows)), (np.arange(len(rows)), cols)),
-                         shape=(len(rows), grid.n_across))
-
-
 def weighted_gram(op: sp.spmatrix, weights: np.ndarray) -> sp.csr_matrix:
-    """opᵀ diag(weights) op: the matrix of the quadratic form Σ weights (op w)²."""
-    return (op.T @ sp.diags(weights) @ op).tocsr()
+    """opᵀ diag(weights) op: the matrix of the quadratic form Σ weights (op w)².
+
+    Exactly symmetric: the product's mirrored entries sum the same terms in different
+    orders (equal only to round-off on a graded line), so its symmetric part is returned;
+    where they are already equal that part is the product bit for bit.
+    """
+    gram = (op.T @ sp.diags(weights) @ op).tocsr()
+    return (0.5 * (gram + gram.T)).tocsr()
 
 
 # ----- node-coordinate assembly (uniform or graded lines) ---------------------------------
 # The tape's grid is uniform; the air bearing's (gyroshell.bearing.tape) is graded. Both
-# assemble M, G and B here from their node coordinates: each term of the energy weighted by
-# its own length or area, so M stays diagonal, G skew and B symmetric for any spacing.
+# assemble M, G, B and A here from their node coordinates: each term of the energy weighted
+# by its own length or area, so M stays diagonal, G skew and B, A exactly symmetric for any
+# spacing.
 def dual_widths(t: np.ndarray) -> np.ndarray:
     """Control-volume widths of the nodes t (m): half the two neighbouring intervals
     (one half-interval at the ends)."""
@@ -146,6 +120,82 @@ def nodal_membrane(x: np.ndarray, wy: np.ndarray) -> sp.csr_matrix:
                    sp.diags(wy)).tocsr()
 
 
+class PlateCurvatures:
+    """The discrete curvatures of the plate's bending energy on the node lines ``x`` × ``y``
+    (m, uniform or graded), with the weights (m²) that sum their squares over the plate.
+
+    Unknowns: the interior x-lines (pinned ends), and across every node (``free_edges``)
+    or the interior ones (simply supported edges), j fastest, as in :class:`Grid`. Every
+    curvature is a tensor product of line operators and every weight a product of line
+    widths, so each term of the energy is the Kronecker product of two one-dimensional
+    weighted Gram matrices: A is assembled from those without any two-dimensional product.
+
+    Attributes
+    ----------
+    w_inner, w_edge : numpy.ndarray
+        Control areas (m²) of the interior-across nodes and of the free-edge nodes
+        (j = 0, n_y; None with supported edges), the weights of :attr:`dxx`, :attr:`dyy`
+        and :attr:`dxx_edge`.
+    areas : numpy.ndarray
+        Control areas of the unknown nodes, m² (the foundation's weights).
+    """
+
+    def __init__(self, x: np.ndarray, y: np.ndarray, free_edges: bool) -> None:
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        ny = len(y) - 1
+        self.free_edges = bool(free_edges)
+        self._lxx = second_difference(x)
+        self._wx, wy = dual_widths(x)[1:-1], dual_widths(y)
+        across = sp.identity(ny + 1 if free_edges else ny - 1, format="csr")
+        self._inner = across[1:-1] if free_edges else across
+        self._edge = across[[0, ny]] if free_edges else None
+        self._lyy = second_difference(y, dirichlet=not free_edges)
+        self._wy_inner, self._wy_edge = wy[1:-1], wy[[0, ny]] if free_edges else None
+        self._fx = forward_difference(x, dirichlet=True)
+        self._fy = forward_difference(y, dirichlet=not free_edges)
+        self._hx, self._hy = np.diff(x), np.diff(y)
+        self.w_inner = np.kron(self._wx, self._wy_inner)
+        self.w_edge = np.kron(self._wx, self._wy_edge) if free_edges else None
+        self.areas = np.kron(self._wx, unknown_widths(y, free_edges))
+
+    @property
+    def dxx(self) -> sp.csr_matrix:
+        """w_xx at the interior-across nodes, 1/m² per m of w."""
+        return sp.kron(self._lxx, self._inner, format="csr")
+
+    @property
+    def dyy(self) -> sp.csr_matrix:
+        """w_yy at the interior-across nodes, 1/m² per m of w."""
+        return sp.kron(sp.identity(len(self._wx), format="csr"), self._lyy, format="csr")
+
+    @property
+    def dxx_edge(self) -> sp.csr_matrix | None:
+        """w_xx at the free-edge nodes (None with supported edges)."""
+        return None if self._edge is None else sp.kron(self._lxx, self._edge, format="csr")
+
+    def stiffness(self, rigidity: float, poisson: float, foundation: float
+                  ) -> sp.csr_matrix:
+        """A, N/m: the bending energy D/2 Σ [w_xx² + w_yy² + 2ν w_xx w_yy + 2(1−ν) w_xy²]
+        (the edge rows: (1 − ν²) w_xx², see the module notes) plus k/2 Σ W w², with the
+        rigidity D (N·m), Poisson ratio ν and foundation stiffness k (N/m³).
+
+        Exactly symmetric: the one-dimensional Gram matrices are, so are their Kronecker
+        products, and the mixed term 2ν w_xx w_yy enters as C + Cᵀ.
+        """
+        nu, wx = poisson, self._wx
+        across = weighted_gram(self._inner, self._wy_inner)           # diagonal
+        if self._edge is not None:
+            across = across + (1 - nu**2) * weighted_gram(self._edge, self._wy_edge)
+        mixed = sp.kron(self._lxx.T @ sp.diags(wx),
+                        self._inner.T @ sp.diags(self._wy_inner) @ self._lyy, format="csr")
+        bend = (sp.kron(weighted_gram(self._lxx, wx), across)
+                + sp.kron(sp.diags(wx), weighted_gram(self._lyy, self._wy_inner))
+                + nu * (mixed + mixed.T)
+                + 2 * (1 - nu) * sp.kron(weighted_gram(self._fx, self._hx),
+                                         weighted_gram(self._fy, self._hy)))
+        return (rigidity * bend + sp.diags(foundation * self.areas)).tocsr()
+
+
 def mass(grid: Grid, params: TapeParameters) -> sp.dia_matrix:
     """Mass matrix M = ρ W, kg: diagonal, positive (lumped areal density × control area).
 
@@ -187,23 +237,9 @@ def bending_foundation(grid: Grid, params: TapeParameters) -> sp.csr_matrix:
     """A: plate bending plus shell foundation, N/m: symmetric positive definite.
 
     The quadratic form ½ wᵀ A w is the discrete D/2 ∫ [w_xx² + w_yy² + 2ν w_xx w_yy
-    + 2(1−ν) w_xy²] dA + k/2 ∫ w² dA (see the module notes for the free edges).
+    + 2(1−ν) w_xy²] dA + k/2 ∫ w² dA (see the module notes for the free edges), assembled
+    from the grid's node coordinates by :class:`PlateCurvatures`, as on the air bearing's
+    graded grids.
     """
-    D, nu, k = params.D, params.poisson, params.k
-    hx, hy = grid.hx, grid.hy
-    n_lines, ny = grid.n_lines, grid.ny
-    Ix = sp.identity(n_lines, format="csr")
-    lxx = _second_difference(n_lines, hx)                       # x: i = 1..nx−1
-    interior = np.arange(1, ny)
-    s_int = _y_selector(grid, interior)                          # y: j = 1..ny−1
-    dxx = sp.kron(lxx, s_int)                                    # w_xx at interior nodes
-    dyy = sp.kron(Ix, _y_second_difference(grid))               # w_yy at interior nodes
-    area = hx * hy
-    bend = area * (dxx.T @ dxx + dyy.T @ dyy + nu * (dxx.T @ dyy + dyy.T @ dxx))
-    if grid.free_edges:
-        dxx_edge = sp.kron(lxx, _y_selector(grid, np.array([0, ny])))
-        bend = bend + (1 - nu**2) * 0.5 * area * (dxx_edge.T @ dxx_edge)
-    dxy = sp.kron(_forward_difference(grid.nx + 1, hx, dirichlet=True),
-                  _forward_difference(grid.ny + 1, hy, dirichlet=not grid.free_edges))
-    bend = bend + 2 * (1 - nu) * area * (dxy.T @ dxy)
-    return (D * bend + sp.diags(params.k * grid.areas)).tocsr() if k else (D * bend).tocsr()
+    curvatures = PlateCurvatures(grid.x, grid.y, grid.free_edges)
+    return curvatures.stiffness(params.D, params.poisson, params.k)
