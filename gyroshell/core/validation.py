@@ -119,6 +119,26 @@ def choice(name: str, value: object, choices: tuple[str, ...]) -> str:
     return value
 
 
+def instance(name: str, value: object, cls: type | tuple[type, ...], *,
+             optional: bool = False) -> object:
+    """An instance of ``cls`` (or None with ``optional=True``), returned unchanged.
+
+    Examples
+    --------
+    >>> instance("count", 3, int)
+    3
+    >>> instance("model", 3.0, (int, str), optional=True)
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: model must be a int or str or None, got float
+    """
+    if optional and value is None or isinstance(value, cls):
+        return value
+    names = [c.__name__ for c in (cls if isinstance(cls, tuple) else (cls,))]
+    allowed = " or ".join(names + (["None"] if optional else []))
+    raise ParameterError(f"{name} must be a {allowed}, got {type(value).__name__}")
+
+
 def vector(name: str, value: object, length: int, unit: str = "") -> np.ndarray:
     """A finite real float vector of shape (length,) (a new array)."""
     try:
