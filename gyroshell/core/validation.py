@@ -81,27 +81,40 @@ def nonnegative(name: str, value: object, unit: str = "") -> float:
     return real(name, value, low=0.0, unit=unit)
 
 
-def integer(name: str, value: object, *, low: int | None = None, high: int | None = None
-            ) -> int:
-    """A whole number (an integral float such as 6.0 or 1e6 is accepted), within [low, high].
+def integer(name: str, value: object, *, low: int | None = None, high: int | None = None,
+            optional: bool = False) -> int | None:
+    """A whole number (an integral float such as 6.0 or 1e6 is accepted), within [low, high];
+    with ``optional=True`` None is accepted too (and returned).
+
+    Examples
+    --------
+    >>> integer("maxiter", None, low=1, optional=True) is None
+    True
+    >>> integer("maxiter", 2.5, low=1, optional=True)
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: maxiter must be None or an integer, got 2.5
     """
+    if optional and value is None:
+        return None
+    if low is not None and high is not None:
+        allowed = f" in [{low}, {high}]"
+    elif low is not None:
+        allowed = f" >= {low}"
+    else:
+        allowed = "" if high is None else f" <= {high}"
+    kind = f"{name} must be {'None or ' if optional else ''}an integer"
     if isinstance(value, (bool, np.bool_)):
-        raise ParameterError(f"{name} must be an integer, got {value!r}")
+        raise ParameterError(f"{kind}, got {value!r}")
     if isinstance(value, numbers.Integral):
         out = int(value)
     elif isinstance(value, numbers.Real) and math.isfinite(float(value)) \
             and float(value).is_integer():
         out = int(float(value))
     else:
-        raise ParameterError(f"{name} must be an integer, got {value!r}")
+        raise ParameterError(f"{kind}, got {value!r}")
     if (low is not None and out < low) or (high is not None and out > high):
-        if low is not None and high is not None:
-            allowed = f"in [{low}, {high}]"
-        elif low is not None:
-            allowed = f">= {low}"
-        else:
-            allowed = f"<= {high}"
-        raise ParameterError(f"{name} must be an integer {allowed}, got {out}")
+        raise ParameterError(f"{kind}{allowed}, got {out}")
     return out
 
 
