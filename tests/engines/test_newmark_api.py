@@ -20,9 +20,9 @@ class TestValidation:
     @pytest.mark.parametrize(("kwargs", "match"), [
         ({"dt": 0.0}, "dt must be > 0"),
         ({"dt": -1e-6}, "dt must be > 0"),
-        ({"dt": float("nan")}, "dt must be > 0"),
+        ({"dt": float("nan")}, "dt must be finite s, got nan"),
         ({"steps": 0}, "steps must be an integer >= 1"),
-        ({"steps": 2.5}, "steps must be an integer >= 1"),
+        ({"steps": 2.5}, "steps must be an integer, got 2.5"),
         ({"beta": 0.0}, "beta must be > 0"),
         ({"gamma": float("inf")}, "gamma must be finite"),
         ({"backend": "magic"}, "backend must be one of auto, superlu"),
