@@ -1,4 +1,4 @@
-"""Argument checks shared by every public function: numbers, integers, flags and vectors.
+"""Argument checks shared by every public function: numbers, integers, flags, types, vectors.
 
 Each check returns the value converted to its plain Python (or NumPy) type, or raises
 :class:`~gyroshell.ParameterError` with a message that names the parameter, the
@@ -138,12 +138,12 @@ def instance(name: str, value: object, cls: type | tuple[type, ...], *,
 
     Examples
     --------
-    >>> instance("count", 3, int)
-    3
-    >>> instance("model", 3.0, (int, str), optional=True)
+    >>> instance("label", "tape", str)
+    'tape'
+    >>> instance("label", 3.0, str, optional=True)
     Traceback (most recent call last):
     ...
-    gyroshell.ParameterError: model must be a int or str or None, got float
+    gyroshell.ParameterError: label must be a str or None, got float
     """
     if optional and value is None or isinstance(value, cls):
         return value
