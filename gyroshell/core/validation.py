@@ -145,7 +145,7 @@ def instance(name: str, value: object, cls: type | tuple[type, ...], *,
     ...
     gyroshell.ParameterError: label must be a str or None, got float
     """
-    if optional and value is None or isinstance(value, cls):
+    if (optional and value is None) or isinstance(value, cls):
         return value
     names = [c.__name__ for c in (cls if isinstance(cls, tuple) else (cls,))]
     allowed = " or ".join(names + (["None"] if optional else []))
