@@ -11,7 +11,6 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from ..core import validation
-from ..core.errors import ParameterError
 
 #: Accepted ranges (SI): wide around air at 20 °C, narrow enough that the film's scales stay
 #: inside double precision (p_a 1e-300 Pa overflowed the slip factor 6 λ p_a / (p h)).
@@ -66,8 +65,7 @@ class AirParameters:
                                             unit=unit))
         put(self, "mean_free_path", validation.real(
             "mean_free_path", self.mean_free_path, low=0.0, high=MEAN_FREE_PATH_MAX, unit="m"))
-        if not isinstance(self.compressible, bool):
-            raise ParameterError(f"compressible must be True or False, got {self.compressible!r}")
+        put(self, "compressible", validation.boolean("compressible", self.compressible))
 
     def replace(self, **changes: object) -> AirParameters:
         """A copy with some fields changed (validated again)."""

@@ -21,8 +21,8 @@ import math
 
 import numpy as np
 
+from ..core import validation
 from ..core.errors import ParameterError
-from ..tape.parameters import _check_finite
 
 #: Largest wrap angle, rad: beyond it the shallow-shell gap w₀ is no longer a fair model.
 MAX_WRAP_ANGLE = math.radians(90.0)
@@ -30,7 +30,8 @@ MAX_WRAP_ANGLE = math.radians(90.0)
 
 def check_wrap_angle(angle: float) -> float:
     """Validate a wrap angle θ in rad: 0 < θ <= π/2."""
-    angle = _check_finite("wrap_angle", angle)
+    # The range is stated in degrees, which users read more easily than π/2 rad.
+    angle = validation.real("wrap_angle", angle, unit="rad")
     if not 0.0 < angle <= MAX_WRAP_ANGLE:
         raise ParameterError(
             f"wrap_angle must be in (0, {math.degrees(MAX_WRAP_ANGLE):g}] degrees, "

@@ -1,4 +1,4 @@
-"""Argument checks shared by every public function: numbers, integers, flags and vectors.
+"""Argument checks shared by every public function: numbers, integers, flags, types, vectors.
 
 Each check returns the value converted to its plain Python (or NumPy) type, or raises
 :class:`~gyroshell.ParameterError` with a message that names the parameter, the
@@ -81,27 +81,40 @@ def nonnegative(name: str, value: object, unit: str = "") -> float:
     return real(name, value, low=0.0, unit=unit)
 
 
-def integer(name: str, value: object, *, low: int | None = None, high: int | None = None
-            ) -> int:
-    """A whole number (an integral float such as 6.0 or 1e6 is accepted), within [low, high].
+def integer(name: str, value: object, *, low: int | None = None, high: int | None = None,
+            optional: bool = False) -> int | None:
+    """A whole number (an integral float such as 6.0 or 1e6 is accepted), within [low, high];
+    with ``optional=True`` None is accepted too (and returned).
+
+    Examples
+    --------
+    >>> integer("maxiter", None, low=1, optional=True) is None
+    True
+    >>> integer("maxiter", 2.5, low=1, optional=True)
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: maxiter must be None or an integer, got 2.5
     """
+    if optional and value is None:
+        return None
+    if low is not None and high is not None:
+        allowed = f" in [{low}, {high}]"
+    elif low is not None:
+        allowed = f" >= {low}"
+    else:
+        allowed = "" if high is None else f" <= {high}"
+    kind = f"{name} must be {'None or ' if optional else ''}an integer"
     if isinstance(value, (bool, np.bool_)):
-        raise ParameterError(f"{name} must be an integer, got {value!r}")
+        raise ParameterError(f"{kind}, got {value!r}")
     if isinstance(value, numbers.Integral):
         out = int(value)
     elif isinstance(value, numbers.Real) and math.isfinite(float(value)) \
             and float(value).is_integer():
         out = int(float(value))
     else:
-        raise ParameterError(f"{name} must be an integer, got {value!r}")
+        raise ParameterError(f"{kind}, got {value!r}")
     if (low is not None and out < low) or (high is not None and out > high):
-        if low is not None and high is not None:
-            allowed = f"in [{low}, {high}]"
-        elif low is not None:
-            allowed = f">= {low}"
-        else:
-            allowed = f"<= {high}"
-        raise ParameterError(f"{name} must be an integer {allowed}, got {out}")
+        raise ParameterError(f"{kind}{allowed}, got {out}")
     return out
 
 
@@ -117,6 +130,26 @@ def choice(name: str, value: object, choices: tuple[str, ...]) -> str:
     if not isinstance(value, str) or value not in choices:
         raise ParameterError(f"{name} must be one of {', '.join(choices)}, got {value!r}")
     return value
+
+
+def instance(name: str, value: object, cls: type | tuple[type, ...], *,
+             optional: bool = False) -> object:
+    """An instance of ``cls`` (or None with ``optional=True``), returned unchanged.
+
+    Examples
+    --------
+    >>> instance("label", "tape", str)
+    'tape'
+    >>> instance("label", 3.0, str, optional=True)
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: label must be a str or None, got float
+    """
+    if (optional and value is None) or isinstance(value, cls):
+        return value
+    names = [c.__name__ for c in (cls if isinstance(cls, tuple) else (cls,))]
+    allowed = " or ".join(names + (["None"] if optional else []))
+    raise ParameterError(f"{name} must be a {allowed}, got {type(value).__name__}")
 
 
 def vector(name: str, value: object, length: int, unit: str = "") -> np.ndarray:

@@ -22,7 +22,8 @@ import time
 
 import numpy as np
 
-from ..core.errors import ConvergenceError, ParameterError, SingularError
+from ..core import validation
+from ..core.errors import ConvergenceError, SingularError
 from ..linalg import cholesky
 from ..linalg.factorization import resolve_factorization
 from ..linalg.inertia import factor_inertia
@@ -128,6 +129,9 @@ GUESS_FRACTION = 0.998
 DESCENT_FACTOR = 0.99
 #: Where no extrapolated zero lies ahead (and no point above is known), s grows by this.
 ADVANCE_FACTOR = 1.004
+#: Loosest relative tolerance on the critical speed: the extrapolation is confirmed
+#: 2 xtol above it, which must stay a small step.
+MAX_XTOL = 0.1
 
 
 def default_guess(model: TapeModel) -> float:
@@ -244,15 +248,9 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
         If no bracketed root is found within ``max_evaluations`` eigen-solves.
     """
     guess = default_guess(model) if guess is None else guess
-    if isinstance(guess, bool) or not isinstance(guess, (int, float)) or \
-            not (math.isfinite(guess) and guess > 0):
-        raise ParameterError(f"guess must be a positive finite speed in m/s, got {guess!r}")
-    if isinstance(xtol, bool) or not isinstance(xtol, (int, float)) or not 0 < xtol < 0.1:
-        raise ParameterError(f"xtol must be in (0, 0.1), got {xtol!r}")
-    if isinstance(max_evaluations, bool) or not isinstance(max_evaluations, int) or \
-            max_evaluations < 2:
-        raise ParameterError(f"max_evaluations must be an integer >= 2, got "
-                             f"{max_evaluations!r}")
+    guess = validation.positive("guess", guess, "m/s")
+    xtol = validation.real("xtol", xtol, low=0.0, high=MAX_XTOL, low_open=True, high_open=True)
+    max_evaluations = validation.integer("max_evaluations", max_evaluations, low=2)
     f = _Counted(model, count, options, max_evaluations)
     _first_subcritical(f, float(guess) ** 2)
     s = f.highest_below * ADVANCE_FACTOR

@@ -16,6 +16,7 @@ import math
 import numpy as np
 import scipy.sparse.linalg as spla
 
+from ..core import validation
 from ..core.errors import ConvergenceError, ParameterError
 from ..core.parallel import blas_threads
 from ..linalg.inertia import InertiaFactor, factor_inertia
@@ -99,11 +100,9 @@ def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | 
     shift : float, optional
         τ, N/m, to use instead (must be below μ_min); 0 reproduces plain shift-invert.
     """
-    if isinstance(tol, bool) or not isinstance(tol, (int, float)) or not 0 <= tol < 1:
-        raise ParameterError(f"tol must be in [0, 1), got {tol!r}")
-    if shift is not None and (isinstance(shift, bool) or not isinstance(shift, (int, float))
-                              or not math.isfinite(shift)):
-        raise ParameterError(f"shift must be a finite number in N/m or None, got {shift!r}")
+    tol = validation.real("tol", tol, low=0.0, high=1.0, high_open=True)
+    if shift is not None:
+        shift = validation.real("shift", shift, unit="N/m")
     A, B = model.A, model.B
     tau, factor = safe_shift(model) if shift is None else (float(shift), None)
     if factor is None:

@@ -25,6 +25,7 @@ import weakref
 import numpy as np
 import scipy.sparse as sp
 
+from ..core import validation
 from ..core.errors import ParameterError
 from ..linalg import cholesky
 from ..linalg.factorization import check_factorization, resolve_factorization
@@ -226,9 +227,7 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
 
 def check_flag(name: str, value) -> bool:
     """``value`` if it is True or False, else a ParameterError naming ``name``."""
-    if not isinstance(value, bool):
-        raise ParameterError(f"{name} must be True or False, got {value!r}")
-    return value
+    return validation.boolean(name, value)
 
 
 def _checked_guesses(model: TapeModel, velocity: float, sigma, start: Modes | None,
@@ -236,9 +235,8 @@ def _checked_guesses(model: TapeModel, velocity: float, sigma, start: Modes | No
     """(estimate in rad/s, shift or None for automatic, start pairs or None), validated."""
     if estimate is None:
         estimate = strip_frequency_estimate(model.params, model.grid, velocity)
-    elif isinstance(estimate, bool) or not isinstance(estimate, (int, float)) or \
-            not (math.isfinite(estimate) and estimate >= 0):
-        raise ParameterError(f"estimate must be a frequency >= 0 in rad/s, got {estimate!r}")
+    else:
+        estimate = validation.nonnegative("estimate", estimate, "rad/s")
     shift = None if isinstance(sigma, str) and sigma == "auto" else sigma
     if isinstance(sigma, str) and sigma != "auto":
         raise ParameterError(f"sigma must be 'auto', 0 or i*omega_s, got {sigma!r}")

@@ -39,6 +39,7 @@ import numpy as np
 import scipy.linalg as sl
 import scipy.sparse as sp
 
+from ..core import validation
 from ..core.errors import ParameterError
 from ..core.parallel import blas_threads as limit_blas_threads
 from ..core.progress import progress_bar
@@ -218,10 +219,7 @@ def _run_info(model: TapeModel, damping: Damping) -> dict:
 def _force(model: TapeModel, force) -> np.ndarray | None:
     if force is None:
         return None
-    out = np.asarray(force, dtype=float)
-    if out.shape != (model.unknowns,) or not np.all(np.isfinite(out)):
-        raise ParameterError(f"force must be a finite vector of length {model.unknowns} (N)")
-    return out
+    return validation.vector("force", force, model.unknowns, "N")
 
 
 def _direct(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
@@ -331,9 +329,7 @@ class ReducedModel(Result, kind="reduced_model"):
     def __init__(self, model: TapeModel, velocity: float = 0.0, *,
                  damping: Damping | float | None = None, force: np.ndarray | None = None,
                  probes: Sequence[tuple[float, float]] = (), moments: int = DEFAULT_MOMENTS):
-        if isinstance(moments, bool) or not isinstance(moments, (int, np.integer)) \
-                or moments < 2:
-            raise ParameterError(f"moments must be an integer >= 2, got {moments!r}")
+        moments = validation.integer("moments", moments, low=2)
         self.velocity = check_velocity(velocity)
         self.damping = as_damping(damping)
         self.unknowns = model.unknowns
@@ -521,7 +517,7 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
         is fastest on a shared machine, where spinning BLAS workers compete for cores.
     """
     velocity, omega = check_velocity(velocity), check_frequencies(omega)
-    tol = _check_options(method, tol, max_points)
+    tol, max_points = _check_options(method, tol, max_points)
     _check_subcritical(model, velocity)
     if method == "direct" or (method == "auto" and len(omega) <= INITIAL_POINTS * 2):
         return direct_response(model, velocity, omega, damping=damping, force=force,
@@ -532,15 +528,11 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
                              progress=progress, blas_threads=blas_threads)
 
 
-def _check_options(method: str, tol, max_points) -> float:
-    """Validate ``method`` and ``max_points``; returns ``tol`` as a float > 0."""
-    if method not in METHODS:
-        raise ParameterError(f"method must be one of {', '.join(METHODS)}, got {method!r}")
-    tol = _positive("tol", tol)
-    if isinstance(max_points, bool) or not isinstance(max_points, (int, np.integer)) \
-            or max_points < 1:
-        raise ParameterError(f"max_points must be an integer >= 1, got {max_points!r}")
-    return tol
+def _check_options(method: str, tol, max_points) -> tuple[float, int]:
+    """Validate ``method``, ``tol`` and ``max_points``; returns (tol > 0, max_points >= 1)."""
+    validation.choice("method", method, METHODS)
+    tol = validation.positive("tol", tol)
+    return tol, validation.integer("max_points", max_points, low=1)
 
 
 def _reduced_response(reduced: ReducedModel, omega: np.ndarray, *, method: str, tol: float,
@@ -607,16 +599,6 @@ def _peaks(estimate: np.ndarray, tol: float, count: int, omega: np.ndarray,
     peak = (estimate >= padded[:-2]) & (estimate >= padded[2:]) & (estimate > tol)
     order = np.flatnonzero(peak)[np.argsort(-estimate[peak])]
     return [float(omega[i]) for i in order if float(omega[i]) not in taken][:count]
-
-
-def _positive(name: str, value) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number > 0, got {value!r}") from None
-    if not (math.isfinite(value) and value > 0):
-        raise ParameterError(f"{name} must be finite and > 0, got {value:g}")
-    return value
 
 
 def _check_subcritical(model: TapeModel, velocity: float) -> None:

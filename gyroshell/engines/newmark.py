@@ -55,36 +55,23 @@ class NewmarkStabilityWarning(UserWarning):
     """β, γ outside the unconditionally stable region 2β ≥ γ ≥ ½."""
 
 
-def _check_real(name: str, value: float, *, positive: bool = False) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a real number, got {value!r}") from None
-    if not math.isfinite(value) or (positive and value <= 0.0):
-        raise ParameterError(f"{name} must be {'> 0' if positive else 'finite'}, got {value:g}")
-    return value
+def _check_real(name: str, value: float, *, positive: bool = False, unit: str = "") -> float:
+    """:func:`validation.real` (:func:`validation.positive` with ``positive``); kept under
+    this name because gyroshell.bearing.transient imports it."""
+    if positive:
+        return validation.positive(name, value, unit)
+    return validation.real(name, value, unit=unit)
 
 
-def check_steps(steps: int) -> int:
+def check_steps(steps: int, name: str = "steps") -> int:
     """Validate a number of time steps (an integer >= 1)."""
-    if isinstance(steps, bool) or not isinstance(steps, (int, np.integer)) or steps < 1:
-        raise ParameterError(f"steps must be an integer >= 1, got {steps!r}")
-    return int(steps)
+    return validation.integer(name, steps, low=1)
 
 
 def check_force(force, size: int, name: str = "force", unit: str = "N") -> np.ndarray:
     """Validate a vector over the unknowns (a nodal force in N by default): finite, shape
-    (size,)."""
-    try:
-        out = np.asarray(force, dtype=float)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a finite vector of length {size} ({unit})"
-                             ) from None
-    if out.shape != (size,) or not np.all(np.isfinite(out)):
-        raise ParameterError(f"{name} must be a finite vector of length {size} ({unit}), got "
-                             f"shape {out.shape}" + ("" if out.shape != (size,) else
-                                                     " with non-finite entries"))
-    return out
+    (size,); returns a new float array."""
+    return validation.vector(name, force, size, unit)
 
 
 class _FixedForce:
@@ -156,11 +143,11 @@ class Newmark:
                  blas_threads: int | None = 1) -> None:
         self.model = model
         self.velocity = check_velocity(velocity)
-        self.beta = _check_real("beta", beta, positive=True)
+        self.beta = validation.positive("beta", beta)
         self.K = model.K(self.velocity)
-        self.dt = validation.time_step(_check_real("dt", dt, positive=True), self.beta,
+        self.dt = validation.time_step(dt, self.beta,
                                        stiffness_scale=float(abs(self.K.diagonal()).max()))
-        self.gamma = _check_real("gamma", gamma)
+        self.gamma = validation.real("gamma", gamma)
         self.damping = as_damping(damping)
         if not 2.0 * self.beta >= self.gamma >= 0.5:
             warnings.warn(
@@ -214,7 +201,7 @@ class Newmark:
         n = self.model.unknowns
         if vector is None:
             return np.zeros(n)
-        return check_force(vector, n, name, unit).copy()  # a copy: the march writes into it
+        return check_force(vector, n, name, unit)  # a new array: the march writes into it
 
     def _prepare_forcing(self, load, force, profile, times: np.ndarray):
         """The run's F(t): moving heads, or f(t) F with F ``force`` or the model's force."""
@@ -276,8 +263,8 @@ class Newmark:
         ConvergenceError
             If the solution becomes non-finite or grows past the bound.
         """
-        steps, t0 = check_steps(steps), _check_real("t0", t0)
-        blowup_factor = _check_real("blowup_factor", blowup_factor, positive=True)
+        steps, t0 = check_steps(steps), validation.real("t0", t0, unit="s")
+        blowup_factor = validation.positive("blowup_factor", blowup_factor)
         times = self._instants(steps, t0)
         forcing = self._prepare_forcing(load, force, profile, times)
         w, v = self._state(w0, "w0", "m"), self._state(v0, "v0", "m/s")

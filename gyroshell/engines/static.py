@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core import validation
-from ..core.errors import ParameterError, SupercriticalError
+from ..core.errors import SupercriticalError
 from ..linalg.inertia import factor_inertia
 from ..results.static import StaticSolution
 from ..tape.model import TapeModel
@@ -20,9 +20,7 @@ from .divergence import divergence_speed
 
 
 def _check_model(model: object) -> TapeModel:
-    if not isinstance(model, TapeModel):
-        raise ParameterError(f"model must be a TapeModel, got {type(model).__name__}")
-    return model
+    return validation.instance("model", model, TapeModel)
 
 
 def factor_definite(model: TapeModel, velocity: float):

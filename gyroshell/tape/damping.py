@@ -13,24 +13,12 @@ the dissipated power vᵀCv is never negative.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import scipy.sparse as sp
 
-from ..core.errors import ParameterError
+from ..core import validation
 from .model import TapeModel
-
-
-def _check_nonnegative(name: str, value: float, unit: str) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a real number >= 0 {unit}, got {value!r}"
-                             ) from None
-    if not (math.isfinite(value) and value >= 0.0):
-        raise ParameterError(f"{name} must be finite and >= 0 {unit}, got {value:g}")
-    return value
 
 
 @dataclass(frozen=True)
@@ -53,7 +41,7 @@ class Damping:
     >>> Damping(viscous=-1.0)
     Traceback (most recent call last):
     ...
-    gyroshell.ParameterError: damping must be finite and >= 0 N*s/m^3, got -1
+    gyroshell.ParameterError: damping must be >= 0 N*s/m^3, got -1
     """
 
     viscous: float = 0.0
@@ -62,11 +50,11 @@ class Damping:
 
     def __post_init__(self) -> None:
         put = object.__setattr__
-        put(self, "viscous", _check_nonnegative("damping", self.viscous, "N*s/m^3"))
+        put(self, "viscous", validation.nonnegative("damping", self.viscous, "N*s/m^3"))
         put(self, "mass_coefficient",
-            _check_nonnegative("mass_coefficient", self.mass_coefficient, "1/s"))
+            validation.nonnegative("mass_coefficient", self.mass_coefficient, "1/s"))
         put(self, "stiffness_coefficient",
-            _check_nonnegative("stiffness_coefficient", self.stiffness_coefficient, "s"))
+            validation.nonnegative("stiffness_coefficient", self.stiffness_coefficient, "s"))
 
     @property
     def is_zero(self) -> bool:

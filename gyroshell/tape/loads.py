@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import erf
 
-from ..core.errors import ParameterError
+from ..core import validation
 from .grid import Grid
 from .parameters import TapeParameters
 
@@ -31,18 +31,7 @@ def gaussian_exponent(width: float) -> float:
 
 def check_exponent(exponent: float) -> float:
     """Validate a Gaussian exponent α, 1/m² (finite, > 0)."""
-    return _check_positive("exponent", exponent, "1/m^2")
-
-
-def _check_positive(name: str, value: float, unit: str) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a real number > 0 {unit}, got {value!r}"
-                             ) from None
-    if not (math.isfinite(value) and value > 0.0):
-        raise ParameterError(f"{name} must be finite and > 0 {unit}, got {value:g}")
-    return value
+    return validation.positive("exponent", exponent, "1/m^2")
 
 
 def _cell_integrals(nodes: np.ndarray, h: float, centre: float, alpha: float,
@@ -96,7 +85,7 @@ class Ramp:
     rise_time: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "rise_time", _check_positive("rise_time", self.rise_time, "s"))
+        object.__setattr__(self, "rise_time", validation.positive("rise_time", self.rise_time, "s"))
 
     def __call__(self, t: float) -> float:
         return min(max(t / self.rise_time, 0.0), 1.0)
@@ -109,7 +98,8 @@ class Harmonic:
     frequency: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "frequency", _check_positive("frequency", self.frequency, "Hz"))
+        object.__setattr__(self, "frequency",
+                           validation.positive("frequency", self.frequency, "Hz"))
 
     def __call__(self, t: float) -> float:
         return math.sin(2 * math.pi * self.frequency * t) if t >= 0 else 0.0

@@ -43,11 +43,8 @@ class TapeModel:
 
     def __init__(self, params: TapeParameters | None = None, grid: Grid | None = None,
                  force: np.ndarray | None = None, *, load: np.ndarray | None = None) -> None:
-        if params is not None and not isinstance(params, TapeParameters):
-            raise validation.ParameterError(
-                f"params must be a TapeParameters, got {type(params).__name__}")
-        if grid is not None and not isinstance(grid, Grid):
-            raise validation.ParameterError(f"grid must be a Grid, got {type(grid).__name__}")
+        validation.instance("params", params, TapeParameters, optional=True)
+        validation.instance("grid", grid, Grid, optional=True)
         self.params = TapeParameters() if params is None else params
         self.grid = Grid.from_parameters(self.params) if grid is None else grid
         if load is not None:

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import erf
 
+from ..core import validation
 from ..core.errors import ParameterError
 from .grid import Grid
 from .loads import check_exponent, gaussian_exponent
@@ -34,28 +35,13 @@ GAUSSIAN_CUTOFF = 6.0
 RAMP_SHAPES = ("cosine", "linear")
 
 
-def _real(name: str, value, unit: str, *, positive: bool = False,
-          nonnegative: bool = False) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a real number, {unit}, got {value!r}") from None
-    if not math.isfinite(value):
-        raise ParameterError(f"{name} must be finite, {unit}, got {value}")
-    if positive and value <= 0.0:
-        raise ParameterError(f"{name} must be > 0 {unit}, got {value:g}")
-    if nonnegative and value < 0.0:
-        raise ParameterError(f"{name} must be >= 0 {unit}, got {value:g}")
-    return value
-
-
 def _pair(name: str, value, unit: str) -> tuple[float, float]:
     try:
         a, b = value
     except (TypeError, ValueError):
         raise ParameterError(f"{name} must be a pair of numbers ({unit}), got {value!r}"
                              ) from None
-    return _real(name, a, unit), _real(name, b, unit)
+    return validation.real(name, a, unit=unit), validation.real(name, b, unit=unit)
 
 
 # ----- 1-D shapes ------------------------------------------------------------------------
@@ -114,7 +100,7 @@ class UserShape(Shape1D):
             raise ParameterError("function must be callable: the antiderivative P(s), m")
         if self.radius != math.inf:
             object.__setattr__(self, "radius",
-                               _real("radius", self.radius, "m", positive=True))
+                               validation.positive("radius", self.radius, "m"))
 
     def antiderivative(self, s: np.ndarray, out: np.ndarray) -> np.ndarray:
         out[...] = self.function(s)
@@ -162,19 +148,17 @@ class ContactWindows:
 
     def __post_init__(self) -> None:
         put = object.__setattr__
-        put(self, "period", _real("contact period", self.period, "s", positive=True))
-        put(self, "duration", _real("contact duration", self.duration, "s", positive=True))
-        put(self, "ramp", _real("contact ramp", self.ramp, "s", nonnegative=True))
-        put(self, "phase", _real("contact phase", self.phase, "s"))
+        put(self, "period", validation.positive("contact period", self.period, "s"))
+        put(self, "duration", validation.positive("contact duration", self.duration, "s"))
+        put(self, "ramp", validation.nonnegative("contact ramp", self.ramp, "s"))
+        put(self, "phase", validation.real("contact phase", self.phase, unit="s"))
         if self.duration > self.period:
             raise ParameterError(f"contact duration must be <= the contact period "
                                  f"{self.period:g} s, got {self.duration:g} s")
         if 2.0 * self.ramp > self.duration:
             raise ParameterError(f"contact ramp must be <= half the contact duration "
                                  f"({self.duration / 2:g} s), got {self.ramp:g} s")
-        if self.ramp_shape not in RAMP_SHAPES:
-            raise ParameterError(f"ramp_shape must be one of {', '.join(RAMP_SHAPES)}, "
-                                 f"got {self.ramp_shape!r}")
+        validation.choice("ramp_shape", self.ramp_shape, RAMP_SHAPES)
 
     def local_time(self, t: np.ndarray) -> np.ndarray:
         """Time since the start of the current window, s, in [0, period)."""
@@ -230,12 +214,12 @@ class MovingLoad:
         if not callable(self.path):
             raise ParameterError("path must be callable: t (s) -> (x, y) (m)")
         if self.pressure is not None:
-            object.__setattr__(self, "pressure", _real("pressure", self.pressure, "Pa"))
+            object.__setattr__(self, "pressure",
+                               validation.real("pressure", self.pressure, unit="Pa"))
         if self.shape is not None and (len(self.shape) != 2 or not all(
                 isinstance(s, Shape1D) for s in self.shape)):
             raise ParameterError("shape must be a pair of Shape1D (along x, along y)")
-        if self.contact is not None and not isinstance(self.contact, ContactWindows):
-            raise ParameterError("contact must be a ContactWindows or None")
+        validation.instance("contact", self.contact, ContactWindows, optional=True)
 
     def centres(self, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Centre coordinates (m) at ``times`` (s)."""
@@ -266,8 +250,7 @@ def drum_heads(heads: int, start: tuple[float, float], velocity: tuple[float, fl
     Head k touches the tape from ``k · revolution_period / heads`` for ``contact_duration``
     (s), moving from ``start`` (m) at ``velocity`` (m/s, lab frame).
     """
-    if isinstance(heads, bool) or not isinstance(heads, (int, np.integer)) or heads < 1:
-        raise ParameterError(f"heads must be an integer >= 1, got {heads!r}")
+    heads = validation.integer("heads", heads, low=1)
     path = StraightPath(start, velocity)
     return [MovingLoad(path, pressure=pressure, shape=shape, restart_path=True,
                        contact=ContactWindows(revolution_period, contact_duration, ramp=ramp,

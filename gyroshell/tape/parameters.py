@@ -70,18 +70,8 @@ def shell_stiffness(
                                    "N/m^3", what="youngs_modulus, thickness, radius, poisson")
 
 
-# Older private names, kept for modules that import them; gyroshell.validation is the one
-# place for these checks.
-def _check_finite(name: str, value: float) -> float:
-    return validation.real(name, value)
-
-
-def _check_positive(name: str, value: float, unit: str = "") -> float:
-    return validation.positive(name, value, unit)
-
-
-def _check_nonnegative(name: str, value: float, unit: str = "") -> float:
-    return validation.nonnegative(name, value, unit)
+# gyroshell.bearing.model still imports this name; it is validation.positive itself.
+_check_positive = validation.positive
 
 
 def check_velocity(velocity: float) -> float:

@@ -181,10 +181,22 @@ def test_sweep_length_guard_is_a_count_not_a_list():
     (lambda: validation.boolean("record_energy", None), "must be True or False"),
     (lambda: validation.vector("w0", [[1.0]], 1), r"got shape \(1, 1\)"),
     (lambda: validation.time_step(2e-6, 0.0), "beta must be > 0"),
+    (lambda: validation.integer("ncv", 0, low=1, optional=True),
+     "ncv must be None or an integer >= 1, got 0"),
+    (lambda: validation.instance("model", {}, TapeModel), "model must be a TapeModel, got dict"),
+    (lambda: validation.instance("label", 1.0, (int, str), optional=True),
+     "label must be a int or str or None, got float"),
 ])
 def test_shared_checks_name_parameter_and_range(call, match):
     with pytest.raises(ParameterError, match=match):
         call()
+
+
+def test_shared_checks_pass_good_values_through(small):
+    assert validation.integer("maxiter", None, low=1, optional=True) is None
+    assert validation.integer("maxiter", 4.0, low=1, optional=True) == 4
+    assert validation.instance("model", small, TapeModel) is small
+    assert validation.instance("grid", None, Grid, optional=True) is None
 
 
 def test_eigen_budget_counts_the_krylov_basis(monkeypatch):

@@ -170,9 +170,9 @@ def test_supercritical_reports_divergence():
     ({"ncv": 3}, "ncv must be in"),
     ({"ncv": "a"}, "ncv must be None or an integer"),
     ({"maxiter": 0}, "maxiter must be None or an integer >= 1"),
-    ({"maxiter": 2.5}, "maxiter must be None or an integer >= 1"),
+    ({"maxiter": 2.5}, "maxiter must be None or an integer, got 2.5"),
     ({"count": None}, "count must be an integer"),
-    ({"estimate": -1.0}, "estimate must be a frequency"),
+    ({"estimate": -1.0}, "estimate must be >= 0 rad/s, got -1"),
     ({"start": "x"}, "start must be the Modes"),
     ({"velocity": 1e200}, "rho V\\^2 overflows"),
 ])

@@ -221,7 +221,7 @@ def test_two_heads_record_the_displacement_under_each():
     (lambda: ContactWindows(1e-5, 2e-6, ramp_shape="sine"), "ramp_shape must be one of"),
     (lambda: StraightPath((0.0, float("nan"))), "start must be finite"),
     (lambda: StraightPath((0.0, 0.0), "fast"), "load velocity must be a pair"),
-    (lambda: GaussianShape(0.0), "exponent must be finite and > 0"),
+    (lambda: GaussianShape(0.0), "exponent must be > 0 1/m\\^2, got 0"),
     (lambda: MovingLoad(3.0), "path must be callable"),
     (lambda: drum_heads(0, (0, 0), (1, 1), revolution_period=1, contact_duration=1),
      "heads must be an integer >= 1"),

@@ -153,10 +153,10 @@ def test_mass_proportional_damping_shifts_every_eigenvalue(damping_of):
 
 def test_damping_refusals():
     model = TapeModel(TapeParameters(length_ratio=1.0, spacing=WIDTH / 8))
-    for bad, match in ((-1.0, "damping must be finite and >= 0"),
+    for bad, match in ((-1.0, "damping must be >= 0 N\\*s/m\\^3, got -1"),
                        ("x", "damping must be a real number"),
                        ((1.0,), "Rayleigh damping must be a pair"),
-                       ((1.0, -2.0), "stiffness_coefficient must be finite and >= 0")):
+                       ((1.0, -2.0), "stiffness_coefficient must be >= 0 s, got -2")):
         with pytest.raises(ParameterError, match=match):
             modes(model, 0.0, 2, damping=bad)
 

@@ -17,6 +17,7 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from ...core import validation
 from ...core.errors import ParameterError
 from .. import cholesky
 from ..inertia import InertiaFactor, factor_inertia
@@ -78,8 +79,7 @@ class SolverOptions:
         TypeError
             For a keyword that is not a knob (as for an unknown keyword argument).
         """
-        if options is not None and not isinstance(options, SolverOptions):
-            raise ParameterError(f"options must be a SolverOptions, got {options!r}")
+        validation.instance("options", options, SolverOptions, optional=True)
         unknown = set(tuning) - {f.name for f in fields(cls)}
         if unknown:
             raise TypeError(f"unexpected keyword argument {sorted(unknown)[0]!r}")
@@ -167,10 +167,7 @@ def _positive_semidefinite(C: sp.csr_matrix) -> bool:
 
 def check_count(count: int, n: int) -> int:
     """1 <= count <= the most a Krylov eigen-solver delivers in reasonable time here."""
-    if isinstance(count, bool) or not isinstance(count, (int, np.integer, float)) or \
-            int(count) != count:
-        raise ParameterError(f"count must be an integer, got {count!r}")
-    count = int(count)
+    count = validation.integer("count", count)
     limit = max_count(n)
     if not 1 <= count <= limit:
         raise ParameterError(f"count must be in [1, {limit}] for {n} unknowns, got {count}")
@@ -187,18 +184,11 @@ def max_count(n: int) -> int:
 
 def check_optional_int(name: str, value) -> int | None:
     """None or an integer >= 1 (ARPACK's ncv and maxiter)."""
-    if value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-        raise ParameterError(f"{name} must be None or an integer >= 1, got {value!r}")
-    return int(value)
+    return validation.integer(name, value, low=1, optional=True)
 
 
 def check_tol(tol) -> float:
-    if isinstance(tol, bool) or not isinstance(tol, (int, float, np.floating)) or \
-            not 0 <= tol < 1:
-        raise ParameterError(f"tol must be in [0, 1), got {tol!r}")
-    return float(tol)
+    return validation.real("tol", tol, low=0.0, high=1.0, high_open=True)
 
 
 def check_shift(sigma) -> complex | None:
