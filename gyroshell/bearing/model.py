@@ -21,8 +21,9 @@ from functools import cached_property
 import numpy as np
 import scipy.sparse as sp
 
+from ..core import validation
 from ..core.errors import ParameterError
-from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters, _check_positive
+from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from .air import AirParameters
 from .film import Film
 from .geometry import check_wrap_angle, dry_curvature, dry_gap
@@ -133,7 +134,7 @@ class BearingModel:
                  grading: Grading | str | None = None) -> None:
         self.params = params
         self.air = AirParameters() if air is None else air
-        self.velocity = _check_positive("velocity", velocity, "m/s")
+        self.velocity = validation.positive("velocity", velocity, "m/s")
         self.wrap_angle = check_wrap_angle(wrap_angle)
         self.infinitely_wide = bool(infinitely_wide)
         _check_below_string_speed(params, self.velocity)
@@ -141,7 +142,7 @@ class BearingModel:
         self.h_guess = _FOIL_GUESS * h_foil
         spans = SPAN_LENGTHS if self.infinitely_wide else SPAN_LENGTHS_2D
         self.span = (spans * max(l_film, l_bend) if span is None
-                     else _check_positive("span", span, "m"))
+                     else validation.positive("span", span, "m"))
         self.length = params.radius * self.wrap_angle + 2.0 * self.span
         self.grading = _resolved_grading(grading, self.infinitely_wide,
                                          X_GRADING_WIDTH * max(l_film, l_bend))

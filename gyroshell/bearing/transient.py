@@ -22,9 +22,10 @@ from collections.abc import Callable
 import numpy as np
 import scipy.sparse as sp
 
+from ..core import validation
 from ..core.errors import ParameterError
 from ..core.progress import progress_bar
-from ..engines.newmark import _check_real, check_steps
+from ..engines.newmark import check_steps
 from .model import BearingModel
 from .results import BearingSolution, BearingTransient, NewtonInfo
 from .steady import newton
@@ -99,9 +100,9 @@ def march(start: BearingSolution, *, dt: float, steps: int,
         only if stderr is a terminal.
     """
     model = start.model
-    dt = _check_real("dt", dt, positive=True)
+    dt = validation.positive("dt", dt, "s")
     steps = check_steps(steps)
-    record_every = check_steps(record_every)
+    record_every = check_steps(record_every, "record_every")
     beta, gamma = _checked_newmark(beta, gamma)
     T = (lambda _t: model.params.tension) if tension is None else tension
     G = model.tape.G(model.velocity)
@@ -131,8 +132,8 @@ def march(start: BearingSolution, *, dt: float, steps: int,
 
 def _checked_newmark(beta: float, gamma: float) -> tuple[float, float]:
     """(β, γ), checked for unconditional stability: 2β >= γ >= ½."""
-    beta = _check_real("beta", beta, positive=True)
-    gamma = _check_real("gamma", gamma)
+    beta = validation.positive("beta", beta)
+    gamma = validation.real("gamma", gamma)
     if not 2.0 * beta >= gamma >= 0.5:
         raise ParameterError(f"beta, gamma must satisfy 2 beta >= gamma >= 1/2 "
                              f"(unconditional stability), got {beta:g}, {gamma:g}")

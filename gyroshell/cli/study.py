@@ -13,7 +13,8 @@ PLOT_DPI = 120
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
-    from ..studies.parameter_study import COMPUTE_CHOICES, VARIABLE_NAMES
+    from ..studies.evaluation import COMPUTE_CHOICES
+    from ..studies.points import VARIABLE_NAMES
 
     p = sub.add_parser(
         "study", parents=[common], help="parameter study: vary tape parameters, one row each",

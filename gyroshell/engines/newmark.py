@@ -55,14 +55,6 @@ class NewmarkStabilityWarning(UserWarning):
     """β, γ outside the unconditionally stable region 2β ≥ γ ≥ ½."""
 
 
-def _check_real(name: str, value: float, *, positive: bool = False, unit: str = "") -> float:
-    """:func:`validation.real` (:func:`validation.positive` with ``positive``); kept under
-    this name because gyroshell.bearing.transient imports it."""
-    if positive:
-        return validation.positive(name, value, unit)
-    return validation.real(name, value, unit=unit)
-
-
 def check_steps(steps: int, name: str = "steps") -> int:
     """Validate a number of time steps (an integer >= 1)."""
     return validation.integer(name, steps, low=1)

@@ -61,18 +61,6 @@ if TYPE_CHECKING:
 
 __all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "StudyResult", "run_study"]
 
-#: Names of :mod:`gyroshell.studies.stability` also read from here; that module loads
-#: scipy, so it is imported only when one of them is asked for.
-_STABILITY_NAMES = ("classify_stability", "quadratic_eigenvalues", "tape_stability")
-
-
-def __getattr__(name: str):
-    if name in _STABILITY_NAMES:
-        from . import stability
-
-        return getattr(stability, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
 
 @dataclass(frozen=True, eq=False)
 class StudyResult(results_base.Result, kind="study"):

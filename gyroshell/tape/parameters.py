@@ -71,7 +71,6 @@ def shell_stiffness(
 
 
 # gyroshell.bearing.model still imports this name; it is validation.positive itself.
-_check_positive = validation.positive
 
 
 def check_velocity(velocity: float) -> float:

@@ -28,7 +28,7 @@ from convergence import observed_order
 
 from gyroshell import TapeModel, TapeParameters, classify_stability, divergence_speed, modes
 from gyroshell.core.errors import ParameterError
-from gyroshell.studies.parameter_study import tape_stability
+from gyroshell.studies.stability import tape_stability
 
 # Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
 pytestmark = pytest.mark.usefixtures("every_factorization")
