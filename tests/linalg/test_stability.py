@@ -25,6 +25,7 @@ import pytest
 import scipy.linalg as la
 from conftest import moving_string
 from convergence import observed_order
+from dense_reference import quadratic_eigenvalues
 
 from gyroshell import TapeModel, TapeParameters, classify_stability, divergence_speed, modes
 from gyroshell.core.errors import ParameterError
@@ -34,17 +35,6 @@ from gyroshell.studies.stability import tape_stability
 pytestmark = pytest.mark.usefixtures("every_factorization")
 
 WIDTH = 6.35e-3
-
-
-def quadratic_eigenvalues(M, G, K) -> np.ndarray:
-    """All 2n roots of det(λ²M + λG + K) = 0 by a dense companion linearization."""
-    from threadpoolctl import threadpool_limits
-
-    n = len(M)
-    A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -G]])
-    B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), M]])
-    with threadpool_limits(1):  # one BLAS thread: much faster on a shared machine
-        return la.eig(A, B, right=False)
 
 
 def two_dof(k1: float, k2: float, g: float):

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pandas as pd
 import pytest
-import scipy.linalg as la
+from dense_reference import quadratic_eigenvalues
 
 import gyroshell.studies.evaluation
 import gyroshell.studies.executors
@@ -25,18 +25,6 @@ from gyroshell.core.errors import ParameterError, SupercriticalError
 BASE = TapeParameters(length_ratio=4, spacing=6.35e-3 / 8)
 VARY = {"velocity": [0.0, 60.0, 104.0], "tension": [70.0, 90.0]}
 COMPUTE = ("critical", "modes", "static", "period")
-
-
-def quadratic_eigenvalues(M, G, K) -> np.ndarray:
-    """All 2n roots of det(λ²M + λG + K) = 0, by the tests' own dense solver: the
-    generalized companion pencil (no inverse of M, unlike the package's)."""
-    from threadpoolctl import threadpool_limits
-
-    n = len(M)
-    A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -G]])
-    B = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), M]])
-    with threadpool_limits(1):  # one BLAS thread: much faster on a shared machine
-        return la.eig(A, B, right=False)
 
 
 @pytest.fixture(scope="module")
