@@ -34,10 +34,12 @@ from .reproductions import (
     wave_fronts,
     wireframe,
 )
+from .spectrum import critical_speeds, eigenvalues
 from .speed import campbell, sweep
 from .study_maps import STABILITY_COLOURS, stability_map, study_lines
 
 __all__ = ["STABILITY_COLOURS", "animate_mode", "animate_transient", "bode", "campbell",
-           "edge_reflection", "field", "head_histories", "load_point_history", "mode_shape",
-           "mode_shape_parts", "period_vs_velocity", "pyplot", "save_figure", "spectra",
-           "stability_map", "study_lines", "sweep", "waterfall", "wave_fronts", "wireframe"]
+           "critical_speeds", "edge_reflection", "eigenvalues", "field", "head_histories",
+           "load_point_history", "mode_shape", "mode_shape_parts", "period_vs_velocity", "pyplot",
+           "save_figure", "spectra", "stability_map", "study_lines", "sweep", "waterfall",
+           "wave_fronts", "wireframe"]

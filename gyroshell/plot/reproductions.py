@@ -445,8 +445,9 @@ def bode(omega, response=None, phase=None, *, axes=None, label: str | None = Non
         Complex displacement amplitude, m, or its modulus |W| (then give ``phase``).
     phase : array_like, optional
         Phase, rad, when ``response`` is the modulus.
-    axes : pair of matplotlib.axes.Axes, optional
-        (amplitude, phase) Axes; a new two-row figure if None.
+    axes : matplotlib.axes.Axes or a pair of them, optional
+        (amplitude, phase) Axes, or one Axes for the amplitude alone; a new two-row figure
+        if None.
     label : str, optional
         Legend label of the curve.
     color : optional
@@ -479,16 +480,18 @@ def bode(omega, response=None, phase=None, *, axes=None, label: str | None = Non
         plt = pyplot()
         _, axes = plt.subplots(2, 1, sharex=True, figsize=(9.0, 7.0))
     axes = np.asarray(axes).ravel()
-    if axes.size != 2:
-        raise ParameterError("axes must be a pair (amplitude, phase)")
+    if axes.size not in (1, 2):
+        raise ParameterError("axes must be one Axes (the amplitude) or a pair (amplitude, "
+                             "phase)")
     line, = axes[0].semilogy(om * scale, amplitude, lw=1.0, color=color, label=label)
-    axes[1].plot(om * scale, phase, lw=1.0, color=line.get_color())
+    if axes.size == 2:
+        axes[1].plot(om * scale, phase, lw=1.0, color=line.get_color())
+        axes[1].set_ylabel("phase (rad)")
     for w in ([] if mode_omegas is None else np.asarray(mode_omegas, dtype=float)):
         axes[0].axvline(w * scale, color=line.get_color(), lw=0.6, ls=":", alpha=0.8)
     unit = "rad/s" if scale == 1 else f"{1 / scale:.0e} rad/s".replace("1e+03", "10³")
     axes[0].set_ylabel("load-point amplitude |W| (m)")
-    axes[1].set_ylabel("phase (rad)")
-    axes[1].set_xlabel(f"angular frequency ω ({unit})")
+    axes[-1].set_xlabel(f"angular frequency ω ({unit})")
     for a in axes:
         a.grid(alpha=0.3)
     return axes

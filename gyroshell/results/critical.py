@@ -81,6 +81,12 @@ class CriticalSpeeds(Result, kind="critical"):
                 "divergence_seconds": info.get("divergence_time"),
                 "eigen_solves": info.get("evaluations"), "mu": info.get("mu")}
 
+    def plot(self, ax=None):
+        """The speeds as bars (:func:`gyroshell.plot.critical_speeds`); returns the Axes."""
+        from ..plot import critical_speeds
+
+        return critical_speeds(self, ax=ax)
+
     def to_xarray(self, *, params=None):
         """Dataset of scalar speeds (m/s); the diagnostics as the ``info`` attribute."""
         dv = {name: ((), getattr(self, name), {"units": "m/s"}) for name in _SPEEDS}

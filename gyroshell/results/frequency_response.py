@@ -140,7 +140,8 @@ class FrequencyResponse(Result, kind="frequency_response"):
         """Bode plot (amplitude, m, log scale; phase, rad) against ω (rad/s), one curve per
         point, drawn by :func:`gyroshell.plot.bode`.
 
-        ``ax`` is a pair of Axes (amplitude, phase) or None for a new figure; returns it.
+        ``ax`` is a pair of Axes (amplitude, phase), one Axes (the amplitude alone) or None
+        for a new figure; returns the Axes as an array.
         """
         if ax is None:
             _, ax = pyplot().subplots(2, 1, sharex=True, figsize=FIGSIZE)

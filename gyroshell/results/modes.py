@@ -149,6 +149,12 @@ class GyroscopicModes(_EigenvalueProperties, Result, kind="gyroscopic_modes"):
                 "residual": np.asarray(self.residuals).tolist(),
                 "unknowns": int(self.vectors.shape[0])}
 
+    def plot(self, ax=None):
+        """The eigenvalues in the complex plane (:func:`gyroshell.plot.eigenvalues`)."""
+        from ..plot import eigenvalues
+
+        return eigenvalues(self, ax=ax, title=f"{self.stability}, {self.count} eigenvalues")
+
 
 @dataclass(frozen=True)
 class Modes(_EigenvalueProperties, Result, kind="modes"):

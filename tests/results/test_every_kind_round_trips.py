@@ -81,3 +81,17 @@ def test_summary_is_plain_json(kind):
     summary = EXAMPLES[kind]().summary()
     assert isinstance(summary, dict) and summary
     json.dumps(summary)  # plain numbers and text only: numpy integers or arrays raise here
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_plot_draws_on_the_given_axes(kind):
+    import matplotlib.pyplot as plt
+
+    if kind not in EXAMPLES:
+        pytest.fail(f"no example of {kind!r}")
+    import numpy as np
+
+    fig = plt.figure()
+    drawn = np.atleast_1d(EXAMPLES[kind]().plot(ax=fig.add_subplot()))  # a Bode: the amplitude
+    ax = drawn[0]
+    assert ax.figure is fig and (ax.lines or ax.collections or ax.patches or ax.images)
