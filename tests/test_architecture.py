@@ -27,7 +27,6 @@ def _tracked(*patterns: str) -> list[Path]:
     return [ROOT / name for name in out.stdout.split()]
 
 
-@pytest.mark.slow
 def test_every_layer_imports_only_from_the_layers_below():
     """The import-linter contract in pyproject.toml, checked on every run."""
     from importlinter.cli import lint_imports
@@ -91,7 +90,6 @@ def _functions(tree: ast.AST):
             yield node
 
 
-@pytest.mark.slow
 def test_no_function_is_longer_than_a_screen():
     long = []
     for path in sorted(PACKAGE.rglob("*.py")):

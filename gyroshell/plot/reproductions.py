@@ -432,36 +432,8 @@ def spectra(labels, omegas, amplitudes, *, omega_ref=None, ax=None, xmax: float 
     return ax
 
 
-def bode(omega, response=None, phase=None, *, axes=None, label: str | None = None,
-         color=None, mode_omegas=None, scale: float = 1e-3):
-    """Bode plot: amplitude (m, log scale) and phase (rad) against angular frequency.
-
-    Parameters
-    ----------
-    omega : array_like or FrequencyResponse
-        Angular frequencies, rad/s; or a :class:`~gyroshell.FrequencyResponse`
-        (its load-point column is drawn; omit ``response``).
-    response : array_like, optional
-        Complex displacement amplitude, m, or its modulus |W| (then give ``phase``).
-    phase : array_like, optional
-        Phase, rad, when ``response`` is the modulus.
-    axes : matplotlib.axes.Axes or a pair of them, optional
-        (amplitude, phase) Axes, or one Axes for the amplitude alone; a new two-row figure
-        if None.
-    label : str, optional
-        Legend label of the curve.
-    color : optional
-        matplotlib colour of the curve and its mode ticks.
-    mode_omegas : array_like, optional
-        Eigenfrequencies, rad/s, drawn as dotted vertical lines on the amplitude.
-    scale : float
-        ω is drawn as ω·scale; the default 1e-3 gives 10³ rad/s, 1 gives rad/s.
-
-    Returns
-    -------
-    numpy.ndarray of matplotlib.axes.Axes
-        The (amplitude, phase) Axes.
-    """
+def _bode_curve(omega, response, phase) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(ω in rad/s, |W| in m, phase in rad) from the arguments :func:`bode` accepts."""
     if response is None:
         if not hasattr(omega, "amplitude"):
             raise ParameterError("bode needs omega and response, or a FrequencyResponse")
@@ -476,13 +448,45 @@ def bode(omega, response=None, phase=None, *, axes=None, label: str | None = Non
         amplitude, phase = response.astype(float), np.asarray(phase, dtype=float)
     if amplitude.shape != om.shape or phase.shape != om.shape:
         raise ParameterError(f"response and phase must have the shape of omega {om.shape}")
+    return om, amplitude, phase
+
+
+def bode(omega, response=None, phase=None, *, axes=None, label: str | None = None,
+         color=None, mode_omegas=None, scale: float = 1e-3):
+    """Bode plot: amplitude (m, log scale) and phase (rad) against angular frequency.
+
+    Parameters
+    ----------
+    omega : array_like or FrequencyResponse
+        Angular frequencies, rad/s; or a :class:`~gyroshell.FrequencyResponse`
+        (its load-point column is drawn; omit ``response``).
+    response : array_like, optional
+        Complex displacement amplitude, m, or its modulus |W| (then give ``phase``).
+    phase : array_like, optional
+        Phase, rad, when ``response`` is the modulus.
+    axes : matplotlib.axes.Axes or a pair of them, optional
+        (amplitude, phase), or one Axes for the amplitude; None: a new two-row figure.
+    label : str, optional
+        Legend label of the curve.
+    color : optional
+        matplotlib colour of the curve and its mode ticks.
+    mode_omegas : array_like, optional
+        Eigenfrequencies, rad/s, drawn as dotted vertical lines on the amplitude.
+    scale : float
+        ω is drawn as ω·scale; the default 1e-3 gives 10³ rad/s, 1 gives rad/s.
+
+    Returns
+    -------
+    numpy.ndarray of matplotlib.axes.Axes
+        The (amplitude, phase) Axes.
+    """
+    om, amplitude, phase = _bode_curve(omega, response, phase)
     if axes is None:
         plt = pyplot()
         _, axes = plt.subplots(2, 1, sharex=True, figsize=(9.0, 7.0))
     axes = np.asarray(axes).ravel()
     if axes.size not in (1, 2):
-        raise ParameterError("axes must be one Axes (the amplitude) or a pair (amplitude, "
-                             "phase)")
+        raise ParameterError("axes must be one Axes (amplitude) or a pair (amplitude, phase)")
     line, = axes[0].semilogy(om * scale, amplitude, lw=1.0, color=color, label=label)
     if axes.size == 2:
         axes[1].plot(om * scale, phase, lw=1.0, color=line.get_color())
