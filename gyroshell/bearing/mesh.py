@@ -15,12 +15,11 @@ the 2n grid is a node of the n grid).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.errors import ParameterError
+from ..core import validation
 
 
 def _gd(z):
@@ -105,15 +104,10 @@ class Grading:
 
     def __post_init__(self) -> None:
         for name in ("x_ratio", "y_ratio"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 1.0):
-                raise ParameterError(f"{name} must be a finite number >= 1, got {v!r}")
+            validation.real(name, getattr(self, name), low=1.0)
         for name in ("x_width", "y_width"):
-            v = getattr(self, name)
-            if v is None and name == "x_width":
-                continue
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0.0):
-                raise ParameterError(f"{name} must be a finite number > 0, got {v!r}")
+            if getattr(self, name) is not None or name == "y_width":
+                validation.positive(name, getattr(self, name), "m")
 
     @property
     def uniform(self) -> bool:

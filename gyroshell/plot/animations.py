@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core import validation
 from ..core.errors import ParameterError
 from .figures import _axes, _mm
 
@@ -23,8 +24,7 @@ def animate_mode(modes, path, index: int = 0, *, frames: int = 24, fps: int = 12
     """GIF of one period of Re(φ e^{iωt}) for mode ``index``; returns the Axes."""
     if path is None or not str(path).lower().endswith(".gif"):
         raise ParameterError(f"animate_mode writes a .gif file, got {path!r}")
-    if isinstance(frames, bool) or int(frames) != frames or frames < 2:
-        raise ParameterError(f"frames must be an integer >= 2, got {frames!r}")
+    frames = validation.integer("frames", frames, low=2)
     phi = modes.field(index)
     grid = modes.grid
     ax = _axes(ax)

@@ -18,12 +18,12 @@ with the tape; where a branch meets one, that speed excites the mode.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..core import validation
 from ..core.errors import ParameterError
 from ..core.units import unit_of
 from ..results import base
@@ -89,8 +89,7 @@ class CampbellDiagram(base.Result, kind="campbell"):
     @staticmethod
     def excitation(order: int, circumference: float, velocity):
         """ω = n·2πV/ℓ, rad/s, of the n-th harmonic of a roller of circumference ℓ (m)."""
-        if not (math.isfinite(circumference) and circumference > 0):
-            raise ParameterError(f"circumference must be > 0 m, got {circumference!r}")
+        circumference = validation.positive("circumference", circumference, "m")
         return order * 2 * np.pi * np.asarray(velocity, dtype=float) / circumference
 
     def resonances(self, circumference: float, orders=(1, 2, 3)) -> pd.DataFrame:
@@ -260,10 +259,8 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     velocities = check_velocities(velocities)
     if np.any(np.diff(velocities) <= 0):
         raise ParameterError("velocities must be strictly ascending (m/s)")
-    if not 0.0 <= min_mac <= 1.0:
-        raise ParameterError(f"min_mac must be in [0, 1], got {min_mac!r}")
-    if not veering_gap > 0:
-        raise ParameterError(f"veering_gap must be > 0, got {veering_gap!r}")
+    validation.real("min_mac", min_mac, low=0.0, high=1.0)
+    validation.positive("veering_gap", veering_gap)
     workers = check_workers(workers, len(velocities))
     results = solve_speeds(model, velocities, count, continuation=continuation,
                            workers=workers, options=options, progress=progress,

@@ -13,6 +13,7 @@ import os
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from ..core import validation
 from ..core.errors import ParameterError
 from ..core.parallel import process_pool
 from . import evaluation
@@ -71,21 +72,15 @@ def check_executor(workers: int | None, scheduler: str | None, chunk_size: int |
         raise ParameterError("give workers (local processes) or scheduler (a Dask cluster, "
                              "whose workers run the points), not both")
     workers = _check_workers(workers) if scheduler is None else None
-    if chunk_size is not None and (int(chunk_size) != chunk_size or chunk_size < 1):
-        raise ParameterError(f"chunk_size must be an integer >= 1, got {chunk_size!r}")
-    if (isinstance(connect_timeout, bool) or not isinstance(connect_timeout, int | float)
-            or not 0 < connect_timeout < math.inf):
-        raise ParameterError(f"connect_timeout must be a number of seconds > 0, got "
-                             f"{connect_timeout!r}")
-    return Executor(workers, scheduler, chunk_size, float(connect_timeout))
+    chunk_size = validation.integer("chunk_size", chunk_size, low=1, optional=True)
+    connect_timeout = validation.positive("connect_timeout", connect_timeout, "s")
+    return Executor(workers, scheduler, chunk_size, connect_timeout)
 
 
 def _check_workers(workers) -> int:
     if workers is None:
         return max(1, os.cpu_count() or 1)
-    if isinstance(workers, bool) or int(workers) != workers or workers < 1:
-        raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
-    return int(workers)
+    return validation.integer("workers", workers, low=1)
 
 
 def chunks(tasks: list, size: int) -> list[list]:

@@ -46,6 +46,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from ..core import validation
 from ..core.errors import ParameterError
 from ..core.progress import progress_bar
 from ..core.units import unit_of
@@ -260,12 +261,10 @@ class _Plan:
 def _plan(base, vary, points, compute, velocity, count) -> _Plan:
     """The study's settings validated (ParameterError names what is wrong)."""
     base = TapeParameters() if base is None else base
-    if not isinstance(base, TapeParameters):
-        raise ParameterError("base must be a TapeParameters")
+    validation.instance("base", base, TapeParameters)
     velocity = check_velocity(velocity)
     compute = check_compute(compute)
-    if isinstance(count, bool) or int(count) != count or count < 1:
-        raise ParameterError(f"count must be an integer >= 1, got {count!r}")
+    count = validation.integer("count", count, low=1)
     if (vary is None) == (points is None):
         raise ParameterError("give either vary (a grid) or points (a list), not both")
     raw = grid_points(vary) if vary is not None else list(points)

@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core import budget
+from ..core import budget, validation
 from ..core.errors import ParameterError
 from ..core.parallel import process_pool
 from ..core.progress import progress_bar
@@ -280,9 +280,7 @@ def _check_sweep(model, velocities, min_correlation: float, workers
 def check_workers(workers, speeds: int) -> int:
     """The number of local processes for ``speeds`` speeds: an integer >= 1, at most one
     per speed."""
-    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
-        raise ParameterError(f"workers must be an integer >= 1, got {workers!r}")
-    return min(int(workers), speeds)
+    return min(validation.integer("workers", workers, low=1), speeds)
 
 
 def solve_speeds(model, velocities: list[float], count: int, *, continuation: bool,

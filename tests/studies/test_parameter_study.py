@@ -168,7 +168,7 @@ def test_cut_short_cache_line_is_recomputed(tmp_path, quick):
     ({"vary": {"tension": [1.0]}, "scheduler": "localhost"}, "tcp://HOST:PORT"),
     ({"vary": {"tension": [1.0]}, "scheduler": "tcp://a:1", "workers": 2}, "not both"),
     ({"vary": {"tension": [1.0]}, "connect_timeout": 0}, "connect_timeout must be"),
-    ({"vary": {"tension": [1.0]}, "chunk_size": 0}, "chunk_size must be an integer >= 1"),
+    ({"vary": {"tension": [1.0]}, "chunk_size": 0}, "chunk_size must be None or an integer >= 1"),
 ])
 def test_refusals_name_the_problem(kwargs, match):
     with pytest.raises(ParameterError, match=match):
