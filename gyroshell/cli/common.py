@@ -151,6 +151,13 @@ def grid_of(params: TapeParameters):
     return Grid.from_parameters(params)
 
 
+def tape_from_args(args: argparse.Namespace):
+    """(parameters, velocity in m/s, grid) of the tape options, each checked, before scipy
+    is loaded."""
+    params = parameters_from_args(args)
+    return params, params.check_velocity(args.velocity), grid_of(params)
+
+
 def print_json(obj: dict) -> None:
     """One JSON object on stdout."""
     print(json.dumps(obj, indent=None, sort_keys=False))

@@ -8,7 +8,14 @@ import time
 import numpy as np
 
 from ..core.files import PLOT, check_outputs, transaction, write_atomic
-from .common import grid_of, parameters_from_args, parse_velocities, positive_int, print_json
+from .common import (
+    grid_of,
+    parameters_from_args,
+    parse_velocities,
+    positive_int,
+    print_json,
+    tape_from_args,
+)
 from .loading import add_damping_options, damping_from_args
 from .saving import add_save_option, check_save_path, save_result
 
@@ -57,13 +64,11 @@ def register(sub, common: argparse.ArgumentParser,
 
 
 def run_modes(args: argparse.Namespace) -> int:
-    params = parameters_from_args(args)
-    velocity = params.check_velocity(args.velocity)
-    grid = grid_of(params)
+    params, velocity, grid = tape_from_args(args)
+    check_save_path(args.save)
     from ..engines.eigen import modes
     from ..tape.model import TapeModel
 
-    check_save_path(args.save)
     model = TapeModel(params, grid)
     t0 = time.perf_counter()
     damping = damping_from_args(args)

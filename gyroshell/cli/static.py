@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from .common import grid_of, parameters_from_args, print_json
+from .common import print_json, tape_from_args
 from .saving import add_save_option, check_save_path, save_result
 
 
@@ -21,13 +21,11 @@ def register(sub, common: argparse.ArgumentParser,
 
 
 def run(args: argparse.Namespace) -> int:
-    params = parameters_from_args(args)
-    velocity = params.check_velocity(args.velocity)
-    grid = grid_of(params)
+    params, velocity, grid = tape_from_args(args)
+    check_save_path(args.save)
     from ..engines.static import solve_static
     from ..tape.model import TapeModel
 
-    check_save_path(args.save)
     model = TapeModel(params, grid)
     sol = solve_static(model, velocity)
     save_result(args.save, sol, params)
