@@ -74,6 +74,18 @@ def load_point_history(times, w=None, *, steady: float | None = None, scale: flo
     return ax
 
 
+def _table_on(name: str, values, rows: tuple[str, np.ndarray], columns: tuple[str, np.ndarray]
+              ) -> np.ndarray:
+    """``values`` as a float array with one row per entry of ``rows`` and one column per
+    entry of ``columns`` (each a (name, coordinates) pair); refused otherwise."""
+    values = np.asarray(values, dtype=float)
+    shape = (len(rows[1]), len(columns[1]))
+    if values.shape != shape:
+        raise ParameterError(f"{name} must have shape (len({rows[0]}), len({columns[0]})) = "
+                             f"{shape}, got {values.shape}")
+    return values
+
+
 def wireframe(x, y, w, *, ax=None, title: str | None = None, zmax: float | None = None,
               zmin: float | None = None, rstride: int | None = None, cstride: int = 2,
               elev: float = 28.0, azim: float = -62.0, zoom: float = 1.3):
@@ -105,10 +117,7 @@ def wireframe(x, y, w, *, ax=None, title: str | None = None, zmax: float | None 
     mpl_toolkits.mplot3d.axes3d.Axes3D
     """
     x, y = _vector(x, "x"), _vector(y, "y")
-    w = np.asarray(w, dtype=float)
-    if w.shape != (len(x), len(y)):
-        raise ParameterError(f"w must have shape (len(x), len(y)) = {(len(x), len(y))}, "
-                             f"got {w.shape}")
+    w = _table_on("w", w, ("x", x), ("y", y))
     if ax is None:
         plt = pyplot()
         ax = plt.figure(figsize=(7.0, 4.0)).add_subplot(projection="3d")
@@ -235,10 +244,7 @@ def waterfall(times, x, lines, *, ax=None, gap: float | None = None,
     matplotlib.axes.Axes
     """
     t, x = _vector(times, "times"), _vector(x, "x")
-    lines = np.asarray(lines, dtype=float)
-    if lines.shape != (len(t), len(x)):
-        raise ParameterError(f"lines must have shape (len(times), len(x)) = "
-                             f"{(len(t), len(x))}, got {lines.shape}")
+    lines = _table_on("lines", lines, ("times", t), ("x", x))
     if gap is None:
         gap = 0.55 * float(np.max(np.abs(lines)))
     ax = _axes(ax, figsize=(9.0, 10.0))
