@@ -39,6 +39,16 @@ class SingularError(ParameterError):
     point (an eigenvalue λ = 0, or the shift is an eigenvalue)."""
 
 
+class InputFileError(ParameterError):
+    """An input file (a ``--config`` tape, a saved result) that is missing, is a folder, or
+    is not what it should be (not UTF-8 text, not NetCDF, truncated, a field out of range);
+    the message names the file and what is wrong."""
+
+
+class MissingFileError(InputFileError, FileNotFoundError):
+    """An input file that does not exist (also a ``FileNotFoundError``, as before)."""
+
+
 class ConvergenceError(RuntimeError):
     """A numerical method failed to converge or a solution blew up."""
 

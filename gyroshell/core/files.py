@@ -26,7 +26,7 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from .errors import ParameterError
+from .errors import InputFileError, MissingFileError, ParameterError
 
 #: Kinds of output whose format is checked from the file name's suffix.
 PLOT = "plot"
@@ -156,6 +156,49 @@ def check_outputs(outputs: dict[str, tuple[str | os.PathLike[str] | None, str | 
                                   f"{os.fspath(outputs[option][0])}; give each its own")
         seen[real] = option
     return checked
+
+
+def check_input(path: str | os.PathLike[str], *, what: str = "file") -> Path:
+    """Refuse an input path that cannot be read as a file, before it is opened; returns it.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The path as the user gave it.
+    what : str
+        What the file should be (e.g. ``"TOML file"``, ``"NetCDF file"``), for the messages.
+
+    Raises
+    ------
+    MissingFileError
+        ``no such <what>: <path>`` (also a ``FileNotFoundError``).
+    InputFileError
+        A path that is not text, a folder (``<path> is a directory, not a <what>``) or
+        something else that is not a regular file.
+    """
+    if not isinstance(path, (str, os.PathLike)) or not os.fspath(path):
+        raise InputFileError(f"the {what} must be given as a file path, got {path!r}")
+    shown = os.fspath(path)
+    if isinstance(shown, bytes):
+        shown = os.fsdecode(shown)
+    if os.path.isdir(shown):
+        raise InputFileError(f"{shown} is a directory, not a {what}")
+    if not os.path.exists(shown):
+        raise MissingFileError(f"no such {what}: {shown}")
+    if not os.path.isfile(shown):
+        raise InputFileError(f"{shown} is not a regular file, so not a {what}")
+    return Path(shown)
+
+
+def read_input(path: str | os.PathLike[str], *, what: str = "file") -> bytes:
+    """The bytes of an input file, checked by :func:`check_input`; a file that cannot be
+    read raises :class:`~gyroshell.core.errors.InputFileError` naming it."""
+    checked = check_input(path, what=what)
+    try:
+        return checked.read_bytes()
+    except OSError as exc:  # unreadable (permissions), or removed meanwhile
+        raise InputFileError(f"{checked}: cannot read the {what} "
+                             f"({exc.strerror or exc})") from None
 
 
 def _default_mode() -> int:

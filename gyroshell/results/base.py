@@ -41,14 +41,16 @@ import dataclasses
 import json
 import os
 from pathlib import Path
+from collections.abc import Mapping
 from typing import Any, ClassVar
 
 import numpy as np
 
-from ..core.errors import ParameterError
-from ..core.files import atomic_path
+from ..core.errors import InputFileError, ParameterError
+from ..core.files import atomic_path, check_input
 from ..core.units import unit_of
 from ..core.version import __version__
+from .layout import Layout, check_dataset
 
 #: Suffixes of the formats :meth:`Result.save` writes.
 NETCDF_SUFFIXES = (".nc", ".nc4", ".netcdf")
@@ -67,6 +69,9 @@ class Result:
 
     #: The kind's name, stored as ``gyroshell_type`` in its files.
     kind: ClassVar[str] = ""
+    #: What the kind's file holds (:class:`~gyroshell.results.layout.Layout`), checked by
+    #: :func:`from_dataset` before ``from_xarray`` reads it; None: only the metadata.
+    file_layout: ClassVar[Layout | None] = None
     _kinds: ClassVar[dict[str, type[Result]]] = {}
 
     def __init_subclass__(cls, *, kind: str | None = None, **kwargs: Any) -> None:
@@ -126,19 +131,33 @@ def kinds() -> dict[str, type[Result]]:
     return dict(Result._kinds)
 
 
-def from_dataset(ds, *, source: str = "the dataset"):
-    """The object of the kind stored in ``ds.attrs['gyroshell_type']``."""
+def from_dataset(ds, *, source: str = "the dataset",
+                 layouts: Mapping[str, Layout] | None = None):
+    """The object of the kind stored in ``ds.attrs['gyroshell_type']``.
+
+    The metadata and the kind's :attr:`Result.file_layout` (else ``layouts[kind]``) are
+    checked first (:func:`gyroshell.results.layout.check_dataset`).
+
+    Raises
+    ------
+    InputFileError
+        Naming ``source`` and what is wrong: an unknown kind, a newer version, broken
+        metadata, a missing variable, text where numbers belong, NaN, a value out of range.
+    """
     kind = ds.attrs.get(KIND_ATTRIBUTE)
-    cls = Result._kinds.get(kind)
+    cls = Result._kinds.get(kind) if isinstance(kind, str) else None
     if cls is None:
-        raise ParameterError(f"{source} is not a gyroshell result file "
-                             f"({KIND_ATTRIBUTE} {kind!r})")
+        known = ", ".join(sorted(Result._kinds))
+        raise InputFileError(f"{source} is not a gyroshell result file ({KIND_ATTRIBUTE} "
+                             f"{kind!r}; known kinds: {known})")
+    check_dataset(ds, cls.file_layout or (layouts or {}).get(kind), source)
     return cls.from_xarray(ds)
 
 
-def read(path: str | os.PathLike[str]):
-    """The result stored in a NetCDF file, as the object of its kind."""
-    return from_dataset(open_netcdf(path), source=str(path))
+def read(path: str | os.PathLike[str], *, layouts: Mapping[str, Layout] | None = None):
+    """The result stored in a NetCDF file, as the object of its kind (checked as in
+    :func:`from_dataset`; ``layouts`` for kinds that declare none)."""
+    return from_dataset(open_netcdf(path), source=os.fspath(path), layouts=layouts)
 
 
 # ----- files -------------------------------------------------------------------------------
@@ -161,15 +180,52 @@ def write_netcdf(ds, path: str | os.PathLike[str]) -> Path:
     return Path(path)
 
 
+#: The first bytes of the files NetCDF readers open: HDF5 (NetCDF-4), and classic NetCDF
+#: (CDF-1, CDF-2, CDF-5), which xarray reads with scipy.
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+CLASSIC_SIGNATURES = (b"CDF\x01", b"CDF\x02", b"CDF\x05")
+
+
+def _engine_for(path: Path) -> str:
+    """The xarray engine for the file's format, from its first bytes (refused if neither)."""
+    with open(path, "rb") as fh:
+        head = fh.read(len(HDF5_SIGNATURE))
+    if not head:
+        raise InputFileError(f"{path}: empty file, not a NetCDF file")
+    if head.startswith(HDF5_SIGNATURE):
+        return netcdf_engine()
+    if head.startswith(CLASSIC_SIGNATURES):
+        return "scipy"
+    raise InputFileError(f"{path}: not a NetCDF file (it starts with {head[:4]!r}, not the "
+                         "NetCDF or HDF5 signature)")
+
+
 def open_netcdf(path: str | os.PathLike[str]):
-    """A NetCDF file's Dataset, loaded into memory and closed."""
+    """A NetCDF file's Dataset, loaded into memory and closed.
+
+    Raises
+    ------
+    MissingFileError
+        No such file (also a ``FileNotFoundError``).
+    InputFileError
+        A folder, an empty, truncated or damaged file, or one that is not NetCDF; the
+        message names the file.
+    """
     import xarray as xr
 
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"no such file: {path}")
-    with xr.open_dataset(path, engine=netcdf_engine()) as ds:
-        return ds.load()
+    path = check_input(path, what="NetCDF file")
+    try:
+        engine = _engine_for(path)
+        with xr.open_dataset(path, engine=engine) as ds:
+            return ds.load()
+    except OSError as exc:  # h5py / netCDF4 / scipy on a truncated or damaged file
+        raise InputFileError(f"{path}: cannot be read as NetCDF (truncated or damaged?): "
+                             f"{_reason(exc)}") from None
+
+
+def _reason(exc: OSError) -> str:
+    text = str(exc.strerror or exc)
+    return text if len(text) <= 160 else text[:157] + "..."
 
 
 def write_table(frame, path: str | os.PathLike[str]) -> Path:

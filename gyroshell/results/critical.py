@@ -6,13 +6,14 @@ names of the previous release (one scalar per speed, m/s), so its files load her
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..core.errors import ParameterError
 from ..tape.grid import Grid
 from .base import Result, dataset, from_json, grid_from, xy_coords
+from .layout import INFO, X, Y, Layout, Variable, finite_number, scalar_check, speed
 
 __all__ = ["PAPER_SPEED", "SUNDARAM_BENSON_SPEED", "CriticalSpeeds", "Divergence"]
 
@@ -55,6 +56,9 @@ class CriticalSpeeds(Result, kind="critical"):
     sundaram_benson_speed: float = SUNDARAM_BENSON_SPEED
     paper_speed: float = PAPER_SPEED
     info: dict = field(default_factory=dict, compare=False)
+
+    file_layout = Layout({name: Variable((), check=speed(name)) for name in _SPEEDS},
+                         {"info": INFO})
 
     @property
     def relative_difference(self) -> float:
@@ -121,6 +125,12 @@ class Divergence(Result, kind="divergence"):
     mu: float
     mode: np.ndarray
     grid: Grid | None = None
+
+    file_layout = Layout({"speed": Variable((), check=speed("speed")),
+                          "mu": Variable((), check=scalar_check(finite_number("mu", "N/m"))),
+                          "mode": Variable(("unknown",)),
+                          "mode_shape": Variable(("x", "y"), optional=True),
+                          "x": replace(X, optional=True), "y": replace(Y, optional=True)})
 
     @property
     def field(self) -> np.ndarray:

@@ -15,14 +15,21 @@ from pathlib import Path
 
 import numpy as np
 
+from ..core.errors import ParameterError
 from ..core.files import atomic_path
 from ..plot import bode, pyplot
 from .base import Result, dataset, from_json, get, put
+from .layout import INFO, Layout, Variable, nonnegative, speed
 
 #: Millimetres per metre, for the probe labels of :meth:`FrequencyResponse.plot`.
 MM_PER_M = 1e3
 #: Size of a new Bode figure, inches.
 FIGSIZE = (8, 6)
+
+
+def _two_axes(ds) -> None:
+    if ds.sizes.get("axis") != 2:
+        raise ParameterError(f"points must have 2 columns (x, y), got {ds.sizes.get('axis')}")
 
 
 @dataclass(frozen=True)
@@ -57,6 +64,15 @@ class FrequencyResponse(Result, kind="frequency_response"):
     method: np.ndarray
     error_estimate: np.ndarray
     info: dict = field(default_factory=dict, compare=False)
+
+    file_layout = Layout({
+        "omega": Variable(("omega",), check=nonnegative("omega", "rad/s")),
+        "response": Variable(("omega", "point"), "complex"),
+        "points": Variable(("point", "axis")), "axis": Variable(("axis",), "text"),
+        "method": Variable(("omega",), "text"),
+        "error_estimate": Variable(("omega",), check=nonnegative("error_estimate")),
+        "velocity": Variable((), check=speed())},
+        {"info": INFO}, check=_two_axes)
 
     @property
     def amplitude(self) -> np.ndarray:

@@ -16,8 +16,15 @@ import numpy as np
 from ..linalg.qep import spectrum
 from ..tape.grid import Grid
 from .base import Result, dataset, from_json, get, grid_from, put, xy_coords
+from .layout import INFO, X, Y, Attr, Layout, Variable, flag, nonnegative, speed
 
 __all__ = ["GyroscopicModes", "Modes"]
+
+#: What both kinds' files hold about the spectrum.
+_SPECTRUM = {"eigenvalue": Variable(("mode",), "complex"),
+             "residual": Variable(("mode",), check=nonnegative("residual")),
+             "mode": Variable(("mode",), "int")}
+_FLAGS = {"supercritical": Attr(flag("supercritical")), "info": INFO}
 
 _EIGENVALUE_ATTRS = {"units": "1/s", "long_name": "lambda (omega = |Im lambda|)"}
 _SHAPE_ATTRS = {"units": "1", "long_name": "complex mode shape, largest entry 1"}
@@ -125,6 +132,9 @@ class GyroscopicModes(_EigenvalueProperties, Result, kind="gyroscopic_modes"):
     damped: bool = False
     info: dict = field(default_factory=dict, compare=False)
 
+    file_layout = Layout({**_SPECTRUM, "vector": Variable(("unknown", "mode"), "complex")},
+                         {**_FLAGS, "damped": Attr(flag("damped"))})
+
     def to_xarray(self, *, params=None):
         """Dataset on dimensions ``mode`` and ``unknown``: ``eigenvalue`` (1/s) and
         ``vector`` (complex, as real/imag pairs), ``residual``; flags and info as attributes."""
@@ -195,6 +205,13 @@ class Modes(_EigenvalueProperties, Result, kind="modes"):
     supercritical: bool = False
     info: dict = field(default_factory=dict, compare=False)
     damped: bool = False
+
+    file_layout = Layout({**_SPECTRUM, "x": X, "y": Y,
+                          "mode_shape": Variable(("x", "y", "mode"), "complex"),
+                          "omega": Variable(("mode",), optional=True),
+                          "velocity": Variable((), check=speed())},
+                         {**_FLAGS, "damped": Attr(flag("damped"), optional=True)},
+                         needs=("grid",))
 
     @property
     def fields(self) -> np.ndarray:

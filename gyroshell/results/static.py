@@ -15,6 +15,7 @@ from ..plot import field as draw_field
 from ..tape.grid import Grid
 from ..tape.parameters import TapeParameters
 from .base import Result, dataset, get, grid_from, params_from, put, xy_coords
+from .layout import X, Y, Layout, Variable, finite_number, scalar_check, speed
 
 
 @dataclass(frozen=True)
@@ -39,6 +40,13 @@ class StaticSolution(Result, kind="static"):
     w: np.ndarray
     load_point_deflection: float
     params: TapeParameters | None = None
+
+    file_layout = Layout({
+        "w": Variable(("x", "y")), "x": X, "y": Y,
+        "velocity": Variable((), check=speed()),
+        "load_point_deflection": Variable(
+            (), check=scalar_check(finite_number("load_point_deflection", "m")))},
+        needs=("grid",))
 
     @property
     def field(self) -> np.ndarray:

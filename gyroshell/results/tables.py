@@ -18,6 +18,7 @@ from ..core.errors import ParameterError
 from ..plot import study_lines
 from ..tape.parameters import TapeParameters
 from .base import Result, params_from, table_dataset, table_from
+from .layout import Layout, table_columns
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -37,6 +38,8 @@ class Table(Result, kind="table"):
 
     frame: pd.DataFrame
     params: TapeParameters | None = None
+
+    file_layout = Layout(check=table_columns)
 
     def to_frame(self):
         """The wrapped DataFrame."""

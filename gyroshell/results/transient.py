@@ -27,6 +27,7 @@ from ..core.files import atomic_path
 from ..plot import load_point_history
 from ..tape.grid import Grid
 from .base import Result, dataset, from_json
+from .layout import INFO, X, Y, Layout, Variable, monotonic, nonnegative, positive, speed
 
 
 def steps_at(times, dt: float, steps: int, t0: float = 0.0, *, name: str) -> np.ndarray:
@@ -240,6 +241,23 @@ class TransientResult(Result, kind="transient"):
     energy: np.ndarray | None = None
     info: dict = field(default_factory=dict)
     head_displacements: np.ndarray | None = None
+
+    file_layout = Layout({
+        "t": Variable(("t",), check=monotonic("t")), "load_point": Variable(("t",)),
+        "x": X, "y": Y,
+        "snapshot_time": Variable(("snapshot_time",), check=monotonic("snapshot_time")),
+        "centerline_time": Variable(("centerline_time",),
+                                    check=monotonic("centerline_time")),
+        "fields": Variable(("snapshot_time", "x", "y")),
+        "centerlines": Variable(("centerline_time", "x")),
+        "final_w": Variable(("unknown",)), "final_v": Variable(("unknown",)),
+        "final_a": Variable(("unknown",)),
+        "energy": Variable(("t",), optional=True),
+        "head_displacements": Variable(("t", "head"), optional=True),
+        "velocity": Variable((), check=speed()), "dt": Variable((), check=positive("dt", "s")),
+        "beta": Variable((), check=nonnegative("beta")),
+        "gamma": Variable((), check=nonnegative("gamma"))},
+        {"info": INFO})
 
     @property
     def steps(self) -> int:

@@ -35,7 +35,8 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..core.errors import ParameterError
+from ..core.errors import InputFileError, ParameterError
+from ..core.files import read_input
 from ..core.units import ACCEPTED, SI_UNITS
 from .parameters import TapeParameters, check_velocity
 
@@ -148,17 +149,61 @@ def config_from_dict(data: dict, where: str = "") -> TapeConfig:
     return TapeConfig(params, velocity, name)
 
 
-def load_config(path: str | os.PathLike[str]) -> TapeConfig:
-    """Read a tape definition (TOML, see the module docstring)."""
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"no such config file: {path}")
+#: The UTF-8 byte order mark some editors put first; accepted and skipped (a BOM-prefixed
+#: file is UTF-8 text, though tomllib alone would call its first line invalid).
+UTF8_BOM = b"\xef\xbb\xbf"
+#: Byte order marks of UTF-16 and UTF-32, for a message that says what the file is.
+_OTHER_BOMS = ((b"\xff\xfe\x00\x00", "UTF-32"), (b"\x00\x00\xfe\xff", "UTF-32"),
+               (b"\xff\xfe", "UTF-16"), (b"\xfe\xff", "UTF-16"))
+
+
+def config_text_of(raw: bytes, where: str) -> str:
+    """The text of a tape file's bytes: UTF-8 (a leading BOM skipped), else refused.
+
+    Raises
+    ------
+    InputFileError
+        ``<file>: not UTF-8 text (UTF-16 ...): TOML files are UTF-8`` for UTF-16/32 text, a
+        binary file or NUL bytes, naming the offset of the first bad byte.
+    """
+    for bom, encoding in _OTHER_BOMS:
+        if raw.startswith(bom):
+            raise InputFileError(f"{where}not UTF-8 text ({encoding}, by its byte order "
+                                 "mark): TOML files are UTF-8; save it as UTF-8")
+    if raw.startswith(UTF8_BOM):
+        raw = raw[len(UTF8_BOM):]
+    nul = raw.find(b"\x00")
+    if nul >= 0:
+        raise InputFileError(f"{where}not UTF-8 text (a NUL byte at offset {nul}: binary, "
+                             "or UTF-16 without a byte order mark): TOML files are UTF-8")
     try:
-        with open(path, "rb") as fh:
-            data = _tomllib().load(fh)
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputFileError(f"{where}not UTF-8 text (byte 0x{raw[exc.start]:02x} at offset "
+                             f"{exc.start}): TOML files are UTF-8") from None
+
+
+def load_config(path: str | os.PathLike[str]) -> TapeConfig:
+    """Read a tape definition (TOML, see the module docstring).
+
+    Raises
+    ------
+    MissingFileError
+        If there is no such file (a ``FileNotFoundError`` too).
+    InputFileError
+        If ``path`` is a folder, unreadable, or not UTF-8 text (UTF-16, binary); a UTF-8
+        byte order mark is accepted.
+    ParameterError
+        Invalid TOML, an unknown key, a unit or a value out of range, naming the file.
+    """
+    raw = read_input(path, what="config file")
+    where = f"{os.fspath(path)}: "
+    text = config_text_of(raw, where)
+    try:
+        data = _tomllib().loads(text)
     except _tomllib().TOMLDecodeError as exc:
-        raise ParameterError(f"{path}: not valid TOML: {exc}") from None
-    return config_from_dict(data, where=f"{path}: ")
+        raise ParameterError(f"{where}not valid TOML: {exc}") from None
+    return config_from_dict(data, where=where)
 
 
 def _format(key: str, value) -> str:
