@@ -40,8 +40,8 @@ from __future__ import annotations
 import dataclasses
 import json
 import os
-from pathlib import Path
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any, ClassVar
 
 import numpy as np
@@ -50,7 +50,7 @@ from ..core.errors import InputFileError, ParameterError
 from ..core.files import atomic_path, check_input
 from ..core.units import unit_of
 from ..core.version import __version__
-from .layout import Layout, check_dataset
+from .layout import Layout, check_dataset, from_json
 
 #: Suffixes of the formats :meth:`Result.save` writes.
 NETCDF_SUFFIXES = (".nc", ".nc4", ".netcdf")
@@ -256,21 +256,9 @@ def _encode(value: Any) -> Any:
     return str(value)
 
 
-def _decode(obj: dict) -> Any:
-    if set(obj) == {"__complex__"}:
-        re, im = obj["__complex__"]
-        return complex(re, im)
-    return obj
-
-
 def to_json(value: Any) -> str:
     """JSON text of metadata; complex numbers and numpy scalars survive."""
     return json.dumps(value, default=_encode, allow_nan=True)
-
-
-def from_json(text: str) -> Any:
-    """The metadata written by :func:`to_json`."""
-    return json.loads(text, object_hook=_decode)
 
 
 def params_json(params) -> str:

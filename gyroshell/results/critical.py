@@ -13,7 +13,7 @@ import numpy as np
 from ..core.errors import ParameterError
 from ..tape.grid import Grid
 from .base import Result, dataset, from_json, grid_from, xy_coords
-from .layout import INFO, X, Y, Layout, Variable, finite_number, scalar_check, speed
+from .layout import INFO, Layout, Variable, X, Y, finite_number, scalar_check, speed
 
 __all__ = ["PAPER_SPEED", "SUNDARAM_BENSON_SPEED", "CriticalSpeeds", "Divergence"]
 

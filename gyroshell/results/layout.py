@@ -29,6 +29,7 @@ import math
 import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -85,6 +86,19 @@ class Layout:
     #: ``check(ds)`` raising ParameterError: what the fields above cannot say (a table's
     #: columns, sizes that must agree).
     check: Callable[[object], object] | None = None
+
+
+def _decode(obj: dict) -> Any:
+    if set(obj) == {"__complex__"}:
+        re, im = obj["__complex__"]
+        return complex(re, im)
+    return obj
+
+
+def from_json(text: str) -> Any:
+    """The metadata written by :func:`gyroshell.results.base.to_json` (complex numbers
+    back as complex)."""
+    return json.loads(text, object_hook=_decode)
 
 
 # ----- reusable checks -------------------------------------------------------------------
@@ -184,8 +198,6 @@ def check_version(attrs: Mapping, source: str) -> None:
 
 def json_attr(attrs: Mapping, name: str, source: str, default: str = "null"):
     """The JSON value of attribute ``name`` (``default`` text if absent), or refused."""
-    from .base import from_json
-
     text = attrs.get(name, default)
     if not isinstance(text, str):
         raise InputFileError(f"{source}: attribute {name} must be JSON text, got "
@@ -244,7 +256,7 @@ def _check_variable(ds, name: str, variable: Variable, source: str) -> None:
     present = [part in ds.variables for part in parts]
     if not any(present) and variable.optional:
         return
-    for part, here in zip(parts, present):
+    for part, here in zip(parts, present, strict=True):
         if not here:
             raise InputFileError(f"{source}: missing variable {part}")
     for part in parts:
@@ -352,8 +364,6 @@ def speed(name: str = "velocity") -> Callable[[np.ndarray], object]:
 def table_columns(ds, *, attribute: str = "columns", dim: str = "row") -> None:
     """A layout check: ``attribute`` lists text column names, each a variable on ``dim``."""
     columns = ds.attrs.get(attribute)
-    from .base import from_json
-
     try:
         names = from_json(columns) if isinstance(columns, str) else None
     except (json.JSONDecodeError, ValueError):

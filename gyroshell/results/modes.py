@@ -16,7 +16,7 @@ import numpy as np
 from ..linalg.qep import spectrum
 from ..tape.grid import Grid
 from .base import Result, dataset, from_json, get, grid_from, put, xy_coords
-from .layout import INFO, X, Y, Attr, Layout, Variable, flag, nonnegative, speed
+from .layout import INFO, Attr, Layout, Variable, X, Y, flag, nonnegative, speed
 
 __all__ = ["GyroscopicModes", "Modes"]
 

@@ -15,7 +15,7 @@ from ..plot import field as draw_field
 from ..tape.grid import Grid
 from ..tape.parameters import TapeParameters
 from .base import Result, dataset, get, grid_from, params_from, put, xy_coords
-from .layout import X, Y, Layout, Variable, finite_number, scalar_check, speed
+from .layout import Layout, Variable, X, Y, finite_number, scalar_check, speed
 
 
 @dataclass(frozen=True)

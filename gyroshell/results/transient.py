@@ -27,7 +27,7 @@ from ..core.files import atomic_path
 from ..plot import load_point_history
 from ..tape.grid import Grid
 from .base import Result, dataset, from_json
-from .layout import INFO, X, Y, Layout, Variable, monotonic, nonnegative, positive, speed
+from .layout import INFO, Layout, Variable, X, Y, monotonic, nonnegative, positive, speed
 
 
 def steps_at(times, dt: float, steps: int, t0: float = 0.0, *, name: str) -> np.ndarray:
