@@ -22,7 +22,10 @@ def gyroscopic_modes(M, G, K, count: int = 6, *, sigma: complex | str | None = N
     ----------
     M, G, K : array_like or scipy.sparse matrix, shape (n, n)
         Mass (symmetric positive definite, kg), gyroscopic (skew-symmetric, kg/s) and
-        stiffness (symmetric, N/m) matrices. Checked and refused otherwise.
+        stiffness (symmetric, N/m) matrices. Checked and refused otherwise. ``K=0`` (or a
+        zero matrix), undamped: λ = 0 is an n-fold eigenvalue and the others are those of
+        −M⁻¹G; the result holds the ``count`` pairs +iμ of iGφ = μMφ nearest the shift
+        (:mod:`gyroshell.linalg.qep.rigid`), ``info["zero_eigenvalues"]`` counts λ = 0.
     count : int
         Number of eigenvalue pairs, 1 <= count <= :func:`gyroshell.linalg.qep.max_count` (n).
     sigma : None, "auto", 0 or complex i·ω_s

@@ -118,16 +118,23 @@ def _check_symmetry(name: str, matrix: sp.csr_matrix, sign: int, what: str) -> N
             f"{defect / scale:.1e} > {STRUCTURE_RTOL:g}")
 
 
+def _is_zero_scalar(value) -> bool:
+    """``K=0`` (a plain zero) stands for the zero matrix: no stiffness."""
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+        value, bool) and value == 0
+
+
 def check_structure(M, G, K, C=None) -> tuple[sp.csr_matrix, ...]:
     """Validated sparse M, G, K, C (C None if absent), or a ParameterError naming the flaw.
 
     M symmetric positive definite, G skew-symmetric, K symmetric, C symmetric positive
-    semi-definite; all real, square, finite and of one size.
+    semi-definite; all real, square, finite and of one size. ``K=0`` (a scalar zero) is the
+    zero matrix.
     """
     M = _as_sparse("M", M, None)
     n = M.shape[0]
     G = _as_sparse("G", G, n)
-    K = _as_sparse("K", K, n)
+    K = _as_sparse("K", sp.csr_matrix((n, n)) if _is_zero_scalar(K) else K, n)
     _check_symmetry("M", M, 1, "symmetric")
     _check_symmetry("G", G, -1, "skew-symmetric")
     _check_symmetry("K", K, 1, "symmetric")

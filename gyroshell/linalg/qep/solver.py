@@ -32,6 +32,7 @@ from .problem import (
     check_structure,
     check_tol,
 )
+from .rigid import without_stiffness
 from .spectrum import (
     PAIR_DEFECT_LIMIT,
     RESIDUAL_LIMIT,
@@ -83,6 +84,9 @@ def solve_qep(M, G, K, count: int, *, sigma=None, C=None, estimate: float | None
         if options.method not in METHODS:
             raise ParameterError(f"method must be 'auto', 'lanczos' or 'arpack', got "
                                  f"{options.method!r}")
+        if prob.C is None and prob.K.count_nonzero() == 0:
+            lams, vecs = without_stiffness(prob, shift)
+            return _finish(prob, lams, vecs, supercritical=True, damped=False)
         if prob.n <= DENSE_LIMIT:
             lams, vecs, definite = solve_dense(prob, shift, definite)
             return _finish(prob, lams, vecs, supercritical=not definite,

@@ -54,7 +54,11 @@ def relative_residuals(M, GC, K, eigenvalues: np.ndarray, vectors: np.ndarray) -
     r = product(M, phi) * lam**2 + product(GC, phi) * lam + product(K, phi)
     scale = np.abs(lam) ** 2 * norm1(sp.csr_matrix(M)) + np.abs(lam) * norm1(
         sp.csr_matrix(GC)) + norm1(sp.csr_matrix(K))
-    return np.linalg.norm(r, axis=0) / (scale * np.linalg.norm(phi, axis=0))
+    denominator = scale * np.linalg.norm(phi, axis=0)
+    numerator = np.linalg.norm(r, axis=0)
+    # λ = 0 with K = 0: Q(0) = 0, an exact eigenpair (0 / 0 would be NaN)
+    return np.divide(numerator, denominator, out=np.zeros_like(numerator),
+                     where=(denominator > 0) | (numerator > 0))
 
 
 def quadratic_rayleigh(M, GC, K, eigenvalues: np.ndarray, vectors: np.ndarray) -> np.ndarray:
