@@ -118,23 +118,82 @@ def _check_symmetry(name: str, matrix: sp.csr_matrix, sign: int, what: str) -> N
             f"{defect / scale:.1e} > {STRUCTURE_RTOL:g}")
 
 
+#: Bytes per stored entry of a sparse factor of Q(σ): a complex value and a 32-bit index.
+FACTOR_ENTRY_BYTES = 20
+#: Bytes per stored entry of the real input matrices and their checked copies and
+#: transposes (value 8, index 4; about four copies alive during the checks).
+MATRIX_ENTRY_BYTES = 48
+#: Work vectors of the 2n first-order state alive beside the Krylov basis (operator
+#: applications, residuals, Rayleigh quotients, normalization), complex.
+WORK_VECTORS = 16
+#: Basis sizes of the iterations (lanczos: max(2 count + 10, 32) + 1; ARPACK: max(2 count +
+#: 1, count + 20)); the larger is planned for.
+LANCZOS_BASIS = (10, 32)
+ARPACK_BASIS_EXTRA = 20
+
+
+def qep_bytes(n: int, nnz: int, count: int) -> float:
+    """Estimated peak memory of a sparse quadratic eigen-solve, bytes.
+
+    The input matrices' checked copies (``nnz`` entries of M, G and K together), Q(σ) and
+    its factor (nnz(Q) · max(1, log₂ n) entries: the fill of a nested-dissection ordering
+    on a 2-D mesh, as for the tape's stencil), the Krylov basis of 2n-vectors (complex) and
+    the work vectors. Measured peaks: ``benchmarks/bench_qep_memory.py``.
+    """
+    n = float(n)
+    basis = max(2 * count + LANCZOS_BASIS[0], LANCZOS_BASIS[1]) + 1
+    basis = max(basis, 2 * count + 1, count + ARPACK_BASIS_EXTRA)
+    factor = (nnz + n) * max(1.0, math.log2(max(n, 2.0)))
+    return (MATRIX_ENTRY_BYTES * nnz + FACTOR_ENTRY_BYTES * (nnz + factor)
+            + 16.0 * 2 * n * (basis + WORK_VECTORS))
+
+
+def check_memory(n: int, nnz: int, count) -> float:
+    """Refuse a sparse eigen-solve that cannot fit in memory, before any work; returns the
+    estimate (:func:`qep_bytes`) in bytes.
+
+    Raises
+    ------
+    ParameterError
+        Naming the unknowns, the estimate and the limit (``GYROSHELL_MEMORY_LIMIT`` or half
+        the physical memory).
+    """
+    from ...core import budget
+
+    if n <= DENSE_LIMIT:
+        return 0.0
+    valid = isinstance(count, (int, np.integer)) and not isinstance(count, bool)
+    count = int(count) if valid and 1 <= count <= MAX_COUNT else 1
+    estimate = qep_bytes(n, nnz, count)
+    limit = budget.memory_limit()
+    if estimate > limit:
+        raise ParameterError(
+            f"an eigen-solve of {n} unknowns ({nnz} matrix entries, {count} pairs) needs "
+            f"about {estimate / 1e9:.3g} GB, more than the limit {limit / 1e9:.3g} GB; use "
+            f"smaller matrices (or set {budget.MEMORY_LIMIT_VARIABLE})")
+    return estimate
+
+
 def _is_zero_scalar(value) -> bool:
     """``K=0`` (a plain zero) stands for the zero matrix: no stiffness."""
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
         value, bool) and value == 0
 
 
-def check_structure(M, G, K, C=None) -> tuple[sp.csr_matrix, ...]:
+def check_structure(M, G, K, C=None, *, count=None) -> tuple[sp.csr_matrix, ...]:
     """Validated sparse M, G, K, C (C None if absent), or a ParameterError naming the flaw.
 
     M symmetric positive definite, G skew-symmetric, K symmetric, C symmetric positive
     semi-definite; all real, square, finite and of one size. ``K=0`` (a scalar zero) is the
-    zero matrix.
+    zero matrix. With ``count``, the memory of the solve is estimated right after the
+    conversion and refused if it cannot fit (:func:`check_memory`).
     """
     M = _as_sparse("M", M, None)
     n = M.shape[0]
     G = _as_sparse("G", G, n)
     K = _as_sparse("K", sp.csr_matrix((n, n)) if _is_zero_scalar(K) else K, n)
+    if count is not None:
+        check_memory(n, M.nnz + G.nnz + K.nnz, count)
     _check_symmetry("M", M, 1, "symmetric")
     _check_symmetry("G", G, -1, "skew-symmetric")
     _check_symmetry("K", K, 1, "symmetric")

@@ -75,7 +75,7 @@ def solve_qep(M, G, K, count: int, *, sigma=None, C=None, estimate: float | None
     factorization = check_factorization(options.factorization)
     # Out-of-range scales surface as non-finite results, refused in _finish; no warnings.
     with blas_threads(1), np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        M, G, K, C = check_structure(M, G, K, C)
+        M, G, K, C = check_structure(M, G, K, C, count=count)
         prob = Problem(M, G, K, C, check_count(count, M.shape[0]), check_tol(options.tol),
                        check_optional_int("ncv", options.ncv),
                        check_optional_int("maxiter", options.maxiter),
