@@ -50,7 +50,7 @@ from ..core.errors import InputFileError, ParameterError
 from ..core.files import atomic_path, check_input
 from ..core.units import unit_of
 from ..core.version import __version__
-from .layout import Layout, check_dataset, from_json
+from .layout import Layout, check_dataset, check_metadata, check_version, from_json
 
 #: Suffixes of the formats :meth:`Result.save` writes.
 NETCDF_SUFFIXES = (".nc", ".nc4", ".netcdf")
@@ -131,6 +131,16 @@ def kinds() -> dict[str, type[Result]]:
     return dict(Result._kinds)
 
 
+def _result_class(attrs: Mapping, source: str) -> type[Result]:
+    kind = attrs.get(KIND_ATTRIBUTE)
+    cls = Result._kinds.get(kind) if isinstance(kind, str) else None
+    if cls is None:
+        known = ", ".join(sorted(Result._kinds))
+        raise InputFileError(f"{source} is not a gyroshell result file ({KIND_ATTRIBUTE} "
+                             f"{kind!r}; known kinds: {known})")
+    return cls
+
+
 def from_dataset(ds, *, source: str = "the dataset",
                  layouts: Mapping[str, Layout] | None = None):
     """The object of the kind stored in ``ds.attrs['gyroshell_type']``.
@@ -144,20 +154,48 @@ def from_dataset(ds, *, source: str = "the dataset",
         Naming ``source`` and what is wrong: an unknown kind, a newer version, broken
         metadata, a missing variable, text where numbers belong, NaN, a value out of range.
     """
-    kind = ds.attrs.get(KIND_ATTRIBUTE)
-    cls = Result._kinds.get(kind) if isinstance(kind, str) else None
-    if cls is None:
-        known = ", ".join(sorted(Result._kinds))
-        raise InputFileError(f"{source} is not a gyroshell result file ({KIND_ATTRIBUTE} "
-                             f"{kind!r}; known kinds: {known})")
-    check_dataset(ds, cls.file_layout or (layouts or {}).get(kind), source)
+    cls = _result_class(ds.attrs, source)
+    check_dataset(ds, cls.file_layout or (layouts or {}).get(cls.kind), source)
     return cls.from_xarray(ds)
 
 
 def read(path: str | os.PathLike[str], *, layouts: Mapping[str, Layout] | None = None):
     """The result stored in a NetCDF file, as the object of its kind (checked as in
-    :func:`from_dataset`; ``layouts`` for kinds that declare none)."""
-    return from_dataset(open_netcdf(path), source=os.fspath(path), layouts=layouts)
+    :func:`from_dataset`; ``layouts`` for kinds that declare none).
+
+    The kind, version and metadata of a NetCDF-4 file are checked from its attributes
+    alone (h5py) before any array is read, so a file whose grid claims 10⁷ intervals is
+    refused without reading it."""
+    source = os.fspath(check_input(path, what="NetCDF file"))
+    attrs = _header(Path(source))
+    if attrs is not None:
+        _result_class(attrs, source)
+        check_version(attrs, source)
+        check_metadata(attrs, source)
+    return from_dataset(open_netcdf(path), source=source, layouts=layouts)
+
+
+def _header(path: Path) -> dict | None:
+    """The global attributes of a NetCDF-4 (HDF5) file through h5py (None for another
+    format or without h5py)."""
+    if _engine_for(path) != "h5netcdf":
+        return None
+    import h5py
+
+    try:
+        with h5py.File(path, "r") as fh:
+            return {name: _text(value) for name, value in fh.attrs.items()}
+    except OSError as exc:
+        raise InputFileError(f"{path}: cannot be read as NetCDF (truncated or damaged?): "
+                             f"{_reason(exc)}") from None
+
+
+def _text(value):
+    if isinstance(value, bytes):
+        return value.decode("utf-8", errors="replace")
+    if isinstance(value, np.ndarray) and value.shape == ():
+        return value.item()
+    return value
 
 
 # ----- files -------------------------------------------------------------------------------
