@@ -41,9 +41,10 @@ PLATE_INTERVALS = 41
 SECONDS_1D = (5e-3, 6e-6)
 SECONDS_2D = (2.5e-5, 2.5e-7)
 #: A usual solve costs between this few and this many such iterations (chord steps near
-#: the solution are cheaper; the 2-D starting state costs a few); more when pseudo-time or
-#: the continuation in V are needed.
-USUAL_FACTORIZATIONS = (2, 12)
+#: the solution are cheaper; the 2-D starting state costs a few; a contact set that keeps
+#: changing costs one each, 22 at 0.01 m/s); more when pseudo-time or the continuation in
+#: V are needed.
+USUAL_FACTORIZATIONS = (2, 15)
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
@@ -80,7 +81,7 @@ def _tape_parser() -> argparse.ArgumentParser:
                    help="tape definition file (TOML, values with units, e.g. tension = "
                         "\"90 N/m\"); options given here override it; its plate-grid and "
                         "load keys (spacing, length_ratio, load, load_x, load_y) do not "
-                        "apply to the bearing")
+                        "apply to the bearing (the file is still checked whole)")
     g.add_argument("--velocity", type=real, default=None,
                    help="tape speed V, m/s, > 0 and below the string speed sqrt(T/rho) "
                         "(required, here or as velocity in --config)")
