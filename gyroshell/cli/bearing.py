@@ -1,4 +1,15 @@
-"""``gyroshell bearing``: the tape flying over a cylindrical head on its air film."""
+"""``gyroshell bearing``: the tape flying over a cylindrical head on its air film.
+
+The bearing has its own tape options: the physical ones of the other sub-commands, without
+the plate grid's ``--spacing``, ``--length-ratio`` and ``--edges`` (the bearing sizes its
+own grid with ``--nx``/``--ny``; its tape has free edges or is infinitely wide) and without
+``--load`` (its load is the air film). Every option it offers changes the run; one that
+means nothing in the chosen mode (``--ny``, ``--uniform`` or ``--width`` with
+``--infinitely-wide``, ...) is refused in one line. All inputs and every output target are
+checked before the solve. Unless ``--quiet``, the solve reports on stderr, on a terminal
+or not, one line per stage: the model's size and an estimate of the time at the start, then
+one line per Newton iteration, pseudo-time step and continuation stage.
+"""
 
 from __future__ import annotations
 
@@ -6,25 +17,86 @@ import argparse
 import json
 import math
 import sys
+import time
 from pathlib import Path
 
-from .common import UserError, parameters_from_args, positive_int, print_json, real
+from .common import _OVERRIDES, UserError, positive_int, print_json, real
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
+#: The files ``--out DIR`` writes.
+OUT_FILES = ("summary.json", "fields.csv")
+#: The tape options of the bearing: those of the plate sub-commands but ``--load``.
+TAPE_OPTIONS = tuple(option for option in _OVERRIDES if option[1] != "load")
+#: The plate fields a --config file may set that the bearing does not use (replaced).
+PLATE_ONLY_FIELDS = ("length_ratio", "spacing", "load", "load_x", "load_y")
+#: Intervals across the width of the (unused) plate grid of the bearing's TapeParameters:
+#: its spacing is set to width / this, so that no plate-grid check can refuse a tape the
+#: bearing can fly.
+PLATE_INTERVALS = 41
+#: Seconds of one Newton iteration that factors the Jacobian afresh, measured by
+#: benchmarks/bearing_progress.py (2-core machine, shared): 1-D, a constant plus this much
+#: per unknown; 2-D, per unknown this much plus that much per interval across (the
+#: factor's fill grows with the width of the half-width grid Newton solves on).
+SECONDS_1D = (5e-3, 6e-6)
+SECONDS_2D = (2.5e-5, 2.5e-7)
+#: A usual solve costs between this few and this many such iterations (chord steps near
+#: the solution are cheaper; the 2-D starting state costs a few; a contact set that keeps
+#: changing costs one each, 22 at 0.01 m/s); more when pseudo-time or the continuation in
+#: V are needed.
+USUAL_FACTORIZATIONS = (2, 15)
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
-    from ..bearing import air as a
-
+    """Add ``bearing`` to ``sub``. ``common`` (the plate sub-commands' tape options) is not
+    used: the bearing has no plate grid and no load (see the module docstring)."""
+    del common
     p = sub.add_parser(
-        "bearing", parents=[common], help="steady head-tape air bearing (flying height)",
+        "bearing", parents=[_tape_parser()], help="steady head-tape air bearing (flying height)",
         description="Steady flying state of the tape over a cylindrical head of the tape's "
                     "radius R: compressible Reynolds film with slip coupled to the shell "
                     "model, contact where the spacing reaches the roughness. Prints the "
                     "central and minimum spacings (m). Air at 20 C by default; --velocity "
-                    "is required here (> 0, e.g. 4). The tape options --spacing, "
-                    "--length-ratio, --edges and --load do not apply.")
+                    "is required here (> 0, e.g. 4). The bearing sizes its own grid "
+                    "(--nx, --ny): the plate grid's --spacing, --length-ratio and --edges "
+                    "and the plate load --load do not exist here.")
+    _add_bearing_options(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    p.add_argument("--out", metavar="DIR", default=None,
+                   help="write summary.json and the spacing/pressure fields (fields.csv) "
+                        "into DIR (created if missing; its parent must exist)")
+    p.add_argument("--plot", metavar="FILE.png", default=None,
+                   help="write a PNG of the spacing and pressure")
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress lines (by default stderr gets the model's size and an "
+                        "estimate of the time, then one line per Newton iteration and stage)")
+    p.set_defaults(func=run)
+
+
+def _tape_parser() -> argparse.ArgumentParser:
+    """Parent parser with the bearing's tape options (all default None: not typed)."""
+    p = argparse.ArgumentParser(add_help=False)
+    g = p.add_argument_group("tape (SI units; defaults: the paper's Table 1)")
+    g.add_argument("--config", metavar="TAPE.toml", default=None,
+                   help="tape definition file (TOML, values with units, e.g. tension = "
+                        "\"90 N/m\"); options given here override it; its plate-grid and "
+                        "load keys (spacing, length_ratio, load, load_x, load_y) do not "
+                        "apply to the bearing (the file is still checked whole)")
+    g.add_argument("--velocity", type=real, default=None,
+                   help="tape speed V, m/s, > 0 and below the string speed sqrt(T/rho) "
+                        "(required, here or as velocity in --config)")
+    for flag, field, text in TAPE_OPTIONS:
+        if field == "width":
+            text = "tape width L_y, m (default 6.35e-3; not with --infinitely-wide)"
+        g.add_argument(flag, dest=field, metavar=flag[2:].upper().replace("-", "_"),
+                       type=real, default=None, help=text)
+    return p
+
+
+def _add_bearing_options(p: argparse.ArgumentParser) -> None:
+    """The air, head and grid options."""
+    from ..bearing import air as a
+
     g = p.add_argument_group("air bearing (SI units)")
     g.add_argument("--wrap-angle", type=real, default=15.0,
                    help="wrap angle of the tape on the head, degrees, in (0, 90] (default 15)")
@@ -41,7 +113,8 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     g.add_argument("--incompressible", action="store_true",
                    help="incompressible film (p h -> h) instead of the compressible one")
     g.add_argument("--infinitely-wide", action="store_true",
-                   help="1-D infinitely wide tape (per unit width) instead of free edges")
+                   help="1-D infinitely wide tape (per unit width) instead of free edges; "
+                        "its grid is uniform along x (no --ny, --uniform or --width)")
     g.add_argument("--span", type=real, default=None,
                    help="length of each tangent span in the domain, m (default: automatic)")
     g.add_argument("--nx", type=positive_int, default=None,
@@ -49,48 +122,28 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                         "bending length at the wrap corners, graded to 4x coarser along the "
                         "spans; infinitely wide or --uniform, a uniform 1/12 (2-D: 1/6) of it)")
     g.add_argument("--ny", type=positive_int, default=None,
-                   help="intervals across the width, even (default: graded, about 12 um at "
-                        "the free edges and 10x coarser in the middle; the edge minimum is "
-                        "then within about 0.6 %% of its converged value, see "
+                   help="intervals across the width, even, 2-D only (default: graded, about "
+                        "12 um at the free edges and 10x coarser in the middle; the edge "
+                        "minimum is then within about 0.6 %% of its converged value, see "
                         "docs/bearing.md; --uniform: about 50 um everywhere)")
     g.add_argument("--uniform", action="store_true",
-                   help="uniform grid each way instead of the 2-D grid graded towards the "
-                        "free edges and the wrap corners (the counts --nx/--ny then set "
+                   help="2-D only: uniform grid each way instead of the grid graded towards "
+                        "the free edges and the wrap corners (the counts --nx/--ny then set "
                         "uniform spacings)")
-    p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
-    p.add_argument("--out", metavar="DIR", default=None,
-                   help="write summary.json and the spacing/pressure fields (CSV) into DIR")
-    p.add_argument("--plot", metavar="FILE.png", default=None,
-                   help="write a PNG of the spacing and pressure")
-    p.set_defaults(func=run)
-
-
-def _progress(message: str) -> None:
-    """One progress line on stderr."""
-    print(message, file=sys.stderr, flush=True)
 
 
 def run(args: argparse.Namespace) -> int:
-    """Solve the steady flying state of the arguments' tape, write the asked outputs (all
-    or none) and print the summary (JSON or text). Returns the exit code 0."""
-    from ..core.files import (
-        PLOT,
-        check_output_folder,
-        check_outputs,
-        folder_transaction,
-        transaction,
-    )
+    """Check every input and output target, solve the steady flying state of the arguments'
+    tape, write the asked outputs (all or none) and print the summary (JSON or text).
+    Returns the exit code 0."""
+    from ..core.files import folder_transaction, transaction
 
-    if args.velocity <= 0.0:
-        raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
-                        f"got {args.velocity:g}")
-    params = parameters_from_args(args)
+    _refuse_unused_in_mode(args)
+    params, velocity = _tape(args)
     air = _air(args)
-    if args.plot is not None and Path(args.plot).suffix.lower() != ".png":
-        raise UserError(f"--plot must name a .png file, got {args.plot!r}")
-    check_outputs({"--plot": (args.plot, PLOT)})
-    out = None if args.out is None else check_output_folder(args.out, option="--out")
-    sol = _solve(_model(args, params, air))
+    out = _check_outputs(args)
+    model = _model(args, params, air, velocity)
+    sol = _solve(model, None if args.quiet else _progress)
     summary = sol.summary()
     # the angle as typed: degrees -> radians -> degrees need not give it back exactly
     summary["wrap_angle_degrees"] = args.wrap_angle
@@ -110,6 +163,67 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _refuse_unused_in_mode(args: argparse.Namespace) -> None:
+    """Refuse the options that mean nothing for the infinitely wide tape."""
+    if not args.infinitely_wide:
+        return
+    wide = "the infinitely wide tape (--infinitely-wide"
+    for given, option, why in (
+            (args.ny is not None, "--ny",
+             f"sets the intervals across the width, which {wide}) does not have"),
+            (args.width is not None, "--width",
+             f"sets the tape width, which {wide}, results per unit width) does not have"),
+            (args.uniform, "--uniform",
+             f"switches off the 2-D grid's grading; the grid of {wide}) is always uniform")):
+        if given:
+            raise UserError(f"{option} {why}: drop {option} or --infinitely-wide")
+
+
+def _tape(args: argparse.Namespace):
+    """(TapeParameters, velocity in m/s) of the tape options and --config, validated. The
+    plate-grid fields, which the bearing does not use, are set so that they pass."""
+    from ..core import validation
+    from ..tape.parameters import TapeParameters
+
+    typed = {field: getattr(args, field) for _flag, field, _text in TAPE_OPTIONS
+             if getattr(args, field) is not None}
+    base, velocity = TapeParameters(), args.velocity
+    if args.config is not None:
+        from ..tape.config import load_config
+
+        cfg = load_config(args.config)
+        base = cfg.params
+        velocity = cfg.velocity if velocity is None else velocity
+        if base.edges != "free" and not args.infinitely_wide:
+            raise UserError(f"{args.config}: edges = {base.edges!r}: the bearing's tape has "
+                            "free edges (use edges = \"free\" or --infinitely-wide)")
+    width = validation.positive("width", typed.get("width", base.width), "m")
+    params = base.replace(**typed, edges="free", length_ratio=4.0,
+                          spacing=width / PLATE_INTERVALS, load=0.0, load_x=None, load_y=None)
+    _refuse_unused_material(args, params)
+    if velocity is None:
+        raise UserError("velocity must be > 0 m/s for an air bearing: give --velocity "
+                        "(e.g. --velocity 4) or velocity in the --config file")
+    if velocity <= 0.0:
+        raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
+                        f"got {velocity:g}")
+    return params, params.check_velocity(velocity)
+
+
+def _refuse_unused_material(args: argparse.Namespace, params) -> None:
+    """With both D and k given, E and c (and, infinitely wide, ν) are not used."""
+    if params.bending_rigidity is None or params.foundation_stiffness is None:
+        return
+    unused = [("--youngs-modulus", args.youngs_modulus), ("--thickness", args.thickness)]
+    if args.infinitely_wide:
+        unused.append(("--poisson", args.poisson))
+    for option, value in unused:
+        if value is not None:
+            raise UserError(f"{option} is not used when the bending rigidity and the "
+                            "foundation stiffness are both given (--bending-rigidity, "
+                            "--foundation-stiffness or the --config file): drop it")
+
+
 def _air(args: argparse.Namespace):
     """The AirParameters of the arguments."""
     from ..bearing import AirParameters
@@ -119,30 +233,97 @@ def _air(args: argparse.Namespace):
                          compressible=not args.incompressible)
 
 
-def _model(args: argparse.Namespace, params, air):
+def _check_outputs(args: argparse.Namespace) -> Path | None:
+    """Refuse, before the solve, a --plot or --out that could not be written (including
+    the files --out writes into a folder that exists); returns the --out folder."""
+    from ..core.files import PLOT, check_output_folder_with_files, check_outputs
+
+    if args.plot is not None and Path(args.plot).suffix.lower() != ".png":
+        raise UserError(f"--plot must name a .png file, got {args.plot!r}")
+    check_outputs({"--plot": (args.plot, PLOT)})
+    if args.out is None:
+        return None
+    return check_output_folder_with_files(args.out, OUT_FILES, option="--out")
+
+
+def _model(args: argparse.Namespace, params, air, velocity: float):
     """The BearingModel of the arguments (speed, wrap, grid) on the tape and the air."""
     from ..bearing import BearingModel
 
-    return BearingModel(params, air, velocity=args.velocity,
+    return BearingModel(params, air, velocity=velocity,
                         wrap_angle=math.radians(args.wrap_angle),
                         infinitely_wide=args.infinitely_wide, span=args.span, nx=args.nx,
                         ny=args.ny, grading="uniform" if args.uniform else None)
 
 
-def _solve(model):
-    """The steady state, with progress lines on a terminal; a UserError if none is reached."""
-    from ..bearing.steady import solve_steady
-    from ..core.errors import ConvergenceError
-    from ..core.progress import progress_wanted
+def _progress(message: str) -> None:
+    """One progress line on stderr."""
+    print(f"gyroshell bearing: {message}", file=sys.stderr, flush=True)
 
-    show = progress_wanted(None)
-    if show:
-        _progress(f"gyroshell bearing: {model.unknowns} unknowns ({model!r})")
+
+def _duration(seconds: float) -> str:
+    """A duration for people: '0.4 s', '12 s', '3.5 min', '2.1 h'."""
+    if seconds < 10.0:
+        return f"{seconds:.2g} s"
+    if seconds < 120.0:
+        return f"{seconds:.0f} s"
+    if seconds < 7200.0:
+        return f"{seconds / 60.0:.2g} min"
+    return f"{seconds / 3600.0:.2g} h"
+
+
+def iteration_seconds(model) -> float:
+    """Estimated seconds of one Newton iteration of ``model`` that factors its Jacobian
+    afresh (:data:`SECONDS_1D`, :data:`SECONDS_2D`)."""
+    if model.infinitely_wide:
+        constant, per_unknown = SECONDS_1D
+        return constant + per_unknown * model.unknowns
+    per_unknown, per_interval = SECONDS_2D
+    return (per_unknown + per_interval * model.ny) * model.unknowns
+
+
+def size_line(model) -> str:
+    """The first progress line: the grid, the unknowns and the estimated time."""
+    if model.infinitely_wide:
+        grid = f"infinitely wide tape, {model.nx} intervals along x"
+    else:
+        grid = (f"{model.params.width:g} m wide tape, {model.nx} x {model.ny} intervals "
+                f"({'graded' if model.graded else 'uniform'})")
+    each = iteration_seconds(model)
+    low, high = USUAL_FACTORIZATIONS
+    return (f"{grid}, {model.unknowns} unknowns; estimated {_duration(low * each)} to "
+            f"{_duration(high * each)} (about {_duration(each)} per Newton iteration that "
+            "factors afresh; longer if Newton needs pseudo-time or continuation in V)")
+
+
+def _solve(model, progress):
+    """The steady state, with one line per stage through ``progress`` (None: silent);
+    a UserError if none is reached."""
+    from ..bearing.steady import initial_state, solve_steady
+    from ..core.errors import ConvergenceError
+
+    start = time.perf_counter()
+
+    def stamped(message: str) -> None:
+        progress(f"{time.perf_counter() - start:.1f} s: {message}")
+
+    log = None if progress is None else stamped
+    if log is not None:
+        progress(size_line(model))
+        if not model.infinitely_wide:
+            log("start: a first solve on a coarser grid (or of the infinitely wide tape) "
+                "for Newton's starting state")
     try:
-        return solve_steady(model, progress=_progress if show else None,
-                            iteration_log=_progress if show else None)
+        z0 = initial_state(model)
+        if log is not None and not model.infinitely_wide:
+            log("start: ready")
+        sol = solve_steady(model, z0=z0, progress=log, iteration_log=log)
     except ConvergenceError as exc:
         raise UserError(f"no steady flying state reached for this input: {exc}") from None
+    sol.info.seconds = time.perf_counter() - start     # the starting state included
+    if log is not None:
+        log(f"done: {sol.info.iterations} Newton iterations")
+    return sol
 
 
 def _print_text(sol) -> None:

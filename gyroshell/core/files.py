@@ -412,3 +412,30 @@ def folder_transaction(folder: str | os.PathLike[str]) -> Iterator[Path]:
             except OSError:
                 break
         raise
+
+
+def check_output_folder_with_files(path: str | os.PathLike[str], files: tuple[str, ...] = (),
+                                   *, option: str = "output folder") -> Path:
+    """Refuse, before any work, an output folder that could not take ``files``: what
+    :func:`check_output_folder` refuses, a missing parent (only the folder itself is created
+    later, like ``mkdir`` without ``-p``), and, in a folder that exists, any of ``files``
+    (names inside it) that :func:`check_output` refuses (read-only, a folder, not a regular
+    file). Returns the folder as a Path.
+
+    Raises
+    ------
+    OutputPathError
+        Naming ``option`` and the folder or file as the user gave it.
+    """
+    folder = check_output_folder(path, option=option)
+    shown = os.fspath(path)
+    real = os.path.realpath(shown)
+    if not os.path.isdir(real):
+        parent = os.path.dirname(real) or "."
+        if not os.path.isdir(parent):
+            above = os.path.dirname(os.path.normpath(shown)) or "."
+            raise OutputPathError(f"{option} {shown}: folder {above} does not exist")
+        return folder
+    for name in files:
+        check_output(os.path.join(shown, name), option=option)
+    return folder

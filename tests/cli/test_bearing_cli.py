@@ -115,9 +115,29 @@ def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
         raise ConvergenceError("Newton did not converge in 60 iterations")
 
     monkeypatch.setattr(steady, "newton", failing)
-    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
+    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40",
+                 "--quiet"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no steady flying state" in err[0]
+
+
+def test_unreachable_state_reports_each_stage_before_the_error(capsys, monkeypatch):
+    """Without --quiet the pseudo-time march and every continuation stage get a progress
+    line on stderr (not a terminal here) before the one error line."""
+    from gyroshell.bearing import steady
+    from gyroshell.core.errors import ConvergenceError
+
+    def failing(*args, **kwargs):
+        raise ConvergenceError("Newton did not converge in 60 iterations")
+
+    monkeypatch.setattr(steady, "newton", failing)
+    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert all(line.startswith("gyroshell bearing: ") for line in err[:-1])
+    assert "unknowns; estimated" in err[0]
+    assert any("pseudo-time continuation" in line for line in err)
+    assert any("continuation: V = 16 m/s" in line for line in err)     # 4x the target
+    assert err[-1].startswith("gyroshell: error: no steady flying state")
 
 
 def test_out_that_is_a_file_is_refused_before_solving(capsys, tmp_path):
@@ -136,7 +156,7 @@ def test_failing_plot_leaves_no_out_folder(capsys, tmp_path, monkeypatch):
         raise OSError(28, "No space left on device", str(fname))
 
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig", disk_full)
-    out, png = tmp_path / "new" / "run", tmp_path / "b.png"
+    out, png = tmp_path / "run", tmp_path / "b.png"
     assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--out", str(out),
                  "--plot", str(png)]) == 2
     assert "cannot write" in capsys.readouterr().err
