@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .common import UserError, parameters_from_args, positive_int, print_json
+from .common import UserError, parameters_from_args, positive_int, print_json, real
 from .saving import add_save_option, check_save_path
 
 #: Resolution of the --plot files, dots per inch.
@@ -40,6 +40,10 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786 "
                         "(start it with 'dask scheduler' and 'dask worker ADDRESS')")
+    p.add_argument("--connect-timeout", type=real, default=None, metavar="SECONDS",
+                   help="with --scheduler: seconds, in (0, 3600], to wait for the scheduler "
+                        "to connect and complete Dask's handshake (default 10; a refused "
+                        "connection fails at once)")
     p.add_argument("--cache", metavar="FILE.jsonl", default=None,
                    help="keep finished points here; running the same study again resumes")
     p.add_argument("--out", metavar="FILE.csv", default=None,
@@ -96,7 +100,6 @@ def parse_values(name: str, text: str) -> list:
 
     from ..core.budget import check_study_points
     from ..tape.config import QUANTITIES, parse_quantity
-    from .common import real
 
     text = text.strip()
     if not text:
@@ -186,7 +189,8 @@ def run(args: argparse.Namespace) -> int:
                         "--compute modes (or period)")
     result = run_study(params, vary=vary, compute=compute, velocity=velocity,
                        count=args.count, workers=args.workers, scheduler=args.scheduler,
-                       cache=args.cache, progress=False if args.quiet else None)
+                       cache=args.cache, progress=False if args.quiet else None,
+                       **_connect_timeout(args))
     from ..core.files import transaction
 
     with transaction():  # every output of the run, or none
@@ -197,6 +201,16 @@ def run(args: argparse.Namespace) -> int:
             _save_plot(args.plot, result.plot())
     _report_study(args, result)
     return 0
+
+
+def _connect_timeout(args: argparse.Namespace) -> dict:
+    """``connect_timeout`` for run_study, if given; refused without --scheduler."""
+    if args.connect_timeout is None:
+        return {}
+    if args.scheduler is None:
+        raise UserError("--connect-timeout applies to --scheduler only (local processes "
+                        "need no connection)")
+    return {"connect_timeout": args.connect_timeout}
 
 
 def _report_study(args: argparse.Namespace, result) -> None:

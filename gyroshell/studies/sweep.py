@@ -23,9 +23,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core import budget, validation
+from ..core import budget
 from ..core.errors import ParameterError
-from ..core.parallel import process_pool
+from ..core.parallel import check_process_count, process_pool
 from ..core.progress import progress_bar
 from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
 from ..results import base
@@ -278,9 +278,9 @@ def _check_sweep(model, velocities, min_correlation: float, workers
 
 
 def check_workers(workers, speeds: int) -> int:
-    """The number of local processes for ``speeds`` speeds: an integer >= 1, at most one
-    per speed."""
-    return min(validation.integer("workers", workers, low=1), speeds)
+    """The number of local processes for ``speeds`` speeds: an integer in [1,
+    :func:`gyroshell.core.parallel.max_processes`], used at most one per speed."""
+    return min(check_process_count("workers", workers), speeds)
 
 
 def solve_speeds(model, velocities: list[float], count: int, *, continuation: bool,
