@@ -29,8 +29,9 @@ __all__ = ["KEY_LENGTH", "PointCache", "point_key"]
 #: Hexadecimal digits of a point's key (128 bits of SHA-256: collisions are out of reach).
 KEY_LENGTH = 32
 _KEY = re.compile(f"^[0-9a-f]{{{KEY_LENGTH}}}$")
-#: What the user can do about a refused cache file.
-_REMEDY = "remove the file (or that line) or give another cache path"
+#: What the user can do about a refused cache line, and about a refused cache file.
+_REMEDY = "remove that line (or the file) or give another cache path"
+_FILE_REMEDY = "remove it or give another cache path"
 
 
 def point_key(spec: str, point: dict) -> str:
@@ -123,10 +124,10 @@ class PointCache:
             text = data.decode("utf-8")
         except UnicodeDecodeError as exc:
             raise ParameterError(f"cache {self.path} is not a study cache: byte {exc.start} "
-                                 f"is not UTF-8 text (a binary file?); {_REMEDY}") from None
+                                 f"is not UTF-8 text (a binary file?); {_FILE_REMEDY}") from None
         if "\x00" in text:
             raise ParameterError(f"cache {self.path} is not a study cache: it holds NUL "
-                                 f"bytes (a binary file?); {_REMEDY}")
+                                 f"bytes (a binary file?); {_FILE_REMEDY}")
         parts = text.split("\n")  # JSON Lines break at "\n" only
         lines = [part + "\n" for part in parts[:-1]] + ([parts[-1]] if parts[-1] else [])
         if lines and not lines[-1].endswith("\n"):

@@ -30,7 +30,7 @@ from collections.abc import Callable
 
 from ..core.progress import progress_bar, progress_wanted
 
-__all__ = ["QUARTERS", "StageLines", "stage_progress"]
+__all__ = ["QUARTERS", "StageLines", "stage_line", "stage_progress"]
 
 #: The fractions done at which a line is written.
 QUARTERS = (0.25, 0.5, 0.75)
@@ -128,3 +128,10 @@ def stage_progress(total: int, description: str, *, progress: bool | None, unit:
         return StageLines(total, description, unit, initial=initial)
     return _Bar(progress_bar(total, description, progress=bool(progress_wanted(progress)),
                              unit=unit, initial=initial))
+
+
+def stage_line(description: str, text: str, *, progress: bool | None) -> None:
+    """One stage line (``gyroshell: DESCRIPTION: TEXT``) on stderr when ``progress`` is
+    None and stderr is not a terminal (where :func:`stage_progress` writes lines)."""
+    if progress is None and not progress_wanted(None):
+        print(f"gyroshell: {description}: {text}", file=sys.stderr, flush=True)

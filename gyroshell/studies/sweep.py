@@ -26,12 +26,12 @@ import numpy as np
 from ..core import budget
 from ..core.errors import ParameterError
 from ..core.parallel import check_process_count, process_pool
-from ..core.progress import progress_bar
 from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
 from ..results import base
 from ..tape.model import TapeModel
 from ..tape.parameters import TapeParameters, check_velocity
 from .branches import BranchTracker, Match, track
+from .stages import stage_progress
 
 if TYPE_CHECKING:  # pandas is imported when a sweep runs: keep `import gyroshell` fast
     import pandas as pd
@@ -223,8 +223,8 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         A match weaker than this starts a new branch (the mode left the lowest-``count``
         window and another entered); take smaller speed steps to follow branches further.
     progress : bool or None
-        Show a progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`);
-        None: only if stderr is a terminal.
+        True: a progress bar on stderr, False: nothing; None: the bar on a terminal, else
+        one line per stage (:mod:`gyroshell.studies.stages`).
     continuation : bool
         Move the shift with the tracked lowest frequency (extrapolated from the previous
         speeds, see :func:`_continuation_options`), start each solve from the previous
@@ -292,7 +292,10 @@ def solve_speeds(model, velocities: list[float], count: int, *, continuation: bo
     ``workers`` each continue one contiguous run of the speeds. ``options`` go to
     :func:`gyroshell.modes`; the bar is labelled ``description``.
     """
-    with progress_bar(len(velocities), description, progress=progress, unit="speed") as bar:
+    with stage_progress(len(velocities), description, progress=progress,
+                        unit="speed") as bar:
+        bar.start(f"of {count} modes each, {model.unknowns} unknowns, "
+                  + ("in this process" if workers == 1 else f"on {workers} processes"))
         if workers == 1:
             return _solve_run(model, velocities, count, continuation, options, bar.update)
         return _solve_parallel(model, velocities, count, continuation, options, workers,
