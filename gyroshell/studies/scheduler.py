@@ -194,8 +194,17 @@ def _check_first_bytes(sock: socket.socket, where: str, deadline: float,
                              f"(received {first[:40]!r}); check the port")
     (length,) = struct.unpack("<Q", first)
     if not 8 <= length <= MAX_HANDSHAKE_BYTES:
-        raise ParameterError(f"{where} is not a Dask scheduler: it answered {first!r}..., "
-                             "not a Dask handshake; check the port")
+        raise ParameterError(f"{where} is not a Dask scheduler: it answered "
+                             f"{_more(sock, first)!r}, not a Dask handshake; check the port")
+
+
+def _more(sock: socket.socket, first: bytes) -> bytes:
+    """``first`` and what else the other end has already sent (up to 40 bytes), to quote."""
+    sock.settimeout(0.05)
+    try:
+        return first + sock.recv(32)
+    except OSError:  # nothing more at once (a timeout is an OSError): quote what came
+        return first
 
 
 def handshake(address: SchedulerAddress, timeout: float, connection_args: dict) -> None:
