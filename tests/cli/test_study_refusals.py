@@ -6,12 +6,10 @@ before any work, and leaves the folder (and the cache file) as it was."""
 from __future__ import annotations
 
 import json
-import socket
-import struct
-import threading
 
 import pytest
 from conftest import WIDTH
+from fake_servers import FakeServer, closed_port
 
 COARSE = ["--spacing", WIDTH / 8, "--length-ratio", 2]
 LOUD_STUDY = ["study", *COARSE, "--vary", "tension=80,90", "--compute", "modes"]
@@ -49,56 +47,12 @@ def test_malformed_scheduler_addresses_are_refused_at_once(cli, tmp_path, monkey
     assert list(tmp_path.iterdir()) == []
 
 
-def closed_port() -> int:
-    """A loopback port nothing listens on (bound, then released)."""
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 def test_closed_port_is_refused_as_connection_refused(cli, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     port = closed_port()
     run = cli([*STUDY, "--scheduler", f"tcp://127.0.0.1:{port}", "--cache", "c.jsonl"])
     refused(run, f"connection refused (nothing listens on port {port} of 127.0.0.1)")
     assert list(tmp_path.iterdir()) == [], "no cache file created"
-
-
-class FakeServer:
-    """A loopback TCP server that is not a Dask scheduler: on each connection it says
-    nothing (``silent``), closes at once (``close``), answers like an HTTP server
-    (``http``) or sends a plausible Dask message length and then nothing (``stall``)."""
-
-    REPLIES = {"silent": None, "close": b"", "http": b"HTTP/1.1 400 Bad Request\r\n\r\n",
-               "stall": struct.pack("<Q", 64)}
-
-    def __init__(self, mode: str) -> None:
-        self.mode, self.conns = mode, []
-        self.sock = socket.socket()
-        self.sock.bind(("127.0.0.1", 0))
-        self.sock.listen(8)
-        self.port = self.sock.getsockname()[1]
-        self.thread = threading.Thread(target=self._serve, daemon=True)
-        self.thread.start()
-
-    def _serve(self) -> None:
-        while True:
-            try:
-                conn, _ = self.sock.accept()
-            except OSError:  # closed by stop()
-                return
-            reply = self.REPLIES[self.mode]
-            if reply == b"":
-                conn.close()
-                continue
-            if reply is not None:
-                conn.sendall(reply)
-            self.conns.append(conn)
-
-    def stop(self) -> None:
-        self.sock.close()
-        for conn in self.conns:
-            conn.close()
 
 
 @pytest.fixture(params=list(FakeServer.REPLIES))
