@@ -277,17 +277,19 @@ def _report_study(args: argparse.Namespace, result) -> None:
 
 def run_campbell(args: argparse.Namespace) -> int:
     from ..studies.campbell import MIN_MAC, campbell
-    from ..studies.sweep import check_velocities
-    from ..tape.model import TapeModel
 
     params = parameters_from_args(args)
-    velocities = check_velocities(parse_velocities(args.velocities))
     orders = _campbell_orders(args)
     min_mac = MIN_MAC if args.min_mac is None else args.min_mac
     _check_campbell_numbers(args, min_mac)
     _check_outputs({"--out": (args.out, (".csv", ".parquet", ".nc")),
                     "--plot": (args.plot, (".png", ".pdf", ".svg"))})
     grid_of(params)  # its size, before the operators are assembled
+    velocities = parse_velocities(args.velocities)  # the engines load from here on
+    from ..studies.sweep import check_velocities
+    from ..tape.model import TapeModel
+
+    velocities = check_velocities(velocities)
     d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac,
                  progress=False if args.quiet else None, workers=args.workers)
     from ..core.files import transaction

@@ -279,10 +279,9 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
     """Compute the points the cache lacks, where asked, and gather the rows.
 
     The cache is read and checked, and the scheduler connected, before any work and before
-    the cache file is opened for appending: a refusal leaves the file as it was.
+    the cache file is opened for appending: a refusal leaves the file as it was (and
+    costs no import of pandas or Dask).
     """
-    import pandas as pd
-
     keys, pts = plan.keys(), plan.points
     ours = set(keys)
     cache = PointCache(cache)
@@ -301,6 +300,8 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
 
         bar.start(_where_text(where, todo))
         executor, size = execute(todo, record, plan.task, where, client)
+    import pandas as pd
+
     columns = result_columns(plan.compute, plan.count)
     records = [{"point": i, **pts[i], **{c: rows[i][c] for c in columns}}
                for i in range(len(pts))]
