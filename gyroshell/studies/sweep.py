@@ -27,6 +27,7 @@ from ..core import budget
 from ..core.errors import ParameterError
 from ..core.parallel import check_process_count, process_pool
 from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
+from ..linalg.qep.problem import check_count
 from ..results import base
 from ..tape.model import TapeModel
 from ..tape.parameters import TapeParameters, check_velocity
@@ -290,8 +291,10 @@ def solve_speeds(model, velocities: list[float], count: int, *, continuation: bo
 
     One process continues each speed from the previous ones (``continuation``); several
     ``workers`` each continue one contiguous run of the speeds. ``options`` go to
-    :func:`gyroshell.modes`; the bar is labelled ``description``.
+    :func:`gyroshell.modes`; the bar is labelled ``description``. ``count`` is checked
+    first (against the model's unknowns), before the progress starts.
     """
+    count = check_count(count, model.unknowns)
     with stage_progress(len(velocities), description, progress=progress,
                         unit="speed") as bar:
         bar.start(f"of {count} modes each, {model.unknowns} unknowns, "
