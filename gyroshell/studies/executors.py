@@ -207,9 +207,9 @@ def _connect(where: Executor):
         raise ParameterError('--scheduler needs Dask: pip install "gyroshell[cluster]"'
                              ) from None
     connection_args = Security().get_connection_args("client")
-    if address.scheme == "tls" and connection_args.get("ssl_context") is None:
-        raise ParameterError(f"scheduler {where.scheduler}: tls:// needs Dask's TLS "
-                             "settings (distributed.comm.tls.ca-file, .client.cert and "
+    if address.scheme in ("tls", "wss") and connection_args.get("ssl_context") is None:
+        raise ParameterError(f"scheduler {where.scheduler}: {address.scheme}:// needs Dask's "
+                             "TLS settings (distributed.comm.tls.ca-file, .client.cert and "
                              ".client.key in the Dask configuration), and none are set")
     handshake(address, where.connect_timeout, connection_args)
     try:

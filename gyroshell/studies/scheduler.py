@@ -237,6 +237,9 @@ def handshake(address: SchedulerAddress, timeout: float, connection_args: dict) 
         raise ParameterError(f"{where} did not complete Dask's handshake within "
                              f"{timeout:g} s (connect_timeout): not a Dask scheduler, or "
                              "it is overloaded")
+    if address.scheme == "inproc" and isinstance(outcome[0], ValueError):
+        raise ParameterError(f"no Dask scheduler of this process listens at {address.text} "
+                             "(inproc:// reaches only a cluster started in this process)")
     _raise_for(outcome[0], where)
 
 
@@ -246,11 +249,24 @@ def _raise_for(error: BaseException | None, where: str) -> None:
         return
     if isinstance(error, OSError):  # Dask's CommClosedError is an OSError
         raise ParameterError(f"cannot reach {where}: {error}") from None
+    if isinstance(error, _websocket_errors()):  # ws://, wss:// to a server that is not Dask's
+        raise ParameterError(f"{where} is not a Dask scheduler: {error}; check the port"
+                             ) from None
     if isinstance(error, (MemoryError, struct.error, ValueError, TypeError, KeyError,
                           IndexError, EOFError)):  # what undecodable bytes raise in Dask
         raise ParameterError(f"{where} is not a Dask scheduler: its answer is not a Dask "
                              f"handshake ({type(error).__name__}); check the port") from None
     raise error
+
+
+def _websocket_errors() -> tuple[type[BaseException], ...]:
+    """What tornado (Dask's ws:// transport) raises for an answer that is not a websocket."""
+    try:
+        from tornado.httpclient import HTTPClientError
+        from tornado.websocket import WebSocketError
+    except ImportError:  # pragma: no cover - Dask installs tornado
+        return ()
+    return (WebSocketError, HTTPClientError)
 
 
 async def _connect_and_close(text: str, timeout: float, connection_args: dict) -> None:

@@ -64,6 +64,21 @@ def test_a_server_that_is_not_dask_raises_a_parameter_error(mode):
         server.stop()
 
 
+def test_websocket_and_in_process_addresses_that_lead_nowhere(tmp_path):
+    with pytest.raises(ParameterError, match="no Dask scheduler of this process listens"):
+        run_study(BASE, **ONE_POINT, scheduler="inproc://192.0.2.1/1/1", connect_timeout=1)
+    server = FakeServer("http")
+    try:
+        with pytest.raises(ParameterError, match="wss:// needs Dask's TLS settings"):
+            run_study(BASE, **ONE_POINT, scheduler=f"wss://127.0.0.1:{server.port}",
+                      connect_timeout=1)
+        with pytest.raises(ParameterError, match=f"ws://127.0.0.1:{server.port}"):
+            run_study(BASE, **ONE_POINT, scheduler=f"ws://127.0.0.1:{server.port}",
+                      connect_timeout=1)
+    finally:
+        server.stop()
+
+
 @pytest.mark.parametrize("timeout", [0, -1, math.nan, math.inf, 1e300, "10"])
 def test_connect_timeout_range(timeout):
     with pytest.raises(ParameterError, match="connect_timeout must be"):
