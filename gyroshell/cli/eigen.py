@@ -7,7 +7,6 @@ import time
 
 import numpy as np
 
-from ..core.errors import ParameterError
 from ..core.files import PLOT, check_outputs, transaction, write_atomic
 from .common import (
     grid_of,
@@ -163,9 +162,6 @@ def run_sweep(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
     velocities = [params.check_velocity(v) for v in parse_velocities(args.velocities)]
     check_process_count("--workers", args.workers)
-    if args.out is not None and not str(args.out).lower().endswith(".csv"):
-        raise ParameterError(f"--out: use a .csv file (the table is written as CSV), got "
-                             f"{args.out}")
     check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT),
                    "--save": (args.save, None)})
     grid = grid_of(params)

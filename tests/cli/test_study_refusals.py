@@ -206,7 +206,6 @@ OPTIONS = [
      "count must be in [1, 50] for 135 unknowns, got 1000"),
     ("campbell --count 1000", ["campbell", *COARSE, "--count", "1000"],
      "count must be in [1, 50] for 135 unknowns, got 1000"),
-    ("sweep --out s.txt", ["sweep", *COARSE, "--out", "s.txt"], "--out: use a .csv file"),
     ("study --workers 10000", [*STUDY, "--workers", "10000"], "workers must be an integer in"),
     ("study --tension with --vary tension", [*STUDY, "--tension", "50"],
      "--tension and --vary tension both set tension"),
