@@ -62,17 +62,17 @@ def fake_server(request):
     server.stop()
 
 
-FAKE_MESSAGES = {"silent": "sent no Dask handshake within 1 s",
+FAKE_MESSAGES = {"silent": "sent no Dask handshake within 0.5 s",
                  "close": "closed the connection without a Dask handshake",
                  "http": "is not a Dask scheduler: it answered b'HTTP/1.1 ",
-                 "stall": "did not complete Dask's handshake within 1 s"}
+                 "stall": "did not complete Dask's handshake within 0.5 s"}
 
 
 def test_a_server_that_is_not_dask_is_refused_within_the_connect_timeout(
         cli, tmp_path, monkeypatch, fake_server):
     monkeypatch.chdir(tmp_path)
     run = cli([*STUDY, "--scheduler", f"tcp://127.0.0.1:{fake_server.port}",
-               "--connect-timeout", "1", "--cache", "c.jsonl", "--out", "s.csv"])
+               "--connect-timeout", "0.5", "--cache", "c.jsonl", "--out", "s.csv"])
     refused(run, FAKE_MESSAGES[fake_server.mode])
     assert list(tmp_path.iterdir()) == []
 
@@ -142,6 +142,8 @@ EDITS = [
     ("a missing column", {"omega_1": None}, "row must have the columns omega_1, growth_rate, "
                                             "stability, error"),
     ("an extra column", {"colour": "red"}, "row must have the columns"),
+    ("an emptied row", dict.fromkeys(["omega_1", "growth_rate", "stability", "error"]),
+     "row must have the columns omega_1, growth_rate, stability, error, got []"),
 ]
 
 
@@ -164,6 +166,15 @@ def test_an_edited_cache_row_is_refused_naming_file_and_line(cli, finished_cache
     assert "cache c.jsonl line 2: " in run.err
     assert finished_cache.read_text() == edited
     assert not (finished_cache.parent / "s.csv").exists(), "nothing wrong written to the CSV"
+
+
+def test_an_emptied_cache_file_is_a_cache_with_nothing_done(cli, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    cache = tmp_path / "c.jsonl"
+    cache.write_bytes(b"")
+    run = cli([*STUDY, "--count", "1", "--workers", "1", "--cache", "c.jsonl", "--json"])
+    assert run.code == 0, run.err
+    assert json.loads(run.out)["computed"] == 2 and len(cache.read_text().splitlines()) == 2
 
 
 def test_a_last_line_cut_short_is_recomputed_and_dropped(cli, finished_cache):
