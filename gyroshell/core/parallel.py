@@ -76,12 +76,14 @@ def worker_setup(starter: int) -> None:
     death with the process ``starter`` (its pid) that started the pool.
 
     On Linux the kernel kills the worker when its parent (the fork server) dies
-    (``PR_SET_PDEATHSIG``); on every system a daemon thread checks every
+    (``PR_SET_PDEATHSIG``); on every POSIX system a daemon thread checks every
     :data:`LIFELINE_INTERVAL` s that ``starter`` is still alive (not gone, not a zombie)
     and ends the worker at once when it is not. The fork server itself ends when the
     starter and all its workers are gone (Python closes its lifeline pipe then).
     """
     one_blas_thread()
+    if os.name == "nt":  # no parent death signal, and os.kill(pid, 0) would end the starter
+        return
     _die_with_parent()
     parent = os.getppid()
     if not _alive(starter):  # the starter died before this worker was set up
