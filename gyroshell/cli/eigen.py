@@ -55,11 +55,14 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--count", type=positive_int, default=6,
                    help="frequencies per speed, >= 1 (default 6)")
     p.add_argument("--workers", type=positive_int, default=1,
-                   help="local processes, >= 1: the speeds are split into that many "
-                        "contiguous runs, each continued in its own process (default 1)")
+                   help="local processes, at most 4 per CPU: the speeds are split into "
+                        "that many contiguous runs, each continued in its own process "
+                        "(default 1)")
     p.add_argument("--out", metavar="FILE.csv", help="write the table as CSV")
     p.add_argument("--plot", metavar="FILE.png", help="write omega (rad/s) against V (m/s)")
     add_save_option(p)
+    p.add_argument("--quiet", action="store_true",
+                   help="no progress (a bar on a terminal, else one line per stage)")
     p.set_defaults(func=run_sweep)
 
 
@@ -154,8 +157,11 @@ def run_critical(args: argparse.Namespace) -> int:
 
 
 def run_sweep(args: argparse.Namespace) -> int:
+    from ..core.parallel import check_process_count
+
     params = parameters_from_args(args)
     velocities = [params.check_velocity(v) for v in parse_velocities(args.velocities)]
+    check_process_count("--workers", args.workers)
     check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT),
                    "--save": (args.save, None)})
     grid = grid_of(params)
@@ -164,7 +170,8 @@ def run_sweep(args: argparse.Namespace) -> int:
 
     check_save_path(args.save)
     model = TapeModel(params, grid)
-    frame = sweep(model, velocities, args.count, progress=None, workers=args.workers).table
+    frame = sweep(model, velocities, args.count, progress=False if args.quiet else None,
+                  workers=args.workers).table
     with transaction():
         save_result(args.save, frame, params)
         if args.out:

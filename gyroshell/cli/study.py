@@ -5,14 +5,24 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from .common import UserError, parameters_from_args, positive_int, print_json
+from ..core.errors import ParameterError
+from .common import (
+    UserError,
+    grid_of,
+    parameters_from_args,
+    parse_velocities,
+    positive_int,
+    print_json,
+    real,
+)
 from .saving import add_save_option, check_save_path
 
 #: Resolution of the --plot files, dots per inch.
 PLOT_DPI = 120
 
 
-def register(sub, common: argparse.ArgumentParser) -> None:
+def register(sub, common: argparse.ArgumentParser,
+             common_without_velocity: argparse.ArgumentParser) -> None:
     from ..studies.evaluation import COMPUTE_CHOICES
     from ..studies.points import VARIABLE_NAMES
 
@@ -32,14 +42,19 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     p.add_argument("--compute", action="append", required=True, metavar="WHAT",
                    help=f"what to compute: {', '.join(COMPUTE_CHOICES)} (repeat or "
                         "comma-separate for several)")
-    p.add_argument("--count", type=positive_int, default=3,
-                   help="frequencies per point for 'modes' (default 3)")
+    p.add_argument("--count", type=positive_int, default=None,
+                   help="frequencies per point for 'modes', in [1, 50] (default 3; only "
+                        "with --compute modes)")
     p.add_argument("--workers", type=positive_int, default=None,
-                   help="local worker processes (default: one per CPU; 1 runs in this "
-                        "process)")
+                   help="local worker processes, at most 4 per CPU (default: one per CPU; "
+                        "1 runs in this process; not with --scheduler)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="run on a Dask distributed scheduler, e.g. tcp://127.0.0.1:8786 "
                         "(start it with 'dask scheduler' and 'dask worker ADDRESS')")
+    p.add_argument("--connect-timeout", type=real, default=None, metavar="SECONDS",
+                   help="with --scheduler: seconds, in (0, 3600], to wait for the scheduler "
+                        "to connect and complete Dask's handshake (default 10; a refused "
+                        "connection fails at once)")
     p.add_argument("--cache", metavar="FILE.jsonl", default=None,
                    help="keep finished points here; running the same study again resumes")
     p.add_argument("--out", metavar="FILE.csv", default=None,
@@ -53,12 +68,14 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                    help="print one JSON object (points, computed, cached, failed, seconds, "
                         "executor) instead of the table")
     p.set_defaults(func=run)
-    register_campbell(sub, common)
+    register_campbell(sub, common_without_velocity)
 
 
-def register_campbell(sub, common: argparse.ArgumentParser) -> None:
+def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> None:
+    """``gyroshell campbell``: its speeds are --velocities, so --velocity is refused."""
     p = sub.add_parser(
-        "campbell", parents=[common], help="Campbell diagram: MAC-tracked frequencies vs speed",
+        "campbell", parents=[common_without_velocity],
+        help="Campbell diagram: MAC-tracked frequencies vs speed",
         description="Lowest frequencies (rad/s) against tape speed (m/s), tracked into "
                     "branches by the modal assurance criterion (MAC of every link reported), "
                     "with crossings, veerings, the critical speed and, for a roller or "
@@ -69,23 +86,26 @@ def register_campbell(sub, common: argparse.ArgumentParser) -> None:
                         "(default 0:100:5)")
     p.add_argument("--count", type=positive_int, default=6,
                    help="modes per speed (default 6)")
-    p.add_argument("--min-mac", type=float, default=None,
-                   help="smallest MAC that continues a branch (default 0.5)")
-    p.add_argument("--circumference", type=float, default=None,
-                   help="roller/capstan circumference, m: draw excitation lines")
-    p.add_argument("--orders", default="1,2,3",
-                   help="harmonics n of the excitation lines (default 1,2,3)")
+    p.add_argument("--min-mac", type=real, default=None,
+                   help="smallest MAC that continues a branch, in [0, 1] (default 0.5)")
+    p.add_argument("--circumference", type=real, default=None,
+                   help="roller/capstan circumference, m, > 0: the excitation lines and "
+                        "the speeds where they meet a branch")
+    p.add_argument("--orders", default=None,
+                   help="harmonics n of the excitation lines, integers in [1, 1000] "
+                        "(default 1,2,3; only with --circumference)")
     p.add_argument("--out", metavar="FILE.csv", default=None,
                    help="write the tracked branches (velocity, branch, rank, omega, "
                         "growth_rate, mac)")
     p.add_argument("--plot", metavar="FILE.png", default=None, help="write the diagram")
     p.add_argument("--workers", type=positive_int, default=1,
-                   help="local processes, >= 1, each solving a contiguous run of the speeds "
-                        "(default 1)")
+                   help="local processes, at most 4 per CPU, each solving a contiguous run "
+                        "of the speeds (default 1)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (branches, speeds, MAC of the links, critical "
-                        "speed in m/s, crossings, veerings) instead of the text")
+                        "speed in m/s, crossings, veerings; with --circumference the "
+                        "resonances) instead of the text")
     p.set_defaults(func=run_campbell)
 
 
@@ -96,7 +116,6 @@ def parse_values(name: str, text: str) -> list:
 
     from ..core.budget import check_study_points
     from ..tape.config import QUANTITIES, parse_quantity
-    from .common import real
 
     text = text.strip()
     if not text:
@@ -168,10 +187,12 @@ def run(args: argparse.Namespace) -> int:
     from ..studies.parameter_study import run_study
     from ..tape.parameters import check_velocity
 
+    typed = _typed_tape_options(args)  # before --config fills in the defaults
     params = parameters_from_args(args)
     velocity = check_velocity(args.velocity)
     vary = parse_vary(args.vary)
     compute = [c.strip() for item in args.compute for c in item.split(",") if c.strip()]
+    _check_study_options(args, typed, vary, compute)
     from ..results.base import NETCDF_SUFFIXES, TABLE_SUFFIXES
 
     check_save_path(args.save)
@@ -185,8 +206,10 @@ def run(args: argparse.Namespace) -> int:
         raise UserError("--plot with two varied parameters draws a stability map: add "
                         "--compute modes (or period)")
     result = run_study(params, vary=vary, compute=compute, velocity=velocity,
-                       count=args.count, workers=args.workers, scheduler=args.scheduler,
-                       cache=args.cache, progress=False if args.quiet else None)
+                       count=3 if args.count is None else args.count,
+                       workers=args.workers, scheduler=args.scheduler,
+                       cache=args.cache, progress=False if args.quiet else None,
+                       **_connect_timeout(args))
     from ..core.files import transaction
 
     with transaction():  # every output of the run, or none
@@ -197,6 +220,43 @@ def run(args: argparse.Namespace) -> int:
             _save_plot(args.plot, result.plot())
     _report_study(args, result)
     return 0
+
+
+def _typed_tape_options(args: argparse.Namespace) -> dict[str, str]:
+    """The tape options typed on the command line: {TapeParameters field or 'velocity':
+    flag} (defaults and --config values are not typed)."""
+    from .common import _OVERRIDES, _Unset, _UnsetText
+
+    typed = {field: flag for flag, field, _text in _OVERRIDES
+             if getattr(args, field, None) is not None}
+    for name in ("length_ratio", "edges", "spacing", "velocity"):
+        value = getattr(args, name, None)
+        if value is not None and not isinstance(value, (_Unset, _UnsetText)):
+            typed[name] = "--" + name.replace("_", "-")
+    return typed
+
+
+def _check_study_options(args: argparse.Namespace, typed: dict[str, str], vary: dict,
+                         compute: list[str]) -> None:
+    """Refuse options the study would ignore: a tape option that --vary replaces at every
+    point, --count without --compute modes."""
+    for name in vary:
+        if name in typed:
+            raise UserError(f"{typed[name]} and --vary {name} both set {name}: every point "
+                            f"takes its value from --vary, so give one of them")
+    if args.count is not None and "modes" not in compute:
+        raise UserError("--count is the number of frequencies of --compute modes; add "
+                        "--compute modes or drop --count")
+
+
+def _connect_timeout(args: argparse.Namespace) -> dict:
+    """``connect_timeout`` for run_study, if given; refused without --scheduler."""
+    if args.connect_timeout is None:
+        return {}
+    if args.scheduler is None:
+        raise UserError("--connect-timeout applies to --scheduler only (local processes "
+                        "need no connection)")
+    return {"connect_timeout": args.connect_timeout}
 
 
 def _report_study(args: argparse.Namespace, result) -> None:
@@ -216,25 +276,20 @@ def _report_study(args: argparse.Namespace, result) -> None:
 
 
 def run_campbell(args: argparse.Namespace) -> int:
-    import math
-
     from ..studies.campbell import MIN_MAC, campbell
-    from ..studies.sweep import check_velocities
-    from ..tape.model import TapeModel
-    from .common import parse_velocities
 
     params = parameters_from_args(args)
-    velocities = check_velocities(parse_velocities(args.velocities))
-    try:
-        orders = [int(n) for n in args.orders.split(",") if n.strip()]
-    except ValueError:
-        raise UserError(f"--orders must be integers like 1,2,3, got {args.orders!r}") from None
-    if args.circumference is not None and not (math.isfinite(args.circumference)
-                                               and args.circumference > 0):
-        raise UserError(f"--circumference must be > 0 m, got {args.circumference:g}")
+    orders = _campbell_orders(args)
+    min_mac = MIN_MAC if args.min_mac is None else args.min_mac
+    _check_campbell_numbers(args, min_mac)
     _check_outputs({"--out": (args.out, (".csv", ".parquet", ".nc")),
                     "--plot": (args.plot, (".png", ".pdf", ".svg"))})
-    min_mac = MIN_MAC if args.min_mac is None else args.min_mac
+    grid_of(params)  # its size, before the operators are assembled
+    velocities = parse_velocities(args.velocities)  # the engines load from here on
+    from ..studies.sweep import check_velocities
+    from ..tape.model import TapeModel
+
+    velocities = check_velocities(velocities)
     d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac,
                  progress=False if args.quiet else None, workers=args.workers)
     from ..core.files import transaction
@@ -245,10 +300,53 @@ def run_campbell(args: argparse.Namespace) -> int:
         if args.plot:
             _save_plot(args.plot, d.plot(circumference=args.circumference, orders=orders))
     if args.json:
-        print_json(d.summary())
+        print_json(_campbell_json(d, args.circumference, orders))
         return 0
     _report_campbell(args, d, orders)
     return 0
+
+
+def _campbell_orders(args: argparse.Namespace) -> tuple[int, ...]:
+    """The harmonics of --orders (default 1,2,3), refused without --circumference."""
+    from ..studies.campbell import check_orders
+
+    if args.orders is None:
+        return (1, 2, 3)
+    if args.circumference is None:
+        raise UserError("--orders are the harmonics of the excitation lines of "
+                        "--circumference: add --circumference or drop --orders")
+    items = [n.strip() for n in args.orders.split(",")]
+    try:
+        numbers = [int(n) if n.lstrip("+-").isdigit() else float(n) for n in items]
+    except ValueError:
+        raise UserError(f"--orders must be integers like 1,2,3, got {args.orders!r}") from None
+    try:
+        return check_orders(numbers)
+    except ParameterError as exc:
+        raise UserError(f"--{exc}") from None
+
+
+def _check_campbell_numbers(args: argparse.Namespace, min_mac: float) -> None:
+    """--circumference, --min-mac and --workers, before any work."""
+    from ..core import validation
+    from ..core.parallel import check_process_count
+
+    if args.circumference is not None:
+        validation.positive("--circumference", args.circumference, "m")
+    validation.real("--min-mac", min_mac, low=0.0, high=1.0)
+    check_process_count("--workers", args.workers)
+
+
+def _campbell_json(d, circumference: float | None, orders: tuple[int, ...]) -> dict:
+    """The diagram's summary and, with a circumference, its resonances (order, branch,
+    velocity in m/s, omega in rad/s)."""
+    out = d.summary()
+    if circumference is not None:
+        out["resonances"] = [
+            {"order": int(r.order), "branch": int(r.branch), "velocity": float(r.velocity),
+             "omega": float(r.omega)}
+            for r in d.resonances(circumference, orders).itertuples()]
+    return out
 
 
 def _report_campbell(args: argparse.Namespace, d, orders: list[int]) -> None:

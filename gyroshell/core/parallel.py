@@ -6,13 +6,21 @@ benchmarks/). threadpoolctl (a dependency) holds BLAS to the given number of thr
 without it this does nothing and the engines only run slower.
 
 Studies and sweeps that run on several local processes get them from :func:`process_pool`.
+Its workers die with the process that started them (:func:`worker_setup`): a study killed
+with ``kill -9`` leaves no worker, no fork server and no held pipe behind.
 """
 
 from __future__ import annotations
 
+import os
+import sys
+import threading
+import time
 from collections.abc import Iterator
 from contextlib import AbstractContextManager, contextmanager, nullcontext
 from typing import TYPE_CHECKING
+
+from . import validation
 
 if TYPE_CHECKING:
     from concurrent.futures import ProcessPoolExecutor
@@ -39,23 +47,110 @@ def one_blas_thread() -> None:
     threadpool_limits(limits=1)
 
 
+#: Most local processes per CPU a study or sweep may start (more only adds overhead).
+MAX_PROCESSES_PER_CPU = 4
+#: Seconds between a worker's checks that the process that started it is still alive.
+LIFELINE_INTERVAL = 0.25
+#: prctl(2) option: the signal the kernel sends a process when its parent dies (Linux).
+PR_SET_PDEATHSIG = 1
+
+
+def max_processes() -> int:
+    """The most local processes accepted: :data:`MAX_PROCESSES_PER_CPU` per CPU."""
+    return MAX_PROCESSES_PER_CPU * max(1, os.cpu_count() or 1)
+
+
+def check_process_count(name: str, value: object) -> int:
+    """A number of local processes: an integer in [1, :func:`max_processes`].
+
+    Examples
+    --------
+    >>> check_process_count("workers", 1)
+    1
+    """
+    return validation.integer(name, value, low=1, high=max_processes())
+
+
+def worker_setup(starter: int) -> None:
+    """Initializer of worker processes: one BLAS thread (:func:`one_blas_thread`), and
+    death with the process ``starter`` (its pid) that started the pool.
+
+    On Linux the kernel kills the worker when its parent (the fork server) dies
+    (``PR_SET_PDEATHSIG``); on every POSIX system a daemon thread checks every
+    :data:`LIFELINE_INTERVAL` s that ``starter`` is still alive (not gone, not a zombie)
+    and ends the worker at once when it is not. The fork server itself ends when the
+    starter and all its workers are gone (Python closes its lifeline pipe then).
+    """
+    one_blas_thread()
+    if os.name == "nt":  # no parent death signal, and os.kill(pid, 0) would end the starter
+        return
+    _die_with_parent()
+    parent = os.getppid()
+    if not _alive(starter):  # the starter died before this worker was set up
+        os._exit(1)
+    threading.Thread(target=_watch, args=(starter, parent), name="gyroshell-lifeline",
+                     daemon=True).start()
+
+
+def _die_with_parent() -> None:
+    """Ask the kernel for SIGKILL when this process's parent dies (Linux only)."""
+    if not sys.platform.startswith("linux"):
+        return
+    import ctypes
+    import signal
+
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+    except OSError:  # pragma: no cover - no C library to call: the thread still watches
+        return
+    libc.prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+
+
+def _watch(starter: int, parent: int) -> None:
+    while _alive(starter) and os.getppid() == parent:
+        time.sleep(LIFELINE_INTERVAL)
+    os._exit(1)  # the study is gone: nobody will read this worker's results
+
+
+def _alive(pid: int) -> bool:
+    """Whether process ``pid`` exists and is not a zombie (a killed process whose parent
+    has not reaped it yet, e.g. one waiting for the pipes the workers hold)."""
+    try:
+        with open(f"/proc/{pid}/stat", "rb") as fh:
+            state = fh.read().rpartition(b")")[2].split()[0]
+        return state not in (b"Z", b"X")
+    except FileNotFoundError:
+        return False
+    except OSError:  # no /proc (not Linux): ask the kernel whether the pid exists
+        pass
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
 @contextmanager
 def process_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
     """A :class:`~concurrent.futures.ProcessPoolExecutor` of ``workers`` local processes.
 
     The workers start from a fork server (spawn where there is none), not by fork: the
     parent may hold BLAS or Dask threads, and a forked child can deadlock on their locks
-    (Python 3.12+ warns). Each worker keeps to one BLAS thread (:func:`one_blas_thread`).
+    (Python 3.12+ warns). Each worker keeps to one BLAS thread and ends when the calling
+    process dies, however it dies (:func:`worker_setup`).
     If the block raises (an error, Ctrl-C), the tasks not yet started are cancelled before
     the pool shuts down, so the error surfaces without waiting for the whole queue.
     """
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
+    workers = check_process_count("workers", workers)
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    pool = ProcessPoolExecutor(max_workers=workers, initializer=one_blas_thread,
-                               mp_context=context)
+    pool = ProcessPoolExecutor(max_workers=workers, initializer=worker_setup,
+                               initargs=(os.getpid(),), mp_context=context)
     try:
         yield pool
     except BaseException:

@@ -13,7 +13,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 
 
 @dataclass(frozen=True)
@@ -65,7 +64,7 @@ class BranchTracker:
         assigned, continued = np.zeros(k, dtype=bool), np.zeros(k, dtype=bool)
         if self.previous is not None:
             c = self.similarity(self.previous, vectors)
-            for i, j in zip(*linear_sum_assignment(-c), strict=True):
+            for i, j in zip(*_assignment(-c), strict=True):
                 similarity[j], assigned[j] = c[i, j], True
                 if c[i, j] >= self.threshold:
                     labels[j], continued[j] = self.labels[i], True
@@ -79,3 +78,11 @@ class BranchTracker:
 def track(results, tracker: BranchTracker) -> list[Match]:
     """The matches of consecutive speeds' :class:`~gyroshell.Modes`, in order."""
     return [tracker.match(res.vectors) for res in results]
+
+
+def _assignment(cost: np.ndarray):
+    """The optimal assignment (Hungarian method) of a cost matrix: scipy is imported here,
+    not with the module, so that the CLI refuses bad options before loading it."""
+    from scipy.optimize import linear_sum_assignment
+
+    return linear_sum_assignment(cost)

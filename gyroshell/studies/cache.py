@@ -1,8 +1,16 @@
 """The cache of a parameter study: finished points in a JSON Lines file.
 
-Each line is one ``{"key": ..., "row": ...}`` object, written and flushed as soon as its
-chunk of points finishes, so that an interrupted study keeps what it computed. JSON keeps a
-float64 exactly, so a row read back is the row computed, bit for bit.
+Each line is one ``{"key": ..., "row": ...}`` object (``key``: :data:`KEY_LENGTH`
+hexadecimal digits, :func:`point_key`; ``row``: the point's computed columns), written and
+flushed as soon as its chunk of points finishes, so that an interrupted study keeps what it
+computed. JSON keeps a float64 exactly, so a row read back is the row computed, bit for bit.
+
+What is read back is checked as strictly as what is computed: a file that is not UTF-8
+text, a line that is not such an object, or a row of this study whose columns or values are
+not what the study computes (``"critical_speed": "fast"``) is refused, naming the file and
+the line, and the file is left as it was. Only a last line cut short by an interruption
+(no newline, not JSON) is skipped: its point runs again, and the cut line is dropped before
+new lines are appended.
 """
 
 from __future__ import annotations
@@ -10,12 +18,20 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
+from collections.abc import Callable
 from pathlib import Path
+
+from ..core.errors import ParameterError
 
 __all__ = ["KEY_LENGTH", "PointCache", "point_key"]
 
 #: Hexadecimal digits of a point's key (128 bits of SHA-256: collisions are out of reach).
 KEY_LENGTH = 32
+_KEY = re.compile(f"^[0-9a-f]{{{KEY_LENGTH}}}$")
+#: What the user can do about a refused cache line, and about a refused cache file.
+_REMEDY = "remove that line (or the file) or give another cache path"
+_FILE_REMEDY = "remove it or give another cache path"
 
 
 def point_key(spec: str, point: dict) -> str:
@@ -45,34 +61,110 @@ class PointCache:
 
     Raises
     ------
-    FileNotFoundError
-        If the folder of ``path`` does not exist.
+    ParameterError
+        If the folder of ``path`` does not exist, or ``path`` is a folder.
     """
 
     def __init__(self, path: str | os.PathLike[str] | None) -> None:
         self.path = None if path is None else Path(path)
         self._file = None
-        if self.path is not None and not self.path.parent.is_dir():
-            raise FileNotFoundError(f"cache folder does not exist: {self.path.parent}")
+        self._keep: int | None = None  # bytes to keep before appending (a cut line dropped)
+        self._newline = False  # the last line lacks its newline: add one before appending
+        if self.path is None:
+            return
+        if not self.path.parent.is_dir():
+            raise ParameterError(f"cache {self.path}: folder {self.path.parent} does not "
+                                 "exist")
+        if self.path.exists() and not self.path.is_file():
+            raise ParameterError(f"cache {self.path} is not a file (a folder?); give a "
+                                 "FILE.jsonl path")
 
-    def done(self) -> dict[str, dict]:
-        """Rows already computed, by key; a line cut short by an interruption is skipped
-        (that point runs again)."""
+    def done(self, check: Callable[[str, dict], dict] | None = None) -> dict[str, dict]:
+        """Rows already computed, by key.
+
+        ``check(key, row)`` returns the row as the study uses it or raises ParameterError
+        (for the keys of this study; rows of other studies sharing the file pass through).
+        A last line cut short by an interruption is skipped (that point runs again).
+
+        Raises
+        ------
+        ParameterError
+            Naming the file and the line: not UTF-8 text, a line that is not a
+            ``{"key", "row"}`` object, or a row ``check`` refuses.
+        """
         rows: dict[str, dict] = {}
         if self.path is None or not self.path.exists():
             return rows
-        with open(self.path, encoding="utf-8") as fh:
-            for line in fh:
+        lines = self._lines()
+        for number, line in enumerate(lines, start=1):
+            if not line.strip():
+                continue
+            last = number == len(lines) and not line.endswith("\n")
+            entry = self._entry(line, number, last)
+            if entry is None:
+                continue
+            key, row = entry
+            if check is not None:
                 try:
-                    entry = json.loads(line)
-                    rows[entry["key"]] = entry["row"]
-                except (json.JSONDecodeError, KeyError, TypeError):
-                    continue
+                    row = check(key, row)
+                except ParameterError as exc:
+                    raise ParameterError(f"cache {self.path} line {number}: {exc}; the file "
+                                         f"was edited or damaged: {_REMEDY}") from None
+            rows[key] = row
         return rows
+
+    def _lines(self) -> list[str]:
+        """The file's lines (with their newlines), as text."""
+        try:
+            data = self.path.read_bytes()
+        except OSError as exc:
+            raise ParameterError(f"cache {self.path}: cannot read it ({exc.strerror})"
+                                 ) from None
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise ParameterError(f"cache {self.path} is not a study cache: byte {exc.start} "
+                                 f"is not UTF-8 text (a binary file?); {_FILE_REMEDY}") from None
+        if "\x00" in text:
+            raise ParameterError(f"cache {self.path} is not a study cache: it holds NUL "
+                                 f"bytes (a binary file?); {_FILE_REMEDY}")
+        parts = text.split("\n")  # JSON Lines break at "\n" only
+        lines = [part + "\n" for part in parts[:-1]] + ([parts[-1]] if parts[-1] else [])
+        if lines and not lines[-1].endswith("\n"):
+            self._newline = True
+        return lines
+
+    def _entry(self, line: str, number: int, last: bool) -> tuple[str, dict] | None:
+        """(key, row) of one line; None for a last line cut short."""
+        where = f"cache {self.path} line {number}"
+        try:
+            entry = json.loads(line)
+        except json.JSONDecodeError as exc:
+            if last:  # cut short by an interruption: dropped before appending
+                self._keep = len(self.path.read_bytes()) - len(line.encode("utf-8"))
+                self._newline = False
+                return None
+            raise ParameterError(f"{where} is not JSON ({exc.msg}); {_REMEDY}") from None
+        if not isinstance(entry, dict) or set(entry) != {"key", "row"}:
+            got = sorted(entry) if isinstance(entry, dict) else type(entry).__name__
+            raise ParameterError(f"{where} must be an object with the fields key and row, "
+                                 f"got {got}; {_REMEDY}")
+        key, row = entry["key"], entry["row"]
+        if not isinstance(key, str) or not _KEY.match(key):
+            raise ParameterError(f"{where}: key must be {KEY_LENGTH} hexadecimal digits, got "
+                                 f"{key!r}; {_REMEDY}")
+        if not isinstance(row, dict):
+            raise ParameterError(f"{where}: row must be an object (column: value), got "
+                                 f"{type(row).__name__}; {_REMEDY}")
+        return key, row
 
     def __enter__(self) -> PointCache:
         if self.path is not None:
+            if self._keep is not None:
+                os.truncate(self.path, self._keep)
             self._file = open(self.path, "a", encoding="utf-8")
+            if self._newline:
+                self._file.write("\n")
         return self
 
     def add(self, entries: list[tuple[str, dict]]) -> None:

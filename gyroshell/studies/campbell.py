@@ -29,6 +29,7 @@ from ..core.units import unit_of
 from ..results import base
 from ..tape.parameters import TapeParameters
 from .branches import BranchTracker, track
+from .stages import stage_line
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -44,6 +45,38 @@ VEERING_COLUMNS = ("velocity", "branch_a", "branch_b", "omega_a", "omega_b", "ga
 #: How each table is stored in a file: (variable prefix, dimension).
 _STORED_TABLES = {"frame": ("", "row"), "crossings": ("crossing_", "crossing"),
                   "veerings": ("veering_", "veering")}
+
+
+#: Highest harmonic n of an excitation line ω = n·2πV/ℓ.
+MAX_ORDER = 1000
+
+
+def check_orders(orders) -> tuple[int, ...]:
+    """The harmonics n of the excitation lines: one or more integers in [1,
+    :data:`MAX_ORDER`], each once, in the order given.
+
+    Examples
+    --------
+    >>> check_orders([1, 2, 2])
+    (1, 2)
+    >>> check_orders([0, -1])
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: orders must be integers in [1, 1000] (harmonics n of ...), got 0
+    """
+    if isinstance(orders, (str, bytes)) or not hasattr(orders, "__iter__"):
+        raise ParameterError(f"orders must be a sequence of integers in [1, {MAX_ORDER}], "
+                             f"got {orders!r}")
+    out = []
+    for n in orders:
+        try:
+            out.append(validation.integer("orders", n, low=1, high=MAX_ORDER))
+        except ParameterError:
+            raise ParameterError(f"orders must be integers in [1, {MAX_ORDER}] (harmonics n "
+                                 f"of omega = n 2 pi V / circumference), got {n!r}") from None
+    if not out:
+        raise ParameterError("orders must hold at least one harmonic n >= 1")
+    return tuple(dict.fromkeys(out))
 
 
 def mac(phi_a: np.ndarray, phi_b: np.ndarray) -> np.ndarray:
@@ -89,6 +122,7 @@ class CampbellDiagram(base.Result, kind="campbell"):
     @staticmethod
     def excitation(order: int, circumference: float, velocity):
         """ω = n·2πV/ℓ, rad/s, of the n-th harmonic of a roller of circumference ℓ (m)."""
+        (order,) = check_orders([order])
         circumference = validation.positive("circumference", circumference, "m")
         return order * 2 * np.pi * np.asarray(velocity, dtype=float) / circumference
 
@@ -97,6 +131,8 @@ class CampbellDiagram(base.Result, kind="campbell"):
         ``omega`` (rad/s), by linear interpolation between the computed speeds."""
         import pandas as pd
 
+        orders = check_orders(orders)
+        validation.positive("circumference", circumference, "m")
         rows = []
         for branch, g in self.frame.groupby("branch"):
             g = g.sort_values("velocity")
@@ -111,9 +147,14 @@ class CampbellDiagram(base.Result, kind="campbell"):
         return pd.DataFrame(rows, columns=["order", "branch", "velocity", "omega"])
 
     def plot(self, ax=None, **options):
-        """See :func:`gyroshell.plot.campbell`."""
+        """See :func:`gyroshell.plot.campbell` (``orders`` and ``circumference`` checked
+        first)."""
         from .. import plot
 
+        if "orders" in options:
+            options["orders"] = check_orders(options["orders"])
+        if options.get("circumference") is not None:
+            validation.positive("circumference", options["circumference"], "m")
         return plot.campbell(self, ax=ax, **options)
 
     def to_frame(self) -> pd.DataFrame:
@@ -243,7 +284,8 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
         True: compute it (:func:`gyroshell.critical_speeds`); a number: use it;
         None/False: none.
     progress : bool or None
-        Progress bar on stderr; None: only if stderr is a terminal.
+        True: a progress bar on stderr, False: nothing; None: the bar on a terminal, else
+        one line per stage (:mod:`gyroshell.studies.stages`).
     continuation : bool
         Continue each solve from the previous speeds' modes, as :func:`gyroshell.sweep`
         does (the same frequencies to round-off, in fewer Lanczos steps); False solves each
@@ -260,6 +302,8 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     if np.any(np.diff(velocities) <= 0):
         raise ParameterError("velocities must be strictly ascending (m/s)")
     validation.real("min_mac", min_mac, low=0.0, high=1.0)
+    if not (critical_speed is None or isinstance(critical_speed, bool)):
+        validation.positive("critical_speed", critical_speed, "m/s")
     validation.positive("veering_gap", veering_gap)
     workers = check_workers(workers, len(velocities))
     results = solve_speeds(model, velocities, count, continuation=continuation,
@@ -269,6 +313,9 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     crossings, veerings = _crossings_and_veerings(frame, veering_gap)
     info = {"min_mac": min_mac, "veering_gap": veering_gap, "count": int(count),
             "continuation": bool(continuation), "workers": workers}
+    if critical_speed is True:
+        stage_line("campbell", "the critical speed (a few more eigen-solves)",
+                   progress=progress)
     return CampbellDiagram(frame, crossings, veerings, _critical_speed(model, critical_speed),
                            info, getattr(model, "params", None))
 

@@ -16,10 +16,16 @@ from ..core.errors import ParameterError
 from ..tape.parameters import TapeParameters
 from .points import parameters_of
 
-__all__ = ["COMPUTE_CHOICES", "check_compute", "evaluate", "result_columns"]
+__all__ = ["COMPUTE_CHOICES", "MAX_COUNT", "STABILITY_VALUES", "check_compute", "check_row",
+           "evaluate", "result_columns"]
 
 #: What a study can compute at each point.
 COMPUTE_CHOICES: tuple[str, ...] = ("critical", "modes", "static", "period")
+#: Most frequencies per point (the eigen-solver's limit,
+#: :data:`gyroshell.linalg.qep.problem.MAX_COUNT`; not imported: it loads scipy).
+MAX_COUNT = 50
+#: Values of the ``stability`` column ("": the eigen-solve of the point failed).
+STABILITY_VALUES: tuple[str, ...] = ("stable", "divergence", "flutter", "undetermined", "")
 
 
 def check_compute(compute: str | Sequence[str]) -> tuple[str, ...]:
@@ -157,3 +163,63 @@ def _static_columns(model, v: float, row: dict, compute, count: int) -> None:
     s = solve_static(model, v)
     row.update(load_point_deflection=s.load_point_deflection,
                max_deflection=s.max_deflection)
+
+
+#: The values each computed number may take: (lowest, whether +inf is allowed, unit); NaN
+#: is always allowed (the quantity failed at that point and says so in ``error``).
+_NUMBER_RANGES = {"critical_speed": (0.0, False, "m/s"), "divergence_speed": (0.0, False, "m/s"),
+                  "omega": (0.0, False, "rad/s"), "growth_rate": (0.0, False, "1/s"),
+                  "load_point_deflection": (-math.inf, False, "m"),
+                  "max_deflection": (-math.inf, False, "m"), "period": (0.0, True, "s")}
+
+
+def check_row(row: object, compute: Sequence[str], count: int) -> dict:
+    """A row read back (from a cache), checked as strictly as a computed one: exactly the
+    columns of :func:`result_columns`, each number real (NaN, or finite and in its range),
+    ``stability`` one of :data:`STABILITY_VALUES`, ``error`` text. Returns the row with
+    its numbers as floats.
+
+    Raises
+    ------
+    ParameterError
+        Naming the column and what it must be.
+
+    Examples
+    --------
+    >>> check_row({"critical_speed": "fast", "divergence_speed": 101.0, "error": ""},
+    ...           ("critical",), 1)
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: critical_speed must be a number >= 0 m/s or NaN, got 'fast'
+    """
+    columns = result_columns(compute, count)
+    if not isinstance(row, dict) or set(row) != set(columns):
+        got = sorted(row) if isinstance(row, dict) else type(row).__name__
+        raise ParameterError(f"row must have the columns {', '.join(columns)}, got {got}")
+    out = {}
+    for column in columns:
+        out[column] = _checked_cell(column, row[column])
+    return out
+
+
+def _checked_cell(column: str, value: object):
+    """One value of a row, checked (see :func:`check_row`)."""
+    if column == "error":
+        if not isinstance(value, str):
+            raise ParameterError(f"error must be text, got {value!r}")
+        return value
+    if column == "stability":
+        if value not in STABILITY_VALUES or not isinstance(value, str):
+            raise ParameterError(f"stability must be one of "
+                                 f"{', '.join(repr(v) for v in STABILITY_VALUES)}, got {value!r}")
+        return value
+    low, infinite, unit = _NUMBER_RANGES["omega" if column.startswith("omega_") else column]
+    allowed = (f"a number >= {low:g} {unit}" if low > -math.inf else f"a finite number {unit}")
+    allowed += " (or inf)" if infinite else ""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ParameterError(f"{column} must be {allowed} or NaN, got {value!r}")
+    value = float(value)
+    if math.isnan(value) or (math.isfinite(value) and value >= low) \
+            or (infinite and value == math.inf):
+        return value
+    raise ParameterError(f"{column} must be {allowed} or NaN, got {value!r}")

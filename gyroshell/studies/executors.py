@@ -10,19 +10,23 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 from ..core import validation
 from ..core.errors import ParameterError
-from ..core.parallel import process_pool
+from ..core.parallel import check_process_count, process_pool
 from . import evaluation
+from .scheduler import check_address, handshake, probe
 
 __all__ = ["CHUNKS_PER_WORKER", "CONNECT_TIMEOUT", "Executor", "StudyTask", "check_executor",
-           "chunks", "evaluate_chunk", "execute", "worker_version"]
+           "chunks", "connected", "evaluate_chunk", "execute", "worker_version"]
 
 #: How long to wait for a Dask scheduler to answer, s.
 CONNECT_TIMEOUT = 10.0
+#: Longest accepted ``connect_timeout``, s (an hour).
+MAX_CONNECT_TIMEOUT = 3600.0
 #: Chunks per worker when chunk size is automatic (balances load against overhead).
 CHUNKS_PER_WORKER = 4
 
@@ -62,25 +66,26 @@ def check_executor(workers: int | None, scheduler: str | None, chunk_size: int |
     Raises
     ------
     ParameterError
-        For a malformed address, both ``workers`` and ``scheduler``, or a count or timeout
-        out of range.
+        For a malformed address (:func:`gyroshell.studies.scheduler.check_address`: scheme,
+        host, port; no network yet), both ``workers`` and ``scheduler``, or a count or
+        timeout out of range.
     """
-    if scheduler is not None and (not isinstance(scheduler, str) or "://" not in scheduler):
-        raise ParameterError(f"scheduler must be an address like tcp://HOST:PORT, got "
-                             f"{scheduler!r}")
+    if scheduler is not None:
+        check_address(scheduler)
     if scheduler is not None and workers is not None:
         raise ParameterError("give workers (local processes) or scheduler (a Dask cluster, "
                              "whose workers run the points), not both")
     workers = _check_workers(workers) if scheduler is None else None
     chunk_size = validation.integer("chunk_size", chunk_size, low=1, optional=True)
-    connect_timeout = validation.positive("connect_timeout", connect_timeout, "s")
+    connect_timeout = validation.real("connect_timeout", connect_timeout, low=0.0,
+                                      low_open=True, high=MAX_CONNECT_TIMEOUT, unit="s")
     return Executor(workers, scheduler, chunk_size, connect_timeout)
 
 
 def _check_workers(workers) -> int:
     if workers is None:
         return max(1, os.cpu_count() or 1)
-    return validation.integer("workers", workers, low=1)
+    return check_process_count("workers", workers)
 
 
 def chunks(tasks: list, size: int) -> list[list]:
@@ -109,9 +114,10 @@ def evaluate_chunk(task: StudyTask, points: list[tuple[int, dict]]) -> Rows:
 
 
 def execute(todo: list[tuple[int, dict]], record: Callable[[Rows], None], task: StudyTask,
-            where: Executor) -> tuple[str, int]:
+            where: Executor, client=None) -> tuple[str, int]:
     """Run the points ``todo`` ((index, point) pairs) where asked; ``record`` gets each
-    finished chunk's rows as it finishes.
+    finished chunk's rows as it finishes. With a scheduler, ``client`` is the connected
+    Dask client (:func:`connected`).
 
     Returns
     -------
@@ -123,7 +129,7 @@ def execute(todo: list[tuple[int, dict]], record: Callable[[Rows], None], task: 
     if not todo:
         return "cache", 0
     if where.scheduler is not None:
-        return _execute_dask(todo, record, task, where)
+        return _execute_dask(todo, record, task, where, client)
     if where.workers == 1:
         size = where.chunk_size or 1
         for chunk in chunks(todo, size):
@@ -164,28 +170,64 @@ def _check_worker_versions(client, scheduler: str) -> None:
                              f"{__version__}: install the same version on every worker")
 
 
-def _execute_dask(todo, record: Callable[[Rows], None], task: StudyTask, where: Executor
-                  ) -> tuple[str, int]:
-    """The points on the workers of the Dask scheduler ``where.scheduler``."""
+@contextmanager
+def connected(where: Executor | None) -> Iterator:
+    """A Dask client connected to ``where.scheduler``, its workers checked, closed at the
+    end; None (and nothing done) without a scheduler.
+
+    The address is probed first (:mod:`gyroshell.studies.scheduler`): a refused connection
+    fails at once, and nothing waits longer than ``where.connect_timeout`` for a server
+    that does not speak Dask's protocol.
+
+    Raises
+    ------
+    ParameterError
+        Dask not installed, the scheduler unreachable or not a Dask scheduler, no workers,
+        or workers running another gyroshell.
+    """
+    if where is None or where.scheduler is None:
+        yield None
+        return
+    client = _connect(where)
     try:
-        from distributed import Client, as_completed
+        _check_worker_versions(client, where.scheduler)
+        yield client
+    finally:
+        client.close()
+
+
+def _connect(where: Executor):
+    """The Dask client of ``where.scheduler``, after the address is probed."""
+    address = check_address(where.scheduler)
+    probe(address, where.connect_timeout)
+    try:
+        from distributed import Client
+        from distributed.security import Security
     except ImportError:
         raise ParameterError('--scheduler needs Dask: pip install "gyroshell[cluster]"'
                              ) from None
-    scheduler = where.scheduler
+    connection_args = Security().get_connection_args("client")
+    if address.scheme in ("tls", "wss") and connection_args.get("ssl_context") is None:
+        raise ParameterError(f"scheduler {where.scheduler}: {address.scheme}:// needs Dask's "
+                             "TLS settings (distributed.comm.tls.ca-file, .client.cert and "
+                             ".client.key in the Dask configuration), and none are set")
+    handshake(address, where.connect_timeout, connection_args)
     try:
-        client = Client(scheduler, timeout=where.connect_timeout)
+        return Client(where.scheduler, timeout=where.connect_timeout)
     except (OSError, TimeoutError) as exc:
-        raise ParameterError(f"cannot reach the Dask scheduler at {scheduler}: {exc}"
+        raise ParameterError(f"cannot reach the Dask scheduler at {where.scheduler}: {exc}"
                              ) from None
-    try:
-        _check_worker_versions(client, scheduler)
-        threads = max(1, sum(client.nthreads().values()))
-        size = _automatic_size(todo, threads, where.chunk_size)
-        futures = [client.submit(evaluate_chunk, task, chunk, pure=False)
-                   for chunk in chunks(todo, size)]
-        for fut in as_completed(futures):
-            record(fut.result())
-    finally:
-        client.close()
-    return f"dask({scheduler})", size
+
+
+def _execute_dask(todo, record: Callable[[Rows], None], task: StudyTask, where: Executor,
+                  client) -> tuple[str, int]:
+    """The points on the workers of the connected Dask ``client``."""
+    from distributed import as_completed
+
+    threads = max(1, sum(client.nthreads().values()))
+    size = _automatic_size(todo, threads, where.chunk_size)
+    futures = [client.submit(evaluate_chunk, task, chunk, pure=False)
+               for chunk in chunks(todo, size)]
+    for fut in as_completed(futures):
+        record(fut.result())
+    return f"dask({where.scheduler})", size

@@ -48,14 +48,14 @@ from typing import TYPE_CHECKING
 
 from ..core import validation
 from ..core.errors import ParameterError
-from ..core.progress import progress_bar
 from ..core.units import unit_of
 from ..results import base as results_base
 from ..tape.parameters import TapeParameters, check_velocity
 from .cache import PointCache, point_key
-from .evaluation import COMPUTE_CHOICES, check_compute, result_columns
-from .executors import CONNECT_TIMEOUT, Executor, StudyTask, check_executor, execute
+from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
+from .executors import CONNECT_TIMEOUT, Executor, StudyTask, check_executor, connected, execute
 from .points import VARIABLE_NAMES, canonical_name, check_points, grid_points
+from .stages import stage_progress
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -185,28 +185,29 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         A grid: every combination of the values (first name slowest). Names are the
         TapeParameters fields (SI units) and ``velocity`` (m/s).
     points : sequence of mappings, optional
-        Or an explicit list of points, e.g. ``[{"tension": 80, "velocity": 50}, ...]``.
+        Or a list of points, e.g. ``[{"tension": 80, "velocity": 50}, ...]``.
     compute : str or sequence of str
         Any of ``critical``, ``modes``, ``static``, ``period`` (see the module docstring).
     velocity : float
         Tape speed V, m/s, where a point does not set it.
     count : int
-        Frequencies per point for ``modes``.
+        Frequencies per point for ``modes``, in [1, 50].
     workers : int, optional
-        Local worker processes (1: run in this process). Default: the number of CPUs.
+        Local processes (1: this process; at most 4 per CPU). Default: one per CPU.
     scheduler : str, optional
-        Address of a running Dask distributed scheduler (``tcp://HOST:PORT``); the points
-        run on its workers instead (needs ``pip install "gyroshell[cluster]"``).
+        A running Dask scheduler's address (``tcp://HOST:PORT``, :mod:`~.scheduler` lists
+        the schemes): the points run on its workers (``pip install "gyroshell[cluster]"``).
     connect_timeout : float
-        Seconds to wait for the ``scheduler`` to answer.
+        Seconds, in (0, 3600], to connect and complete Dask's handshake (refused: at once).
     cache : path, optional
-        JSON Lines file of finished points; a repeated study skips them.
+        JSON Lines file of finished points (checked as strictly as computed rows); a
+        repeated study skips them.
     chunk_size : int, optional
-        Points per task; default about ``CHUNKS_PER_WORKER`` tasks per worker (1 in this
-        process; :data:`gyroshell.studies.executors.CHUNKS_PER_WORKER`).
+        Points per task; default: 1 in this process, else about
+        :data:`~gyroshell.studies.executors.CHUNKS_PER_WORKER` tasks per worker.
     progress : bool, optional
-        Progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`); default
-        only when stderr is a terminal.
+        True: a bar on stderr, False: nothing, None: the bar on a terminal, else one line
+        per stage (:mod:`gyroshell.studies.stages`).
 
     Returns
     -------
@@ -215,8 +216,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     Raises
     ------
     ParameterError
-        Unknown parameter names, invalid values (naming the point), bad options, an
-        unreachable scheduler or workers running another gyroshell version.
+        Bad names, values (naming the point) or options; a scheduler unreachable or not
+        Dask's, or workers of another gyroshell; a damaged cache (naming file and line).
 
     Examples
     --------
@@ -264,7 +265,7 @@ def _plan(base, vary, points, compute, velocity, count) -> _Plan:
     validation.instance("base", base, TapeParameters)
     velocity = check_velocity(velocity)
     compute = check_compute(compute)
-    count = validation.integer("count", count, low=1)
+    count = validation.integer("count", count, low=1, high=MAX_COUNT)
     if (vary is None) == (points is None):
         raise ParameterError("give either vary (a grid) or points (a list), not both")
     raw = grid_points(vary) if vary is not None else list(points)
@@ -275,23 +276,32 @@ def _plan(base, vary, points, compute, velocity, count) -> _Plan:
 
 
 def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyResult:
-    """Compute the points the cache lacks, where asked, and gather the rows."""
-    import pandas as pd
+    """Compute the points the cache lacks, where asked, and gather the rows.
 
+    The cache is read and checked, and the scheduler connected, before any work and before
+    the cache file is opened for appending: a refusal leaves the file as it was (and
+    costs no import of pandas or Dask).
+    """
     keys, pts = plan.keys(), plan.points
+    ours = set(keys)
     cache = PointCache(cache)
-    done = cache.done()
+    done = cache.done(lambda key, row: check_row(row, plan.compute, plan.count)
+                      if key in ours else row)
     rows: dict[int, dict] = {i: done[k] for i, k in enumerate(keys) if k in done}
     todo = [(i, pts[i]) for i in range(len(pts)) if i not in rows]
     t0 = time.perf_counter()
-    bar = progress_bar(len(pts), "study", progress=progress, unit="point", initial=len(rows))
-    with cache, bar:
+    bar = stage_progress(len(pts), "study", progress=progress, unit="point",
+                         initial=len(rows))
+    with connected(where if todo else None) as client, cache, bar:
         def record(results: list[tuple[int, dict]]) -> None:
             rows.update(results)
             cache.add([(keys[i], row) for i, row in results])
             bar.update(len(results))
 
-        executor, size = execute(todo, record, plan.task, where)
+        bar.start(_where_text(where, todo))
+        executor, size = execute(todo, record, plan.task, where, client)
+    import pandas as pd
+
     columns = result_columns(plan.compute, plan.count)
     records = [{"point": i, **pts[i], **{c: rows[i][c] for c in columns}}
                for i in range(len(pts))]
@@ -300,3 +310,12 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
             "seconds": time.perf_counter() - t0, "executor": executor, "chunk_size": size}
     return StudyResult(table, plan.base, plan.velocity, plan.varied, plan.compute,
                        plan.count, info)
+
+
+def _where_text(where: Executor, todo: list) -> str:
+    """Where the points run, for the first progress line."""
+    if not todo:
+        return "(nothing to compute)"
+    if where.scheduler is not None:
+        return f"on the Dask scheduler {where.scheduler}"
+    return "in this process" if where.workers == 1 else f"on {where.workers} processes"

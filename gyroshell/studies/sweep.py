@@ -23,15 +23,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core import budget, validation
+from ..core import budget
 from ..core.errors import ParameterError
-from ..core.parallel import process_pool
-from ..core.progress import progress_bar
+from ..core.parallel import check_process_count, process_pool
 from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
+from ..linalg.qep.problem import check_count
 from ..results import base
 from ..tape.model import TapeModel
 from ..tape.parameters import TapeParameters, check_velocity
 from .branches import BranchTracker, Match, track
+from .stages import stage_progress
 
 if TYPE_CHECKING:  # pandas is imported when a sweep runs: keep `import gyroshell` fast
     import pandas as pd
@@ -223,8 +224,8 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         A match weaker than this starts a new branch (the mode left the lowest-``count``
         window and another entered); take smaller speed steps to follow branches further.
     progress : bool or None
-        Show a progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`);
-        None: only if stderr is a terminal.
+        True: a progress bar on stderr, False: nothing; None: the bar on a terminal, else
+        one line per stage (:mod:`gyroshell.studies.stages`).
     continuation : bool
         Move the shift with the tracked lowest frequency (extrapolated from the previous
         speeds, see :func:`_continuation_options`), start each solve from the previous
@@ -278,9 +279,9 @@ def _check_sweep(model, velocities, min_correlation: float, workers
 
 
 def check_workers(workers, speeds: int) -> int:
-    """The number of local processes for ``speeds`` speeds: an integer >= 1, at most one
-    per speed."""
-    return min(validation.integer("workers", workers, low=1), speeds)
+    """The number of local processes for ``speeds`` speeds: an integer in [1,
+    :func:`gyroshell.core.parallel.max_processes`], used at most one per speed."""
+    return min(check_process_count("workers", workers), speeds)
 
 
 def solve_speeds(model, velocities: list[float], count: int, *, continuation: bool,
@@ -290,9 +291,14 @@ def solve_speeds(model, velocities: list[float], count: int, *, continuation: bo
 
     One process continues each speed from the previous ones (``continuation``); several
     ``workers`` each continue one contiguous run of the speeds. ``options`` go to
-    :func:`gyroshell.modes`; the bar is labelled ``description``.
+    :func:`gyroshell.modes`; the bar is labelled ``description``. ``count`` is checked
+    first (against the model's unknowns), before the progress starts.
     """
-    with progress_bar(len(velocities), description, progress=progress, unit="speed") as bar:
+    count = check_count(count, model.unknowns)
+    with stage_progress(len(velocities), description, progress=progress,
+                        unit="speed") as bar:
+        bar.start(f"of {count} modes each, {model.unknowns} unknowns, "
+                  + ("in this process" if workers == 1 else f"on {workers} processes"))
         if workers == 1:
             return _solve_run(model, velocities, count, continuation, options, bar.update)
         return _solve_parallel(model, velocities, count, continuation, options, workers,

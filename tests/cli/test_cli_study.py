@@ -140,7 +140,7 @@ def test_campbell_command(tmp_path, capsys):
     table = pd.read_csv(out)
     assert list(table.columns) == ["velocity", "branch", "rank", "omega", "growth_rate", "mac"]
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert exit_code(["campbell", *COARSE, "--orders", "x"]) == 2
+    assert exit_code(["campbell", *COARSE, "--circumference", "0.01", "--orders", "x"]) == 2
     assert "--orders must be integers" in capsys.readouterr().err
 
 
