@@ -191,7 +191,7 @@ def _tape(args: argparse.Namespace):
     if args.config is not None:
         from ..tape.config import load_config
 
-        cfg = load_config(args.config)
+        cfg = load_config(args.config, adjust=_without_plate_fields)
         base = cfg.params
         velocity = cfg.velocity if velocity is None else velocity
         if base.edges != "free" and not args.infinitely_wide:
@@ -208,6 +208,17 @@ def _tape(args: argparse.Namespace):
         raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
                         f"got {velocity:g}")
     return params, params.check_velocity(velocity)
+
+
+def _without_plate_fields(fields: dict) -> dict:
+    """A config file's tape fields with the plate grid's (unused here) set so that they
+    pass: the spacing from the file's width (or the default width)."""
+    from ..tape.parameters import TapeParameters
+
+    width = fields.get("width", TapeParameters.width)
+    spacing = width / PLATE_INTERVALS if width > 0 else TapeParameters.spacing
+    return {**fields, "length_ratio": 4.0, "spacing": spacing, "load": 0.0,
+            "load_x": None, "load_y": None}
 
 
 def _refuse_unused_material(args: argparse.Namespace, params) -> None:

@@ -106,8 +106,12 @@ def parse_quantity(key: str, value, where: str = "") -> float:
     return number * factor
 
 
-def config_from_dict(data: dict, where: str = "") -> TapeConfig:
-    """Validate a parsed TOML table (see the module docstring) into a :class:`TapeConfig`."""
+def config_from_dict(data: dict, where: str = "", adjust=None) -> TapeConfig:
+    """Validate a parsed TOML table (see the module docstring) into a :class:`TapeConfig`.
+
+    ``adjust``, if given, maps the file's TapeParameters fields (a dict, SI) to those to
+    validate (see :func:`load_config`).
+    """
     if "tape" in data:
         extra = sorted(set(data) - {"tape"})
         if extra:
@@ -143,7 +147,7 @@ def config_from_dict(data: dict, where: str = "") -> TapeConfig:
             else:
                 fields[key] = value
     try:
-        params = TapeParameters(**fields)
+        params = TapeParameters(**(fields if adjust is None else adjust(dict(fields))))
     except ParameterError as exc:
         raise ParameterError(f"{where}{exc}") from None
     return TapeConfig(params, velocity, name)
@@ -183,8 +187,18 @@ def config_text_of(raw: bytes, where: str) -> str:
                              f"{exc.start}): TOML files are UTF-8") from None
 
 
-def load_config(path: str | os.PathLike[str]) -> TapeConfig:
+def load_config(path: str | os.PathLike[str], *, adjust=None) -> TapeConfig:
     """Read a tape definition (TOML, see the module docstring).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The TOML file.
+    adjust : callable, optional
+        Maps the file's TapeParameters fields (a dict of SI values) to the fields to
+        validate: a caller that does not use some of them (the air bearing has no plate
+        grid: ``spacing``, ``length_ratio``, the load) replaces them before
+        :class:`TapeParameters` checks them.
 
     Raises
     ------
@@ -203,7 +217,7 @@ def load_config(path: str | os.PathLike[str]) -> TapeConfig:
         data = _tomllib().loads(text)
     except _tomllib().TOMLDecodeError as exc:
         raise ParameterError(f"{where}not valid TOML: {exc}") from None
-    return config_from_dict(data, where=where)
+    return config_from_dict(data, where=where, adjust=adjust)
 
 
 def _format(key: str, value) -> str:

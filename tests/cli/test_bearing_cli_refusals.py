@@ -86,6 +86,23 @@ def test_plate_keys_of_a_config_file_do_not_apply(cli, tmp_path):
     assert json.loads(run.out)["width"] == 6.35e-3
 
 
+def test_narrow_tape_of_a_config_file_is_not_refused_by_the_plate_grid(cli, tmp_path):
+    """A 1 mm tape in a file without a spacing key: the default plate spacing (0.155 mm)
+    would leave fewer than 8 intervals across, but the bearing has no plate grid."""
+    tape = tmp_path / "narrow.toml"
+    tape.write_text('[tape]\nwidth = "1 mm"\nvelocity = "4 m/s"\n')
+    run = cli(["bearing", "--config", tape, "--nx", "40", "--ny", "8", "--json", "--quiet"])
+    assert run.code == 0, run.err
+    assert json.loads(run.out)["width"] == 1e-3
+
+
+def test_a_config_file_of_a_negative_width_is_still_refused(cli, tmp_path):
+    tape = tmp_path / "negative.toml"
+    tape.write_text('[tape]\nwidth = "-1 mm"\nvelocity = "4 m/s"\n')
+    line = _one_error_line(cli(["bearing", "--config", tape, "--quiet"]))
+    assert "negative.toml: width must be > 0 m, got -0.001" in line
+
+
 def test_bearing_parameters_through_the_python_api():
     """The bearing's tape: the typed fields, and plate-grid fields that always pass."""
     import argparse
