@@ -184,16 +184,21 @@ class BearingModel:
         self.length = params.radius * self.wrap_angle + 2.0 * self.span
         self.grading = _resolved_grading(grading, self.infinitely_wide,
                                          X_GRADING_WIDTH * max(l_film, l_bend))
-        self._build_x_line(nx, l_film, resolution_length(l_film, l_bend), span is not None)
+        x_line = self._x_count(nx, l_film, resolution_length(l_film, l_bend),
+                               span is not None)
+        if self.infinitely_wide and ny is not None:
+            raise ParameterError(f"ny applies to the 2-D tape only: leave it None with "
+                                 f"infinitely_wide=True, got {ny!r}")
+        y_line = None if self.infinitely_wide else self.grading.y_line(params.width)
+        ny = None if self.infinitely_wide else self._y_count(ny, y_line)
+        budget.check_steady(self.nx, ny)          # before any array of the grid's size
+        self.x = symmetric_line_nodes(self.length, self.nx, x_line)
+        self._check_film_resolved(l_film, x_line)
         if self.infinitely_wide:
-            if ny is not None:
-                raise ParameterError(f"ny applies to the 2-D tape only: leave it None with "
-                                     f"infinitely_wide=True, got {ny!r}")
-            budget.check_steady(self.nx, None)
             self.ny, self.y, self.nc = None, None, 1
             self.tape = StripOperators(params, self.x)
         else:
-            self._build_y_line(ny)
+            self._build_y_line(ny, y_line)
             self.tape = PlateOperators(params, self.x, self.y)
         self._couple_film_and_loads()
 
@@ -241,19 +246,18 @@ class BearingModel:
                            f"{p.string_speed:.4g} m/s: use a lower velocity")
         return text + "use a lower velocity or viscosity, or a higher tension"
 
-    def _build_x_line(self, nx: int | None, l_film: float, resolution: float,
-                      span_given: bool) -> None:
-        """The x-nodes (:attr:`x`, m) and their count :attr:`nx` (default from the
-        ``resolution`` length, m), refused if too coarse for the film (``l_film``, m)."""
+    def _x_count(self, nx: int | None, l_film: float, resolution: float,
+                 span_given: bool):
+        """The number of x-intervals :attr:`nx` (default from the ``resolution`` length, m;
+        see :meth:`_default_nx`), checked; returns the x-line's grading (None: uniform)."""
         half_wrap = 0.5 * self.params.radius * self.wrap_angle
         x_line = self.grading.x_line(self.length, (0.5 * self.length - half_wrap,
                                                    0.5 * self.length + half_wrap))
         if nx is None:
             nx = self._default_nx(x_line, l_film, resolution, span_given)
-        nx = validation.integer("nx", nx, low=MIN_INTERVALS_ALONG, high=MAX_INTERVALS_ALONG)
-        self.nx = nx
-        self.x = symmetric_line_nodes(self.length, self.nx, x_line)
-        self._check_film_resolved(l_film, x_line)
+        self.nx = validation.integer("nx", nx, low=MIN_INTERVALS_ALONG,
+                                     high=MAX_INTERVALS_ALONG)
+        return x_line
 
     def _check_film_resolved(self, l_film: float, x_line) -> None:
         """Refuse an x-grid coarser than MAX_FILM_SPACING film lengths within a film length
@@ -308,11 +312,9 @@ class BearingModel:
                 f"{need}; use a higher velocity (the tape is then in contact with the head "
                 "anyway) or set nx")
 
-    def _build_y_line(self, ny: int | None) -> None:
-        """The y-nodes (:attr:`y`, m), their count :attr:`ny` and :attr:`nc` = ny + 1,
-        after the memory check of the grid; warns if the free edges are under-resolved."""
+    def _y_count(self, ny: int | None, y_line) -> int:
+        """The number of y-intervals (default: see the class docstring), checked."""
         width = self.params.width
-        y_line = self.grading.y_line(width)
         if ny is None:
             ny = max(MIN_INTERVALS_ACROSS,
                      2 * round(0.5 * width / Y_SPACING) if y_line is None
@@ -321,9 +323,13 @@ class BearingModel:
         if ny % 2:
             raise ParameterError(f"ny must be an even integer >= {MIN_INTERVALS_ACROSS} "
                                  f"(a node on the centre line), got {ny!r}")
-        budget.check_steady(self.nx, ny)
+        return ny
+
+    def _build_y_line(self, ny: int, y_line) -> None:
+        """The y-nodes (:attr:`y`, m), their count :attr:`ny` and :attr:`nc` = ny + 1;
+        warns if the free edges are under-resolved (:data:`MAX_EDGE_SPACING`)."""
         self.ny = ny
-        self.y = symmetric_line_nodes(width, self.ny, y_line)
+        self.y = symmetric_line_nodes(self.params.width, self.ny, y_line)
         self.nc = self.ny + 1
         edge = float(self.y[1] - self.y[0])
         if edge > MAX_EDGE_SPACING:
