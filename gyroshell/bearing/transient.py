@@ -149,8 +149,8 @@ def march(start: BearingSolution, *, dt: float, steps: int,
     tension : callable, optional
         T(t), N/m, above ρV² at every step (default: the model's constant T).
     moving_load : callable, optional
-        Extra nodal forces on the tape at time t, N, a vector of ``model.n_u`` entries
-        (e.g. a load crossing the head).
+        Extra nodal forces on the tape at time t, N, ``model.n_u`` of them (e.g. a load
+        crossing the head).
     beta, gamma : float
         Newmark parameters (default the trapezoidal rule; γ > ½ damps numerically).
     record_every : int
