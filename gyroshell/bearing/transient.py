@@ -156,8 +156,8 @@ def march(start: BearingSolution, *, dt: float, steps: int,
     record_every : int
         Record every this many steps (each keeps the centre line, nx + 1 values).
     progress : bool or None
-        A progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`); None:
-        only if stderr is a terminal.
+        A progress bar on stderr (:func:`~gyroshell.core.progress.progress_bar`); None: on a
+        terminal only.
 
     Raises
     ------
@@ -167,11 +167,10 @@ def march(start: BearingSolution, *, dt: float, steps: int,
     """
     model, dt, steps, record_every, beta, gamma, T = _checked_march(
         start, dt, steps, record_every, beta, gamma, tension, moving_load)
-    floor = model.params.density * model.velocity**2
+    floor = model.params.density * model.velocity**2      # T(t) must stay above it
     G = model.tape.G(model.velocity)
     u, p = start.u.copy(), start.p.copy()
-    v = np.zeros_like(u)
-    a = np.zeros_like(u)   # the start is an equilibrium of the tape at T(0)
+    v, a = np.zeros_like(u), np.zeros_like(u)   # at rest, an equilibrium at T(0)
     phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
     record = _Record(model)
     sol = record(0.0, u, p, start.contact, 0, _tension_at(T, 0.0, floor))
