@@ -151,20 +151,35 @@ class BearingModel:
     infinitely_wide : bool
         Infinitely wide tape (1-D, per unit width) instead of the free-edged 2-D tape.
     span : float, optional
-        Length of each tangent span in the domain, m (default: 10 (2-D: 6) times the
-        larger of the film length R ε^(1/3) and the bending length √(D/(T − ρV²))).
+        Length of each tangent span in the domain, m, in [3 ℓ, R] with ℓ the larger of the
+        film length R ε^(1/3) and the bending length √(D/(T − ρV²)) (default: 10 (2-D: 6)
+        ℓ, at most R).
     nx : int, optional
-        Intervals along x (default: on the graded 2-D grid a spacing of 1/15 of the
-        smaller of those lengths at the wrap corners, a multiple of 4; on a uniform grid
-        1/12 (2-D: 1/6) of it, made even).
+        Intervals along x, in [8, 50000], leaving at most one film length between nodes
+        near the wrap corners (default: on the graded 2-D grid a spacing of 1/15 of the
+        resolution length at the wrap corners, a multiple of 4; on a uniform grid 1/12
+        (2-D: 1/6) of it, made even). The resolution length is the smaller of the film
+        and bending lengths, but no less than half the film length
+        (:func:`resolution_length`).
     ny : int, optional
         Intervals across the width in 2-D (even, >= 8; default: an edge spacing near
-        12 µm on the graded grid, a multiple of 4; a spacing near 50 µm on a uniform one).
+        12 µm on the graded grid, a multiple of 4; a spacing near 50 µm on a uniform one;
+        an edge spacing above 100 µm warns, :class:`BearingGridWarning`). None for the
+        infinitely wide tape.
     grading : Grading or "uniform", optional
         How the grid is graded (:class:`gyroshell.bearing.mesh.Grading`). Default: the
         2-D tape's grid is graded towards the free edges and the wrap corners
         (:data:`DEFAULT_GRADING`), the infinitely wide tape's is uniform. ``"uniform"``:
         uniform each way. A grading given to an infinitely wide tape grades its x-grid.
+
+    Raises
+    ------
+    ParameterError
+        Before anything of the grid's size is allocated: an argument of the wrong type or
+        range, a span outside its range (naming the film or bending length that sets it,
+        and whether the viscosity, the speed or the tape's stiffness makes it so), a grid
+        too coarse for the film (naming the smallest nx) or too large for the memory limit
+        (:func:`gyroshell.bearing.budget.check_steady`).
     """
 
     def __init__(self, params: TapeParameters, air: AirParameters | None = None, *,
