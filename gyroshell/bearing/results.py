@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -22,7 +23,7 @@ from ..core.errors import ParameterError
 from ..results.base import Result, dataset, from_json, params_from
 from .air import AirParameters
 from .mesh import Grading
-from .model import BearingModel
+from .model import BearingGridWarning, BearingModel
 
 #: Summary entries not stored in a file's ``summary`` attribute (lists, kept in ``info``).
 _NOT_STORED = ("newton_step_norms",)
@@ -433,7 +434,9 @@ def _model_from(ds, prefix: str = "") -> BearingModel:
                              f"{sorted(Grading().as_dict())}, got {grading!r}")
     settings["grading"] = Grading(**grading)
     air = _stored_dict(a, "air", [f.name for f in dataclasses.fields(AirParameters)])
-    model = BearingModel(params_from(a), AirParameters(**air), **settings)
+    with warnings.catch_warnings():   # the grid was the saver's choice: no warning on load
+        warnings.simplefilter("ignore", BearingGridWarning)
+        model = BearingModel(params_from(a), AirParameters(**air), **settings)
     x_ok = np.allclose(ds["x"].values, model.x - 0.5 * model.length, rtol=0,
                        atol=COORDINATE_TOLERANCE * model.length)
     y_ok = model.infinitely_wide or np.allclose(
