@@ -24,7 +24,8 @@ import scipy.sparse as sp
 from ..core import validation
 from ..core.errors import ParameterError
 from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
-from .air import AirParameters
+from . import budget
+from .air import AIR_VISCOSITY, AirParameters
 from .film import Film
 from .geometry import check_wrap_angle, dry_curvature, dry_gap
 from .mesh import UNIFORM, Grading, intervals_for, symmetric_line_nodes
@@ -34,20 +35,47 @@ from .tape import PlateOperators, StripOperators
 #: (infinitely wide tape; the 2-D tape uses fewer: its cost grows with the domain).
 SPAN_LENGTHS = 10.0
 SPAN_LENGTHS_2D = 6.0
-#: Default x-spacing, in units of the smaller length (infinitely wide; 2-D).
+#: Shortest span, in the same units: the pressure must return to ambient before the tape's
+#: pinned end. Measured (Table 1 tape at 1, 4 and 16 m/s, and D = 1e-10 N*m; infinitely
+#: wide, against spans of 20 lengths): h_c is 2-4 % low at 3 lengths, 7-14 % at 2, 38-55 %
+#: at 1 and 95 % at 1/4 (a span of 1e-12 m pinned the tape onto the head).
+MIN_SPAN_LENGTHS = 3.0
+#: Longest span, in units of the head radius R: the gap w₀ = s²/(2R) of the tangent spans is
+#: the small-slope (shallow-shell) approximation, whose slope s/R must stay below 1.
+MAX_SPAN_RADII = 1.0
+#: Default x-spacing, in units of the resolution length (:func:`resolution_length`;
+#: infinitely wide; 2-D).
 #: Most intervals along the tape (an automatic grid past this means a film far shorter
 #: than the wrap: a speed so low that the tape lies on the head).
 MAX_INTERVALS_ALONG = 50_000
 X_RESOLUTION = 1.0 / 12.0
 X_RESOLUTION_2D = 1.0 / 6.0
+#: A bending length shorter than this fraction of the film length is not resolved by the
+#: default grid: its layers carry no error the film's own discretization does not already
+#: make. Measured (infinitely wide, V = 4 m/s, uniform grids): with D = 1e-8 N*m (bending
+#: length 0.03 film lengths) 400 intervals, 2.8 bending lengths each, put h_c within 7e-5
+#: of the fully resolved value (25,600 intervals); with D = 1e-10 N*m 100 intervals,
+#: 114 bending lengths each, within 0.12 %, the error of the same grid with no bending at
+#: all. The Table 1 tape (0.53) is resolved by its bending length as before.
+BENDING_RESOLVED = 0.5
+#: Coarsest x-spacing within the wrap and one film length about it, in film lengths
+#: R ε^(1/3): a coarser grid does not resolve the film. Measured (Table 1 tape, 4 m/s,
+#: 15°; against the default grids): 2-D graded, h_c 48 % low at 1.94 film lengths
+#: (nx = 8) and 2 % off at 0.88 (nx = 16); infinitely wide, 17 % at 2.8, 1.9 % at 1.9 and
+#: 0.8 % at 1.4.
+MAX_FILM_SPACING = 1.0
+#: Coarsest y-spacing at the free edges before a warning, m: coarser edge rows falsely touch
+#: down (measured on the 6.35 mm Table 1 tape at 4 m/s: 112 µm gave 2-17 nodes in contact
+#: and h_min 20-90 % low, 74 µm none).
+MAX_EDGE_SPACING = 100e-6
 #: Default y-spacing of the uniform 2-D tape, m: resolves the free edges' boundary layer
 #: (about 0.5 mm wide on the Table 1 tape at 4 m/s), whose spacing then converges to a few %.
 Y_SPACING = 50e-6
 #: The default 2-D grid is graded (see :mod:`.mesh`): this much finer at the wrap corners
 #: than far along the spans, and at the free edges than in the middle of the width ...
 DEFAULT_GRADING = Grading(x_ratio=4.0, x_width=None, y_ratio=10.0, y_width=0.4e-3)
-#: ... with these spacings at the corners (in units of the smaller of the film and bending
-#: lengths) and at the edges (m). Chosen by a refinement study (docs/bearing.md): on the
+#: ... with these spacings at the corners (in units of the resolution length) and at the
+#: edges (m). Chosen by a refinement study (docs/bearing.md): on the
 #: Table 1 tape at 4 m/s and 15° (12 µm both) the edge minimum is 0.55 % below its
 #: Richardson value and the 12.65 mm tape solves in ~12 s.
 X_RESOLUTION_GRADED = 1.0 / 15.0
@@ -61,6 +89,10 @@ MIN_INTERVALS_ALONG = 8
 _FOIL_GUESS = 0.64
 
 
+class BearingGridWarning(UserWarning):
+    """The grid is coarse enough that the result may be off (the message says by how much)."""
+
+
 def foil_length_scales(params: TapeParameters, air: AirParameters, velocity: float
                        ) -> tuple[float, float, float]:
     """(h_foil, ℓ_film, ℓ_bend), m: the flexible-foil spacing scale R ε^(2/3), the entrance
@@ -69,6 +101,13 @@ def foil_length_scales(params: TapeParameters, air: AirParameters, velocity: flo
     eps = 6.0 * air.viscosity * velocity / t_eff
     r = params.radius
     return r * eps ** (2 / 3), r * eps ** (1 / 3), math.sqrt(params.D / t_eff)
+
+
+def resolution_length(l_film: float, l_bend: float) -> float:
+    """The length the default grid resolves, m: the smaller of the film length ``l_film``
+    and the bending length ``l_bend``, but no less than :data:`BENDING_RESOLVED` film
+    lengths (thinner bending layers need no resolving)."""
+    return min(l_film, max(l_bend, BENDING_RESOLVED * l_film))
 
 
 def _check_below_string_speed(params: TapeParameters, velocity: float) -> None:
@@ -112,95 +151,208 @@ class BearingModel:
     infinitely_wide : bool
         Infinitely wide tape (1-D, per unit width) instead of the free-edged 2-D tape.
     span : float, optional
-        Length of each tangent span in the domain, m (default: 10 (2-D: 6) times the
-        larger of the film length R ε^(1/3) and the bending length √(D/(T − ρV²))).
+        Length of each tangent span in the domain, m, in [3 ℓ, R] with ℓ the larger of the
+        film length R ε^(1/3) and the bending length √(D/(T − ρV²)) (default: 10 (2-D: 6)
+        ℓ, at most R).
     nx : int, optional
-        Intervals along x (default: on the graded 2-D grid a spacing of 1/15 of the
-        smaller of those lengths at the wrap corners, a multiple of 4; on a uniform grid
-        1/12 (2-D: 1/6) of it, made even).
+        Intervals along x, in [8, 50000], leaving at most one film length between nodes
+        near the wrap corners (default: on the graded 2-D grid a spacing of 1/15 of the
+        resolution length at the wrap corners, a multiple of 4; on a uniform grid 1/12
+        (2-D: 1/6) of it, made even). The resolution length is the smaller of the film
+        and bending lengths, but no less than half the film length
+        (:func:`resolution_length`).
     ny : int, optional
         Intervals across the width in 2-D (even, >= 8; default: an edge spacing near
-        12 µm on the graded grid, a multiple of 4; a spacing near 50 µm on a uniform one).
+        12 µm on the graded grid, a multiple of 4; a spacing near 50 µm on a uniform one;
+        an edge spacing above 100 µm warns, :class:`BearingGridWarning`). None for the
+        infinitely wide tape.
     grading : Grading or "uniform", optional
         How the grid is graded (:class:`gyroshell.bearing.mesh.Grading`). Default: the
         2-D tape's grid is graded towards the free edges and the wrap corners
         (:data:`DEFAULT_GRADING`), the infinitely wide tape's is uniform. ``"uniform"``:
         uniform each way. A grading given to an infinitely wide tape grades its x-grid.
+
+    Raises
+    ------
+    ParameterError
+        Before anything of the grid's size is allocated: an argument of the wrong type or
+        range, a span outside its range (naming the film or bending length that sets it,
+        and whether the viscosity, the speed or the tape's stiffness makes it so), a grid
+        too coarse for the film (naming the smallest nx) or too large for the memory limit
+        (:func:`gyroshell.bearing.budget.check_steady`).
     """
 
     def __init__(self, params: TapeParameters, air: AirParameters | None = None, *,
                  velocity: float, wrap_angle: float, infinitely_wide: bool = False,
                  span: float | None = None, nx: int | None = None, ny: int | None = None,
                  grading: Grading | str | None = None) -> None:
-        self.params = params
-        self.air = AirParameters() if air is None else air
+        self.params = validation.instance("params", params, TapeParameters)
+        self.air = validation.instance("air", AirParameters() if air is None else air,
+                                       AirParameters)
         self.velocity = validation.positive("velocity", velocity, "m/s")
         self.wrap_angle = check_wrap_angle(wrap_angle)
-        self.infinitely_wide = bool(infinitely_wide)
+        self.infinitely_wide = validation.boolean("infinitely_wide", infinitely_wide)
         _check_below_string_speed(params, self.velocity)
         h_foil, l_film, l_bend = foil_length_scales(params, self.air, self.velocity)
         self.h_guess = _FOIL_GUESS * h_foil
-        spans = SPAN_LENGTHS if self.infinitely_wide else SPAN_LENGTHS_2D
-        self.span = (spans * max(l_film, l_bend) if span is None
-                     else validation.positive("span", span, "m"))
+        self.span = self._checked_span(span, l_film, l_bend)
         self.length = params.radius * self.wrap_angle + 2.0 * self.span
         self.grading = _resolved_grading(grading, self.infinitely_wide,
                                          X_GRADING_WIDTH * max(l_film, l_bend))
-        self._build_x_line(nx, min(l_film, l_bend))
+        x_line = self._x_count(nx, l_film, resolution_length(l_film, l_bend),
+                               span is not None)
+        if self.infinitely_wide and ny is not None:
+            raise ParameterError(f"ny applies to the 2-D tape only: leave it None with "
+                                 f"infinitely_wide=True, got {ny!r}")
+        y_line = None if self.infinitely_wide else self.grading.y_line(params.width)
+        ny = None if self.infinitely_wide else self._y_count(ny, y_line)
+        budget.check_steady(self.nx, ny)          # before any array of the grid's size
+        self.x = symmetric_line_nodes(self.length, self.nx, x_line)
+        self._check_film_resolved(l_film, x_line)
         if self.infinitely_wide:
             self.ny, self.y, self.nc = None, None, 1
             self.tape = StripOperators(params, self.x)
         else:
-            self._build_y_line(ny)
+            self._build_y_line(ny, y_line)
             self.tape = PlateOperators(params, self.x, self.y)
         self._couple_film_and_loads()
 
-    def _build_x_line(self, nx: int | None, film_length: float) -> None:
-        """The x-nodes (:attr:`x`, m) and their count :attr:`nx` (default from
-        ``film_length``, the smaller of the film and bending lengths, m)."""
+    def _checked_span(self, span: float | None, l_film: float, l_bend: float) -> float:
+        """The span, m: given (checked) or the default, within [MIN_SPAN_LENGTHS times
+        the longer of the film and bending lengths, MAX_SPAN_RADII R]."""
+        longest = max(l_film, l_bend)
+        low, high = MIN_SPAN_LENGTHS * longest, MAX_SPAN_RADII * self.params.radius
+        if low > high:
+            raise ParameterError(self._too_long_for_the_head(l_film, l_bend))
+        if span is None:
+            spans = SPAN_LENGTHS if self.infinitely_wide else SPAN_LENGTHS_2D
+            return min(spans * longest, high)
+        span = validation.positive("span", span, "m")
+        if not low <= span <= high:
+            which = "film" if l_film >= l_bend else "bending"
+            raise ParameterError(
+                f"span must be in [{low:.3g}, {high:.3g}] m, got {span:g}: at least "
+                f"{MIN_SPAN_LENGTHS:g} {which} lengths ({MIN_SPAN_LENGTHS:g} x {longest:.3g} m) for the film "
+                "pressure to return to ambient before the tape's pinned end, at most the "
+                "head radius R for the shallow-shell gap")
+        return span
+
+    def _too_long_for_the_head(self, l_film: float, l_bend: float) -> str:
+        """The message for a film or bending length too long for spans within R."""
+        p, air, v = self.params, self.air, self.velocity
+        t_eff = self.effective_tension()
+        head = (f"spans of {MIN_SPAN_LENGTHS:g} times it ({MIN_SPAN_LENGTHS * max(l_film, l_bend):.3g} m) "
+                f"exceed the head radius R = {p.radius:g} m (the shallow-shell gap)")
+        if l_bend > l_film:
+            return (f"the tape is too stiff to wrap the head: its bending length "
+                    f"sqrt(D/(T - rho V^2)) = {l_bend:.3g} m is so long that {head}; use a "
+                    "smaller bending_rigidity (a thinner tape), a higher tension or a larger "
+                    "radius")
+        eps = 6.0 * air.viscosity * v / t_eff
+        text = (f"the film is too thick for the head: eps = 6 mu V/(T - rho V^2) = {eps:.3g} "
+                f"(viscosity {air.viscosity:g} Pa*s, velocity {v:g} m/s, T - rho V^2 = "
+                f"{t_eff:.3g} N/m) gives a film length R eps^(1/3) = {l_film:.3g} m and a "
+                f"spacing scale R eps^(2/3) = {p.radius * eps ** (2 / 3):.3g} m, and {head}; ")
+        if air.viscosity > 10.0 * AIR_VISCOSITY:
+            return text + (f"the viscosity {air.viscosity:g} Pa*s makes the film thick: use "
+                           f"one nearer air's {AIR_VISCOSITY:g} Pa*s")
+        if t_eff < 0.5 * p.tension:
+            return text + (f"velocity {v:g} m/s is near the string speed "
+                           f"{p.string_speed:.4g} m/s: use a lower velocity")
+        return text + "use a lower velocity or viscosity, or a higher tension"
+
+    def _x_count(self, nx: int | None, l_film: float, resolution: float,
+                 span_given: bool):
+        """The number of x-intervals :attr:`nx` (default from the ``resolution`` length, m;
+        see :meth:`_default_nx`), checked; returns the x-line's grading (None: uniform)."""
         half_wrap = 0.5 * self.params.radius * self.wrap_angle
         x_line = self.grading.x_line(self.length, (0.5 * self.length - half_wrap,
                                                    0.5 * self.length + half_wrap))
         if nx is None:
-            nx = self._default_nx(x_line, film_length)
-        if (isinstance(nx, bool) or not isinstance(nx, (int, np.integer))
-                or not MIN_INTERVALS_ALONG <= nx <= MAX_INTERVALS_ALONG):
-            raise ParameterError(f"nx must be an integer in [{MIN_INTERVALS_ALONG}, "
-                                 f"{MAX_INTERVALS_ALONG}], got {nx!r}")
-        self.nx = int(nx)
-        self.x = symmetric_line_nodes(self.length, self.nx, x_line)
+            nx = self._default_nx(x_line, l_film, resolution, span_given)
+        self.nx = validation.integer("nx", nx, low=MIN_INTERVALS_ALONG,
+                                     high=MAX_INTERVALS_ALONG)
+        return x_line
 
-    def _default_nx(self, x_line, film_length: float) -> int:
+    def _check_film_resolved(self, l_film: float, x_line) -> None:
+        """Refuse an x-grid coarser than MAX_FILM_SPACING film lengths within a film length
+        of the wrap's corners, the film's entrance and exit (see :data:`MAX_FILM_SPACING`;
+        the plateau between them may be coarser). A tape whose flexible-foil spacing is
+        below the roughness lies on the head: it has no film to resolve."""
+        if self.h_guess / _FOIL_GUESS < self.air.roughness:
+            return
+        half_wrap = 0.5 * self.params.radius * self.wrap_angle
+        mid = 0.5 * (self.x[1:] + self.x[:-1])
+        zone = np.abs(np.abs(mid - 0.5 * self.length) - half_wrap) <= l_film
+        coarsest = float(np.diff(self.x)[zone].max()) if zone.any() else self.hx
+        if coarsest <= MAX_FILM_SPACING * l_film:
+            return
+        step = 2 if x_line is None else 4
+        needed = step * math.ceil(self.nx * coarsest / (MAX_FILM_SPACING * l_film) / step)
+        raise ParameterError(
+            f"nx = {self.nx} is too coarse for the film: it leaves {coarsest:.3g} m between "
+            f"nodes at the wrap's corners, more than the film length R eps^(1/3) = {l_film:.3g} m, and "
+            f"the spacings are then wrong by up to 50 % (measured: h_c 48 % low at 1.9 film "
+            f"lengths, 2 % at 0.9); use nx >= {needed} (or the default)")
+
+    def _default_nx(self, x_line, l_film: float, resolution: float,
+                    span_given: bool) -> int:
         """The default number of x-intervals (see the class docstring)."""
         if x_line is None:
-            resolution = X_RESOLUTION if self.infinitely_wide else X_RESOLUTION_2D
-            nx = 2 * math.ceil(0.5 * self.length / (resolution * film_length))
+            spacing = (X_RESOLUTION if self.infinitely_wide else X_RESOLUTION_2D) * resolution
+            nx = 2 * math.ceil(0.5 * self.length / spacing)
         else:
-            nx = intervals_for(self.length, X_RESOLUTION_GRADED * film_length, x_line)
+            nx = intervals_for(self.length, X_RESOLUTION_GRADED * resolution, x_line)
         if nx > MAX_INTERVALS_ALONG:
-            raise ParameterError(
-                f"velocity {self.velocity:g} m/s gives a film only "
-                f"{film_length:.3g} m long: resolving it over the "
-                f"{self.length:.3g} m domain needs {nx} intervals, more than the limit "
-                f"{MAX_INTERVALS_ALONG}; use a higher velocity (the tape is then in "
-                "contact with the head anyway) or set nx")
+            raise ParameterError(self._too_many_intervals(nx, l_film, resolution,
+                                                          span_given))
         return nx
 
-    def _build_y_line(self, ny: int | None) -> None:
-        """The y-nodes (:attr:`y`, m), their count :attr:`ny` and :attr:`nc` = ny + 1."""
+    def _too_many_intervals(self, nx: int, l_film: float, resolution: float,
+                            span_given: bool) -> str:
+        """The message for a default grid of more than MAX_INTERVALS_ALONG intervals,
+        naming what makes it so fine: a long given span or a film short against the wrap."""
+        wrap = self.params.radius * self.wrap_angle
+        need = (f"resolving the {resolution:.3g} m {'film' if resolution == l_film else 'bending'}"
+                f" length over the {self.length:.3g} m domain needs {nx} intervals, more "
+                f"than the limit {MAX_INTERVALS_ALONG}")
+        if span_given and 2.0 * self.span > wrap:
+            fit = 0.5 * (self.length * MAX_INTERVALS_ALONG / nx - wrap)
+            return (f"span {self.span:g} m is too long for the grid: {need}; use a span <= "
+                    f"{fit:.3g} m or set nx")
+        if resolution < l_film:
+            return (f"the bending length sqrt(D/(T - rho V^2)) = {resolution:.3g} m is short "
+                    f"against the {wrap:.3g} m wrap: {need}; set nx (and a grading)")
+        return (f"velocity {self.velocity:g} m/s gives a film only {l_film:.3g} m long: "
+                f"{need}; use a higher velocity (the tape is then in contact with the head "
+                "anyway) or set nx")
+
+    def _y_count(self, ny: int | None, y_line) -> int:
+        """The number of y-intervals (default: see the class docstring), checked."""
         width = self.params.width
-        y_line = self.grading.y_line(width)
         if ny is None:
             ny = max(MIN_INTERVALS_ACROSS,
                      2 * round(0.5 * width / Y_SPACING) if y_line is None
                      else intervals_for(width, Y_EDGE_SPACING, y_line))
-        if (isinstance(ny, bool) or not isinstance(ny, (int, np.integer))
-                or ny < MIN_INTERVALS_ACROSS or ny % 2):
+        ny = validation.integer("ny", ny, low=MIN_INTERVALS_ACROSS)
+        if ny % 2:
             raise ParameterError(f"ny must be an even integer >= {MIN_INTERVALS_ACROSS} "
                                  f"(a node on the centre line), got {ny!r}")
-        self.ny = int(ny)
-        self.y = symmetric_line_nodes(width, self.ny, y_line)
+        return ny
+
+    def _build_y_line(self, ny: int, y_line) -> None:
+        """The y-nodes (:attr:`y`, m), their count :attr:`ny` and :attr:`nc` = ny + 1;
+        warns if the free edges are under-resolved (:data:`MAX_EDGE_SPACING`)."""
+        self.ny = ny
+        self.y = symmetric_line_nodes(self.params.width, self.ny, y_line)
         self.nc = self.ny + 1
+        edge = float(self.y[1] - self.y[0])
+        if edge > MAX_EDGE_SPACING:
+            warnings.warn(
+                f"ny = {ny} leaves {edge * 1e6:.0f} um at the free edges, more than "
+                f"{MAX_EDGE_SPACING * 1e6:.0f} um: the edge rows may falsely touch down and "
+                "the minimum spacing be off by 20-90 % (measured at 112 um); use a larger ny "
+                "or the default", BearingGridWarning, stacklevel=3)
 
     def _couple_film_and_loads(self) -> None:
         """The film on the tape's grid, and the loads of the dry wrapped configuration."""

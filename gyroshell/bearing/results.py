@@ -13,15 +13,17 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core import validation
 from ..core.errors import ParameterError
 from ..results.base import Result, dataset, from_json, params_from
 from .air import AirParameters
 from .mesh import Grading
-from .model import BearingModel
+from .model import BearingGridWarning, BearingModel
 
 #: Summary entries not stored in a file's ``summary`` attribute (lists, kept in ``info``).
 _NOT_STORED = ("newton_step_norms",)
@@ -139,6 +141,12 @@ class BearingSolution(Result, kind="bearing"):
         """Number of tape nodes in contact."""
         return int(np.count_nonzero(self.contact))
 
+    @property
+    def in_contact(self) -> bool:
+        """Whether the tape touches the head somewhere: nodes in contact, or a spacing at
+        or below the roughness σ (then :attr:`minimum_spacing` is σ, not a flying height)."""
+        return self.contact_nodes > 0 or self.minimum_spacing <= self.model.air.roughness
+
     def summary(self) -> dict:
         """The scalar outputs (SI; the wrap angle also in degrees): what ``gyroshell bearing
         --json`` prints."""
@@ -154,6 +162,7 @@ class BearingSolution(Result, kind="bearing"):
             "air_force": self.air_force,
             "contact_force": self.contact_force,
             "contact_nodes": self.contact_nodes,
+            "in_contact": self.in_contact,
             "newton_iterations": self.info.iterations,
             "newton_step_norms": list(self.info.step_norms),
             "continuation_speeds": list(self.info.continuation),
@@ -198,8 +207,7 @@ class BearingSolution(Result, kind="bearing"):
         ``gyroshell.bearing.storage.save``): the model is rebuilt from the stored settings
         and checked against the stored node coordinates."""
         model = _model_from(ds)
-        info = NewtonInfo(**from_json(ds.attrs["info"]))
-        return _state_from(ds, model, info)
+        return _state_from(ds, model, _info_from(ds))
 
     def to_frame(self):
         """The nodal fields as a table: x (from the middle of the wrap) and y (0 if
@@ -300,9 +308,14 @@ class BearingTransient(Result, kind="bearing_transient"):
     @classmethod
     def from_xarray(cls, ds) -> BearingTransient:
         """The record stored by :meth:`to_xarray`."""
-        model = _model_from(ds)
-        final = _state_from(ds, model, NewtonInfo(**from_json(ds.attrs["info"])),
-                            prefix=_FINAL)
+        model = _model_from(ds, prefix=_FINAL)
+        final = _state_from(ds, model, _info_from(ds), prefix=_FINAL)
+        records = ds.sizes.get("t")
+        for name in [*_SERIES, "x_record", "centreline"]:
+            if name not in ds.variables or ds[name].shape[:1] != (
+                    ds.sizes["x"] if name == "x_record" else records,):
+                raise ParameterError(f"the file has no variable {name!r} of the record's "
+                                     "length")
         series = {name: ds[name].values for name in _SERIES if name != "t"}
         return cls(t=ds["t"].values, x=ds["x_record"].values,
                    centreline=ds["centreline"].values, final=final, **series)
@@ -364,13 +377,66 @@ def _settings(model: BearingModel) -> dict:
             "ny": model.ny, "grading": model.grading.as_dict()}
 
 
-def _model_from(ds) -> BearingModel:
+#: The keys of a file's ``model`` attribute (``grading`` may be absent: older files).
+_SETTINGS = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny")
+
+
+def _stored_dict(attrs, name: str, allowed, required=()) -> dict:
+    """The JSON object stored in the attribute ``name``, checked: an object whose keys are
+    among ``allowed`` and include ``required``."""
+    import json
+
+    text = attrs.get(name)
+    if not isinstance(text, str):
+        raise ParameterError(f"the file's {name!r} attribute must be JSON text, got "
+                             f"{type(text).__name__}")
+    try:
+        data = from_json(text)
+    except json.JSONDecodeError as exc:
+        raise ParameterError(f"the file's {name!r} attribute is not valid JSON ({exc})"
+                             ) from None
+    if not isinstance(data, dict):
+        raise ParameterError(f"the file's {name!r} attribute must be a JSON object, got "
+                             f"{type(data).__name__}")
+    extra, missing = set(data) - set(allowed), set(required) - set(data)
+    if extra or missing:
+        raise ParameterError(
+            f"the file's {name!r} attribute has " + "; ".join(
+                part for part in (extra and f"unknown keys {sorted(extra)}",
+                                  missing and f"missing keys {sorted(missing)}") if part))
+    return data
+
+
+def _check_stored_sizes(ds, nx, ny, names) -> None:
+    """The file's dimensions and variables agree with the stored grid counts, before the
+    model is rebuilt (a forged count must not allocate anything)."""
+    nx = validation.integer("the stored nx", nx, low=1)
+    ny = validation.integer("the stored ny", ny, low=1, optional=True)
+    expected = {"x": nx + 1, "y": 1 if ny is None else ny + 1}
+    for dim, size in expected.items():
+        if ds.sizes.get(dim) != size:
+            raise ParameterError(f"the file's {dim} dimension has {ds.sizes.get(dim)} nodes, "
+                                 f"but its grid settings say {size}")
+    for name in names:
+        if name not in ds.variables or ds[name].dims[-2:] != ("x", "y"):
+            raise ParameterError(f"the file has no variable {name!r} on (x, y)")
+
+
+def _model_from(ds, prefix: str = "") -> BearingModel:
     """The model rebuilt from a file's attributes, checked against its node coordinates."""
     a = ds.attrs
-    settings = from_json(a["model"])
-    # files written before graded grids: uniform
-    settings["grading"] = Grading(**settings.get("grading", {}))
-    model = BearingModel(params_from(a), AirParameters(**from_json(a["air"])), **settings)
+    settings = _stored_dict(a, "model", (*_SETTINGS, "grading"), _SETTINGS)
+    _check_stored_sizes(ds, settings["nx"], settings["ny"],
+                        [f"{prefix}{k}" for k in ("departure", "pressure", "contact")])
+    grading = settings.get("grading", {})   # files written before graded grids: uniform
+    if not isinstance(grading, dict) or not set(grading) <= set(Grading().as_dict()):
+        raise ParameterError(f"the file's grading must be an object with keys among "
+                             f"{sorted(Grading().as_dict())}, got {grading!r}")
+    settings["grading"] = Grading(**grading)
+    air = _stored_dict(a, "air", [f.name for f in dataclasses.fields(AirParameters)])
+    with warnings.catch_warnings():   # the grid was the saver's choice: no warning on load
+        warnings.simplefilter("ignore", BearingGridWarning)
+        model = BearingModel(params_from(a), AirParameters(**air), **settings)
     x_ok = np.allclose(ds["x"].values, model.x - 0.5 * model.length, rtol=0,
                        atol=COORDINATE_TOLERANCE * model.length)
     y_ok = model.infinitely_wide or np.allclose(
@@ -379,3 +445,9 @@ def _model_from(ds) -> BearingModel:
         raise ParameterError("the stored node coordinates do not match the grid rebuilt "
                              "from its settings")
     return model
+
+
+def _info_from(ds) -> NewtonInfo:
+    """The Newton record stored in a file's ``info`` attribute (checked keys)."""
+    return NewtonInfo(**_stored_dict(ds.attrs, "info",
+                                     [f.name for f in dataclasses.fields(NewtonInfo)]))

@@ -15,14 +15,16 @@ a penalty with a step limiter does.
 from __future__ import annotations
 
 import time
+import warnings
 
 import numpy as np
 import scipy.sparse as sp
 
-from ..core.errors import ConvergenceError
+from ..core import validation
+from ..core.errors import ConvergenceError, ParameterError
 from ..linalg.factorization import SuperLUFactor
 from ..tape.parameters import MIN_INTERVALS_ACROSS
-from .model import MIN_INTERVALS_ALONG, BearingModel, foil_length_scales
+from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel, foil_length_scales
 from .results import BearingSolution, NewtonInfo
 
 #: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
@@ -333,19 +335,25 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     tension : float, optional
         Tension T, N/m, in place of the model's (continuation in T).
     progress : callable, optional
-        Called with a one-line message when Newton gives way to the pseudo-time march, per
-        pseudo-time step and per continuation stage.
+        Called with a one-line message per stage: the coarse-grid start of a 2-D tape,
+        Newton giving way to the pseudo-time march, each pseudo-time step and each
+        continuation stage.
     iteration_log : callable, optional
-        Called with a one-line message per Newton iteration.
+        Called with a one-line message per Newton iteration (those of the coarse-grid
+        start too).
 
     Raises
     ------
+    ParameterError
+        If an argument is of the wrong type, shape or range (checked before any work).
     ConvergenceError
         If neither Newton, the pseudo-time march nor the continuation reaches the state.
     """
+    tension, z0 = check_steady_arguments(model, z0, tension, progress, iteration_log)
     start = time.perf_counter()
     info = NewtonInfo()
-    z0 = initial_state(model) if z0 is None else np.asarray(z0, dtype=float)
+    if z0 is None:
+        z0 = initial_state(model, progress=progress, iteration_log=iteration_log)
     try:
         z, lam, info = _newton_or_pseudo_time(model, z0, tension, info, progress,
                                               iteration_log)
@@ -355,6 +363,30 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
         z, lam, info = _continuation(model, tension, progress, iteration_log)
     info.seconds = time.perf_counter() - start
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
+
+
+def check_steady_arguments(model, z0, tension, progress, iteration_log):
+    """(tension, z0) of :func:`solve_steady`, checked: ``model`` a BearingModel, ``z0`` None
+    or a finite vector of ``model.unknowns`` with positive pressures (compressible film),
+    ``tension`` None or > ρV² (N/m, the tape must wrap), the callbacks None or callable."""
+    validation.instance("model", model, BearingModel)
+    if tension is not None:
+        tension = validation.positive("tension", tension, "N/m")
+        floor = model.params.density * model.velocity**2
+        if not tension > floor:
+            raise ParameterError(
+                f"tension must be > rho V^2 = {floor:.6g} N/m at {model.velocity:g} m/s "
+                f"(the tape would not wrap), got {tension:g}")
+    for name, hook in (("progress", progress), ("iteration_log", iteration_log)):
+        if hook is not None and not callable(hook):
+            raise ParameterError(f"{name} must be None or a callable taking one message, "
+                                 f"got {type(hook).__name__}")
+    if z0 is not None:
+        z0 = validation.vector("z0", z0, model.unknowns, "m and Pa")
+        if model.air.compressible and not np.all(z0[model.n_u:] > 0.0):
+            raise ParameterError("z0 must have pressures > 0 Pa (entries n_u: of [u, p]) "
+                                 "for a compressible film")
+    return tension, z0
 
 
 # ----- the start of Newton -----------------------------------------------------------------
@@ -367,7 +399,8 @@ COARSE_START_MAX_Y_SPACING = 110e-6
 
 
 def initial_state(model: BearingModel, *,
-                  coarse_min_unknowns: int = COARSE_START_MIN_UNKNOWNS) -> np.ndarray:
+                  coarse_min_unknowns: int = COARSE_START_MIN_UNKNOWNS, progress=None,
+                  iteration_log=None) -> np.ndarray:
     """A start [u (m), p (Pa)] for Newton. Infinitely wide: the flexible-foil spacing and
     the wrap pressure (:meth:`BearingModel.initial_state`). 2-D: the steady state on a grid
     twice as coarse, interpolated, when the model is large enough (:func:`_coarse_state`);
@@ -375,15 +408,18 @@ def initial_state(model: BearingModel, *,
     (one cheap 1-D solve saves several 2-D Newton iterations).
 
     ``coarse_min_unknowns``: the fewest unknowns of a 2-D model started from the coarse
-    grid (default :data:`COARSE_START_MIN_UNKNOWNS`)."""
+    grid (default :data:`COARSE_START_MIN_UNKNOWNS`). ``progress`` and ``iteration_log``
+    (optional) get one line per start solved and per Newton iteration, as in
+    :func:`solve_steady`."""
     if model.infinitely_wide:
         return model.initial_state()
-    z = (_coarse_state(model, coarse_min_unknowns)
+    z = (_coarse_state(model, coarse_min_unknowns, progress, iteration_log)
          if model.unknowns >= coarse_min_unknowns else None)
-    return _extruded_strip_state(model) if z is None else z
+    return _extruded_strip_state(model, progress, iteration_log) if z is None else z
 
 
-def _coarse_state(model: BearingModel, coarse_min_unknowns: int) -> np.ndarray | None:
+def _coarse_state(model: BearingModel, coarse_min_unknowns: int, progress=None,
+                  iteration_log=None) -> np.ndarray | None:
     """The steady state on the grid twice as coarse in x and y, interpolated
     (bilinearly) onto the model's grid; None if that grid would be too coarse or neither
     Newton nor the pseudo-time march reaches the state there. The coarse grid starts from
@@ -394,15 +430,20 @@ def _coarse_state(model: BearingModel, coarse_min_unknowns: int) -> np.ndarray |
     ny = model.ny // 2 + (model.ny // 2) % 2
     if ny < MIN_INTERVALS_ACROSS or nx < MIN_INTERVALS_ALONG:
         return None
-    coarse = BearingModel(model.params, model.air, velocity=model.velocity,
-                          wrap_angle=model.wrap_angle, span=model.span, nx=nx, ny=ny,
-                          grading=model.grading)
+    try:
+        coarse = _quiet_model(model, nx, ny)
+    except ParameterError:     # too coarse for the film: no coarse start
+        return None
     if coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
         return None
     try:   # Newton, then pseudo-time (no continuation in V): cheap on a coarse grid
-        start = initial_state(coarse, coarse_min_unknowns=coarse_min_unknowns)
-        z, lam, info = _newton_or_pseudo_time(coarse, start, None,
-                                              NewtonInfo(), None, None)
+        start = initial_state(coarse, coarse_min_unknowns=coarse_min_unknowns,
+                              progress=progress, iteration_log=iteration_log)
+        if progress is not None:
+            progress(f"start: solving the coarse grid {nx} x {ny} ({coarse.unknowns} "
+                     "unknowns)")
+        z, lam, info = _newton_or_pseudo_time(coarse, start, None, NewtonInfo(), progress,
+                                              iteration_log)
     except ConvergenceError:
         return None
     sol = BearingSolution(coarse, z[:coarse.n_u], z[coarse.n_u:], lam, info)
@@ -425,14 +466,28 @@ def _interpolated_state(model: BearingModel, coarse: BearingModel,
     return np.concatenate([u, fields[1][model.film.interior]])
 
 
-def _extruded_strip_state(model: BearingModel) -> np.ndarray:
+def _quiet_model(model: BearingModel, nx: int, ny: int) -> BearingModel:
+    """``model`` on nx × ny intervals (the same mapping), without the coarse-edge warning:
+    a start only needs to lead Newton, not to be accurate."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BearingGridWarning)
+        return BearingModel(model.params, model.air, velocity=model.velocity,
+                            wrap_angle=model.wrap_angle, span=model.span, nx=nx, ny=ny,
+                            grading=model.grading)
+
+
+def _extruded_strip_state(model: BearingModel, progress=None,
+                          iteration_log=None) -> np.ndarray:
     """The infinitely wide tape's steady state on the model's x-grid (its flexible-foil
     start if Newton fails there), repeated across the width."""
     strip = BearingModel(model.params, model.air, velocity=model.velocity,
                          wrap_angle=model.wrap_angle, infinitely_wide=True,
                          span=model.span, nx=model.nx, grading=model.grading)
+    if progress is not None:
+        progress(f"start: solving the infinitely wide tape on the same x-grid "
+                 f"({strip.unknowns} unknowns)")
     try:
-        sol = solve_steady(strip)
+        sol = solve_steady(strip, iteration_log=iteration_log)
     except ConvergenceError:
         z = strip.initial_state()
         u1, p1 = z[:strip.n_u], z[strip.n_u:]
@@ -541,21 +596,34 @@ def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | No
     raise ConvergenceError("pseudo-time continuation did not reach the steady state")
 
 
-def _continuation(model: BearingModel, tension, progress, iteration_log):
-    target = model.velocity
-    speeds = []
-    v = target * CONTINUATION_START
-    while v > target:
+def _continuation_stages(model: BearingModel) -> list[BearingModel]:
+    """The models of the continuation in V, from CONTINUATION_START times faster down to
+    ``model`` itself; speeds at which the model cannot be built (above the string speed,
+    or a film too long for the given span) are left out."""
+    speeds, v = [], model.velocity * CONTINUATION_START
+    while v > model.velocity:
         speeds.append(v)
         v *= CONTINUATION_FACTOR
-    speeds.append(target)
-    info = NewtonInfo(continuation=speeds)
+    stages = []
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BearingGridWarning)
+        for v in speeds:
+            try:
+                stages.append(model.at_velocity(v))
+            except ParameterError:
+                continue
+    return [*stages, model]
+
+
+def _continuation(model: BearingModel, tension, progress, iteration_log):
+    stages = _continuation_stages(model)
+    info = NewtonInfo(continuation=[stage.velocity for stage in stages])
     z = None
-    for v in speeds:
-        stage = model.at_velocity(v)
+    for stage in stages:
         if progress is not None:
-            progress(f"continuation: V = {v:.4g} m/s")
-        z0 = initial_state(stage) if z is None else z
+            progress(f"continuation: V = {stage.velocity:.4g} m/s")
+        z0 = (initial_state(stage, progress=progress, iteration_log=iteration_log)
+              if z is None else z)
         z, lam, info = _newton_or_pseudo_time(stage, z0, tension, info, progress,
                                               iteration_log)
     return z, lam, info

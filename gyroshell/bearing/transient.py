@@ -26,6 +26,7 @@ from ..core import validation
 from ..core.errors import ParameterError
 from ..core.progress import progress_bar
 from ..engines.newmark import check_steps
+from . import budget
 from .model import BearingModel
 from .results import BearingSolution, BearingTransient, NewtonInfo
 from .steady import newton
@@ -61,15 +62,73 @@ class _StepTerms:
         return r, self.jacobian
 
 
+class _Tension:
+    """A tension history T(t), N/m, that knows its lowest value (checked before a march)."""
+
+    lowest: float
+
+    def __call__(self, t: float) -> float:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+
+class _TensionStep(_Tension):
+    def __init__(self, initial: float, final: float, at: float) -> None:
+        self.initial = validation.positive("initial", initial, "N/m")
+        self.final = validation.positive("final", final, "N/m")
+        self.at = validation.nonnegative("at", at, "s")
+        self.lowest = min(self.initial, self.final)
+
+    def __call__(self, t: float) -> float:
+        return self.final if t >= self.at else self.initial
+
+
+class _TensionHarmonic(_Tension):
+    def __init__(self, mean: float, amplitude: float, frequency: float) -> None:
+        self.mean = validation.positive("mean", mean, "N/m")
+        self.amplitude = validation.real("amplitude", amplitude, unit="N/m")
+        self.frequency = validation.nonnegative("frequency", frequency, "Hz")
+        self.lowest = self.mean - abs(self.amplitude)
+        if not self.lowest > 0.0:
+            raise ParameterError(f"amplitude must be below the mean tension {self.mean:g} "
+                                 f"N/m (T(t) > 0), got {self.amplitude:g}")
+
+    def __call__(self, t: float) -> float:
+        return self.mean + self.amplitude * np.sin(2 * np.pi * self.frequency * t)
+
+
 def tension_step(initial: float, final: float, at: float = 0.0) -> Callable[[float], float]:
-    """T(t): ``initial`` before ``at`` (s), ``final`` from then on, N/m."""
-    return lambda t: final if t >= at else initial
+    """T(t): ``initial`` before ``at`` (s), ``final`` from then on, N/m (both > 0)."""
+    return _TensionStep(initial, final, at)
 
 
 def tension_harmonic(mean: float, amplitude: float, frequency: float
                      ) -> Callable[[float], float]:
-    """T(t) = mean + amplitude sin(2π f t), N/m (f in Hz)."""
-    return lambda t: mean + amplitude * np.sin(2 * np.pi * frequency * t)
+    """T(t) = mean + amplitude sin(2π f t), N/m (f in Hz; mean − |amplitude| > 0)."""
+    return _TensionHarmonic(mean, amplitude, frequency)
+
+
+def _tension_at(T, t: float, floor: float) -> float:
+    """T(t), N/m, checked: a real number above ρV² (``floor``), else a ParameterError
+    naming t (a user's own T(t) can only be checked as the march reaches t)."""
+    try:
+        value = validation.real("tension(t)", T(t), unit="N/m")
+    except ParameterError as exc:
+        raise ParameterError(f"{exc} at t = {t:g} s") from None
+    if not value > floor:
+        raise ParameterError(f"tension(t) must be > rho V^2 = {floor:.6g} N/m (the tape "
+                             f"must wrap the head), got {value:g} at t = {t:g} s")
+    return value
+
+
+def _moving_force(moving_load, t: float, size: int):
+    """The extra nodal forces at t, N: None without a load, else checked (finite, one per
+    tape unknown)."""
+    if moving_load is None:
+        return None
+    try:
+        return validation.vector("moving_load(t)", moving_load(t), size, "N")
+    except ParameterError as exc:
+        raise ParameterError(f"{exc} at t = {t:g} s") from None
 
 
 def march(start: BearingSolution, *, dt: float, steps: int,
@@ -84,50 +143,86 @@ def march(start: BearingSolution, *, dt: float, steps: int,
     start : BearingSolution
         The initial state (at rest: v = 0, and a from the tape equation).
     dt : float
-        Time step, s (> 0).
+        Time step, s (> 0, with β Δt² within the solvers' range).
     steps : int
         Number of steps (>= 1).
     tension : callable, optional
-        T(t), N/m (default: the model's constant T).
+        T(t), N/m, above ρV² at every step (default: the model's constant T).
     moving_load : callable, optional
-        Extra nodal forces on the tape at time t, N (e.g. a load crossing the head).
+        Extra nodal forces on the tape at time t, N, ``model.n_u`` of them (e.g. a load
+        crossing the head).
     beta, gamma : float
         Newmark parameters (default the trapezoidal rule; γ > ½ damps numerically).
     record_every : int
-        Record every this many steps.
+        Record every this many steps (each keeps the centre line, nx + 1 values).
     progress : bool or None
-        A progress bar on stderr (:func:`gyroshell.core.progress.progress_bar`); None:
-        only if stderr is a terminal.
+        A progress bar on stderr (:func:`~gyroshell.core.progress.progress_bar`); None: on a
+        terminal only.
+
+    Raises
+    ------
+    ParameterError
+        If an argument is of the wrong type, shape or range, or the record would not fit
+        in memory (before any work; a user's T(t) and load are checked at each t).
     """
-    model = start.model
-    dt = validation.positive("dt", dt, "s")
-    steps = check_steps(steps)
-    record_every = check_steps(record_every, "record_every")
-    beta, gamma = _checked_newmark(beta, gamma)
-    T = (lambda _t: model.params.tension) if tension is None else tension
+    model, dt, steps, record_every, beta, gamma, T = _checked_march(
+        start, dt, steps, record_every, beta, gamma, tension, moving_load)
+    floor = model.params.density * model.velocity**2      # T(t) must stay above it
     G = model.tape.G(model.velocity)
     u, p = start.u.copy(), start.p.copy()
-    v = np.zeros_like(u)
-    a = np.zeros_like(u)   # the start is an equilibrium of the tape at T(0)
+    v, a = np.zeros_like(u), np.zeros_like(u)   # at rest, an equilibrium at T(0)
     phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
     record = _Record(model)
-    sol = record(0.0, u, p, start.contact, 0, T(0.0))
+    sol = record(0.0, u, p, start.contact, 0, _tension_at(T, 0.0, floor))
     with progress_bar(steps, PROGRESS_LABEL, progress=progress, unit="step") as bar:
         for n in range(1, steps + 1):
             t = n * dt
             u_tilde = u + dt * v + (0.5 - beta) * dt * dt * a
             v_tilde = v + (1.0 - gamma) * dt * a
-            force = None if moving_load is None else moving_load(t)
+            force = _moving_force(moving_load, t, model.n_u)
             terms = _StepTerms(model, G, dt, beta, gamma, u_tilde, v_tilde, phi, force)
-            z, lam, _, info = newton(model, np.concatenate([u, p]), tension=T(t),
+            T_now = _tension_at(T, t, floor)
+            z, lam, _, info = newton(model, np.concatenate([u, p]), tension=T_now,
                                      transient=terms, info=NewtonInfo())
             u, p = z[:model.n_u], z[model.n_u:]
             a, v = terms.kinematics(u)
             phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
             if n % record_every == 0 or n == steps:
-                sol = record(t, u, p, lam, info.iterations, T(t))
+                sol = record(t, u, p, lam, info.iterations, T_now)
             bar.update(1)
     return record.result(start.x, sol)
+
+
+def _checked_march(start, dt, steps, record_every, beta, gamma, tension, moving_load):
+    """The arguments of :func:`march`, checked before any work: (model, dt, steps,
+    record_every, beta, gamma, T) with T the tension history (the model's constant T if
+    None). The record's memory is estimated (:func:`gyroshell.bearing.budget.check_march`),
+    a known history's lowest tension (:func:`tension_step`, :func:`tension_harmonic`) must
+    exceed ρV², and a moving load is tried once at t = dt."""
+    validation.instance("start", start, BearingSolution)
+    model = start.model
+    steps = check_steps(steps)
+    record_every = check_steps(record_every, "record_every")
+    beta, gamma = _checked_newmark(beta, gamma)
+    dt = validation.time_step(dt, beta, stiffness_scale=float(
+        np.abs(model.stiffness_diagonal).max()))
+    floor = model.params.density * model.velocity**2
+    if tension is None:
+        T = _TensionStep(model.params.tension, model.params.tension, 0.0)
+    elif not callable(tension):
+        raise ParameterError(f"tension must be None or a callable T(t) in N/m (e.g. "
+                             f"tension_step(90, 120)), got {type(tension).__name__}")
+    else:
+        T = tension
+    if isinstance(T, _Tension) and not T.lowest > floor:
+        raise ParameterError(f"tension must stay > rho V^2 = {floor:.6g} N/m (the tape must "
+                             f"wrap the head), but it reaches {T.lowest:g}")
+    if moving_load is not None and not callable(moving_load):
+        raise ParameterError(f"moving_load must be None or a callable f(t) giving nodal "
+                             f"forces in N, got {type(moving_load).__name__}")
+    _moving_force(moving_load, dt, model.n_u)
+    budget.check_march(model.nx, model.ny, steps, record_every)
+    return model, dt, steps, record_every, beta, gamma, T
 
 
 def _checked_newmark(beta: float, gamma: float) -> tuple[float, float]:

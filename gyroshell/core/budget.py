@@ -220,3 +220,23 @@ def check_study_points(count: float, *, what: str = "the study") -> int:
             f"{what} has {count:.4g} points, more than the limit {MAX_STUDY_POINTS} per "
             "study (one or more solves each); use fewer values")
     return int(count)
+
+
+def check_memory(what: str, estimate: float, advice: str) -> float:
+    """Refuse a computation whose estimated memory ``estimate`` (bytes) exceeds
+    :func:`memory_limit`; returns the estimate.
+
+    ``what`` names the computation ("a bearing of 400 x 8000 intervals"), ``advice`` says
+    what to change ("use a smaller nx").
+
+    Raises
+    ------
+    ParameterError
+        ``"<what> needs about <estimate>, more than the limit <limit>; <advice> (or set
+        GYROSHELL_MEMORY_LIMIT)"``.
+    """
+    limit = memory_limit()
+    if not estimate <= limit:
+        raise ParameterError(f"{what} needs about {_bytes(estimate)}, more than the limit "
+                             f"{_bytes(limit)}; {advice} (or set {MEMORY_LIMIT_VARIABLE})")
+    return estimate
