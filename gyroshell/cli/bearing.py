@@ -258,13 +258,27 @@ def _check_outputs(args: argparse.Namespace) -> Path | None:
 
 
 def _model(args: argparse.Namespace, params, air, velocity: float):
-    """The BearingModel of the arguments (speed, wrap, grid) on the tape and the air."""
-    from ..bearing import BearingModel
+    """The BearingModel of the arguments (speed, wrap, grid) on the tape and the air; a
+    grid coarse enough to be off (BearingGridWarning) is one ``gyroshell: warning:`` line."""
+    import warnings
 
-    return BearingModel(params, air, velocity=velocity,
-                        wrap_angle=math.radians(args.wrap_angle),
-                        infinitely_wide=args.infinitely_wide, span=args.span, nx=args.nx,
-                        ny=args.ny, grading="uniform" if args.uniform else None)
+    from ..bearing import BearingModel
+    from ..bearing.model import BearingGridWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", BearingGridWarning)
+        model = BearingModel(params, air, velocity=velocity,
+                             wrap_angle=math.radians(args.wrap_angle),
+                             infinitely_wide=args.infinitely_wide, span=args.span,
+                             nx=args.nx, ny=args.ny,
+                             grading="uniform" if args.uniform else None)
+    for warning in caught:
+        if issubclass(warning.category, BearingGridWarning):
+            print(f"gyroshell: warning: {warning.message}", file=sys.stderr, flush=True)
+        else:
+            warnings.warn_explicit(warning.message, warning.category, warning.filename,
+                                   warning.lineno)
+    return model
 
 
 def _progress(message: str) -> None:
