@@ -14,6 +14,9 @@ from gyroshell.bearing.film import bernoulli
 from gyroshell.bearing.mesh import Grading
 from gyroshell.bearing.steady import _Residual, solve_steady
 
+#: The Jacobian checks use coarse grids on purpose (the derivatives, not the answer).
+pytestmark = pytest.mark.filterwarnings("ignore::gyroshell.bearing.model.BearingGridWarning")
+
 AIRS = {
     "compressible-slip": AirParameters(),
     "compressible": AirParameters(mean_free_path=0.0),
