@@ -42,7 +42,7 @@ import scipy.sparse as sp
 from ..core import validation
 from ..core.errors import ParameterError
 from ..core.parallel import blas_threads as limit_blas_threads
-from ..core.progress import progress_bar
+from ..core.progress import LongWork
 from ..linalg.factorization import splu
 from ..plot import bode
 from ..results.base import Result, dataset, from_json, get, put
@@ -86,17 +86,51 @@ SINGLE_POINT_SPAN = 1.0
 MIN_BAR_FREQUENCIES = 2
 
 
+#: Allowed range of ``tol``: below the estimate's own round-off level the reduced model can
+#: never meet it (every frequency would fall back to a direct solve); above 10 % the
+#: amplitude is not a measurement.
+MIN_TOL, MAX_TOL = ESTIMATE_ROUNDOFF, 0.1
+#: Most interpolation frequencies a reduced model may take: each adds 2 x moments basis
+#: vectors, and every round decomposes the dense first-order model of twice that size.
+MAX_POINTS_LIMIT = 100
+
+
 # ----- validation ----------------------------------------------------------------------
-def check_frequencies(omega) -> np.ndarray:
-    """Validate angular frequencies (rad/s): a non-empty 1-D list of finite values >= 0."""
+def max_frequency(density: float) -> float:
+    """Largest angular frequency, rad/s, whose ρω² stays within the solvers' range (as
+    :meth:`gyroshell.TapeParameters.max_velocity` for ρV²): 8.45e75 rad/s for the Table 1
+    tape, far above any physical one."""
+    return math.sqrt(validation.MAX_SCALE) / math.sqrt(density)
+
+
+def check_frequencies(omega, *, density: float | None = None) -> np.ndarray:
+    """Validate angular frequencies (rad/s): a non-empty 1-D list of finite values >= 0, and
+    with ``density`` (kg/m²) at most :func:`max_frequency`.
+
+    Examples
+    --------
+    >>> check_frequencies([0.0, 1e5], density=0.014)
+    array([     0., 100000.])
+    >>> check_frequencies([-1.0])
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: frequencies must be >= 0 rad/s, got -1
+    """
     try:
         out = np.atleast_1d(np.asarray(omega, dtype=float))
     except (TypeError, ValueError):
         raise ParameterError("frequencies must be a list of numbers >= 0, rad/s") from None
     if out.ndim != 1 or out.size == 0:
         raise ParameterError("frequencies must be a non-empty list of numbers >= 0, rad/s")
-    if not np.all(np.isfinite(out)) or np.any(out < 0):
-        raise ParameterError("frequencies must be finite and >= 0 rad/s")
+    if not np.all(np.isfinite(out)):
+        bad = out[~np.isfinite(out)][0]
+        raise ParameterError(f"frequencies must be finite, rad/s, got {bad}")
+    if np.any(out < 0):
+        raise ParameterError(f"frequencies must be >= 0 rad/s, got {out[out < 0][0]:g}")
+    high = math.inf if density is None else max_frequency(density)
+    if np.any(out > high):
+        raise ParameterError(f"frequencies must be in [0, {high:g}] rad/s (rho omega^2 "
+                             f"overflows the solvers' range above), got {out[out > high][0]:g}")
     return out
 
 
@@ -121,6 +155,9 @@ def parse_frequencies(text: str) -> np.ndarray:
             a, b = float(start), float(stop)
             if not (math.isfinite(a) and math.isfinite(b)) or b < a:
                 raise ParameterError(f"frequencies: need finite START <= STOP, got {text!r}")
+            if count == 1 and b != a:
+                raise ParameterError(f"frequencies: NUM = 1 gives START alone; use "
+                                     f"START = STOP or NUM >= 2, got {text!r}")
             if int(count) > 10**6:
                 raise ParameterError(f"frequencies: NUM must be <= 1000000, got {num}")
             return check_frequencies(np.linspace(a, b, int(count)))
@@ -197,7 +234,8 @@ def direct_response(model: TapeModel, velocity: float, omega, *,
 
     Parameters as in :func:`frequency_response`.
     """
-    velocity, omega = check_velocity(velocity), check_frequencies(omega)
+    velocity = check_velocity(velocity)
+    omega = check_frequencies(omega, density=model.params.density)
     damping = as_damping(damping)
     ops = _Operators(model, velocity, damping, _force(model, force))
     points, rows = response_rows(model, probes)
@@ -232,7 +270,11 @@ def _direct_loop(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
                  progress: bool | None) -> np.ndarray:
     out = np.empty((len(omega), rows.shape[0]), dtype=complex)
     shown = progress if len(omega) >= MIN_BAR_FREQUENCIES else False
-    with progress_bar(len(omega), "frf direct", progress=shown, unit="freq") as bar:
+    work = LongWork(len(omega), "frf direct", progress=shown, unit="solve",
+                    size=f"{len(omega)} direct solves of {len(ops.m)} unknowns",
+                    advice="use fewer frequencies, the reduced model (method auto) or a "
+                           "larger spacing")
+    with work as bar:
         for k, w in enumerate(omega):
             out[k] = rows @ ops.factor(float(w))(ops.F.astype(complex))
             bar.update(1)
@@ -333,6 +375,7 @@ class ReducedModel(Result, kind="reduced_model"):
         self.velocity = check_velocity(velocity)
         self.damping = as_damping(damping)
         self.unknowns = model.unknowns
+        self._density = model.params.density
         ops = _Operators(model, self.velocity, self.damping, _force(model, force))
         self.points, rows = response_rows(model, probes)
         self._solver = _Reduction(ops, rows)
@@ -347,6 +390,7 @@ class ReducedModel(Result, kind="reduced_model"):
         if self._solver is None:
             raise ParameterError("a loaded reduced model cannot add interpolation points: "
                                  "build a new ReducedModel from the TapeModel")
+        omegas = check_frequencies(omegas, density=self._density)
         full, nested = self._solver.spaces
         for omega in omegas:
             self.interpolation_points.append(float(omega))
@@ -516,8 +560,10 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
         BLAS threads for the reduced model's dense algebra (None: leave them alone); one
         is fastest on a shared machine, where spinning BLAS workers compete for cores.
     """
-    velocity, omega = check_velocity(velocity), check_frequencies(omega)
-    tol, max_points = _check_options(method, tol, max_points)
+    velocity = check_velocity(velocity)
+    omega = check_frequencies(omega, density=model.params.density)
+    tol, max_points = check_options(method, tol, max_points)
+    response_rows(model, probes), as_damping(damping), _force(model, force)  # checks first
     _check_subcritical(model, velocity)
     if method == "direct" or (method == "auto" and len(omega) <= INITIAL_POINTS * 2):
         return direct_response(model, velocity, omega, damping=damping, force=force,
@@ -528,11 +574,12 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
                              progress=progress, blas_threads=blas_threads)
 
 
-def _check_options(method: str, tol, max_points) -> tuple[float, int]:
-    """Validate ``method``, ``tol`` and ``max_points``; returns (tol > 0, max_points >= 1)."""
+def check_options(method: str, tol, max_points) -> tuple[float, int]:
+    """Validate ``method``, ``tol`` (in (:data:`MIN_TOL`, :data:`MAX_TOL`]) and
+    ``max_points`` (in [1, :data:`MAX_POINTS_LIMIT`]); returns (tol, max_points)."""
     validation.choice("method", method, METHODS)
-    tol = validation.positive("tol", tol)
-    return tol, validation.integer("max_points", max_points, low=1)
+    tol = validation.real("tol", tol, low=MIN_TOL, high=MAX_TOL, low_open=True)
+    return tol, validation.integer("max_points", max_points, low=1, high=MAX_POINTS_LIMIT)
 
 
 def _reduced_response(reduced: ReducedModel, omega: np.ndarray, *, method: str, tol: float,
