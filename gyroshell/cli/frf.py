@@ -70,13 +70,7 @@ def _reduced_options(args: argparse.Namespace) -> tuple[float, int]:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..engines.frequency_response import (
-        check_frequencies,
-        frequency_response,
-        parse_frequencies,
-        response_rows,
-    )
-    from ..tape.model import TapeModel
+    from ..engines.frequency_options import check_frequencies, parse_frequencies
 
     params = parameters_from_args(args)
     velocity = params.check_velocity(args.velocity)
@@ -84,8 +78,13 @@ def run(args: argparse.Namespace) -> int:
     tol, max_points = _reduced_options(args)
     damping = damping_from_args(args)
     _check_outputs(args.out, args.plot)
-    model = TapeModel(params, grid_of(params))  # the grid's size checked; nothing assembled
-    response_rows(model, args.probe)  # every probe on the tape
+    grid = grid_of(params)
+    for x, y in args.probe:  # every probe on the tape, before anything is assembled
+        grid.interpolation_row(x, y)
+    from ..engines.frequency_response import frequency_response
+    from ..tape.model import TapeModel
+
+    model = TapeModel(params, grid)
     start = time.perf_counter()
     result = frequency_response(model, velocity, omega, damping=damping, probes=args.probe,
                                 method=args.method, tol=tol, max_points=max_points,

@@ -44,14 +44,18 @@ DISSECTION_FILL_FACTOR = 12
 #: SuperLU indexes its factors with 32-bit integers.
 MAX_FACTOR_ENTRIES = 2**31 - 1
 #: Bytes a transient holds per step at its peak (measured by
-#: ``benchmarks/bench_transient_memory.py``, rounded up): the times t_n (8, and 8 more while
-#: they are computed), the history under the load (8) and the result's copy of it (8), the
-#: step flags of the recorder (1), and the two copies of (t, w) pandas makes while writing
-#: the CSV (32).
-BYTES_PER_STEP = 80
-#: Bytes a moving head adds per step: what the march keeps, its centre (16), envelope (8),
-#: first cells along x and y (16), the bilinear indices and weights under it (64) and its
-#: history (8), plus the temporaries of computing them, at their peak (measured, rounded up).
+#: ``benchmarks/bench_transient_memory.py``: 32-39 B per step beyond 100,000 steps; rounded
+#: up): the times t_n (8, and 8 more while they are computed), the history under the load
+#: (8) and the result's copy of it (8), the recorder's step flags (1) and the (t, w) table
+#: written to the CSV (16).
+BYTES_PER_STEP = 48
+#: Bytes a transient holds whatever its length: pandas formats a CSV 50,000 rows at a time
+#: (about 15 MB of text at the peak, measured), and small work arrays.
+TRANSIENT_FIXED_BYTES = 24e6
+#: Bytes a moving head adds per step: what the march keeps of it, its centre (16), envelope
+#: (8), first cells along x and y (16), bilinear indices and weights (64) and history (8),
+#: plus the temporaries of computing them, at their peak (measured: 216-232 B per step with
+#: one head, the step's own bytes included; rounded up).
 BYTES_PER_HEAD_STEP = 250
 #: Bytes per step of a recorded energy (the array and the result's copy in a table).
 BYTES_PER_ENERGY_STEP = 24
@@ -151,7 +155,8 @@ def check_unknowns(nx: int, ny: int, edges: str) -> float:
 
 def transient_bytes(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0,
                     centerlines: int = 0, heads: int = 0, energy: bool = False) -> float:
-    """Estimated memory of a transient run, bytes: the model, what every step keeps
+    """Estimated memory of a transient run, bytes: the model, what the run holds whatever
+    its length (:data:`TRANSIENT_FIXED_BYTES`), what every step keeps
     (:data:`BYTES_PER_STEP`, :data:`BYTES_PER_HEAD_STEP` per moving head,
     :data:`BYTES_PER_ENERGY_STEP` with a recorded energy) and the kept full fields and
     centre lines.
@@ -159,12 +164,12 @@ def transient_bytes(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0
     Examples
     --------
     >>> round(transient_bytes(16, 8, "free", 10**6, heads=1) / 1e6)   # MB, one moving head
-    331
+    322
     """
     nodes = float(nx + 1) * float(ny + 1)
     per_step = (BYTES_PER_STEP + BYTES_PER_HEAD_STEP * heads
                 + (BYTES_PER_ENERGY_STEP if energy else 0))
-    return (model_bytes(nx, ny, edges) + per_step * (steps + 1.0)
+    return (model_bytes(nx, ny, edges) + TRANSIENT_FIXED_BYTES + per_step * (steps + 1.0)
             + 8.0 * nodes * fields + 8.0 * (nx + 1) * centerlines)
 
 
