@@ -55,7 +55,7 @@ def _check_outputs(out: str | None, plot: str | None) -> None:
 
 def _reduced_options(args: argparse.Namespace) -> tuple[float, int]:
     """--tol and --max-points, checked (refused with --method direct, which ignores them)."""
-    from ..engines.frequency_response import DEFAULT_TOL, MAX_POINTS, check_options
+    from ..engines.frequency_options import DEFAULT_TOL, MAX_POINTS, check_options
 
     if args.method == "direct":
         typed = [flag for flag, value in (("--tol", args.tol), ("--max-points", args.max_points))

@@ -87,16 +87,16 @@ def time_limit() -> float:
 
 
 def duration(seconds: float) -> str:
-    """``seconds`` as a short human text: '0.35 s', '12 min', '3.2 h', '41 days'.
+    """``seconds`` as a short human text in the largest unit of which it holds two or more:
+    '0.351 s', '12 min', '3.2 h', '41.7 days'.
 
     Examples
     --------
     >>> duration(0.351), duration(720), duration(11520), duration(3.6e6)
     ('0.351 s', '12 min', '3.2 h', '41.7 days')
     """
-    for unit, scale, above in (("days", 86400.0, 172800.0), ("h", 3600.0, 7200.0),
-                               ("min", 60.0, 60.0)):
-        if seconds >= above:
+    for unit, scale in (("days", 86400.0), ("h", 3600.0), ("min", 60.0)):
+        if seconds >= 2.0 * scale:
             return f"{seconds / scale:.3g} {unit}"
     return f"{seconds:.3g} s"
 
