@@ -44,18 +44,18 @@ DISSECTION_FILL_FACTOR = 12
 #: SuperLU indexes its factors with 32-bit integers.
 MAX_FACTOR_ENTRIES = 2**31 - 1
 #: Bytes a transient holds per step at its peak (measured by
-#: ``benchmarks/bench_transient_memory.py``: 32-39 B per step beyond 100,000 steps; rounded
-#: up): the times t_n (8, and 8 more while they are computed), the history under the load
-#: (8) and the result's copy of it (8), the recorder's step flags (1) and the (t, w) table
-#: written to the CSV (16).
-BYTES_PER_STEP = 48
+#: ``benchmarks/bench_transient_memory.py``: 32 B per step by tracemalloc, 45 B by ru_maxrss,
+#: between 200,000 and 400,000 steps; rounded up): the times t_n (8, and 8 more while they
+#: are computed), the history under the load (8) and the result's copy of it (8), the
+#: recorder's step flags (1) and the (t, w) table written to the CSV (16).
+BYTES_PER_STEP = 56
 #: Bytes a transient holds whatever its length: pandas formats a CSV 50,000 rows at a time
 #: (about 15 MB of text at the peak, measured), and small work arrays.
 TRANSIENT_FIXED_BYTES = 24e6
 #: Bytes a moving head adds per step: what the march keeps of it, its centre (16), envelope
 #: (8), first cells along x and y (16), bilinear indices and weights (64) and history (8),
-#: plus the temporaries of computing them, at their peak (measured: 216-232 B per step with
-#: one head, the step's own bytes included; rounded up).
+#: plus the temporaries of computing them, at their peak (measured: 265 B per step with one
+#: head, the step's own bytes included, between 200,000 and 400,000 steps; rounded up).
 BYTES_PER_HEAD_STEP = 250
 #: Bytes per step of a recorded energy (the array and the result's copy in a table).
 BYTES_PER_ENERGY_STEP = 24
@@ -164,7 +164,7 @@ def transient_bytes(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0
     Examples
     --------
     >>> round(transient_bytes(16, 8, "free", 10**6, heads=1) / 1e6)   # MB, one moving head
-    322
+    330
     """
     nodes = float(nx + 1) * float(ny + 1)
     per_step = (BYTES_PER_STEP + BYTES_PER_HEAD_STEP * heads
