@@ -6,13 +6,19 @@ sets ``func``. User errors
 (bad parameters, supercritical requests, unwritable outputs) print one line on stderr and
 exit with code 2; numerical failures exit with code 1; no tracebacks for either. Ctrl-C,
 SIGTERM and SIGHUP stop the run, remove its temporary files and leave no output (exit codes
-130, 143 and 129).
+130, 143 and 129). A standard output closed early (``gyroshell frf ... --json | head -c 10``)
+ends the command quietly, as coreutils' ``seq`` or ``yes`` end when SIGPIPE kills them:
+no message and exit code 141 (128 + SIGPIPE), the code a shell reports for them
+(``python -m json.tool`` also stays quiet, with exit code 32, the errno); the output files a
+finished run wrote are kept.
 """
 
 from __future__ import annotations
 
 import importlib
 import inspect
+import os
+import signal
 import sys
 
 from ..core.errors import ConvergenceError, ParameterError
@@ -55,7 +61,11 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with termination_signals():
             args = parser.parse_args(argv)
-            return int(args.func(args) or 0)
+            code = int(args.func(args) or 0)
+            sys.stdout.flush()  # a closed pipe shows here, not at the interpreter's exit
+            return code
+    except BrokenPipeError:  # before OSError, of which it is one
+        return _stdout_closed()
     except (UserError, ParameterError) as exc:
         return _fail(str(exc), 2)
     except OSError as exc:  # an output that failed while being written (disk full, ...)
@@ -71,3 +81,23 @@ def main(argv: list[str] | None = None) -> int:
 def _fail(message: str, code: int) -> int:
     print(f"gyroshell: error: {message}", file=sys.stderr)
     return code
+
+
+#: Exit code when standard output is closed early: 128 + SIGPIPE, as a shell reports for
+#: coreutils killed by SIGPIPE (``seq 1 1000000 | head -c 10``).
+BROKEN_PIPE_EXIT = 128 + getattr(signal, "SIGPIPE", 13)
+
+
+def _stdout_closed() -> int:
+    """Stop quietly after the reader of stdout went away (the recipe of Python's ``signal``
+    documentation): stdout is pointed at the null device, so that the interpreter's final
+    flush of what is still buffered does not report the broken pipe again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        try:
+            os.dup2(devnull, sys.stdout.fileno())
+        finally:
+            os.close(devnull)
+    except (OSError, ValueError):  # stdout is not a file descriptor (captured in tests)
+        pass
+    return BROKEN_PIPE_EXIT

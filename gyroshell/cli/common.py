@@ -10,10 +10,14 @@ import sys
 
 from ..tape.parameters import EDGE_CHOICES, TapeParameters
 
-#: Option values that are negative numbers (``-1e-4``, ``-.5``, ``-inf``): argparse's own
-#: pattern misses exponents, so ``--spacing -1e-4`` would be taken for an option.
-NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$",
-                             re.IGNORECASE)
+#: Option values that start with a negative number: ``-1e-4``, ``-.5``, ``-inf``, and the
+#: comma lists and ``START:STOP:NUM`` ranges that begin with one (``-5,10``, ``-5:5:3``,
+#: ``-0.001,0.003``). argparse's own pattern misses exponents and lists, so
+#: ``--spacing -1e-4`` or ``--load-velocity -40,0`` would be taken for an option; no option
+#: of gyroshell starts with a dash and a digit (or ``inf``, ``nan``), so every such word is a
+#: value and reaches its option's validator, which names the allowed range (``-1e`` gets
+#: "not a number", not "expected one argument").
+NEGATIVE_NUMBER = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
 
 
 class UserError(Exception):

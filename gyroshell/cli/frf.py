@@ -6,7 +6,7 @@ import argparse
 import time
 from pathlib import Path
 
-from .common import UserError, parameters_from_args, positive_int, print_json, real
+from .common import UserError, grid_of, parameters_from_args, positive_int, print_json, real
 from .loading import add_damping_options, damping_from_args, pair
 
 
@@ -28,11 +28,12 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                    help="auto (default): reduced model, direct solves where it is not "
                         "accurate enough; direct: one sparse LU per frequency; reduced: the "
                         "reduced model alone, with its estimated error")
-    p.add_argument("--tol", type=real, default=1e-6,
-                   help="target relative error of the reduced model (default 1e-6)")
-    p.add_argument("--max-points", type=positive_int, default=40,
+    p.add_argument("--tol", type=real, default=None,
+                   help="target relative error of the reduced model, in (1e-8, 0.1] "
+                        "(default 1e-6; not with --method direct)")
+    p.add_argument("--max-points", type=positive_int, default=None,
                    help="most interpolation frequencies (factorizations) of the reduced "
-                        "model (default 40)")
+                        "model, at most 100 (default 40; not with --method direct)")
     p.add_argument("--out", metavar="FILE.csv", default=None,
                    help="write omega (rad/s), frequency (Hz), amplitude (m), phase (rad), "
                         "method, error_estimate, and amplitude_k, phase_k per probe")
@@ -52,20 +53,41 @@ def _check_outputs(out: str | None, plot: str | None) -> None:
     check_outputs({"--out": (out, None), "--plot": (plot, PLOT)})
 
 
+def _reduced_options(args: argparse.Namespace) -> tuple[float, int]:
+    """--tol and --max-points, checked (refused with --method direct, which ignores them)."""
+    from ..engines.frequency_options import DEFAULT_TOL, MAX_POINTS, check_options
+
+    if args.method == "direct":
+        typed = [flag for flag, value in (("--tol", args.tol), ("--max-points", args.max_points))
+                 if value is not None]
+        if typed:
+            verb = "sets" if len(typed) == 1 else "set"
+            raise UserError(f"{' and '.join(typed)} {verb} the reduced model; --method direct "
+                            "solves every frequency without one")
+    tol = DEFAULT_TOL if args.tol is None else args.tol
+    return check_options(args.method, tol,
+                         MAX_POINTS if args.max_points is None else args.max_points)
+
+
 def run(args: argparse.Namespace) -> int:
-    from ..engines.frequency_response import frequency_response, parse_frequencies
-    from ..tape.model import TapeModel
-    from ..tape.parameters import check_velocity
+    from ..engines.frequency_options import check_frequencies, parse_frequencies
 
     params = parameters_from_args(args)
-    velocity = check_velocity(args.velocity)
-    omega = parse_frequencies(args.frequencies)
+    velocity = params.check_velocity(args.velocity)
+    omega = check_frequencies(parse_frequencies(args.frequencies), density=params.density)
+    tol, max_points = _reduced_options(args)
     damping = damping_from_args(args)
     _check_outputs(args.out, args.plot)
-    model = TapeModel(params)
+    grid = grid_of(params)
+    for x, y in args.probe:  # every probe on the tape, before anything is assembled
+        grid.interpolation_row(x, y)
+    from ..engines.frequency_response import frequency_response
+    from ..tape.model import TapeModel
+
+    model = TapeModel(params, grid)
     start = time.perf_counter()
     result = frequency_response(model, velocity, omega, damping=damping, probes=args.probe,
-                                method=args.method, tol=args.tol, max_points=args.max_points,
+                                method=args.method, tol=tol, max_points=max_points,
                                 progress=False if args.quiet else None)
     elapsed = time.perf_counter() - start
     from ..core.files import transaction

@@ -51,26 +51,35 @@ def add_load_options(p: argparse.ArgumentParser) -> None:
                         "--contact-duration); each contact restarts the head at "
                         "--load-position")
     g.add_argument("--contact-duration", metavar="S", type=float, default=None,
-                   help="length of each contact window, s (<= --contact-period)")
-    g.add_argument("--contact-ramp", metavar="S", type=float, default=0.0,
-                   help="raised-cosine rise and fall time inside each window, s "
-                        "(default 0: abrupt)")
+                   help="length of each contact window, s (<= --contact-period, and at "
+                        "least two time steps)")
+    g.add_argument("--contact-ramp", metavar="S", type=float, default=None,
+                   help="raised-cosine rise and fall time inside each window, s (0, or at "
+                        "least one time step; needs the contact windows; default 0: abrupt)")
 
 
-def load_from_args(args: argparse.Namespace, params):
-    """A MovingLoad from the load options, or None for the paper's fixed step load."""
-    from ..tape.moving_loads import ContactWindows, MovingLoad, StraightPath
+def load_from_args(args: argparse.Namespace, params, dt: float | None = None):
+    """A MovingLoad from the load options, or None for the paper's fixed step load; with
+    ``dt`` (s) its contact windows are checked against the time step
+    (:func:`gyroshell.tape.moving_loads.check_contact_steps`)."""
+    from ..tape.moving_loads import ContactWindows, MovingLoad, StraightPath, check_contact_steps
 
     contact_given = (args.contact_period is not None, args.contact_duration is not None)
     if any(contact_given) and not all(contact_given):
         raise UserError("--contact-period and --contact-duration go together")
+    if args.contact_ramp is not None and not all(contact_given):
+        raise UserError("--contact-ramp shapes the contact windows: it needs "
+                        "--contact-period and --contact-duration")
     if args.load_position is None and args.load_velocity is None and not any(contact_given):
         return None
     start = params.load_centroid if args.load_position is None else args.load_position
     velocity = (0.0, 0.0) if args.load_velocity is None else args.load_velocity
     contact = None
     if all(contact_given):
-        contact = ContactWindows(args.contact_period, args.contact_duration,
-                                 ramp=args.contact_ramp)
-    return MovingLoad(StraightPath(start, velocity), contact=contact,
+        ramp = 0.0 if args.contact_ramp is None else args.contact_ramp
+        contact = ContactWindows(args.contact_period, args.contact_duration, ramp=ramp)
+    load = MovingLoad(StraightPath(start, velocity), contact=contact,
                       restart_path=contact is not None)
+    if dt is not None:
+        check_contact_steps([load], dt)
+    return load

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
 from .loading import add_damping_options, add_load_options, damping_from_args, load_from_args
@@ -68,12 +69,30 @@ def _warn_if_supercritical(model, velocity: float) -> None:
               "without bound", file=sys.stderr)
 
 
+def _check_snapshots(args: argparse.Namespace) -> None:
+    """--snapshot-every and --snapshots: both or neither, a kept field after t = 0, .npz."""
+    if (args.snapshot_every is None) != (args.snapshots is None):
+        raise UserError("--snapshot-every and --snapshots go together")
+    if args.snapshot_every is not None and args.snapshot_every > args.steps:
+        raise UserError(f"--snapshot-every must be <= --steps ({args.steps}), got "
+                        f"{args.snapshot_every}: only the field at rest (t = 0) would be kept")
+    if args.snapshots is not None and not args.snapshots.lower().endswith(".npz"):
+        raise UserError(f"--snapshots must be a .npz file, got {args.snapshots}")
+
+
+def _warn_if_conditionally_stable(beta: float, gamma: float) -> None:
+    """One warning line (instead of Python's two) outside 2 beta >= gamma >= 1/2."""
+    if not 2.0 * beta >= gamma >= 0.5:
+        print(f"gyroshell: warning: beta = {beta:g}, gamma = {gamma:g} lie outside the "
+              "unconditionally stable region 2 beta >= gamma >= 1/2: the march is stable "
+              "only for small enough dt", file=sys.stderr)
+
+
 def run(args: argparse.Namespace) -> int:
     from ..core import budget, files, validation
     from ..tape.grid import Grid
 
-    if (args.snapshot_every is None) != (args.snapshots is None):
-        raise UserError("--snapshot-every and --snapshots go together")
+    _check_snapshots(args)
     params = parameters_from_args(args)
     velocity = params.check_velocity(args.velocity)
     validation.time_step(args.dt, args.beta)
@@ -81,18 +100,23 @@ def run(args: argparse.Namespace) -> int:
                       "--save": (args.save, None)})
     check_save_path(args.save)
     grid = Grid.from_parameters(params)
+    load, damping = load_from_args(args, params, args.dt), damping_from_args(args)
     budget.check_transient(grid.nx, grid.ny, grid.edges, args.steps,
-                           fields=budget.snapshot_count(args.steps, args.snapshot_every))
-    from ..engines.newmark import march
+                           fields=budget.snapshot_count(args.steps, args.snapshot_every),
+                           heads=0 if load is None else 1)
+    from ..engines.newmark import NewmarkStabilityWarning, march
     from ..tape.model import TapeModel
 
-    load, damping = load_from_args(args, params), damping_from_args(args)
     model = TapeModel(params, grid)
     validation.time_step(args.dt, args.beta, stiffness_scale=_stiffness_scale(model, velocity))
     _warn_if_supercritical(model, velocity)
-    result = march(model, velocity, dt=args.dt, steps=args.steps, beta=args.beta,
-                   gamma=args.gamma, backend=args.backend, damping=damping, load=load,
-                   snapshot_every=args.snapshot_every, progress=False if args.quiet else None)
+    _warn_if_conditionally_stable(args.beta, args.gamma)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", NewmarkStabilityWarning)  # said above, in one line
+        result = march(model, velocity, dt=args.dt, steps=args.steps, beta=args.beta,
+                       gamma=args.gamma, backend=args.backend, damping=damping, load=load,
+                       snapshot_every=args.snapshot_every,
+                       progress=False if args.quiet else None)
     with files.transaction():
         if args.out is not None:
             result.to_csv(args.out)

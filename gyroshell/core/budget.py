@@ -43,8 +43,22 @@ BAND_FILL_FACTOR = 4
 DISSECTION_FILL_FACTOR = 12
 #: SuperLU indexes its factors with 32-bit integers.
 MAX_FACTOR_ENTRIES = 2**31 - 1
-#: Bytes a transient keeps per step: time, load-point value, energy, and a step flag.
-BYTES_PER_STEP = 25
+#: Bytes a transient holds per step at its peak (measured by
+#: ``benchmarks/bench_transient_memory.py``: 32 B per step by tracemalloc, 45 B by ru_maxrss,
+#: between 200,000 and 400,000 steps; rounded up): the times t_n (8, and 8 more while they
+#: are computed), the history under the load (8) and the result's copy of it (8), the
+#: recorder's step flags (1) and the (t, w) table written to the CSV (16).
+BYTES_PER_STEP = 56
+#: Bytes a transient holds whatever its length: pandas formats a CSV 50,000 rows at a time
+#: (about 15 MB of text at the peak, measured), and small work arrays.
+TRANSIENT_FIXED_BYTES = 24e6
+#: Bytes a moving head adds per step: what the march keeps of it, its centre (16), envelope
+#: (8), first cells along x and y (16), bilinear indices and weights (64) and history (8),
+#: plus the temporaries of computing them, at their peak (measured: 265 B per step with one
+#: head, the step's own bytes included, between 200,000 and 400,000 steps; rounded up).
+BYTES_PER_HEAD_STEP = 250
+#: Bytes per step of a recorded energy (the array and the result's copy in a table).
+BYTES_PER_ENERGY_STEP = 24
 #: Longest speed list a sweep accepts (one eigen-solve each).
 MAX_SWEEP_SPEEDS = 10_000
 #: Most points one parameter study may hold (each is at least one solve).
@@ -140,11 +154,22 @@ def check_unknowns(nx: int, ny: int, edges: str) -> float:
 
 
 def transient_bytes(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0,
-                    centerlines: int = 0) -> float:
-    """Estimated memory of a transient run, bytes: the model, the per-step history and the
-    kept full fields and centre lines."""
+                    centerlines: int = 0, heads: int = 0, energy: bool = False) -> float:
+    """Estimated memory of a transient run, bytes: the model, what the run holds whatever
+    its length (:data:`TRANSIENT_FIXED_BYTES`), what every step keeps
+    (:data:`BYTES_PER_STEP`, :data:`BYTES_PER_HEAD_STEP` per moving head,
+    :data:`BYTES_PER_ENERGY_STEP` with a recorded energy) and the kept full fields and
+    centre lines.
+
+    Examples
+    --------
+    >>> round(transient_bytes(16, 8, "free", 10**6, heads=1) / 1e6)   # MB, one moving head
+    330
+    """
     nodes = float(nx + 1) * float(ny + 1)
-    return (model_bytes(nx, ny, edges) + BYTES_PER_STEP * (steps + 1.0)
+    per_step = (BYTES_PER_STEP + BYTES_PER_HEAD_STEP * heads
+                + (BYTES_PER_ENERGY_STEP if energy else 0))
+    return (model_bytes(nx, ny, edges) + TRANSIENT_FIXED_BYTES + per_step * (steps + 1.0)
             + 8.0 * nodes * fields + 8.0 * (nx + 1) * centerlines)
 
 
@@ -154,22 +179,25 @@ def snapshot_count(steps: int, every: int | None) -> int:
 
 
 def check_transient(nx: int, ny: int, edges: str, steps: int, *, fields: int = 0,
-                    centerlines: int = 0) -> float:
-    """Refuse a transient that cannot fit in memory; returns the estimate, bytes.
+                    centerlines: int = 0, heads: int = 0, energy: bool = False) -> float:
+    """Refuse a transient that cannot fit in memory; returns the estimate, bytes
+    (:func:`transient_bytes`).
 
     Raises
     ------
     ParameterError
-        Naming the steps, the kept fields, the estimate and the limit.
+        Naming the steps, the moving heads, the kept fields, the estimate and the limit.
     """
     check_unknowns(nx, ny, edges)
-    estimate = transient_bytes(nx, ny, edges, steps, fields=fields, centerlines=centerlines)
+    estimate = transient_bytes(nx, ny, edges, steps, fields=fields, centerlines=centerlines,
+                               heads=heads, energy=energy)
     limit = memory_limit()
     if estimate > limit:
+        moving = (f" with {heads} moving head{'s' if heads > 1 else ''}" if heads else "")
         kept = f" and {fields} full fields of {(nx + 1) * (ny + 1)} nodes" if fields else ""
         raise ParameterError(
-            f"a transient of {steps} steps{kept} needs about {_bytes(estimate)}, more than the "
-            f"limit {_bytes(limit)}; use fewer steps or keep fewer snapshots "
+            f"a transient of {steps} steps{moving}{kept} needs about {_bytes(estimate)}, more "
+            f"than the limit {_bytes(limit)}; use fewer steps or keep fewer snapshots "
             f"(or set {MEMORY_LIMIT_VARIABLE})")
     return estimate
 

@@ -30,7 +30,6 @@ directly.
 
 from __future__ import annotations
 
-import math
 import time
 from collections.abc import Sequence
 from dataclasses import asdict
@@ -42,7 +41,7 @@ import scipy.sparse as sp
 from ..core import validation
 from ..core.errors import ParameterError
 from ..core.parallel import blas_threads as limit_blas_threads
-from ..core.progress import progress_bar
+from ..core.progress import LongWork
 from ..linalg.factorization import splu
 from ..plot import bode
 from ..results.base import Result, dataset, from_json, get, put
@@ -50,86 +49,46 @@ from ..results.frequency_response import FrequencyResponse
 from ..tape.damping import Damping, as_damping
 from ..tape.model import TapeModel
 from ..tape.parameters import check_velocity
+from .frequency_options import (  # noqa: F401 - the checks are public here too
+    DEFAULT_TOL,
+    ESTIMATE_ROUNDOFF,
+    MAX_POINTS,
+    MAX_POINTS_LIMIT,
+    MAX_TOL,
+    METHODS,
+    MIN_TOL,
+    check_frequencies,
+    check_options,
+    max_frequency,
+    parse_frequencies,
+)
 
 #: SuperLU's threshold for keeping a diagonal pivot. Q has a symmetric pattern; the default
 #: partial pivoting (1.0) abandons the fill-reducing order when K − ω²M is indefinite and
 #: took minutes per factorization at L_x/L_y = 19 instead of about a second.
 PIVOT_THRESHOLD = 0.1
-#: Default relative accuracy of the reduced model against direct solves.
-DEFAULT_TOL = 1e-6
 #: Taylor coefficients matched at each interpolation frequency (W₀ ... W_{m−1}).
 DEFAULT_MOMENTS = 6
 #: Interpolation frequencies placed before the greedy enrichment.
 INITIAL_POINTS = 4
-#: Largest number of interpolation frequencies (factorizations) of the reduced model.
-MAX_POINTS = 40
 #: Responses below this fraction of the largest one count as this fraction (relative
 #: errors at deep anti-resonances are not meaningful).
 RESPONSE_FLOOR = 1e-6
-#: The estimate is this multiple of the nested models' difference ...
+#: The estimate is this multiple of the nested models' difference, plus the round-off level
+#: ESTIMATE_ROUNDOFF (:mod:`gyroshell.engines.frequency_options`).
 ESTIMATE_SAFETY = 2.0
-#: ... plus this relative round-off level of the reduced evaluation (basis orthogonalization
-#: and the small eigen-decomposition lose about 1e-9 against direct solves).
-ESTIMATE_ROUNDOFF = 1e-8
 #: A new (unit) vector whose part outside the basis is smaller than this adds no direction.
 NEW_DIRECTION_TOL = 1e-8
 #: Interpolation points added per greedy round (one rebuild of the reduced model each).
 POINTS_PER_ROUND = 4
 #: Frequencies per batch of small dense solves.
 BATCH = 256
-METHODS = ("auto", "direct", "reduced")
 #: Frequencies of a reduced model's Bode plot ...
 PLOT_FREQUENCIES = 400
 #: ... and its span, rad/s, when the model has a single interpolation frequency.
 SINGLE_POINT_SPAN = 1.0
 #: Direct sweeps shorter than this show no progress bar (it would flash and vanish).
 MIN_BAR_FREQUENCIES = 2
-
-
-# ----- validation ----------------------------------------------------------------------
-def check_frequencies(omega) -> np.ndarray:
-    """Validate angular frequencies (rad/s): a non-empty 1-D list of finite values >= 0."""
-    try:
-        out = np.atleast_1d(np.asarray(omega, dtype=float))
-    except (TypeError, ValueError):
-        raise ParameterError("frequencies must be a list of numbers >= 0, rad/s") from None
-    if out.ndim != 1 or out.size == 0:
-        raise ParameterError("frequencies must be a non-empty list of numbers >= 0, rad/s")
-    if not np.all(np.isfinite(out)) or np.any(out < 0):
-        raise ParameterError("frequencies must be finite and >= 0 rad/s")
-    return out
-
-
-def parse_frequencies(text: str) -> np.ndarray:
-    """'START:STOP:NUM' (NUM points, both ends included) or 'w1,w2,...', rad/s.
-
-    Examples
-    --------
-    >>> parse_frequencies("0:1e5:3")
-    array([     0.,  50000., 100000.])
-    >>> parse_frequencies("1e5:0:3")
-    Traceback (most recent call last):
-    ...
-    gyroshell.ParameterError: frequencies: need finite START <= STOP, got '1e5:0:3'
-    """
-    try:
-        if ":" in text:
-            start, stop, num = text.split(":")
-            count = float(num)
-            if count != int(count) or count < 1:
-                raise ParameterError(f"frequencies: NUM must be an integer >= 1, got {num!r}")
-            a, b = float(start), float(stop)
-            if not (math.isfinite(a) and math.isfinite(b)) or b < a:
-                raise ParameterError(f"frequencies: need finite START <= STOP, got {text!r}")
-            if int(count) > 10**6:
-                raise ParameterError(f"frequencies: NUM must be <= 1000000, got {num}")
-            return check_frequencies(np.linspace(a, b, int(count)))
-        return check_frequencies([float(s) for s in text.split(",") if s.strip()])
-    except ValueError as exc:
-        if isinstance(exc, ParameterError):
-            raise
-        raise ParameterError(f"frequencies must be 'START:STOP:NUM' or 'w1,w2,...' in rad/s, "
-                             f"got {text!r}") from None
 
 
 def response_rows(model: TapeModel, probes: Sequence[tuple[float, float]]
@@ -197,7 +156,8 @@ def direct_response(model: TapeModel, velocity: float, omega, *,
 
     Parameters as in :func:`frequency_response`.
     """
-    velocity, omega = check_velocity(velocity), check_frequencies(omega)
+    velocity = check_velocity(velocity)
+    omega = check_frequencies(omega, density=model.params.density)
     damping = as_damping(damping)
     ops = _Operators(model, velocity, damping, _force(model, force))
     points, rows = response_rows(model, probes)
@@ -232,7 +192,11 @@ def _direct_loop(ops: _Operators, rows: sp.csr_matrix, omega: np.ndarray,
                  progress: bool | None) -> np.ndarray:
     out = np.empty((len(omega), rows.shape[0]), dtype=complex)
     shown = progress if len(omega) >= MIN_BAR_FREQUENCIES else False
-    with progress_bar(len(omega), "frf direct", progress=shown, unit="freq") as bar:
+    work = LongWork(len(omega), "frf direct", progress=shown, unit="solve",
+                    size=f"{len(omega)} direct solves of {len(ops.m)} unknowns",
+                    advice="use fewer frequencies, the reduced model (method auto) or a "
+                           "larger spacing")
+    with work as bar:
         for k, w in enumerate(omega):
             out[k] = rows @ ops.factor(float(w))(ops.F.astype(complex))
             bar.update(1)
@@ -333,6 +297,7 @@ class ReducedModel(Result, kind="reduced_model"):
         self.velocity = check_velocity(velocity)
         self.damping = as_damping(damping)
         self.unknowns = model.unknowns
+        self._density = model.params.density
         ops = _Operators(model, self.velocity, self.damping, _force(model, force))
         self.points, rows = response_rows(model, probes)
         self._solver = _Reduction(ops, rows)
@@ -347,6 +312,7 @@ class ReducedModel(Result, kind="reduced_model"):
         if self._solver is None:
             raise ParameterError("a loaded reduced model cannot add interpolation points: "
                                  "build a new ReducedModel from the TapeModel")
+        omegas = check_frequencies(omegas, density=self._density)
         full, nested = self._solver.spaces
         for omega in omegas:
             self.interpolation_points.append(float(omega))
@@ -516,8 +482,10 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
         BLAS threads for the reduced model's dense algebra (None: leave them alone); one
         is fastest on a shared machine, where spinning BLAS workers compete for cores.
     """
-    velocity, omega = check_velocity(velocity), check_frequencies(omega)
-    tol, max_points = _check_options(method, tol, max_points)
+    velocity = check_velocity(velocity)
+    omega = check_frequencies(omega, density=model.params.density)
+    tol, max_points = check_options(method, tol, max_points)
+    response_rows(model, probes), as_damping(damping), _force(model, force)  # checks first
     _check_subcritical(model, velocity)
     if method == "direct" or (method == "auto" and len(omega) <= INITIAL_POINTS * 2):
         return direct_response(model, velocity, omega, damping=damping, force=force,
@@ -526,13 +494,6 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
                            moments=moments)
     return _reduced_response(reduced, omega, method=method, tol=tol, max_points=max_points,
                              progress=progress, blas_threads=blas_threads)
-
-
-def _check_options(method: str, tol, max_points) -> tuple[float, int]:
-    """Validate ``method``, ``tol`` and ``max_points``; returns (tol > 0, max_points >= 1)."""
-    validation.choice("method", method, METHODS)
-    tol = validation.positive("tol", tol)
-    return tol, validation.integer("max_points", max_points, low=1)
 
 
 def _reduced_response(reduced: ReducedModel, omega: np.ndarray, *, method: str, tol: float,

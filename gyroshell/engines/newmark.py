@@ -38,17 +38,23 @@ import numpy as np
 from ..core import budget, validation
 from ..core.errors import ConvergenceError, ParameterError
 from ..core.parallel import blas_threads as limit_blas_threads
-from ..core.progress import progress_bar
+from ..core.progress import LongWork
 from ..linalg.factorization import factorize
 from ..results.transient import Recorder, TransientResult
 from ..tape.damping import Damping, as_damping
 from ..tape.loads import TimeProfile, step
 from ..tape.model import TapeModel
-from ..tape.moving_loads import MovingLoad, PreparedLoads, as_loads
+from ..tape.moving_loads import MovingLoad, PreparedLoads, as_loads, check_contact_steps
 from ..tape.parameters import check_velocity
 
 #: The run stops when ‖w‖₂ grows past this many times its natural scale.
 BLOWUP_FACTOR = 1e8
+#: Runs of at least this many steps are timed on a few trial steps before their per-step
+#: arrays are allocated (shorter runs on their own first steps), so that a run beyond the
+#: time limit (:func:`gyroshell.core.progress.time_limit`) is refused at once.
+TRIAL_FROM_STEPS = 100_000
+#: Timed trial steps (after one warm-up step).
+TRIAL_STEPS = 8
 
 
 class NewmarkStabilityWarning(UserWarning):
@@ -212,8 +218,7 @@ class Newmark:
               force: np.ndarray | None = None,
               load: MovingLoad | Sequence[MovingLoad] | None = None,
               w0: np.ndarray | None = None, v0: np.ndarray | None = None, t0: float = 0.0,
-              snapshot_times: Sequence[float] | None = None,
-              snapshot_every: int | None = None,
+              snapshot_times: Sequence[float] | None = None, snapshot_every: int | None = None,
               centerline_times: Sequence[float] | None = None,
               record_energy: bool = False, progress: bool | None = None,
               blowup_factor: float = BLOWUP_FACTOR) -> TransientResult:
@@ -257,40 +262,75 @@ class Newmark:
         """
         steps, t0 = check_steps(steps), validation.real("t0", t0, unit="s")
         blowup_factor = validation.positive("blowup_factor", blowup_factor)
-        times = self._instants(steps, t0)
+        kept = dict(snapshot_times=snapshot_times, snapshot_every=snapshot_every,
+                    centerline_times=centerline_times)
+        work = self._plan(steps, load, kept, record_energy, progress)
+        times = t0 + self.dt * np.arange(steps + 1)  # t_n, s
         forcing = self._prepare_forcing(load, force, profile, times)
         w, v = self._state(w0, "w0", "m"), self._state(v0, "v0", "m/s")
         a = self.initial_acceleration(w, v, forcing.vector(0))
-        recorder = Recorder(self.model.grid, steps, self.dt, t0, snapshot_times=snapshot_times,
-                            snapshot_every=snapshot_every, centerline_times=centerline_times)
+        recorder = Recorder(self.model.grid, steps, self.dt, t0, **kept)
         bound = self._blowup_bound(w, v, forcing, steps, blowup_factor)
         state, history, energy, timing = self._timed_loop(
-            steps, times, (w, v, a), forcing, recorder, bound, record_energy, progress)
-        return self._result(times, history, recorder, state, energy, timing,
-                            moving_load=load is not None)
+            steps, times, (w, v, a), forcing, recorder, bound, record_energy, work)
+        return self._result(times, history, recorder, state, energy, timing, load is not None)
 
-    def _instants(self, steps: int, t0: float) -> np.ndarray:
-        """t_n = t0 + n Δt, s, n = 0..steps, once the run's per-step arrays are known to fit."""
+    def _plan(self, steps: int, load, kept, record_energy: bool, progress) -> LongWork:
+        """Check the run before any of its per-step arrays exists: the heads' contact windows
+        against Δt, the memory of all it keeps per step (:func:`budget.check_transient`:
+        times, history, heads' positions and weights, energy, fields) and, from
+        :data:`TRIAL_FROM_STEPS` steps on, its time measured on :data:`TRIAL_STEPS` trial
+        steps; returns the run's progress (shorter runs are timed on their first steps)."""
         grid = self.model.grid
-        budget.check_transient(grid.nx, grid.ny, grid.edges, steps)
-        return t0 + self.dt * np.arange(steps + 1)
+        loads = None if load is None else as_loads(load)
+        if loads is not None:
+            check_contact_steps(loads, self.dt)
+        snapshot_times, snapshot_every, centerline_times = kept.values()
+        if snapshot_every is not None:
+            snapshot_every = validation.integer("snapshot_every", snapshot_every, low=1)
+        budget.check_transient(
+            grid.nx, grid.ny, grid.edges, steps, heads=0 if loads is None else len(loads),
+            fields=budget.snapshot_count(steps, snapshot_every) + _how_many(snapshot_times),
+            centerlines=_how_many(centerline_times), energy=bool(record_energy))
+        work = LongWork(steps, "newmark", progress=progress, unit="step",
+                        size=f"a transient of {steps} steps of {self.model.unknowns} unknowns",
+                        advice="use fewer steps, a larger dt or a larger spacing")
+        if steps >= TRIAL_FROM_STEPS:
+            work.assess(self._trial_step_time(), f"{TRIAL_STEPS} trial steps")
+        return work
+
+    def _trial_step_time(self) -> float:
+        """Seconds per step, measured on :data:`TRIAL_STEPS` steps from rest under the
+        model's force, on scratch vectors, after one untimed warm-up step."""
+        n = self.model.unknowns
+        forcing = _FixedForce(self.model.force, step, self.model.load_point_row, np.zeros(1))
+        w, v, a = (np.zeros(n) for _ in range(3))
+        w_t, v_t, rhs, tmp, tmp2 = (np.empty(n) for _ in range(5))
+        start = 0.0
+        with limit_blas_threads(self.blas_threads):
+            for k in range(TRIAL_STEPS + 1):
+                start = time.perf_counter() if k == 1 else start
+                self._predict(w, v, a, w_t, v_t, tmp)
+                self._right_hand_side(0, w_t, v_t, forcing, rhs, tmp, tmp2)
+                w = self.factor.solve(rhs)
+                self._correct(w, w_t, v_t, a, v)
+        return (time.perf_counter() - start) / TRIAL_STEPS
 
     def _timed_loop(self, steps, times, state, forcing, recorder, bound, record_energy,
-                    progress):
-        """The time loop with its progress bar and BLAS threads; returns the final
+                    work):
+        """The time loop with its progress (``work``) and BLAS threads; returns the final
         (w, v, a), the history under each head (m), the energy (J, or None) and the
         (solve, loop) times, s."""
         w, v, a = state
         history = np.empty((steps + 1, forcing.heads))
         energy = np.empty(steps + 1) if record_energy else None
         start = time.perf_counter()
-        with progress_bar(steps, "newmark", progress=progress, unit="step") as bar, \
-                limit_blas_threads(self.blas_threads):
+        with work as bar, limit_blas_threads(self.blas_threads):
             w, v, a, solve_time = self._loop(steps, times, w, v, a, forcing, recorder,
                                              history, energy, bound, bar)
         return (w, v, a), history, energy, (solve_time, time.perf_counter() - start)
 
-    def _result(self, times, history, recorder, state, energy, timing, *,
+    def _result(self, times, history, recorder, state, energy, timing,
                 moving_load: bool) -> TransientResult:
         """The TransientResult of a finished run; ``info`` gains the run's statistics."""
         steps = len(times) - 1
@@ -374,6 +414,11 @@ class Newmark:
             raise ConvergenceError(f"Newmark march overflowed at step {n} (t = "
                                    f"{times[n]:.6g} s): {exc}") from None
         return w, v, a, solve_time
+
+
+def _how_many(times) -> int:
+    """How many instants a list of times (s) asks for (0 for None)."""
+    return 0 if times is None else int(np.size(times))
 
 
 def _blowup(n: int, t: float, size: float, bound: float, stepper: Newmark

@@ -33,6 +33,11 @@ from .model import TapeModel
 GAUSSIAN_CUTOFF = 6.0
 #: Ramp shapes of a contact window.
 RAMP_SHAPES = ("cosine", "linear")
+#: A contact window must span at least this many time steps: a shorter one is sampled at one
+#: instant or none, so its force depends on where the steps fall rather than on the window.
+MIN_WINDOW_STEPS = 2
+#: Instants on which a path is tried before it is evaluated over the whole run.
+FIRST_INSTANTS = 4
 
 
 def _pair(name: str, value, unit: str) -> tuple[float, float]:
@@ -221,24 +226,86 @@ class MovingLoad:
             raise ParameterError("shape must be a pair of Shape1D (along x, along y)")
         validation.instance("contact", self.contact, ContactWindows, optional=True)
 
-    def centres(self, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Centre coordinates (m) at ``times`` (s)."""
-        t = np.asarray(times, dtype=float)
+    def centres(self, times: np.ndarray, *, name: str = "path"
+                ) -> tuple[np.ndarray, np.ndarray]:
+        """Centre coordinates (m) at ``times`` (s, a 1-D array).
+
+        The path is called once with the array of times (or, if it only takes one time,
+        once per time) and what it returns is checked (``name`` is the path's name in the
+        messages).
+
+        Raises
+        ------
+        ParameterError
+            If the path raises, or returns anything but two finite real coordinates per time.
+        """
+        t = np.atleast_1d(np.asarray(times, dtype=float))
         if self.contact is not None and self.restart_path:
             t = self.contact.local_time(t)
-        try:
-            x, y = self.path(t)
-            x, y = np.broadcast_to(np.asarray(x, float), t.shape), \
-                np.broadcast_to(np.asarray(y, float), t.shape)
-        except (TypeError, ValueError):  # a scalar-only user path
-            xy = np.array([self.path(float(s)) for s in t], dtype=float).reshape(len(t), 2)
-            x, y = xy[:, 0], xy[:, 1]
+        x, y = _positions(self.path, t, name)
+        bad = ~(np.isfinite(x) & np.isfinite(y))
+        if np.any(bad):
+            n = int(np.argmax(bad))
+            raise ParameterError(f"{name} must return finite positions (x, y) in m, got "
+                                 f"({x[n]:g}, {y[n]:g}) at t = {t[n]:g} s")
         return x, y
 
     def envelope(self, times: np.ndarray) -> np.ndarray:
         """Contact envelope e(t) (dimensionless) at ``times`` (s)."""
         t = np.asarray(times, dtype=float)
         return np.ones_like(t) if self.contact is None else self.contact.envelope(t)
+
+
+#: What a user's path may raise when it is called with times it cannot take; each becomes a
+#: ParameterError naming the path (its own bugs of other kinds stay as they are).
+PATH_ERRORS = (TypeError, ValueError, ArithmeticError, LookupError, AttributeError)
+#: What a path must do, for the messages.
+PATH_CONTRACT = ("must map times t (s) to positions (x, y) in m: two real numbers for one "
+                 "time, two arrays shaped like t (or numbers) for an array of times")
+
+
+def _coordinate(value, shape: tuple[int, ...]) -> np.ndarray:
+    """One coordinate returned by a path, as floats broadcast to ``shape`` (ValueError if it
+    is not real numbers of a shape that broadcasts)."""
+    array = np.asarray(value)
+    if array.dtype.kind not in "iuf":
+        raise ValueError("not real numbers")
+    return np.broadcast_to(array.astype(float), shape)
+
+
+def _shown(value) -> str:
+    """A path's return value for a one-line message: an array by its shape, else its repr."""
+    if isinstance(value, np.ndarray):
+        return f"an array of shape {value.shape}"
+    text = " ".join(repr(value).split())
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def _positions(path: Callable, t: np.ndarray, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """(x, y) of ``path`` at the times ``t``: one call with the array, or one per time for a
+    path that takes a single time (math functions raise TypeError on arrays)."""
+    try:
+        x, y = path(t)
+        return _coordinate(x, t.shape), _coordinate(y, t.shape)
+    except (TypeError, ValueError):
+        pass  # not an array path: try one time at a time
+    except PATH_ERRORS as exc:
+        raise ParameterError(f"{name} {PATH_CONTRACT}; called with {len(t)} times from "
+                             f"t = {t[0]:g} s it raised {type(exc).__name__}: {exc}") from exc
+    xy = np.empty((len(t), 2))
+    for n, s in enumerate(t):
+        try:
+            value = path(float(s))
+        except PATH_ERRORS as exc:
+            raise ParameterError(f"{name} {PATH_CONTRACT}; at t = {s:g} s it raised "
+                                 f"{type(exc).__name__}: {exc}") from exc
+        try:
+            x, y = value
+            xy[n] = _coordinate(x, ()), _coordinate(y, ())
+        except (TypeError, ValueError):
+            raise ParameterError(f"{name} {PATH_CONTRACT}; at t = {s:g} s it returned "
+                                 f"{_shown(value)}") from None
+    return xy[:, 0], xy[:, 1]
 
 
 def drum_heads(heads: int, start: tuple[float, float], velocity: tuple[float, float], *,
@@ -256,6 +323,38 @@ def drum_heads(heads: int, start: tuple[float, float], velocity: tuple[float, fl
                        contact=ContactWindows(revolution_period, contact_duration, ramp=ramp,
                                               phase=k * revolution_period / heads))
             for k in range(heads)]
+
+
+def check_contact_steps(loads: Sequence[MovingLoad], dt: float) -> None:
+    """Refuse contact windows the time step ``dt`` (s) cannot resolve: a window shorter than
+    :data:`MIN_WINDOW_STEPS` steps, a ramp (> 0) shorter than one step, or a gap between
+    windows (period − duration, > 0) shorter than one step.
+
+    Raises
+    ------
+    ParameterError
+        Naming the window's duration, ramp or period, the time step and the head.
+    """
+    slack = 1.0 - 1e-9  # times that are whole multiples of dt up to round-off pass
+    for k, head in enumerate(loads):
+        c = head.contact
+        if c is None:
+            continue
+        who = f" of head {k}" if len(loads) > 1 else ""
+        if c.duration < MIN_WINDOW_STEPS * dt * slack:
+            raise ParameterError(
+                f"contact duration{who} must span at least {MIN_WINDOW_STEPS} time steps "
+                f"(>= {MIN_WINDOW_STEPS * dt:g} s with dt = {dt:g} s), got {c.duration:g} s")
+        if 0.0 < c.ramp < dt * slack:
+            raise ParameterError(
+                f"contact ramp{who} must be 0 (abrupt) or at least one time step "
+                f"(dt = {dt:g} s), got {c.ramp:g} s")
+        gap = c.period - c.duration
+        if 1e-12 * c.period < gap < dt * slack:
+            raise ParameterError(
+                f"contact period{who} must equal the contact duration (always in contact) or "
+                f"exceed it by at least one time step (dt = {dt:g} s), got {c.period:g} s, "
+                f"a gap of {gap:g} s")
 
 
 def as_loads(load) -> list[MovingLoad]:
@@ -284,7 +383,9 @@ class PreparedLoads:
         self._axes = []
         xs, ys = grid.x[grid.x_unknowns], grid.y[grid.y_unknowns]
         for k, head in enumerate(loads):
-            x, y = head.centres(times)
+            name = "path" if self.heads == 1 else f"path of head {k}"
+            head.centres(times[:FIRST_INSTANTS], name=name)  # a broken path fails here, at once
+            x, y = head.centres(times, name=name)
             env = head.envelope(times)
             _check_on_tape(grid, x, y, env, k)
             self.centres[:, k, 0], self.centres[:, k, 1] = x, y

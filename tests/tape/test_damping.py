@@ -111,8 +111,8 @@ def test_bad_force_exponent_and_blowup_factor(small):
         stepper.march(2, blowup_factor=-1.0)
 
 
-@pytest.mark.parametrize("name", ["gyroshell.tape.damping", "gyroshell.engines.frequency_response",
-                                  "gyroshell.tape.moving_loads"])
+@pytest.mark.parametrize("name", ["gyroshell.tape.damping", "gyroshell.engines.frequency_options",
+                                  "gyroshell.tape.moving_loads", "gyroshell.core.progress"])
 def test_docstring_examples(name):
     import doctest
     import importlib
