@@ -71,7 +71,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="three small cases only")
     args = parser.parse_args(argv)
-    print(f"| case | unknowns | estimate (MB) | measured peak (MB) | ratio |")
+    print("| case | unknowns | estimate (MB) | measured peak (MB) | ratio |")
     print("|---|---|---|---|---|")
     worst = float("inf")
     for k, (name, case) in enumerate(CASES):

@@ -16,7 +16,8 @@ operators and factorization, an upper bound, plus the bytes kept per step and he
 table prints the estimate, both peaks and estimate / max(peaks), which must be >= 1.
 Usage::
 
-    PYTHONPATH=. python benchmarks/bench_transient_memory.py [--steps 50000,200000,400000] [--cases 'moving head']
+    PYTHONPATH=. python benchmarks/bench_transient_memory.py [--steps 50000,200000,400000]
+        [--cases 'moving head']
 """
 
 from __future__ import annotations

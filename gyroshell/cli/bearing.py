@@ -286,17 +286,6 @@ def _progress(message: str) -> None:
     print(f"gyroshell bearing: {message}", file=sys.stderr, flush=True)
 
 
-def _duration(seconds: float) -> str:
-    """A duration for people: '0.4 s', '12 s', '3.5 min', '2.1 h'."""
-    if seconds < 10.0:
-        return f"{seconds:.2g} s"
-    if seconds < 120.0:
-        return f"{seconds:.0f} s"
-    if seconds < 7200.0:
-        return f"{seconds / 60.0:.2g} min"
-    return f"{seconds / 3600.0:.2g} h"
-
-
 def iteration_seconds(model) -> float:
     """Estimated seconds of one Newton iteration of ``model`` that factors its Jacobian
     afresh (:data:`SECONDS_1D`, :data:`SECONDS_2D`)."""
@@ -309,6 +298,8 @@ def iteration_seconds(model) -> float:
 
 def size_line(model) -> str:
     """The first progress line: the grid, the unknowns and the estimated time."""
+    from ..core.progress import duration
+
     if model.infinitely_wide:
         grid = f"infinitely wide tape, {model.nx} intervals along x"
     else:
@@ -316,8 +307,8 @@ def size_line(model) -> str:
                 f"({'graded' if model.graded else 'uniform'})")
     each = iteration_seconds(model)
     low, high = USUAL_FACTORIZATIONS
-    return (f"{grid}, {model.unknowns} unknowns; estimated {_duration(low * each)} to "
-            f"{_duration(high * each)} (about {_duration(each)} per Newton iteration that "
+    return (f"{grid}, {model.unknowns} unknowns; estimated {duration(low * each)} to "
+            f"{duration(high * each)} (about {duration(each)} per Newton iteration that "
             "factors afresh; longer if Newton needs pseudo-time or continuation in V)")
 
 

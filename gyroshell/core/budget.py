@@ -65,17 +65,32 @@ MAX_SWEEP_SPEEDS = 10_000
 MAX_STUDY_POINTS = 100_000
 
 
+def limit_from_environment(variable: str, unit: str) -> float | None:
+    """The number > 0 the environment ``variable`` holds (a limit in ``unit``), or None if
+    it is unset or empty.
+
+    Raises
+    ------
+    ParameterError
+        If it holds anything but a finite number > 0: ``VARIABLE must be a number of UNIT
+        > 0, got '...'``.
+    """
+    text = os.environ.get(variable)
+    if not text:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value > 0):
+        raise ParameterError(f"{variable} must be a number of {unit} > 0, got {text!r}")
+    return value
+
+
 def memory_limit() -> float:
     """Bytes a run may plan to use: ``GYROSHELL_MEMORY_LIMIT`` or half the physical memory."""
-    text = os.environ.get(MEMORY_LIMIT_VARIABLE)
-    if text:
-        try:
-            value = float(text)
-        except ValueError:
-            value = math.nan
-        if not (math.isfinite(value) and value > 0):
-            raise ParameterError(f"{MEMORY_LIMIT_VARIABLE} must be a number of bytes > 0, "
-                                 f"got {text!r}")
+    value = limit_from_environment(MEMORY_LIMIT_VARIABLE, "bytes")
+    if value is not None:
         return value
     try:
         total = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")

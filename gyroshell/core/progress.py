@@ -1,4 +1,5 @@
-"""The one progress bar: tqdm on stderr when stderr is a terminal, never in pipes or logs.
+"""The one progress display: tqdm on stderr when stderr is a terminal; off a terminal (a
+pipe, a log) one line per stage (:class:`StageLines`) for work long enough to need it.
 
 Every long computation (time marches, frequency sweeps, speed sweeps, Campbell diagrams,
 parameter studies, bearing transients) takes ``progress: bool | None``: True draws a bar,
@@ -14,10 +15,9 @@ Examples
 
 from __future__ import annotations
 
-import math
-import os
 import sys
 import time
+from collections.abc import Callable
 
 from .errors import ParameterError
 
@@ -73,17 +73,10 @@ def time_limit() -> float:
     ParameterError
         If the variable is set to anything but a number of seconds > 0.
     """
-    text = os.environ.get(TIME_LIMIT_VARIABLE)
-    if not text:
-        return DEFAULT_TIME_LIMIT
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and value > 0):
-        raise ParameterError(f"{TIME_LIMIT_VARIABLE} must be a number of seconds > 0, "
-                             f"got {text!r}")
-    return value
+    from .budget import limit_from_environment
+
+    value = limit_from_environment(TIME_LIMIT_VARIABLE, "seconds")
+    return DEFAULT_TIME_LIMIT if value is None else value
 
 
 def duration(seconds: float) -> str:
@@ -152,6 +145,7 @@ class LongWork:
         self.estimate: float | None = None
         self._next = 1
         self._reports = [int(f * total) for f in REPORT_FRACTIONS if int(f * total) > 0]
+        self._stages: StageLines | None = None
         self._start = self._first = time.perf_counter()
 
     def __enter__(self) -> LongWork:
@@ -192,7 +186,10 @@ class LongWork:
                 "seconds)")
         self._lines = self._lines and self.estimate > LONG_WORK_SECONDS
         if self._lines:
-            self._say(f"{self.size}: about {duration(self.estimate)} ({how})")
+            self._stages = StageLines(self.total, self.description, self.unit,
+                                      started=self._start)
+            self._stages.say(f"{self.size}: about {duration(self.estimate)} ({how})")
+            self._stages.update(self.done)
         self._schedule()
 
     def _schedule(self) -> None:
@@ -214,15 +211,9 @@ class LongWork:
                         else elapsed / self.done)
             self.assess(per_item, f"the first {self.done} {self.unit}s")
             return
-        if self._lines and self.done < self.total:
-            left = elapsed / self.done * (self.total - self.done)
-            self._say(f"{100 * self.done / self.total:.0f} % ({self.done} of {self.total} "
-                      f"{self.unit}s), {duration(elapsed)} elapsed, about {duration(left)} "
-                      "left")
+        if self._stages is not None:
+            self._stages.update(self.done - self._stages.n)
         self._schedule()
-
-    def _say(self, text: str) -> None:
-        print(f"gyroshell: {self.description}: {text}", file=sys.stderr, flush=True)
 
     def set_postfix_str(self, text: str) -> None:
         if self._bar is not None:
@@ -232,7 +223,134 @@ class LongWork:
         """Close the bar; a long run reported in lines says it is done."""
         if self._bar is not None:
             self._bar.close()
-        if self._lines and finished and self.estimate is not None and self.done:
-            self._say(f"done: {self.done} {self.unit}s in "
-                      f"{duration(time.perf_counter() - self._start)}")
-        self._lines = False
+        if self._stages is not None and finished:
+            self._stages.update(self.done - self._stages.n)
+            self._stages.close()
+        self._stages, self._lines = None, False
+
+
+# ----- one line per stage off a terminal (studies, sweeps, Campbell diagrams, long work) --------
+
+
+class StageLines:
+    """One stderr line per stage of ``total`` items (``unit`` each) of ``description``;
+    the same calls as a tqdm bar (``update``, ``close``, a context manager).
+
+    Where stderr is a pipe or a log, a bar would be noise, yet minutes of silence look like
+    a hang: one line when the work starts (:meth:`start`: its size and where it runs), one
+    at each of :data:`REPORT_FRACTIONS` done (the time so far and an estimate of the time
+    left, from the rate so far) and one at the end. ``initial`` items are done before the
+    start (a study's cached points); ``stream`` and ``clock`` (seconds) default to stderr
+    and :func:`time.perf_counter`; ``started`` is the clock's time the work began (default:
+    now).
+
+    Examples
+    --------
+    >>> import io
+    >>> out = io.StringIO()
+    >>> with StageLines(4, "study", "point", stream=out, clock=iter(range(10)).__next__) as s:
+    ...     s.start("on 1 process")
+    ...     _ = s.update(2)
+    ...     _ = s.update(2)
+    >>> print(out.getvalue(), end="")
+    gyroshell: study: 4 points on 1 process
+    gyroshell: study: 2/4 points done (50 %) in 1 s, about 1 s left
+    gyroshell: study: 4/4 points done in 2 s
+    """
+
+    def __init__(self, total: int, description: str, unit: str, *, initial: int = 0,
+                 stream=None, clock: Callable[[], float] = time.perf_counter,
+                 started: float | None = None) -> None:
+        self.total, self.description, self.unit = int(total), description, unit
+        self.n = self._first = int(initial)
+        self._stream, self._clock = stream, clock
+        self._t0 = clock() if started is None else started
+        self._marks = [q for q in REPORT_FRACTIONS if q * self.total > self.n]
+        self._closed = False
+
+    def say(self, text: str) -> None:
+        """One line ``gyroshell: DESCRIPTION: TEXT`` (a stage of the caller's own)."""
+        self._write(text)
+
+    def _write(self, text: str) -> None:
+        stream = self._stream if self._stream is not None else sys.stderr
+        print(f"gyroshell: {self.description}: {text}", file=stream, flush=True)
+
+    def _units(self, n: int) -> str:
+        return f"{n} {self.unit}{'' if n == 1 else 's'}"
+
+    def start(self, where: str = "") -> None:
+        """The first line: how many items, how many are already done, where they run."""
+        cached = f" ({self.n} from the cache)" if self.n else ""
+        self._write(f"{self._units(self.total)}{cached}{' ' + where if where else ''}")
+        self._t0 = self._clock()
+
+    def update(self, n: int = 1) -> bool:
+        """``n`` more items done; a line when a quarter is passed."""
+        self.n += int(n)
+        passed = [q for q in self._marks if self.n >= q * self.total]
+        if passed and self.n < self.total:
+            self._marks = [q for q in self._marks if q not in passed]
+            elapsed = self._clock() - self._t0
+            done_now = self.n - self._first
+            left = elapsed * (self.total - self.n) / done_now if done_now else float("nan")
+            self._write(f"{self.n}/{self._units(self.total)} done "
+                        f"({100 * self.n / self.total:.0f} %) in {duration(elapsed)}, about "
+                        f"{duration(left)} left")
+        return True
+
+    def set_postfix_str(self, text: str) -> None:  # the bar's call: nothing to draw
+        """Accepted and ignored (a bar's status text)."""
+
+    def close(self) -> None:
+        """The last line, once, if every item is done (an interrupted run says nothing)."""
+        if not self._closed and self.n >= self.total:
+            self._write(f"{self.n}/{self._units(self.total)} done in "
+                        f"{duration(self._clock() - self._t0)}")
+        self._closed = True
+
+    def __enter__(self) -> StageLines:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+class _Bar:
+    """A tqdm bar with the ``start`` call of :class:`StageLines` (which does nothing)."""
+
+    def __init__(self, bar) -> None:
+        self._bar = bar
+
+    def start(self, where: str = "") -> None:
+        """Nothing: the bar shows its own start."""
+
+    def update(self, n: int = 1):
+        return self._bar.update(n)
+
+    def close(self) -> None:
+        self._bar.close()
+
+    def __enter__(self) -> _Bar:
+        self._bar.__enter__()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._bar.__exit__(*exc)
+
+
+def stage_progress(total: int, description: str, *, progress: bool | None, unit: str,
+                   initial: int = 0):
+    """The progress display of ``total`` items: the bar if ``progress`` is True (or None on
+    a terminal), :class:`StageLines` if None without a terminal, nothing if False."""
+    if progress is None and not progress_wanted(None):
+        return StageLines(total, description, unit, initial=initial)
+    return _Bar(progress_bar(total, description, progress=bool(progress_wanted(progress)),
+                             unit=unit, initial=initial))
+
+
+def stage_line(description: str, text: str, *, progress: bool | None) -> None:
+    """One stage line (``gyroshell: DESCRIPTION: TEXT``) on stderr when ``progress`` is
+    None and stderr is not a terminal (where :func:`stage_progress` writes lines)."""
+    if progress is None and not progress_wanted(None):
+        print(f"gyroshell: {description}: {text}", file=sys.stderr, flush=True)

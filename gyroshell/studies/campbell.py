@@ -25,11 +25,11 @@ import numpy as np
 
 from ..core import validation
 from ..core.errors import ParameterError
+from ..core.progress import stage_line
 from ..core.units import unit_of
 from ..results import base
 from ..tape.parameters import TapeParameters
 from .branches import BranchTracker, track
-from .stages import stage_line
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -285,7 +285,7 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
         None/False: none.
     progress : bool or None
         True: a progress bar on stderr, False: nothing; None: the bar on a terminal, else
-        one line per stage (:mod:`gyroshell.studies.stages`).
+        one line per stage (:class:`gyroshell.core.progress.StageLines`).
     continuation : bool
         Continue each solve from the previous speeds' modes, as :func:`gyroshell.sweep`
         does (the same frequencies to round-off, in fewer Lanczos steps); False solves each

@@ -48,6 +48,7 @@ from typing import TYPE_CHECKING
 
 from ..core import validation
 from ..core.errors import ParameterError
+from ..core.progress import stage_progress
 from ..core.units import unit_of
 from ..results import base as results_base
 from ..tape.parameters import TapeParameters, check_velocity
@@ -55,7 +56,6 @@ from .cache import PointCache, point_key
 from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
 from .executors import CONNECT_TIMEOUT, Executor, StudyTask, check_executor, connected, execute
 from .points import VARIABLE_NAMES, canonical_name, check_points, grid_points
-from .stages import stage_progress
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -207,7 +207,7 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         :data:`~gyroshell.studies.executors.CHUNKS_PER_WORKER` tasks per worker.
     progress : bool, optional
         True: a bar on stderr, False: nothing, None: the bar on a terminal, else one line
-        per stage (:mod:`gyroshell.studies.stages`).
+        per stage (:class:`gyroshell.core.progress.StageLines`).
 
     Returns
     -------

@@ -26,13 +26,13 @@ import numpy as np
 from ..core import budget
 from ..core.errors import ParameterError
 from ..core.parallel import check_process_count, process_pool
+from ..core.progress import stage_progress
 from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
 from ..linalg.qep.problem import check_count
 from ..results import base
 from ..tape.model import TapeModel
 from ..tape.parameters import TapeParameters, check_velocity
 from .branches import BranchTracker, Match, track
-from .stages import stage_progress
 
 if TYPE_CHECKING:  # pandas is imported when a sweep runs: keep `import gyroshell` fast
     import pandas as pd
@@ -225,7 +225,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         window and another entered); take smaller speed steps to follow branches further.
     progress : bool or None
         True: a progress bar on stderr, False: nothing; None: the bar on a terminal, else
-        one line per stage (:mod:`gyroshell.studies.stages`).
+        one line per stage (:class:`gyroshell.core.progress.StageLines`).
     continuation : bool
         Move the shift with the tracked lowest frequency (extrapolated from the previous
         speeds, see :func:`_continuation_options`), start each solve from the previous

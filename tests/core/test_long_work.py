@@ -22,10 +22,10 @@ def test_long_work_off_a_terminal_writes_a_start_line_three_stages_and_an_end(ca
     lines = capsys.readouterr().err.strip().splitlines()
     assert lines[0] == ("gyroshell: demo: 100 steps: about 100 s (an estimate from 1 s per "
                         "step measured on 8 trial steps)")
-    assert [line.split(": ")[2].split(" (")[0] for line in lines[1:4]] == [
-        "25 %", "50 %", "75 %"]
-    assert "(25 of 100 steps)" in lines[1] and "elapsed, about" in lines[1]
-    assert lines[4].startswith("gyroshell: demo: done: 100 steps in ") and len(lines) == 5
+    assert [line.split(": ")[2].split(" in ")[0] for line in lines[1:4]] == [
+        "25/100 steps done (25 %)", "50/100 steps done (50 %)", "75/100 steps done (75 %)"]
+    assert lines[1].endswith(" left")
+    assert lines[4].startswith("gyroshell: demo: 100/100 steps done in ") and len(lines) == 5
 
 
 def test_short_work_and_quiet_work_write_nothing(capsys):

@@ -14,10 +14,10 @@ from fake_servers import FakeServer, closed_port
 
 from gyroshell import ParameterError, TapeModel, TapeParameters, run_study
 from gyroshell.core.parallel import check_process_count, max_processes, process_pool
+from gyroshell.core.progress import StageLines, stage_progress
 from gyroshell.studies.campbell import CampbellDiagram, campbell, check_orders
 from gyroshell.studies.evaluation import MAX_COUNT, check_row, result_columns
 from gyroshell.studies.scheduler import check_address
-from gyroshell.studies.stages import StageLines, stage_progress
 from gyroshell.studies.sweep import sweep
 
 BASE = TapeParameters(length_ratio=2, spacing=WIDTH / 8)
