@@ -119,6 +119,8 @@ class _Operators:
         self.damped_gyroscopic = G if damping.is_zero else (
             G + damping.matrix(model, velocity)).tocsr()
         self.F = model.force if force is None else force
+        #: The tape's areal density, kg/m^2 (it bounds the frequencies: check_frequencies).
+        self.density = model.params.density
 
     def Q(self, omega: float) -> sp.csc_matrix:
         """K − ω²M + iω(G + C), N/m (complex unless ω = 0)."""
@@ -297,7 +299,6 @@ class ReducedModel(Result, kind="reduced_model"):
         self.velocity = check_velocity(velocity)
         self.damping = as_damping(damping)
         self.unknowns = model.unknowns
-        self._density = model.params.density
         ops = _Operators(model, self.velocity, self.damping, _force(model, force))
         self.points, rows = response_rows(model, probes)
         self._solver = _Reduction(ops, rows)
@@ -312,7 +313,7 @@ class ReducedModel(Result, kind="reduced_model"):
         if self._solver is None:
             raise ParameterError("a loaded reduced model cannot add interpolation points: "
                                  "build a new ReducedModel from the TapeModel")
-        omegas = check_frequencies(omegas, density=self._density)
+        omegas = check_frequencies(omegas, density=self._solver.ops.density)
         full, nested = self._solver.spaces
         for omega in omegas:
             self.interpolation_points.append(float(omega))

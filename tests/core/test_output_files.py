@@ -154,7 +154,7 @@ def test_sweep_whose_plot_fails_leaves_no_csv(cli, tmp_path, monkeypatch):
 
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig", disk_full)
     csv, png = tmp_path / "s.csv", tmp_path / "s.png"
-    run = cli([*SWEEP, "--out", csv, "--plot", png])
+    run = cli([*SWEEP, "--out", csv, "--plot", png, "--quiet"])
     assert run.code == 2
     assert run.error_lines == [f"gyroshell: error: [Errno 28] cannot write {png}: "
                                "No space left on device"]
@@ -173,7 +173,7 @@ def test_run_whose_plot_fails_leaves_no_table(cli, tmp_path, monkeypatch, argv):
         raise OSError(28, "No space left on device", os.fspath(fname))
 
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig", disk_full)
-    run = cli([*argv, "--out", tmp_path / "t.csv", "--plot", tmp_path / "t.png"])
+    run = cli([*argv, "--out", tmp_path / "t.csv", "--plot", tmp_path / "t.png", "--quiet"])
     assert run.code == 2 and len(run.error_lines) == 1 and "cannot write" in run.err
     assert listing(tmp_path) == []
 
@@ -306,7 +306,8 @@ ANNOUNCED_SWEEP = textwrap.dedent("""
 
 @pytest.mark.slow
 def test_sigterm_during_computation_exits_cleanly(tmp_path):
-    argv = ["sweep", *map(str, COARSE), "--velocities", "0:100:0.02", "--out", "s.csv"]
+    argv = ["sweep", *map(str, COARSE), "--velocities", "0:100:0.02", "--out", "s.csv",
+            "--quiet"]
     proc = subprocess.Popen([sys.executable, "-c", ANNOUNCED_SWEEP, *argv], cwd=tmp_path,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
