@@ -13,7 +13,7 @@ from gyroshell.linalg.qep import DENSE_LIMIT
 
 def rotation_generator(rates) -> sp.csr_matrix:
     """Block-diagonal skew G of 2 x 2 rotation generators [[0, w], [−w, 0]], kg/s."""
-    return sp.block_diag([np.array([[0.0, w], [-w, 0.0]]) for w in rates], format="csr")
+    return sp.block_diag([sp.csr_matrix([[0.0, w], [-w, 0.0]]) for w in rates], format="csr")
 
 
 def closed_form(M, G) -> np.ndarray:
