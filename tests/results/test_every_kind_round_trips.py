@@ -7,38 +7,20 @@ as it registers; its example instance comes from an ``EXAMPLES`` table in one of
 
 from __future__ import annotations
 
-import importlib
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 from bit_exact import assert_same
+from kind_examples import every_example
 
 import gyroshell
 import gyroshell.kinds
 from gyroshell.results import base
 
-HERE = Path(__file__).resolve().parent
-
-
-def _examples() -> dict:
-    found: dict = {}
-    sys.path.insert(0, str(HERE))
-    try:
-        for path in sorted(HERE.glob("examples_*.py")):
-            module = importlib.import_module(path.stem)
-            overlap = set(found) & set(module.EXAMPLES)
-            assert not overlap, f"{path.name} repeats examples of {sorted(overlap)}"
-            found.update(module.EXAMPLES)
-    finally:
-        sys.path.remove(str(HERE))
-    return found
-
-
 gyroshell.kinds.import_kinds()
 KINDS = sorted(base.kinds())
-EXAMPLES = _examples()
+EXAMPLES = every_example()
 
 
 @pytest.mark.slow

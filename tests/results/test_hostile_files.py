@@ -10,14 +10,13 @@ from __future__ import annotations
 
 import json
 import os
-import sys
-from pathlib import Path
 
 import h5py
 import numpy as np
 import pytest
 import xarray as xr
 from conftest import WIDTH
+from kind_examples import every_example
 
 import gyroshell
 import gyroshell.kinds
@@ -25,7 +24,6 @@ from gyroshell import ParameterError, TapeModel, TapeParameters, solve_static
 from gyroshell.core.errors import InputFileError, MissingFileError
 from gyroshell.results import base
 
-HERE = Path(__file__).resolve().parent
 TINY = TapeParameters(length_ratio=2, spacing=WIDTH / 8)
 
 
@@ -236,18 +234,6 @@ def test_a_plain_text_edit_of_a_csv_table_still_loads_as_a_table(tmp_path):
 
 
 # ----- every kind -------------------------------------------------------------------------
-def _examples() -> dict:
-    found: dict = {}
-    sys.path.insert(0, str(HERE))
-    try:
-        for path in sorted(HERE.glob("examples_*.py")):
-            module = __import__(path.stem)
-            found.update(module.EXAMPLES)
-    finally:
-        sys.path.remove(str(HERE))
-    return found
-
-
 gyroshell.kinds.import_kinds()
 KINDS = sorted(base.kinds())
 
@@ -264,7 +250,7 @@ def test_every_kind_declares_what_its_file_holds():
 @pytest.fixture(scope="module")
 def example_files(tmp_path_factory):
     folder = tmp_path_factory.mktemp("kinds")
-    examples, files = _examples(), {}
+    examples, files = every_example(), {}
     for kind in KINDS:
         files[kind] = folder / f"{kind}.nc"
         examples[kind]().save(files[kind])
