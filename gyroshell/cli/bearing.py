@@ -20,14 +20,14 @@ import sys
 import time
 from pathlib import Path
 
-from .common import _OVERRIDES, UserError, positive_int, print_json, real
+from .common import TAPE_OVERRIDES, UserError, positive_int, print_json, real
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
 #: The files ``--out DIR`` writes.
 OUT_FILES = ("summary.json", "fields.csv")
 #: The tape options of the bearing: those of the plate sub-commands but ``--load``.
-TAPE_OPTIONS = tuple(option for option in _OVERRIDES if option[1] != "load")
+TAPE_OPTIONS = tuple(option for option in TAPE_OVERRIDES if option[1] != "load")
 #: The plate fields a --config file may set that the bearing does not use (replaced).
 PLATE_ONLY_FIELDS = ("length_ratio", "spacing", "load", "load_x", "load_y")
 #: Intervals across the width of the (unused) plate grid of the bearing's TapeParameters:

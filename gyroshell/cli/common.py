@@ -74,7 +74,7 @@ def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
 
 
 #: (flag, TapeParameters field, help) for the physical overrides.
-_OVERRIDES = (
+TAPE_OVERRIDES = (
     ("--youngs-modulus", "youngs_modulus", "Young's modulus E, Pa (default 4e9)"),
     ("--poisson", "poisson", "Poisson's ratio, in (-1, 0.5) (default 0.3)"),
     ("--thickness", "thickness", "shell thickness c, m (default 20e-6)"),
@@ -116,7 +116,7 @@ def common_parser(*, velocity: bool = True) -> argparse.ArgumentParser:
     if velocity:
         g.add_argument("--velocity", type=real, default=_Unset(0.0),
                        help="tape transport speed V, m/s, >= 0 (default 0)")
-    for flag, field, text in _OVERRIDES:
+    for flag, field, text in TAPE_OVERRIDES:
         g.add_argument(flag, dest=field, metavar=flag[2:].upper().replace("-", "_"),
                        type=real, default=None, help=text)
     return p
@@ -128,7 +128,7 @@ def parameters_from_args(args: argparse.Namespace) -> TapeParameters:
     With ``--config`` the file's values replace the defaults of the options not typed (and
     its ``velocity`` becomes ``args.velocity``).
     """
-    kwargs = {field: getattr(args, field) for _flag, field, _text in _OVERRIDES
+    kwargs = {field: getattr(args, field) for _flag, field, _text in TAPE_OVERRIDES
               if getattr(args, field) is not None}
     if getattr(args, "config", None):
         return _with_config(args, kwargs)
@@ -136,14 +136,33 @@ def parameters_from_args(args: argparse.Namespace) -> TapeParameters:
                           spacing=args.spacing, **kwargs)
 
 
+def typed_tape_options(args: argparse.Namespace) -> dict[str, str]:
+    """The tape options typed on the command line: {TapeParameters field or 'velocity':
+    flag}. Defaults and --config values are not typed.
+
+    Examples
+    --------
+    >>> args = common_parser().parse_args(["--tension", "80", "--spacing", "1e-4"])
+    >>> typed_tape_options(args)
+    {'tension': '--tension', 'spacing': '--spacing'}
+    """
+    typed = {field: flag for flag, field, _text in TAPE_OVERRIDES
+             if getattr(args, field, None) is not None}
+    for name in ("length_ratio", "edges", "spacing", "velocity"):
+        value = getattr(args, name, None)
+        if value is not None and not isinstance(value, (_Unset, _UnsetText)):
+            typed[name] = "--" + name.replace("_", "-")
+    return typed
+
+
 def _with_config(args: argparse.Namespace, kwargs: dict) -> TapeParameters:
     from ..tape.config import load_config
 
     cfg = load_config(args.config)
-    for name in ("length_ratio", "edges", "spacing"):
-        if not isinstance(getattr(args, name), (_Unset, _UnsetText)):
-            kwargs[name] = getattr(args, name)
-    if isinstance(getattr(args, "velocity", None), _Unset) and cfg.velocity is not None:
+    typed = typed_tape_options(args)
+    kwargs.update({name: getattr(args, name) for name in ("length_ratio", "edges", "spacing")
+                   if name in typed})
+    if "velocity" not in typed and hasattr(args, "velocity") and cfg.velocity is not None:
         args.velocity = cfg.velocity
     return cfg.params.replace(**kwargs)
 

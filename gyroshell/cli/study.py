@@ -14,6 +14,7 @@ from .common import (
     positive_int,
     print_json,
     real,
+    typed_tape_options,
 )
 from .saving import add_save_option, check_save_path
 
@@ -187,7 +188,7 @@ def run(args: argparse.Namespace) -> int:
     from ..studies.parameter_study import run_study
     from ..tape.parameters import check_velocity
 
-    typed = _typed_tape_options(args)  # before --config fills in the defaults
+    typed = typed_tape_options(args)  # before --config fills in the defaults
     params = parameters_from_args(args)
     velocity = check_velocity(args.velocity)
     vary = parse_vary(args.vary)
@@ -220,20 +221,6 @@ def run(args: argparse.Namespace) -> int:
             _save_plot(args.plot, result.plot())
     _report_study(args, result)
     return 0
-
-
-def _typed_tape_options(args: argparse.Namespace) -> dict[str, str]:
-    """The tape options typed on the command line: {TapeParameters field or 'velocity':
-    flag} (defaults and --config values are not typed)."""
-    from .common import _OVERRIDES, _Unset, _UnsetText
-
-    typed = {field: flag for flag, field, _text in _OVERRIDES
-             if getattr(args, field, None) is not None}
-    for name in ("length_ratio", "edges", "spacing", "velocity"):
-        value = getattr(args, name, None)
-        if value is not None and not isinstance(value, (_Unset, _UnsetText)):
-            typed[name] = "--" + name.replace("_", "-")
-    return typed
 
 
 def _check_study_options(args: argparse.Namespace, typed: dict[str, str], vary: dict,
