@@ -1,4 +1,6 @@
-"""``gyroshell bearing``: the tape flying over a cylindrical head on its air film.
+"""``gyroshell bearing``: the tape flying over a head on its air film: a cylinder (the
+default), a flat head of one or more modules, or a measured contour (``--head``, the head
+options of :mod:`.heads` and the ``[head]`` table of ``--config``).
 
 The bearing has its own tape options: the physical ones of the other sub-commands, without
 the plate grid's ``--spacing``, ``--length-ratio`` and ``--edges`` (the bearing sizes its
@@ -21,6 +23,7 @@ import time
 from pathlib import Path
 
 from .common import TAPE_OVERRIDES, UserError, positive_int, print_json, real
+from .heads import add_head_options, head_design
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
@@ -53,13 +56,17 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     del common
     p = sub.add_parser(
         "bearing", parents=[_tape_parser()], help="steady head-tape air bearing (flying height)",
-        description="Steady flying state of the tape over a cylindrical head of the tape's "
-                    "radius R: compressible Reynolds film with slip coupled to the shell "
-                    "model, contact where the spacing reaches the roughness. Prints the "
-                    "central and minimum spacings (m). Air at 20 C by default; --velocity "
+        description="Steady flying state of the tape over a head (--head: a cylinder of the "
+                    "tape's radius R by default, a flat head with sharp or rounded corners "
+                    "and one or more modules, or a measured contour): compressible Reynolds "
+                    "film with slip coupled to the shell model, contact where the spacing "
+                    "reaches the roughness. Prints the central and minimum spacings (m) and "
+                    "the head's readings (transducer lines, tents, corner forces, drag). "
+                    "Air at 20 C by default; --velocity "
                     "is required here (> 0, e.g. 4). The bearing sizes its own grid "
                     "(--nx, --ny): the plate grid's --spacing, --length-ratio and --edges "
                     "and the plate load --load do not exist here.")
+    add_head_options(p)
     _add_bearing_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     p.add_argument("--out", metavar="DIR", default=None,
@@ -98,8 +105,6 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
     from ..bearing import air as a
 
     g = p.add_argument_group("air bearing (SI units)")
-    g.add_argument("--wrap-angle", type=real, default=15.0,
-                   help="wrap angle of the tape on the head, degrees, in (0, 90] (default 15)")
     g.add_argument("--viscosity", type=real, default=a.AIR_VISCOSITY,
                    help=f"air viscosity, Pa*s (default {a.AIR_VISCOSITY:g}, air at 20 C)")
     g.add_argument("--ambient-pressure", type=real, default=a.AMBIENT_PRESSURE,
@@ -139,14 +144,18 @@ def run(args: argparse.Namespace) -> int:
     from ..core.files import folder_transaction, transaction
 
     _refuse_unused_in_mode(args)
-    params, velocity = _tape(args)
+    params, velocity, head_table = _tape(args)
+    design = head_design(args, head_table, args.config)
     air = _air(args)
     out = _check_outputs(args)
-    model = _model(args, params, air, velocity)
+    model = _model(args, params, air, velocity, design)
     sol = _solve(model, None if args.quiet else _progress)
     summary = sol.summary()
-    # the angle as typed: degrees -> radians -> degrees need not give it back exactly
-    summary["wrap_angle_degrees"] = args.wrap_angle
+    if design.kind == "cylinder":
+        # the angle as typed: degrees -> radians -> degrees need not give it back exactly
+        summary["wrap_angle_degrees"] = (15.0 if design.wrap_angle is None else
+                                         args.wrap_angle if args.wrap_angle is not None
+                                         else math.degrees(design.wrap_angle))
     # every output, or none (and no folder this run created)
     with transaction() if out is None else folder_transaction(out):
         if out is not None:
@@ -180,19 +189,20 @@ def _refuse_unused_in_mode(args: argparse.Namespace) -> None:
 
 
 def _tape(args: argparse.Namespace):
-    """(TapeParameters, velocity in m/s) of the tape options and --config, validated. The
-    plate-grid fields, which the bearing does not use, are set so that they pass."""
+    """(TapeParameters, velocity in m/s, the file's [head] table or None) of the tape
+    options and --config, validated. The plate-grid fields, which the bearing does not use,
+    are set so that they pass."""
     from ..core import validation
     from ..tape.parameters import TapeParameters
 
     typed = {field: getattr(args, field) for _flag, field, _text in TAPE_OPTIONS
              if getattr(args, field) is not None}
-    base, velocity = TapeParameters(), args.velocity
+    base, velocity, head_table = TapeParameters(), args.velocity, None
     if args.config is not None:
         from ..tape.config import load_config
 
-        cfg = load_config(args.config, adjust=_without_plate_fields)
-        base = cfg.params
+        cfg = load_config(args.config, adjust=_without_plate_fields, tables=("head",))
+        base, head_table = cfg.params, cfg.tables.get("head")
         velocity = cfg.velocity if velocity is None else velocity
         if base.edges != "free" and not args.infinitely_wide:
             raise UserError(f"{args.config}: edges = {base.edges!r}: the bearing's tape has "
@@ -207,7 +217,7 @@ def _tape(args: argparse.Namespace):
     if velocity <= 0.0:
         raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
                         f"got {velocity:g}")
-    return params, params.check_velocity(velocity)
+    return params, params.check_velocity(velocity), head_table
 
 
 def _without_plate_fields(fields: dict) -> dict:
@@ -257,8 +267,8 @@ def _check_outputs(args: argparse.Namespace) -> Path | None:
     return check_output_folder_with_files(args.out, OUT_FILES, option="--out")
 
 
-def _model(args: argparse.Namespace, params, air, velocity: float):
-    """The BearingModel of the arguments (speed, wrap, grid) on the tape and the air; a
+def _model(args: argparse.Namespace, params, air, velocity: float, design):
+    """The BearingModel of the arguments (speed, head, grid) on the tape and the air; a
     grid coarse enough to be off (BearingGridWarning) is one ``gyroshell: warning:`` line."""
     import warnings
 
@@ -268,7 +278,7 @@ def _model(args: argparse.Namespace, params, air, velocity: float):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BearingGridWarning)
         model = BearingModel(params, air, velocity=velocity,
-                             wrap_angle=math.radians(args.wrap_angle),
+                             head=design.head(),
                              infinitely_wide=args.infinitely_wide, span=args.span,
                              nx=args.nx, ny=args.ny,
                              grading="uniform" if args.uniform else None)

@@ -59,6 +59,8 @@ class TapeConfig:
     params: TapeParameters
     velocity: float | None = None
     name: str | None = None
+    #: Other tables the caller asked for (``tables=`` of :func:`load_config`), as parsed.
+    tables: dict = dataclasses.field(default_factory=dict)
 
 
 def _tomllib():
@@ -69,15 +71,17 @@ def _tomllib():
     return tomllib
 
 
-def parse_quantity(key: str, value, where: str = "") -> float:
-    """A number (SI) or ``"<number> <unit>"`` for ``key``, converted to SI.
+def parse_quantity(key: str, value, where: str = "", *, unit: str | None = None) -> float:
+    """A number (SI) or ``"<number> <unit>"`` for ``key``, converted to SI; ``unit`` (an
+    SI unit of :data:`~gyroshell.core.units.ACCEPTED`) for a key that is not a tape
+    field's (a head's, :mod:`gyroshell.bearing.head_config`).
 
     Examples
     --------
     >>> parse_quantity("thickness", "20 um"), parse_quantity("tension", "0.09 N/mm")
     (2e-05, 90.0)
     """
-    kind = QUANTITIES[key]
+    kind = QUANTITIES[key] if unit is None else unit
     prefix = f"{where}{key}"
     if isinstance(value, bool):
         raise ParameterError(f"{prefix} must be a number or '<number> <unit>', got {value!r}")
@@ -106,12 +110,16 @@ def parse_quantity(key: str, value, where: str = "") -> float:
     return number * factor
 
 
-def config_from_dict(data: dict, where: str = "", adjust=None) -> TapeConfig:
+def config_from_dict(data: dict, where: str = "", adjust=None,
+                     tables: tuple[str, ...] = ()) -> TapeConfig:
     """Validate a parsed TOML table (see the module docstring) into a :class:`TapeConfig`.
 
     ``adjust``, if given, maps the file's TapeParameters fields (a dict, SI) to those to
-    validate (see :func:`load_config`).
+    validate (see :func:`load_config`); ``tables`` names other tables the file may hold
+    beside the tape's (kept unparsed in :attr:`TapeConfig.tables`).
     """
+    others = {t: data[t] for t in tables if t in data}
+    data = {k: v for k, v in data.items() if k not in others}
     if "tape" in data:
         extra = sorted(set(data) - {"tape"})
         if extra:
@@ -150,7 +158,7 @@ def config_from_dict(data: dict, where: str = "", adjust=None) -> TapeConfig:
         params = TapeParameters(**(fields if adjust is None else adjust(dict(fields))))
     except ParameterError as exc:
         raise ParameterError(f"{where}{exc}") from None
-    return TapeConfig(params, velocity, name)
+    return TapeConfig(params, velocity, name, others)
 
 
 #: The UTF-8 byte order mark some editors put first; accepted and skipped (a BOM-prefixed
@@ -187,7 +195,8 @@ def config_text_of(raw: bytes, where: str) -> str:
                              f"{exc.start}): TOML files are UTF-8") from None
 
 
-def load_config(path: str | os.PathLike[str], *, adjust=None) -> TapeConfig:
+def load_config(path: str | os.PathLike[str], *, adjust=None,
+                tables: tuple[str, ...] = ()) -> TapeConfig:
     """Read a tape definition (TOML, see the module docstring).
 
     Parameters
@@ -199,6 +208,9 @@ def load_config(path: str | os.PathLike[str], *, adjust=None) -> TapeConfig:
         validate: a caller that does not use some of them (the air bearing has no plate
         grid: ``spacing``, ``length_ratio``, the load) replaces them before
         :class:`TapeParameters` checks them.
+    tables : tuple of str
+        Other tables the file may hold beside the tape's (the bearing's ``[head]``):
+        returned unparsed in :attr:`TapeConfig.tables`; any other table is refused.
 
     Raises
     ------
@@ -217,7 +229,7 @@ def load_config(path: str | os.PathLike[str], *, adjust=None) -> TapeConfig:
         data = _tomllib().loads(text)
     except _tomllib().TOMLDecodeError as exc:
         raise ParameterError(f"{where}not valid TOML: {exc}") from None
-    return config_from_dict(data, where=where, adjust=adjust)
+    return config_from_dict(data, where=where, adjust=adjust, tables=tables)
 
 
 def _format(key: str, value) -> str:

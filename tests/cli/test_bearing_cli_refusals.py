@@ -112,7 +112,7 @@ def test_bearing_parameters_through_the_python_api():
     args = argparse.Namespace(config=None, velocity=4.0, infinitely_wide=False,
                               **{field: None for _f, field, _t in bearing.TAPE_OPTIONS})
     args.width = 1e-3
-    params, velocity = bearing._tape(args)
+    params, velocity, _head_table = bearing._tape(args)
     assert velocity == 4.0 and params.width == 1e-3
     assert params.edges == "free" and round(params.width / params.spacing) >= 8
 
