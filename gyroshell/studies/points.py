@@ -18,11 +18,17 @@ from ..core import budget
 from ..core.errors import ParameterError
 from ..tape.parameters import TapeParameters, check_velocity
 
-__all__ = ["VARIABLE_NAMES", "canonical_name", "check_points", "grid_points", "parameters_of"]
+__all__ = ["HEAD_VARIABLES", "VARIABLE_NAMES", "canonical_name", "check_points",
+           "grid_points", "parameters_of"]
 
-#: Parameters a study can vary: every TapeParameters field, plus the tape speed.
+#: Parameters of the head a bearing study (``compute="bearing"``) can vary, SI (angles in
+#: rad): :class:`gyroshell.bearing.head_config.HeadDesign` fields.
+HEAD_VARIABLES: tuple[str, ...] = ("wrap_angle", "wrap_in", "wrap_out", "land_length",
+                                   "corner_radius", "module_gap")
+#: Parameters a study can vary: every TapeParameters field, plus the tape speed and the
+#: head's parameters.
 VARIABLE_NAMES: tuple[str, ...] = ("velocity",) + tuple(
-    f.name for f in dataclasses.fields(TapeParameters))
+    f.name for f in dataclasses.fields(TapeParameters)) + HEAD_VARIABLES
 
 
 def canonical_name(name: str) -> str:
@@ -109,7 +115,8 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
             params, v = parameters_of(base, velocity, clean)
         except ParameterError as exc:
             raise ParameterError(f"point {i} {clean}: {exc}") from None
-        clean = {k: (v if k == "velocity" else getattr(params, k)) for k in clean}
+        clean = {k: (v if k == "velocity" else clean[k] if k in HEAD_VARIABLES
+                     else getattr(params, k)) for k in clean}
         out.append(clean)
     if not out:
         raise ParameterError("a study needs at least one point")
@@ -119,7 +126,8 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
 def parameters_of(base: TapeParameters, velocity: float, point: Mapping
                   ) -> tuple[TapeParameters, float]:
     """The point's tape and speed V (m/s): ``base`` changed by the point's fields, and the
-    point's ``velocity`` or else ``velocity``."""
-    changes = {k: v for k, v in point.items() if k != "velocity"}
+    point's ``velocity`` or else ``velocity``; the head's variables are not the tape's
+    (:func:`gyroshell.studies.head_study.head_of_point`)."""
+    changes = {k: v for k, v in point.items() if k != "velocity" and k not in HEAD_VARIABLES}
     v = check_velocity(point.get("velocity", velocity))
     return (base.replace(**changes) if changes else base), v
