@@ -37,7 +37,8 @@ coplanar (height 0, tilt 0) unless ``[[head.module]]`` tables set their heights 
 the tape then runs straight over the inner corners and the wrap acts at the outer corners
 only (``wrap_in`` at the first leading corner, ``wrap_out`` at the last trailing one). Set
 heights or tilts to give the inner corners a wrap of their own (tilting the outer modules
-down by α gives each inner corner a wrap α).
+down by α, up to 10°, gives each inner corner a wrap α). A flat head needs a wrap at its
+ends (``wrap_in`` or ``wrap_out`` > 0): nothing else presses the tape onto it.
 """
 
 from __future__ import annotations
@@ -61,8 +62,11 @@ HEAD_KINDS: tuple[str, ...] = ("cylinder", "flat", "profile")
 DEFAULT_WRAP_ANGLE = math.radians(15.0)
 #: Most modules of a flat head.
 MAX_MODULES = 8
-#: Largest wrap at a corner of a flat or measured head, rad: the small-slope model.
-MAX_CORNER_WRAP = math.pi / 4.0
+#: Largest wrap at either end of a flat or measured head, rad: the small-slope model
+#: (:data:`gyroshell.bearing.head.MAX_SIDE_WRAP`).
+MAX_CORNER_WRAP = math.radians(45.0)
+#: Largest tilt of a module, rad (:data:`gyroshell.bearing.head.MAX_TILT`).
+MAX_TILT = math.radians(10.0)
 #: The fields each kind of head uses (beside ``transducers`` and ``friction``).
 _KIND_FIELDS: dict[str, tuple[str, ...]] = {
     "cylinder": ("wrap_angle", "radius"),
@@ -127,8 +131,8 @@ class HeadDesign:
         Flat: the number of modules, 1 to :data:`MAX_MODULES` (None: one, or as many as
         ``module_shapes``).
     module_gap : float, tuple or None
-        Flat: the gap between consecutive modules, m, > 0 (one for all, or modules − 1
-        values; required for two modules or more).
+        Flat: the gap between consecutive modules, m, >= 0, corner to corner (one for all,
+        or modules − 1 values; required for two modules or more).
     module_shapes : tuple of ModuleShape
         Flat: per-module heights, tilts, lands and corner radii (empty: equal coplanar
         modules).
@@ -238,11 +242,12 @@ def check_design(design: HeadDesign, labels: Mapping[str, str] | None = None, *,
     ParameterError
         One line naming the option and its allowed range: an unknown kind; an option of
         another kind of head (``--wrap-angle`` on a flat head, ``--land-length`` on a
-        cylinder); a value out of range; a flat head with no land length, no wrap at any
-        corner (and coplanar modules: nothing would load the tape onto the head), a land
-        not longer than its corner radii, fewer than 1 or more than :data:`MAX_MODULES`
-        modules, a gap <= 0 or a gap without a second module; a profile head without its
-        file; a friction coefficient < 0.
+        cylinder); a value out of range; a flat head with no land length or no wrap at
+        either end (nothing would press the tape onto it), fewer than 1 or more than
+        :data:`MAX_MODULES` modules, a negative gap or a gap without a second module; a
+        profile head without its file; a friction coefficient < 0. What needs the
+        contour (a land shorter than its corner radii allow, transducers off the head, a
+        bad profile file) is refused when :meth:`HeadDesign.head` builds it.
     """
     name = _Names(labels or {}, degrees)
 
@@ -328,19 +333,17 @@ def _checked_flat(design: HeadDesign, name) -> dict:
     checked = []
     for i, shape in enumerate(shapes):
         where = f"{name('module_shapes')}[{i}] " if design.module_shapes else ""
-        checked.append(_checked_shape(shape, design.land_length, corner, where, name))
+        checked.append(_checked_shape(shape, design.land_length, where, name))
     if design.module_shapes:
         changes["module_shapes"] = tuple(checked)
     if design.land_length is not None:
         changes["land_length"] = validation.positive(name("land_length"), design.land_length,
                                                      "m")
-    wrapped = (changes.get("wrap_in") or 0.0) + (changes.get("wrap_out") or 0.0) > 0.0
-    coplanar = all(s.height == checked[0].height and s.tilt == 0.0 for s in checked)
-    if not wrapped and coplanar:
+    if not (changes.get("wrap_in") or 0.0) + (changes.get("wrap_out") or 0.0) > 0.0:
         raise ParameterError(
-            f"a flat head needs a wrap: {name('wrap_in')} and {name('wrap_out')} are both 0 "
-            "and its lands are coplanar, so nothing loads the tape onto the head (give a "
-            "wrap, e.g. 2 degrees, or heights and tilts that wrap the inner corners)")
+            f"a flat head needs a wrap: {name('wrap_in')} and {name('wrap_out')} are both 0, "
+            "so nothing presses the tape onto the head; give at least one of them > 0 "
+            f"(e.g. 2 {'degrees' if name.degrees else 'deg'})")
     return changes
 
 
@@ -358,9 +361,9 @@ def _checked_gaps(gap, n: int, name):
         if len(gap) != n - 1:
             raise ParameterError(f"{name('module_gap')} must be one gap or {n - 1} (one "
                                  f"between each two of the {n} modules), got {len(gap)}")
-        return tuple(validation.positive(f"{name('module_gap')}[{i}]", g, "m")
+        return tuple(validation.nonnegative(f"{name('module_gap')}[{i}]", g, "m")
                      for i, g in enumerate(gap))
-    return validation.positive(name("module_gap"), gap, "m")
+    return validation.nonnegative(name("module_gap"), gap, "m")
 
 
 def _checked_corner(label: str, corner):
@@ -376,9 +379,8 @@ def _checked_corner(label: str, corner):
     return validation.nonnegative(label, corner, "m")
 
 
-def _checked_shape(shape: ModuleShape, land: float | None, corner, where: str, name
-                   ) -> ModuleShape:
-    """One module's shape checked: a land, longer than its two corner radii."""
+def _checked_shape(shape: ModuleShape, land: float | None, where: str, name) -> ModuleShape:
+    """One module's shape checked: a land length, radii >= 0, a tilt within 10°."""
     if not isinstance(shape, ModuleShape):
         raise ParameterError(f"{where or 'a module'} must be a ModuleShape, got "
                              f"{type(shape).__name__}")
@@ -388,17 +390,11 @@ def _checked_shape(shape: ModuleShape, land: float | None, corner, where: str, n
     if land is None:
         raise ParameterError(f"a flat head needs its land length: give {name('land_length')} "
                              "(m, corner to corner, e.g. 1e-3)")
-    land = validation.positive(label, land, "m")
+    validation.positive(label, land, "m")
     if shape.corner_radius is not None:
-        corner = _checked_corner(f"{where}corner_radius", shape.corner_radius)
-    radii = corner if isinstance(corner, tuple) else (corner or 0.0,) * 2
-    if land <= sum(radii):
-        raise ParameterError(
-            f"{label} = {land:g} m is not longer than its corner radii ({radii[0]:g} + "
-            f"{radii[1]:g} m): the land would have no flat part; give a longer land or "
-            "smaller radii")
+        _checked_corner(f"{where}corner_radius", shape.corner_radius)
     height = validation.real(f"{where}height", shape.height, unit="m")
-    tilt = name.angle(f"{where}tilt", shape.tilt, low=-MAX_CORNER_WRAP, high=MAX_CORNER_WRAP)
+    tilt = name.angle(f"{where}tilt", shape.tilt, low=-MAX_TILT, high=MAX_TILT)
     return ModuleShape(land_length=shape.land_length, corner_radius=shape.corner_radius,
                        height=height, tilt=tilt)
 

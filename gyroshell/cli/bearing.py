@@ -146,9 +146,10 @@ def run(args: argparse.Namespace) -> int:
     _refuse_unused_in_mode(args)
     params, velocity, head_table = _tape(args)
     design = head_design(args, head_table, args.config)
+    head = design.head()   # the contour's checks: transducers on it, a profile file's
     air = _air(args)
     out = _check_outputs(args)
-    model = _model(args, params, air, velocity, design)
+    model = _model(args, params, air, velocity, head)
     sol = _solve(model, None if args.quiet else _progress)
     summary = sol.summary()
     if design.kind == "cylinder":
@@ -267,7 +268,7 @@ def _check_outputs(args: argparse.Namespace) -> Path | None:
     return check_output_folder_with_files(args.out, OUT_FILES, option="--out")
 
 
-def _model(args: argparse.Namespace, params, air, velocity: float, design):
+def _model(args: argparse.Namespace, params, air, velocity: float, head):
     """The BearingModel of the arguments (speed, head, grid) on the tape and the air; a
     grid coarse enough to be off (BearingGridWarning) is one ``gyroshell: warning:`` line."""
     import warnings
@@ -278,7 +279,7 @@ def _model(args: argparse.Namespace, params, air, velocity: float, design):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BearingGridWarning)
         model = BearingModel(params, air, velocity=velocity,
-                             head=design.head(),
+                             head=head,
                              infinitely_wide=args.infinitely_wide, span=args.span,
                              nx=args.nx, ny=args.ny,
                              grading="uniform" if args.uniform else None)

@@ -115,8 +115,9 @@ class BearingStudy:
 
 
 def head_of_point(setup: BearingStudy, point: Mapping) -> HeadDesign:
-    """The point's head: the base head with the point's head variables (checked; a
-    variable the head's kind has not is refused, naming it)."""
+    """The point's head design: the base head with the point's head variables (checked
+    whole, :func:`~gyroshell.bearing.head_config.check_design`; a variable the head's kind
+    has not is refused, naming it)."""
     changes = {k: v for k, v in point.items() if k in HEAD_VARIABLES}
     if not changes:
         return setup.head

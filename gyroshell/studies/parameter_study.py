@@ -318,7 +318,7 @@ def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...]
         raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
     for i, point in enumerate(pts):
         try:
-            head_of_point(bearing, point)
+            head_of_point(bearing, point).head()   # the contour's own checks too
         except ParameterError as exc:
             raise ParameterError(f"point {i} {point}: {exc}") from None
     return bearing.with_columns(base)

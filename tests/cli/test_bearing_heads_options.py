@@ -110,15 +110,14 @@ tilt = "0.5 deg"
      "--land-length is an option of a flat head, and this head is a cylinder (the default "
      "cylinder)"),
     (["--head", "flat", "--land-length", "1e-3"], "a flat head needs a wrap: --wrap-in and "
-                                                  "--wrap-out are both 0"),
+                                                  "--wrap-out are both 0, so nothing presses "
+                                                  "the tape onto the head"),
     (["--head", "flat", "--land-length", "1e-3", "--wrap-in", "0", "--wrap-out", "0"],
      "a flat head needs a wrap"),
     (["--head", "flat", "--wrap-in", "2"], "a flat head needs its land length: give "
                                            "--land-length"),
-    ([*FLAT[:4], "--corner-radius", "6e-4,5e-4", "--wrap-in", "2"],
-     "--land-length = 0.001 m is not longer than its corner radii (0.0006 + 0.0005 m)"),
     ([*FLAT, "--modules", "3"], "3 modules need the gap between them: give --module-gap"),
-    ([*FLAT, "--modules", "2", "--module-gap", "-1e-4"], "--module-gap must be > 0 m"),
+    ([*FLAT, "--modules", "2", "--module-gap", "-1e-4"], "--module-gap must be >= 0 m"),
     ([*FLAT, "--module-gap", "1e-4"], "--module-gap is the gap between modules, and this "
                                       "head has one"),
     ([*FLAT, "--modules", "9", "--module-gap", "1e-4"], "--modules must be an integer in "
