@@ -52,6 +52,7 @@ from pathlib import Path
 
 from ..core import validation
 from ..core.errors import ParameterError
+from .head import MAX_MODULES, MAX_SIDE_WRAP, MAX_TILT
 
 __all__ = ["DEFAULT_WRAP_ANGLE", "HEAD_KINDS", "MAX_MODULES", "HeadDesign", "ModuleShape",
            "check_design", "design_from_table", "in_file", "kind_fields", "table_labels"]
@@ -60,13 +61,8 @@ __all__ = ["DEFAULT_WRAP_ANGLE", "HEAD_KINDS", "MAX_MODULES", "HeadDesign", "Mod
 HEAD_KINDS: tuple[str, ...] = ("cylinder", "flat", "profile")
 #: The cylinder's wrap when none is given, rad (the bearing's default since issue 7).
 DEFAULT_WRAP_ANGLE = math.radians(15.0)
-#: Most modules of a flat head.
-MAX_MODULES = 8
-#: Largest wrap at either end of a flat or measured head, rad: the small-slope model
-#: (:data:`gyroshell.bearing.head.MAX_SIDE_WRAP`).
-MAX_CORNER_WRAP = math.radians(45.0)
-#: Largest tilt of a module, rad (:data:`gyroshell.bearing.head.MAX_TILT`).
-MAX_TILT = math.radians(10.0)
+#: Largest wrap at either end of a flat or measured head, rad: the small-slope model.
+MAX_CORNER_WRAP = MAX_SIDE_WRAP
 #: The fields each kind of head uses (beside ``transducers`` and ``friction``).
 _KIND_FIELDS: dict[str, tuple[str, ...]] = {
     "cylinder": ("wrap_angle", "radius"),
@@ -121,7 +117,7 @@ class HeadDesign:
         Cylinder: its radius, m (None: the tape's radius R).
     wrap_in, wrap_out : float or None
         Flat and measured heads: the incoming (outgoing) span's angle below the first
-        (last) land, rad, in [0, π/4] (None: 0).
+        (last) land, rad, in [0, 45°] (None: 0).
     land_length : float or None
         Flat: each module's land, corner to corner, m (required unless every module shape
         gives its own).

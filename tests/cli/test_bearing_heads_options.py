@@ -172,3 +172,41 @@ def test_other_commands_refuse_a_head_table(cli, tmp_path):
     path.write_text(THREE_MODULES)
     line = _one_error_line(cli(["static", "--config", path]))
     assert "unknown key(s) head beside [tape]" in line
+
+
+PROFILE_ROWS = "x_m,z_m\n" + "".join(f"{x * 1e-4:.6e},{-(x * 1e-4) ** 2 / 0.04:.6e}\n"
+                                     for x in range(-10, 11))
+
+
+@pytest.mark.parametrize("argv, contents, message", [
+    ([*FLAT, "--transducers", "0,2e-3"], None,
+     "transducers[1] must lie on the head's wrapped region [-0.0005, 0.0005] m"),
+    ([*FLAT, "--corner-radius", "0.01"], None, "is shorter than its corner radii allow"),
+    (["--head", "{csv}", "--wrap-in", "1"], "", "the profile file is empty"),
+    (["--head", "{csv}", "--wrap-in", "1"], "x,z\n0,0\n1e-4,oops\n", "row 2 is not numbers"),
+    (["--head", "{csv}", "--wrap-in", "1"], "0,0\n2e-4,0\n1e-4,0\n3e-4,0\n",
+     "x must be strictly increasing"),
+    (["--head", "{csv}", "--wrap-in", "1", "--wrap-out", "1", "--transducers", "1"],
+     PROFILE_ROWS, "transducers[0] must lie on the head's wrapped region"),
+])
+def test_contour_refusals_before_the_solve(cli, tmp_path, argv, contents, message):
+    """What needs the contour (its corners, its extent, its file) is refused in one line
+    when the head is built, before the outputs are touched or anything is solved."""
+    csv = tmp_path / "head.csv"
+    if contents is not None:
+        csv.write_text(contents)
+    out = tmp_path / "never"
+    argv = [a.replace("{csv}", str(csv)) for a in argv]
+    line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide", *argv,
+                                "--out", out]))
+    assert message in line
+    assert not out.exists()
+
+
+def test_a_profile_larger_than_memory_allows_is_refused(cli, tmp_path, monkeypatch):
+    csv = tmp_path / "huge.csv"
+    csv.write_text(PROFILE_ROWS * 20)
+    monkeypatch.setenv("GYROSHELL_MEMORY_LIMIT", "1000")
+    line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide",
+                                "--head", csv, "--wrap-in", "1"]))
+    assert "huge.csv" in line and "more than the limit 1 kB" in line
