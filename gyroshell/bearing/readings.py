@@ -161,6 +161,10 @@ class Tent:
     height, x : float or None
         The tenting height along the middle of the width, m, and where it is, m; None if
         the spacing has no local maximum there.
+    drop : float or None
+        How far the centre line's spacing comes down past the tent: its height less the
+        smallest nodal spacing between it and the search's far end, m (0 for a land
+        tented end to end; a small drop marks a ripple rather than a tent).
     widest_height, widest_x, widest_y : float or None
         The largest of the tents of every node line across the width, m, and where it
         is, m (the same as the centre line's, with y None, if infinitely wide).
@@ -170,6 +174,7 @@ class Tent:
     side: str
     height: float | None
     x: float | None
+    drop: float | None
     widest_height: float | None
     widest_x: float | None
     widest_y: float | None
@@ -214,6 +219,14 @@ def _line_tents(x, spacing, start: float, end: float):
     i = inner[np.argmax(masked, axis=0)]
     xv, hv = _vertex(x, h, np.where(found, i, inner[0]))
     return found, xv, hv
+
+
+def _drop(x, line, x_tent: float, height: float, end: float) -> float:
+    """The tent's height less the smallest nodal spacing of ``line`` between the tent
+    and ``end`` (m), at least 0."""
+    lo, hi = min(x_tent, end), max(x_tent, end)
+    between = line[(x >= lo) & (x <= hi)]
+    return max(height - float(between.min()), 0.0) if between.size else 0.0
 
 
 def _land_of(corner: float, lands) -> tuple[float, float] | None:
@@ -278,10 +291,12 @@ def tents(x, y, spacing, corners, lands, transducers=()) -> tuple[Tent, ...]:
                                       (x[0], x[-1])).items():
             found, xv, hv = _line_tents(x, h, float(c), float(end))
             if not found.any():
-                out.append(Tent(float(c), side, None, None, None, None, None))
+                out.append(Tent(float(c), side, None, None, None, None, None, None))
                 continue
             j = int(np.argmax(np.where(found, hv, -np.inf)))
-            mid = (float(hv[centre]), float(xv[centre])) if found[centre] else (None, None)
+            mid = (float(hv[centre]), float(xv[centre]),
+                   _drop(x, h[:, centre], float(xv[centre]), float(hv[centre]), float(end))
+                   ) if found[centre] else (None, None, None)
             out.append(Tent(float(c), side, *mid, float(hv[j]), float(xv[j]),
                             None if y is None else float(y[j])))
     return tuple(out)

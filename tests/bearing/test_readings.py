@@ -213,6 +213,7 @@ def test_dry_land_tents_end_to_end_with_the_closed_form_height():
         else:
             assert tent.height == pytest.approx(height, rel=1e-6)
             assert tent.x == pytest.approx(0.0, abs=1e-12)
+            assert tent.drop == pytest.approx(0.0, abs=1e-9 * height)   # tented end to end
             assert tent.widest_height == tent.height and tent.widest_y is None
 
 
@@ -248,6 +249,10 @@ def test_corner_tents_along_the_centre_line_and_across_the_width():
     assert lead.height == pytest.approx(1e-8 + 1e-3 * bump, rel=1e-5)
     assert lead.widest_height == pytest.approx(1e-8 + 2e-3 * bump, rel=1e-5)
     assert lead.widest_y in (0.0, WIDTH)
+    # down to the land's middle, where both bumps are (2a − s) e^{...} small: the drop is
+    # the tent less the spacing at x = 0
+    middle = 1e-8 + 1e-3 * 2 * a * math.exp(-a / ell)
+    assert lead.drop == pytest.approx(lead.height - middle, rel=1e-5)
     # a transducer between the corner and the tent ends the search before it
     (early, *_rest) = readings.tents(x, y, H, (-a, a), ((-a, a),), transducers=(x_peak - 5e-5,))
     assert early.height is None and early.x is None
