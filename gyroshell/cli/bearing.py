@@ -27,8 +27,9 @@ from .heads import add_head_options, head_design
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
-#: The files ``--out DIR`` writes.
-OUT_FILES = ("summary.json", "fields.csv")
+#: The files ``--out DIR`` writes: the summary, the fields, and the readings' tables (the
+#: spacing across the width along each transducer line; each corner's contact and tents).
+OUT_FILES = ("summary.json", "fields.csv", "transducer_lines.csv", "corners.csv")
 #: The tape options of the bearing: those of the plate sub-commands but ``--load``.
 TAPE_OPTIONS = tuple(option for option in TAPE_OVERRIDES if option[1] != "load")
 #: The plate fields a --config file may set that the bearing does not use (replaced).
@@ -70,10 +71,14 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     _add_bearing_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     p.add_argument("--out", metavar="DIR", default=None,
-                   help="write summary.json and the spacing/pressure fields (fields.csv) "
-                        "into DIR (created if missing; its parent must exist)")
+                   help="write summary.json, the spacing/pressure fields (fields.csv), the "
+                        "spacing across the width along each transducer line "
+                        "(transducer_lines.csv) and each corner's contact force and tents "
+                        "(corners.csv) into DIR (created if missing; its parent must exist)")
     p.add_argument("--plot", metavar="FILE.png", default=None,
-                   help="write a PNG of the spacing and pressure")
+                   help="write a PNG of the spacing and pressure (over a flat or measured "
+                        "head, or with --transducers: the head's contour, the spacing over "
+                        "its lands and corners and the transducer lines across the width)")
     p.add_argument("--quiet", action="store_true",
                    help="no progress lines (by default stderr gets the model's size and an "
                         "estimate of the time, then one line per Newton iteration and stage)")
@@ -162,10 +167,11 @@ def run(args: argparse.Namespace) -> int:
         if out is not None:
             _write_out(out, sol, summary)
         if args.plot is not None:
-            from ..bearing.plots import overview
+            from ..bearing.plots import head_overview, overview
             from ..reproduce._common import save_figure
 
-            save_figure(overview(sol), Path(args.plot))
+            plain = head.kind == "cylinder" and not head.transducers
+            save_figure((overview if plain else head_overview)(sol), Path(args.plot))
     if args.json:
         print_json(summary)
     else:
@@ -364,6 +370,19 @@ def _print_text(sol) -> None:
     print(f"minimum spacing:  {sol.minimum_spacing:.6e} m at {where}")
     print(f"air force:        {sol.air_force:.6e} {force_unit}")
     print(f"contact force:    {sol.contact_force:.6e} {force_unit} ({sol.contact_nodes} nodes)")
+    for line in sol.transducer_lines:
+        print(f"transducer line:  x = {line.x:.4e} m: minimum {line.minimum:.6e} m, "
+              f"mean {line.mean:.6e} m")
+    for share in sol.corner_forces:
+        print(f"corner:           x = {share.where[0]:.4e} m: contact force "
+              f"{share.force:.6e} {force_unit}")
+    for tent in sol.tents:
+        if tent.height is not None:
+            print(f"tent:             {tent.height:.6e} m at x = {tent.x:.4e} m "
+                  f"({tent.side} side of the corner at {tent.corner:.4e} m)")
+    print(f"drag:             {sol.drag:.6e} {force_unit} (viscous {sol.viscous_drag:.6e}, "
+          f"friction {sol.friction_drag:.6e}); tension rise {sol.tension_rise:.6e} N/m, "
+          f"ratio {sol.tension_ratio:.6f}")
     print(f"Newton:           {sol.info.iterations} iterations, {sol.info.seconds:.2f} s")
 
 
@@ -373,5 +392,39 @@ def _write_out(out: Path, sol, summary: dict) -> None:
 
     fields = sol.to_frame().rename(columns=FIELD_COLUMNS)
     write_atomic(out / "fields.csv", lambda tmp: fields.to_csv(tmp, index=False))
+    lines, corners = readings_tables(sol)
+    write_atomic(out / "transducer_lines.csv", lambda tmp: lines.to_csv(tmp, index=False))
+    write_atomic(out / "corners.csv", lambda tmp: corners.to_csv(tmp, index=False))
     write_atomic(out / "summary.json",
                  lambda tmp: tmp.write_text(json.dumps(summary, indent=1) + "\n"))
+
+
+def readings_tables(sol):
+    """(transducer lines, corners) as DataFrames, units in the column names: the spacing
+    across the width along each line (one row per node; y empty if infinitely wide), and
+    per corner its contact force (N, N/m if infinitely wide), peak contact pressure, force
+    centroid and nodes in contact, and its tents on the land and span sides (NaN: none)."""
+    import pandas as pd
+
+    model = sol.model
+    ys = [math.nan] if model.infinitely_wide else list(model.y)
+    lines = pd.DataFrame(
+        [{"line": k, "x_m": line.x, "y_m": y, "spacing_m": float(h),
+          "line_minimum_m": line.minimum, "line_mean_m": line.mean}
+         for k, line in enumerate(sol.transducer_lines, start=1)
+         for y, h in zip(ys, line.spacing, strict=True)],
+        columns=["line", "x_m", "y_m", "spacing_m", "line_minimum_m", "line_mean_m"])
+    unit = "N_per_m" if model.infinitely_wide else "N"
+    rows = []
+    for k, share in enumerate(sol.corner_forces, start=1):
+        row = {"corner": k, "x_m": share.where[0], f"contact_force_{unit}": share.force,
+               "peak_contact_pressure_Pa": share.peak_pressure,
+               "centroid_m": math.nan if share.centroid is None else share.centroid,
+               "contact_nodes": share.nodes}
+        for tent in sol.tents:
+            if tent.corner == share.where[0]:
+                row[f"{tent.side}_tent_height_m"] = (math.nan if tent.height is None
+                                                     else tent.height)
+                row[f"{tent.side}_tent_x_m"] = math.nan if tent.x is None else tent.x
+        rows.append(row)
+    return lines, pd.DataFrame(rows)

@@ -13,8 +13,10 @@ reports, per point:
     m, the spacing's minimum and mean across the width along the i-th transducer line
     (i = 1, 2, ... in the head's order).
 ``corner_<j>_tent_height``, ``corner_<j>_tent_x``, ``corner_<j>_force``
-    The tent next to the j-th corner (its height, m, and position, m from the head's
-    middle) and the corner's contact force (N; N/m per unit width when infinitely wide).
+    The tent next to the j-th corner on its land side, along the middle of the width
+    (its height, m, and position, m from the head's middle; NaN where the spacing has no
+    local maximum there, :attr:`~gyroshell.bearing.results.BearingSolution.tents`) and
+    the corner's contact force (N; N/m per unit width when infinitely wide).
 ``contact_force``, ``viscous_drag``, ``friction_drag``, ``drag``
     N (N/m per unit width when infinitely wide).
 ``tension_rise``, ``tension_ratio``
@@ -151,13 +153,14 @@ def readings_row(sol, columns: list[str]) -> dict:
     for i, line in enumerate(sol.transducer_lines, start=1):
         row[f"transducer_{i}_min_spacing"] = line.minimum
         row[f"transducer_{i}_mean_spacing"] = line.mean
-    tents, forces = sol.tents, sol.corner_forces
+    tents = [tent for tent in sol.tents if tent.side == "land"]
+    forces = sol.corner_forces
     for j, (tent, force) in enumerate(zip(tents, forces, strict=True), start=1):
-        row[f"corner_{j}_tent_height"] = tent.height
-        row[f"corner_{j}_tent_x"] = tent.x
+        row[f"corner_{j}_tent_height"] = math.nan if tent.height is None else tent.height
+        row[f"corner_{j}_tent_x"] = math.nan if tent.x is None else tent.x
         row[f"corner_{j}_force"] = force.force
     if set(row) != set(columns):
-        raise ParameterError(f"this point's head has {len(tents)} corners and "
+        raise ParameterError(f"this point's head has {len(forces)} corners and "
                              f"{len(sol.transducer_lines)} transducer lines, not those of "
                              "the study's base head")
     return {c: float(row[c]) for c in columns}
