@@ -31,6 +31,7 @@ another number of corners fails in its row.
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -97,10 +98,12 @@ class BearingStudy:
         object.__setattr__(self, "head", check_design(self.head))
 
     def spec(self) -> dict:
-        """The setup as plain JSON values (a cache key's part, a saved study's metadata)."""
-        return {"head": dataclasses.asdict(self.head),
-                "air": None if self.air is None else dataclasses.asdict(self.air),
-                "infinitely_wide": self.infinitely_wide, "nx": self.nx, "ny": self.ny}
+        """The setup as plain JSON values, lists for tuples (a cache key's part, a saved
+        study's metadata: it reads back equal)."""
+        return json.loads(json.dumps({
+            "head": dataclasses.asdict(self.head),
+            "air": None if self.air is None else dataclasses.asdict(self.air),
+            "infinitely_wide": self.infinitely_wide, "nx": self.nx, "ny": self.ny}))
 
     def with_columns(self, base: TapeParameters) -> BearingStudy:
         """This setup with the columns of its points over the tape ``base`` (the head is
