@@ -3,9 +3,10 @@ spacing across the width against speed, and a map of the read-line spacing and t
 over the two wrap angles. The paper's Table 1 tape, air at 20 °C.
 
 (a) ``heads_modules``: a write-read-write head of three 0.6 mm modules 0.4 mm apart, the
-    outer modules tilted by 1° towards the middle one (each inner corner then wraps the
-    tape by 0.5°) and 2° of wrap at the outer corners, at 4 m/s; the infinitely wide tape
-    (1-D: the centre line of a wide tape away from its edges), the contour drawn under it.
+    outer modules tilted by 1° towards the middle one (each inner corner then turns the
+    tape by 0.5°) and the spans 2° below the datum (the outer corners turn it by 1°), at
+    4 m/s; the infinitely wide tape (1-D: the centre line of a wide tape away from its
+    edges), the contour drawn under it.
 (b) ``heads_width``: the spacing along the read line (the middle of a 1 mm module, 2° of
     wrap either side) across the width of the 2-D tape at a few speeds.
 (c) ``heads_wraps``: the read-line spacing and the drag (viscous and friction μ = 0.2)
@@ -81,34 +82,40 @@ def modules_table(sol) -> pd.DataFrame:
 def plot_modules(table: pd.DataFrame, sol):
     plt = pyplot()
     fig, (top, mid, low) = plt.subplots(3, 1, figsize=(8, 8.2), sharex=True,
-                                        gridspec_kw={"height_ratios": [1.2, 1.2, 1]})
-    x = table.x * 1e3
-    head = sol.model.head
-    near = (x > -2.2) & (x < 2.2)
-    top.fill_between(x[near], table.head_z[near] * 1e6, table.head_z[near].min() * 1e6 - 5,
-                     color="0.8", label="head")
-    top.plot(x[near], table.dry_tape_z[near] * 1e6, "k--", lw=0.8, label="dry tape")
-    top.plot(x[near], table.tape_z[near] * 1e6, "C0", label="flying tape")
+                                        gridspec_kw={"height_ratios": [1, 1.3, 1]})
+    model, head = sol.model, sol.model.head
+    radius = model.params.radius
+    first, last = head.extent(radius=radius)
+    near = ((table.x > first - 0.5e-3) & (table.x < last + 0.5e-3)).to_numpy()
+    t = table[near]
+    x = t.x * 1e3
+    floor = t.tape_z.min() * 1e6 - 15.0
+    top.fill_between(x, t.head_z * 1e6, floor, color="0.8", label="head")
+    top.plot(x, t.dry_tape_z * 1e6, "k--", lw=0.8, label="dry tape")
+    top.plot(x, t.tape_z * 1e6, "C0", lw=1.0, label="flying tape")
+    top.set_ylim(floor, t.tape_z.max() * 1e6 + 5.0)
     top.set_ylabel("z (µm)")
-    top.set_ylim(table.head_z[near].min() * 1e6 - 5, table.tape_z[near].max() * 1e6 + 2)
-    top.legend(fontsize=8, loc="lower center")
-    top.set_title(f"three 0.6 mm modules 0.4 mm apart, outer modules tilted 1°, 2° wrap at "
-                  f"the outer corners; infinitely wide tape, V = {VELOCITY:g} m/s",
-                  fontsize=9)
-    mid.semilogy(x[near], table.spacing[near] * 1e6, "C0")
+    top.legend(fontsize=8, loc="lower center", ncol=3)
+    turns = ", ".join(f"{math.degrees(a):.2g}" for a in head.corner_turns(radius=radius))
+    top.set_title(f"three {MODULE_LAND * 1e3:g} mm modules {MODULE_GAP * 1e3:g} mm apart, "
+                  f"outer ones tilted {math.degrees(MODULE_TILT):g}°, spans "
+                  f"{math.degrees(OUTER_WRAP):g}° below the datum (the corners turn the tape "
+                  f"by {turns}°);\ninfinitely wide tape, V = {VELOCITY:g} m/s, "
+                  f"{model.nx} intervals", fontsize=9)
+    mid.semilogy(x, t.spacing * 1e6, "C0")
     for line in sol.transducer_lines:
         mid.axvline(line.x * 1e3, color="C3", lw=0.8, ls=":")
         mid.annotate(f"{line.centre * 1e9:.0f} nm", (line.x * 1e3, line.centre * 1e6),
                      xytext=(4, 8), textcoords="offset points", fontsize=8, color="C3")
-    for c in head.corners(radius=sol.model.params.radius):
+    for c in head.corners(radius=radius):
         mid.axvline(c * 1e3, color="0.6", lw=0.6)
     mid.set_ylabel("spacing (µm)")
     mid.grid(True, which="both", alpha=0.3)
-    p_a = sol.model.air.ambient_pressure
-    low.plot(x[near], (table.pressure[near] - p_a) * 1e-3, "C1")
+    low.plot(x, (t.pressure - model.air.ambient_pressure) * 1e-3, "C1")
     low.axhline(0.0, color="k", lw=0.6)
     low.set_ylabel("p − p_a (kPa)")
-    low.set_xlabel("x from the head's middle (mm), tape moves →")
+    low.set_xlabel("x from the head's middle (mm), tape moves →; grey: corners, red: "
+                   "transducer lines")
     low.grid(True, alpha=0.3)
     fig.tight_layout()
     return fig
