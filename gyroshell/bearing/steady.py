@@ -365,7 +365,23 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
             progress("pseudo-time did not reach the state: continuation in V")
         z, lam, info = _continuation(model, tension, progress, iteration_log)
     info.seconds = time.perf_counter() - start
+    check_cavitation(model, z[model.n_u:])
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
+
+
+def check_cavitation(model: BearingModel, p: np.ndarray, when: str = "") -> None:
+    """Refuse an incompressible film state with p < 0 absolute (Pa): a gas film cannot
+    cavitate below vacuum, and the incompressible Reynolds equation has no cavitation
+    model here (the compressible film, φ = p h, stays positive by construction)."""
+    if model.air.compressible or model.dry or p.size == 0 or p.min() >= 0.0:
+        return
+    k = int(np.argmin(p))
+    i, j = np.argwhere(model.film.pressure_index == k)[0]
+    where = f"x = {model.x_head[i]:.4g} m" + ("" if model.infinitely_wide
+                                              else f", y = {model.y[j]:.4g} m")
+    raise ParameterError(
+        f"the incompressible film would cavitate: p = {p[k]:.4g} Pa absolute at {where}"
+        f"{when}; use compressible=True (the compressible film stays positive)")
 
 
 def check_steady_arguments(model, z0, tension, progress, iteration_log):
