@@ -84,6 +84,60 @@ def symmetric_line_nodes(length: float, n: int, grading: LineGrading | None = No
     return t
 
 
+def _inverse(grading: LineGrading | None, s: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """t in [lo, hi] with S(t) = s (S the grading's cumulative; the identity if None)."""
+    if grading is None or grading.ratio == 1.0:
+        return s.copy()
+    n = max(len(s), 2)
+    dense = np.linspace(lo, hi, 64 * n + 1)
+    t = np.interp(s, grading.cumulative(dense), dense)
+    for _ in range(4):                                          # Newton: S' = g >= 1
+        t = t - (grading.cumulative(t) - s) / grading.density(t)
+    return np.clip(t, lo, hi)
+
+
+def piecewise_line_nodes(length: float, n: int, grading: LineGrading | None,
+                         breaks: tuple[float, ...], *, fewest: int = 2) -> np.ndarray:
+    """n + 1 node coordinates on [0, length] (m) with a node exactly on every break (m,
+    inside the line): the nodes of :func:`line_nodes`, moved so that the k-th break is the
+    node nearest to it in the graded coordinate S. Between breaks the nodes are at equal
+    steps of S, so the spacing stays smooth: at a break it changes by a factor
+    1 + O(1/n), i.e. h_{i+1} − h_i = O(h²) as before. Mirror-symmetric breaks and grading
+    give exactly mirror-symmetric nodes.
+
+    Raises
+    ------
+    ValueError
+        If ``n`` leaves fewer than ``fewest`` intervals between two breaks.
+    """
+    knots = np.unique(np.clip(np.asarray(breaks, dtype=float), 0.0, length))
+    knots = knots[(knots > 0.0) & (knots < length)]
+    if len(knots) == 0:
+        return symmetric_line_nodes(length, n, grading)
+    cum = (lambda t: np.asarray(t, float)) if grading is None or grading.ratio == 1.0 \
+        else grading.cumulative
+    edges = np.concatenate([[0.0], knots, [length]])
+    S = cum(edges)
+    index = np.rint(n * (S - S[0]) / (S[-1] - S[0])).astype(int)
+    index[0], index[-1] = 0, n
+    counts = np.diff(index)
+    if counts.min() < fewest:
+        raise ValueError(f"{n} intervals leave {counts.min()} between two of the head's "
+                         f"corners, fewer than {fewest}")
+    t = np.empty(n + 1)
+    for k in range(len(edges) - 1):
+        s = np.linspace(S[k], S[k + 1], counts[k] + 1)
+        t[index[k]:index[k + 1] + 1] = _inverse(grading, s, edges[k], edges[k + 1])
+        t[index[k]], t[index[k + 1]] = edges[k], edges[k + 1]
+    mirror = length - t[::-1]
+    if np.allclose(t, mirror, rtol=0, atol=1e-9 * length / n):
+        t = 0.5 * (t + mirror)
+        t[index] = edges      # the breaks exact again (mirror-symmetric to round-off)
+        if n % 2 == 0:
+            t[n // 2] = 0.5 * length if not np.isin(n // 2, index[1:-1]) else t[n // 2]
+    return t
+
+
 @dataclass(frozen=True)
 class Grading:
     """How a 2-D bearing grid is graded.

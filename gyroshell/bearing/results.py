@@ -24,6 +24,7 @@ from ..core.errors import ParameterError
 from ..results.base import Result, dataset, from_json, params_from
 from . import readings
 from .air import AirParameters
+from .head import head_from_dict
 from .mesh import Grading
 from .model import BearingGridWarning, BearingModel
 
@@ -520,11 +521,14 @@ def _settings(model: BearingModel) -> dict:
     """The keyword arguments that rebuild ``model`` with its tape and air."""
     return {"velocity": model.velocity, "wrap_angle": model.wrap_angle,
             "infinitely_wide": model.infinitely_wide, "span": model.span, "nx": model.nx,
-            "ny": model.ny, "grading": model.grading.as_dict()}
+            "ny": model.ny, "grading": model.grading.as_dict(),
+            "head": model.head.as_dict(), "dry": model.dry}
 
 
-#: The keys of a file's ``model`` attribute (``grading`` may be absent: older files).
+#: The keys of a file's ``model`` attribute (``grading``, ``head`` and ``dry`` may be
+#: absent: older files, whose head is the cylinder of ``wrap_angle``, flying).
 _SETTINGS = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny")
+_OPTIONAL_SETTINGS = ("grading", "head", "dry")
 
 
 def _stored_dict(attrs, name: str, allowed, required=()) -> dict:
@@ -571,7 +575,7 @@ def _check_stored_sizes(ds, nx, ny, names) -> None:
 def _model_from(ds, prefix: str = "") -> BearingModel:
     """The model rebuilt from a file's attributes, checked against its node coordinates."""
     a = ds.attrs
-    settings = _stored_dict(a, "model", (*_SETTINGS, "grading"), _SETTINGS)
+    settings = _stored_dict(a, "model", (*_SETTINGS, *_OPTIONAL_SETTINGS), _SETTINGS)
     _check_stored_sizes(ds, settings["nx"], settings["ny"],
                         [f"{prefix}{k}" for k in ("departure", "pressure", "contact")])
     grading = settings.get("grading", {})   # files written before graded grids: uniform
@@ -579,6 +583,9 @@ def _model_from(ds, prefix: str = "") -> BearingModel:
         raise ParameterError(f"the file's grading must be an object with keys among "
                              f"{sorted(Grading().as_dict())}, got {grading!r}")
     settings["grading"] = Grading(**grading)
+    if "head" in settings:      # the head rebuilds the wrap
+        settings["head"] = head_from_dict(settings["head"])
+        del settings["wrap_angle"]
     air = _stored_dict(a, "air", [f.name for f in dataclasses.fields(AirParameters)])
     with warnings.catch_warnings():   # the grid was the saver's choice: no warning on load
         warnings.simplefilter("ignore", BearingGridWarning)

@@ -24,7 +24,7 @@ from ..core import validation
 from ..core.errors import ConvergenceError, ParameterError
 from ..linalg.factorization import SuperLUFactor
 from ..tape.parameters import MIN_INTERVALS_ACROSS
-from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel, foil_length_scales
+from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel
 from .results import BearingSolution, NewtonInfo
 
 #: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
@@ -105,7 +105,7 @@ class _Residual:
         self.sigma = model.air.roughness
         self.film_kw = ({} if transient is None else
                         {"phi_old": transient.phi_old, "dt": transient.dt})
-        t_wrap = max(model.effective_tension(tension) / model.params.radius, 1.0)
+        t_wrap = max(model.effective_tension(tension) / model.scale_radius, 1.0)
         self.t_scale = t_wrap
         self.h_scale = max(model.h_guess, self.sigma)
         film = model.film
@@ -114,6 +114,8 @@ class _Residual:
                 * film.x_face_length[np.nonzero(film.interior)[1]])
         if model.air.compressible:
             flux *= model.air.ambient_pressure
+        if model.dry:       # the rows p − p_a (Pa)
+            flux = np.full(model.n_p, t_wrap)
         self.row_scale = np.concatenate([1.0 / (t_wrap * model.W), 1.0 / flux])
         J_uu = self.K if transient is None else self.K + transient.jacobian
         # The tape rows [J_uu, −L] do not change within a solve: assembled once.
@@ -170,7 +172,8 @@ def _line_search(F, model, z, dz, h, active, merit, tol):
     above a fifth of itself) on the scaled residual, each trial projected onto h >= σ.
     Returns (α, relative step size, trial state, trial merit)."""
     n_u = model.n_u
-    alpha = _step_limit(h, dz[:n_u], active, F.sigma)
+    # dry (no film, a linear complementarity problem): no h³ coefficients to protect
+    alpha = 1.0 if model.dry else _step_limit(h, dz[:n_u], active, F.sigma)
     if model.air.compressible:
         p, dp = z[n_u:], dz[n_u:]
         shrink = dp < -(1 - PRESSURE_KEEP) * p
@@ -471,18 +474,14 @@ def _quiet_model(model: BearingModel, nx: int, ny: int) -> BearingModel:
     a start only needs to lead Newton, not to be accurate."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
-        return BearingModel(model.params, model.air, velocity=model.velocity,
-                            wrap_angle=model.wrap_angle, span=model.span, nx=nx, ny=ny,
-                            grading=model.grading)
+        return model.rebuilt(nx=nx, ny=ny)
 
 
 def _extruded_strip_state(model: BearingModel, progress=None,
                           iteration_log=None) -> np.ndarray:
     """The infinitely wide tape's steady state on the model's x-grid (its flexible-foil
     start if Newton fails there), repeated across the width."""
-    strip = BearingModel(model.params, model.air, velocity=model.velocity,
-                         wrap_angle=model.wrap_angle, infinitely_wide=True,
-                         span=model.span, nx=model.nx, grading=model.grading)
+    strip = model.rebuilt(infinitely_wide=True, ny=None)
     if progress is not None:
         progress(f"start: solving the infinitely wide tape on the same x-grid "
                  f"({strip.unknowns} unknowns)")
@@ -568,7 +567,7 @@ def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | No
     Returns (z, λ, info). Raises ConvergenceError if the march does not get there.
     """
     info = NewtonInfo() if info is None else info
-    transit = foil_length_scales(model.params, model.air, model.velocity)[1] / model.velocity
+    transit = 1.0 if model.dry else model.film_length / model.velocity
     z, s, finish = np.array(z0, dtype=float), PSEUDO_START, PSEUDO_FINISH
     for _ in range(PSEUDO_MAX_STEPS):
         if s >= finish:
