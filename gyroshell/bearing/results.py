@@ -449,7 +449,8 @@ def _head_layout(model: BearingModel) -> dict:
     """The head's corners, lands, transducers (m, head coordinates), friction coefficient
     and each corner's contact zone half-width (m: its wrapped arc r_c θ_c plus
     :data:`~gyroshell.bearing.readings.CORNER_ZONE_BENDING_LENGTHS` bending lengths
-    √(D/(T − ρV²)))."""
+    √(D/(T − ρV²)); a cylinder's corners, its tangent points, get the bending lengths
+    only: its wrapped arc is its land)."""
     radius = model.params.radius
     head = getattr(model, "head", None)
     bending = math.sqrt(model.params.D / model.effective_tension())
@@ -462,6 +463,8 @@ def _head_layout(model: BearingModel) -> dict:
         transducers, friction = tuple(head.transducers), float(head.friction)
         arcs = tuple(r * t for r, t in zip(head.corner_radii(radius=radius),
                                            head.corner_turns(radius=radius), strict=True))
+        if head.kind == "cylinder":                   # its wrapped arc is its land
+            arcs = (0.0,) * len(corners)
     zones = tuple(readings.CORNER_ZONE_BENDING_LENGTHS * bending + a for a in arcs)
     return {"corners": corners, "lands": lands, "transducers": transducers,
             "friction": friction, "zones": zones}
