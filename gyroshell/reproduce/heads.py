@@ -63,7 +63,7 @@ def modules_solution(settings: Settings):
     """(a): the steady state over the three-module head."""
     model = BearingModel(TapeParameters(), AirParameters(), velocity=VELOCITY,
                          head=three_modules().head(), infinitely_wide=True,
-                         nx=settings.pick(None, 1200))
+                         nx=settings.pick(1600, 800))
     return solve_steady(model)
 
 
