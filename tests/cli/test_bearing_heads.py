@@ -102,3 +102,17 @@ def test_text_output_names_the_readings(cli):
     assert run.code == 0, run.err
     assert run.out.count("corner:") == 2 and "transducer line:  x = 0.0000e+00 m" in run.out
     assert "tension rise" in run.out
+
+
+@pytest.mark.slow
+def test_two_dimensional_flat_head_reads_its_line_across_the_width(cli, tmp_path):
+    argv = ["bearing", "--head", "flat", "--land-length", "1e-3", "--wrap-in", "2",
+            "--wrap-out", "2", "--transducers", "0", "--velocity", "4", "--nx", "60", "--ny",
+            "24", "--quiet", "--out", tmp_path / "run"]
+    out = _json(cli, argv)
+    (line,) = out["transducer_lines"]
+    across = pd.read_csv(tmp_path / "run" / "transducer_lines.csv")
+    assert len(across) == out["ny"] + 1 and across.y_m.is_monotonic_increasing
+    assert line["minimum"] == across.spacing_m.min() <= line["mean"]
+    # the free edges let the suction out: the line is higher at the edges than mid-width
+    assert across.spacing_m.iloc[0] > line["centre"] and across.spacing_m.iloc[-1] > line["centre"]
