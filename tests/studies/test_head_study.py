@@ -125,6 +125,19 @@ def test_local_processes_give_the_same_rows(study):
     assert again.table.equals(study.table)
 
 
+@pytest.mark.slow
+def test_a_dask_cluster_gives_the_same_rows(study):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        again = run_study(TapeParameters(),
+                          vary={"wrap_in": WRAPS_IN, "tension": [80.0, 100.0]},
+                          compute="bearing", velocity=4.0, bearing=SETUP, chunk_size=1,
+                          scheduler=cluster.scheduler_address, progress=False)
+    assert again.info["executor"].startswith("dask(tcp://")
+    assert again.table.equals(study.table)
+
+
 def test_the_study_command(cli, tmp_path):
     out = tmp_path / "wraps.csv"
     run = cli(["study", "--compute", "bearing", "--head", "flat", "--land-length", "1e-3",
