@@ -426,8 +426,6 @@ def design_from_table(table: object, *, where: str = "", folder: str | os.PathLi
         Naming the file and the key: an unknown key, a value of the wrong type, unit or
         range, options of another kind of head (see :func:`check_design`).
     """
-    from ..tape.config import parse_quantity
-
     prefix = f"{where}[head] "
     if not isinstance(table, dict):
         raise ParameterError(f"{prefix.rstrip()} must be a table")
@@ -435,6 +433,20 @@ def design_from_table(table: object, *, where: str = "", folder: str | os.PathLi
     if unknown:
         raise ParameterError(f"{prefix}unknown key(s) {', '.join(unknown)}; allowed: "
                              f"{', '.join(_TABLE_KEYS)}")
+    fields = _table_fields(table, prefix)
+    if "profile" in fields and folder is not None:
+        fields["profile"] = os.fspath(Path(folder) / fields["profile"])
+    kind = fields.get("kind", "cylinder")
+    if kind not in HEAD_KINDS:
+        raise ParameterError(f"{prefix}kind must be one of {', '.join(HEAD_KINDS)}, "
+                             f"got {kind!r}")
+    return in_file(where, lambda: check_design(HeadDesign(**fields),
+                                               table_labels("kind" in fields and kind)))
+
+
+def _table_fields(table: dict, prefix: str) -> dict:
+    """The HeadDesign fields of a ``[head]`` table's keys (numbers to SI)."""
+    from ..tape.config import parse_quantity
 
     def number(key, value, unit, at=prefix):
         return parse_quantity(key, value, at, unit=unit)
@@ -463,14 +475,7 @@ def design_from_table(table: object, *, where: str = "", folder: str | os.PathLi
             fields[key] = numbers(key, value, unit)
         else:
             fields[key] = number(key, value, unit)
-    if "profile" in fields and folder is not None:
-        fields["profile"] = os.fspath(Path(folder) / fields["profile"])
-    kind = fields.get("kind", "cylinder")
-    if kind not in HEAD_KINDS:
-        raise ParameterError(f"{prefix}kind must be one of {', '.join(HEAD_KINDS)}, "
-                             f"got {kind!r}")
-    return in_file(where, lambda: check_design(HeadDesign(**fields),
-                                               table_labels("kind" in fields and kind)))
+    return fields
 
 
 def table_labels(kind: str | None) -> dict[str, str]:

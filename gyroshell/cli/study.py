@@ -74,6 +74,13 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (points, computed, cached, failed, seconds, "
                         "executor) instead of the table")
+    _add_bearing_options(p)
+    p.set_defaults(func=run, config_tables=("head",))
+    register_campbell(sub, common_without_velocity)
+
+
+def _add_bearing_options(p: argparse.ArgumentParser) -> None:
+    """The head and grid of --compute bearing."""
     add_head_options(p, title="head of --compute bearing")
     g = p.add_argument_group("air bearing grid of --compute bearing")
     g.add_argument("--infinitely-wide", action="store_true",
@@ -84,8 +91,6 @@ def register(sub, common: argparse.ArgumentParser,
     g.add_argument("--ny", type=positive_int, default=None,
                    help="intervals across the width, even, 2-D only (default: the "
                         "bearing's default grid)")
-    p.set_defaults(func=run, config_tables=("head",))
-    register_campbell(sub, common_without_velocity)
 
 
 def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> None:

@@ -188,8 +188,7 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
               velocity: float = 0.0, count: int = 3, workers: int | None = None,
               scheduler: str | None = None, connect_timeout: float = CONNECT_TIMEOUT,
               cache: str | os.PathLike[str] | None = None, chunk_size: int | None = None,
-              progress: bool | None = None, bearing: BearingStudy | None = None
-              ) -> StudyResult:
+              progress: bool | None = None, bearing: BearingStudy | None = None) -> StudyResult:
     """Run a parameter study; one row per point.
 
     Parameters
@@ -197,13 +196,11 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     base : TapeParameters, optional
         The tape the points change (default: Table 1).
     vary : mapping name -> values, optional
-        A grid: every combination of the values (first name slowest). Names are the
-        TapeParameters fields (SI units) and ``velocity`` (m/s).
+        A grid: every combination (first name slowest) of :data:`VARIABLE_NAMES`' values, SI.
     points : sequence of mappings, optional
         Or a list of points, e.g. ``[{"tension": 80, "velocity": 50}, ...]``.
     compute : str or sequence of str
-        Any of ``critical``, ``modes``, ``static``, ``period``, ``bearing`` (see the
-        module docstring).
+        Any of ``critical``, ``modes``, ``static``, ``period``, ``bearing`` (module doc).
     velocity : float
         Tape speed V, m/s, where a point does not set it.
     count : int
@@ -225,9 +222,7 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         True: a bar on stderr, False: nothing, None: the bar on a terminal, else one line
         per stage (:class:`gyroshell.core.progress.StageLines`).
     bearing : BearingStudy, optional
-        For ``compute="bearing"``: the head (a
-        :class:`~gyroshell.bearing.head_config.HeadDesign`), the air and the grid
-        (default: ``BearingStudy()``, the 2-D tape over a cylinder of its radius, 15°).
+        The head, air and grid of ``compute="bearing"`` (default ``BearingStudy()``).
 
     Returns
     -------
@@ -246,9 +241,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     >>> list(study.table.columns)
     ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
     """
-    plan = _plan(base, vary, points, compute, velocity, count, bearing)
-    where = check_executor(workers, scheduler, chunk_size, connect_timeout)
-    return _run(plan, where, cache, progress)
+    return _run(_plan(base, vary, points, compute, velocity, count, bearing),
+                check_executor(workers, scheduler, chunk_size, connect_timeout), cache, progress)
 
 
 @dataclass(frozen=True)
