@@ -29,6 +29,10 @@ from .results import BearingSolution, NewtonInfo
 
 #: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
 STEP_TOLERANCE = 1e-8
+#: Full steps below this relative size that no longer shrink by ROUND_OFF_STALL are
+#: round-off (quadratic convergence would have cut them to far below): converged.
+ROUND_OFF_STEP = 1e-5
+ROUND_OFF_STALL = 0.5
 #: Most Newton iterations per solve.
 MAX_ITERATIONS = 60
 #: A step may shrink p to no less than this fraction of its value (compressible film).
@@ -44,6 +48,9 @@ CHORD_CONTRACTION = 0.1
 #: Newton steps below this relative size are taken in full (the quadratic regime: the
 #: scaled residual may already sit at its round-off floor, where a line search only stalls).
 FULL_STEP = 1e-5
+#: A merit within this multiple of its round-off floor cannot guide a line search: full
+#: steps are taken (Newton's own contraction decides).
+NOISE_MULTIPLE = 100.0
 #: Smallest line-search step before a step is taken anyway.
 MIN_STEP = 1.0 / 256.0
 #: Sufficient decrease of the line search: the merit must fall by this fraction of α ...
@@ -120,6 +127,22 @@ class _Residual:
         J_uu = self.K if transient is None else self.K + transient.jacobian
         # The tape rows [J_uu, −L] do not change within a solve: assembled once.
         self.tape_rows = sp.hstack([J_uu, -model.pressure_load], format="csr")
+        self._abs_tape_rows = abs(self.tape_rows)
+        self._abs_loads = (np.abs(model.effective_tension(tension) * model.W
+                                  * model.kappa_nodes) + np.abs(model.f_kappa))
+
+    def _noise(self, u, p, J_pp) -> float:
+        """The scaled residual's round-off floor (the merit's): machine ε times the
+        magnitudes of the terms each row sums, |K||u| + |L||p − p_a| + the wrap loads on
+        the tape rows, |∂r_p/∂p||p| on the film rows. On a grid refined far below the
+        bending length at a corner the tape rows' floor (∝ h⁻⁴) can exceed a converged
+        state's residual: a line search below it sees only noise."""
+        pa = self.model.air.ambient_pressure
+        tape = self._abs_tape_rows @ np.concatenate([np.abs(u), np.abs(p - pa)]) \
+            + self._abs_loads
+        film = abs(J_pp) @ np.abs(p)
+        return float(np.finfo(float).eps
+                     * np.linalg.norm(np.concatenate([tape, film]) * self.row_scale))
 
     def tape(self, u, p):
         r_u = self.model.tape_residual(u, p, self.K, self.tension)
@@ -141,6 +164,8 @@ class _Residual:
         res = np.concatenate([np.where(active, gap, r_u), r_p])
         if not jacobian:
             return res, active, None
+        #: the round-off floor of the merit at the last state whose Jacobian was formed
+        self.noise = self._noise(u, p, J_pp)
         rows_u = self.tape_rows
         if active.any():
             rows_u = (sp.diags((~active).astype(float)) @ rows_u
@@ -167,9 +192,11 @@ class _Residual:
         return float(np.linalg.norm(res * self.row_scale))
 
 
-def _line_search(F, model, z, dz, h, active, merit, tol):
+def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):
     """Backtracking from the largest admissible step (:func:`_step_limit`, and p kept
     above a fifth of itself) on the scaled residual, each trial projected onto h >= σ.
+    Full steps are taken when the step is small (the quadratic regime) or the merit is
+    within NOISE_MULTIPLE of its round-off floor ``noise`` (:meth:`_Residual.noise`).
     Returns (α, relative step size, trial state, trial merit)."""
     n_u = model.n_u
     # dry (no film, a linear complementarity problem): no h³ coefficients to protect
@@ -180,7 +207,7 @@ def _line_search(F, model, z, dz, h, active, merit, tol):
         if shrink.any():
             alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink] / dp[shrink])))
     step = _norm(dz, n_u, F)
-    full = step < max(tol, FULL_STEP)
+    full = step < max(tol, FULL_STEP) or (noise is not None and merit < NOISE_MULTIPLE * noise)
     if full:     # near round-off the merit can no longer decrease reliably: full steps
         alpha = 1.0
     while True:
@@ -246,6 +273,16 @@ def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
     return retry
 
 
+def _at_round_off(steps: list, merit: float, noise: float) -> bool:
+    """Whether Newton has reached the state's round-off floor above the step tolerance:
+    full steps below ROUND_OFF_STEP that no longer shrink (the last above ROUND_OFF_STALL
+    times the one before; quadratic convergence would cut them far below) with the merit
+    within NOISE_MULTIPLE of its floor. A grid refined far below the bending length at a
+    corner (the plate's fourth difference scales like h⁻⁴) puts that floor there."""
+    return (len(steps) >= 2 and steps[-1] < ROUND_OFF_STEP
+            and steps[-1] > ROUND_OFF_STALL * steps[-2] and merit < NOISE_MULTIPLE * noise)
+
+
 def _record(info: NewtonInfo, step: float, merit: float, contacts: int) -> None:
     """Append one iteration (its step, scaled residual and contact count) to ``info``."""
     info.iterations += 1
@@ -286,7 +323,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         dz = _newton_direction(F, it)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
-        found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol)
+        found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol, F.noise)
         alpha, step, it.z, _ = _forced_contact_step(F, it, h, dz, found, tol)
         it.last_step = step
         it.res, active_new, it.J = F(it.z, jacobian=True)
@@ -298,7 +335,8 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
                 f"residual {it.merit:.2e}, {contacts} nodes in contact")
         it.settled = np.array_equal(active_new, it.active)
         it.active = active_new
-        if alpha == 1.0 and step < tol and it.settled:
+        if alpha == 1.0 and it.settled and (
+                step < tol or _at_round_off(info.step_norms, it.merit, F.noise)):
             lam = np.where(it.active, F.tape(it.z[:n_u], it.z[n_u:]), 0.0)
             return it.z, lam, it.active, info
         merits.append(it.merit)
@@ -412,6 +450,11 @@ def check_steady_arguments(model, z0, tension, progress, iteration_log):
 #: A 2-D tape with at least this many unknowns starts Newton from its solution on a grid
 #: twice as coarse (recursively), interpolated; smaller ones from the infinitely wide tape ...
 COARSE_START_MIN_UNKNOWNS = 20_000
+#: An infinitely wide tape over a flat or profile head with more than this many
+#: x-intervals starts from its solution on the grid twice as coarse (recursively): the
+#: corner-start (:meth:`BearingModel.initial_state`) leads Newton there in a few
+#: iterations only on coarse grids.
+COARSE_START_MIN_NX = 4000
 #: ... unless that grid would be coarser than this at the edges (m): an under-resolved
 #: free-edge row falsely touches down and the coarse solve would lead Newton astray.
 COARSE_START_MAX_Y_SPACING = 110e-6
@@ -431,7 +474,10 @@ def initial_state(model: BearingModel, *,
     (optional) get one line per start solved and per Newton iteration, as in
     :func:`solve_steady`."""
     if model.infinitely_wide:
-        return model.initial_state()
+        z = None
+        if not model.cylindrical and not model.dry and model.nx > COARSE_START_MIN_NX:
+            z = _coarse_state(model, coarse_min_unknowns, progress, iteration_log)
+        return model.initial_state() if z is None else z
     z = (_coarse_state(model, coarse_min_unknowns, progress, iteration_log)
          if model.unknowns >= coarse_min_unknowns else None)
     return _extruded_strip_state(model, progress, iteration_log) if z is None else z
@@ -446,14 +492,14 @@ def _coarse_state(model: BearingModel, coarse_min_unknowns: int, progress=None,
     iterations move the free edges down from the infinitely wide start; on the coarse grid
     they cost a fraction of a fine-grid factorization."""
     nx = model.nx // 2 + (model.nx // 2) % 2
-    ny = model.ny // 2 + (model.ny // 2) % 2
-    if ny < MIN_INTERVALS_ACROSS or nx < MIN_INTERVALS_ALONG:
+    ny = None if model.infinitely_wide else model.ny // 2 + (model.ny // 2) % 2
+    if (ny is not None and ny < MIN_INTERVALS_ACROSS) or nx < MIN_INTERVALS_ALONG:
         return None
     try:
         coarse = _quiet_model(model, nx, ny)
     except ParameterError:     # too coarse for the film: no coarse start
         return None
-    if coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
+    if ny is not None and coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
         return None
     try:   # Newton, then pseudo-time (no continuation in V): cheap on a coarse grid
         start = initial_state(coarse, coarse_min_unknowns=coarse_min_unknowns,
@@ -473,6 +519,10 @@ def _interpolated_state(model: BearingModel, coarse: BearingModel,
                         sol: BearingSolution) -> np.ndarray:
     """The state [u, p] of ``sol`` (on ``coarse``'s grid) interpolated bilinearly onto
     ``model``'s grid."""
+    if model.infinitely_wide:
+        u = np.interp(model.x, coarse.x, (sol.spacing - coarse.dry_field)[:, 0])[1:-1]
+        p = np.interp(model.x, coarse.x, sol.pressure[:, 0])[1:-1]
+        return np.concatenate([u, p])
     from scipy.interpolate import RegularGridInterpolator
 
     X, Y = np.meshgrid(model.x, model.y, indexing="ij")

@@ -108,13 +108,13 @@ def test_incompressible_film_over_a_flat_is_refused_where_it_would_cavitate():
 
 def test_two_d_flat_head_smoke_and_storage_round_trip(tmp_path):
     """A 3 mm tape on a small grid: converges, corners carry the contact, the film stays
-    positive; saved and loaded with its head, equal."""
+    positive and sub-ambient in the tents; saved and loaded with its head, equal."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
-        model = BearingModel(TAPE.replace(width=3e-3), AIR, velocity=4.0, head=FLAT, nx=64,
+        model = BearingModel(TAPE.replace(width=3e-3), AIR, velocity=4.0, head=FLAT, nx=96,
                              ny=24)
     sol = solve_steady(model)
-    assert sol.pressure.min() > 0.0 and sol.central_pressure < 0.0
+    assert 0.0 < sol.pressure.min() < 0.8 * AIR.ambient_pressure
     inner = model.x_head[1:-1]
     lines = sol.contact.reshape(model.nx - 1, model.nc).sum(axis=1)
     near = np.min(np.abs(inner[:, None] - np.array(FLAT.corners())[None, :]), axis=1) < 30e-6
