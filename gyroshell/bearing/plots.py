@@ -195,10 +195,10 @@ def head_spacing(solution, ax=None):
     for line in solution.transducer_lines:
         ax.annotate(f"{line.centre * UM:.3g} µm", (line.x * MM, line.centre * UM),
                     xytext=(3, 6), textcoords="offset points", fontsize=7, color="C2")
-    lands = solution._layout["lands"]
-    head = (min(a for a, _ in lands), max(b for _, b in lands))
-    on_head = (solution.x >= head[0]) & (solution.x <= head[1])
-    top = np.max(h[on_head]) if on_head.any() else np.max(h)
+    on_land = np.zeros(len(x), dtype=bool)       # the scale of the lands, not of the gaps
+    for a, b in solution._layout["lands"]:
+        on_land |= (solution.x >= a) & (solution.x <= b)
+    top = np.max(h[on_land]) if on_land.any() else np.max(h)
     ax.set_ylim(0, SPACING_AXIS_SPAN / 2 * max(top, MAP_FLOOR_UM))
     ax.set_xlim(x[0], x[-1])
     ax.set_xlabel("x from the head's middle (mm), tape moves →")
