@@ -19,6 +19,8 @@ SPACING_AXIS_SPAN = 3.0
 MAP_TOP_SPACINGS = 10.0
 #: Smallest spacing of the colour scale, µm (LogNorm needs a positive floor).
 MAP_FLOOR_UM = 1e-3
+#: The contour panel shows the tape's height range and this fraction more each way.
+CONTOUR_MARGIN = 0.15
 #: Nodes whose spacing is within this fraction above the roughness count as in contact.
 CONTACT_MARGIN = 1e-9
 
@@ -148,11 +150,8 @@ def _marks(solution, ax, *, labels: bool = True) -> None:
 def _head_contour(solution) -> np.ndarray:
     """z_h(x) along the middle of the width, m (head coordinates)."""
     m = solution.model
-    head = getattr(m, "head", None)
-    if head is None:                      # the cylinder of the tape's radius, shallow shell
-        return -solution.x**2 / (2.0 * m.params.radius)
-    z = np.asarray(head.surface(solution.x, None if m.infinitely_wide else m.y,
-                                radius=m.params.radius))
+    z = np.asarray(m.head.surface(solution.x, None if m.infinitely_wide else m.y,
+                                  radius=m.head_radius))
     return z if z.ndim == 1 else z[:, m.ny // 2]
 
 
@@ -164,10 +163,14 @@ def head_contour(solution, ax=None):
     m = solution.model
     col = 0 if m.infinitely_wide else m.ny // 2
     x, z = solution.x * MM, _head_contour(solution)
-    ax.fill_between(x, z * UM, np.min(z) * UM, color="0.75", label="head")
-    ax.plot(x, (z + solution.spacing[:, col]) * UM, color="C0", lw=1.0, label="tape")
+    tape = (z + solution.spacing[:, col]) * UM
+    low, high = tape.min(), tape.max()
+    bottom = low - CONTOUR_MARGIN * (high - low)      # the flanks fall far below the tape
+    ax.fill_between(x, np.maximum(z * UM, bottom), bottom, color="0.75", label="head")
+    ax.plot(x, tape, color="C0", lw=1.0, label="tape")
     _marks(solution, ax, labels=False)
     ax.set_xlim(x[0], x[-1])
+    ax.set_ylim(bottom, high + CONTOUR_MARGIN * (high - low))
     ax.set_ylabel("z (µm)")
     ax.legend(loc="lower center", fontsize=8)
     return ax
@@ -192,10 +195,10 @@ def head_spacing(solution, ax=None):
     for line in solution.transducer_lines:
         ax.annotate(f"{line.centre * UM:.3g} µm", (line.x * MM, line.centre * UM),
                     xytext=(3, 6), textcoords="offset points", fontsize=7, color="C2")
-    lands = solution._layout["lands"]
-    head = (min(a for a, _ in lands), max(b for _, b in lands))
-    on_head = (solution.x >= head[0]) & (solution.x <= head[1])
-    top = np.max(h[on_head]) if on_head.any() else np.max(h)
+    on_land = np.zeros(len(x), dtype=bool)       # the scale of the lands, not of the gaps
+    for a, b in solution._layout["lands"]:
+        on_land |= (solution.x >= a) & (solution.x <= b)
+    top = np.max(h[on_land]) if on_land.any() else np.max(h)
     ax.set_ylim(0, SPACING_AXIS_SPAN / 2 * max(top, MAP_FLOOR_UM))
     ax.set_xlim(x[0], x[-1])
     ax.set_xlabel("x from the head's middle (mm), tape moves →")

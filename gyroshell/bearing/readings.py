@@ -199,10 +199,11 @@ def _vertex(x: np.ndarray, h: np.ndarray, i: np.ndarray) -> tuple[np.ndarray, np
     return xv, hv
 
 
-def _line_tents(x, spacing, start: float, end: float):
+def _line_tents(x, spacing, start: float, end: float, *, with_end: bool = True):
     """Per column, the highest local maximum of the spacing (of the whole node line) at a
-    node strictly past ``start`` and up to ``end`` (m, either order): (found, x*, h*),
-    refined by the parabola through the node and its two neighbours."""
+    node strictly past ``start`` and up to ``end`` (m, either order; ``with_end`` False:
+    short of the nodes next to ``end``): (found, x*, h*), refined by the parabola through
+    the node and its two neighbours."""
     n = len(x)
     lo, hi = min(start, end), max(start, end)
     tol = _AT_NODE * float(np.min(np.diff(x)))
@@ -210,6 +211,8 @@ def _line_tents(x, spacing, start: float, end: float):
     xi = x[inner]
     beyond_start = np.abs(xi - start) > tol
     window = (xi >= lo - tol) & (xi <= hi + tol) & beyond_start
+    if not with_end:
+        window &= np.abs(xi - end) > x[inner + 1] - x[inner - 1]
     h = spacing
     peak = (h[inner] >= h[inner - 1]) & (h[inner] >= h[inner + 1]) \
         & ((h[inner] > h[inner - 1]) | (h[inner] > h[inner + 1]))
@@ -265,7 +268,9 @@ def tents(x, y, spacing, corners, lands, transducers=()) -> tuple[Tent, ...]:
     land's middle or the nearest transducer before it (a maximum there counts only if it
     is a local maximum of the whole line: the middle of a land tented end to end, not a
     spacing still rising towards a transducer); on the span side the middle of the way
-    to the next corner outward (a module gap) or the domain's end. Along the middle of
+    to the next corner outward (a module gap) or the domain's end, short of the nodes
+    next to it (the spacing is largest in the middle of a gap, where the head falls
+    away: that is the gap's depth, not a tent). Along the middle of
     the width (the centre node line) this gives :attr:`Tent.height` and :attr:`Tent.x`;
     over every node line across the width the largest gives the ``widest_*`` entries.
     A side with no local maximum reports None, not a made-up number.
@@ -289,7 +294,8 @@ def tents(x, y, spacing, corners, lands, transducers=()) -> tuple[Tent, ...]:
     for c in corners:
         for side, end in _search_ends(float(c), corners, lands, transducers,
                                       (x[0], x[-1])).items():
-            found, xv, hv = _line_tents(x, h, float(c), float(end))
+            found, xv, hv = _line_tents(x, h, float(c), float(end),
+                                        with_end=side == "land")
             if not found.any():
                 out.append(Tent(float(c), side, None, None, None, None, None, None))
                 continue

@@ -205,8 +205,11 @@ class BearingSolution(Result, kind="bearing"):
     def shear_stress(self) -> np.ndarray:
         """The air's shear stress on the tape, Pa, on every node, shape (nx + 1, nc);
         > 0 resists the tape's motion: τ = μV/(h + 2λ_e) + (h/2) ∂p/∂x with first-order
-        slip (:func:`gyroshell.bearing.readings.shear_stress`)."""
+        slip (:func:`gyroshell.bearing.readings.shear_stress`); 0 for a dry model (no
+        air film)."""
         m = self.model
+        if m.dry:
+            return np.zeros_like(self.spacing)
         h = np.maximum(self.spacing, _FILM_FLOOR * m.air.roughness)   # as the film does
         return readings.shear_stress(self.x, h, self.pressure, m.velocity, m.air)
 
@@ -451,23 +454,16 @@ def _head_layout(model: BearingModel) -> dict:
     :data:`~gyroshell.bearing.readings.CORNER_ZONE_BENDING_LENGTHS` bending lengths
     √(D/(T − ρV²)); a cylinder's corners, its tangent points, get the bending lengths
     only: its wrapped arc is its land)."""
-    radius = model.params.radius
-    head = getattr(model, "head", None)
-    bending = math.sqrt(model.params.D / model.effective_tension())
-    if head is None:                                  # the cylinder of the tape's radius
-        half = 0.5 * radius * model.wrap_angle
-        corners, lands, transducers, friction = (-half, half), ((-half, half),), (), 0.0
-        arcs = (0.0, 0.0)
-    else:
-        corners, lands = tuple(head.corners(radius=radius)), tuple(head.lands(radius=radius))
-        transducers, friction = tuple(head.transducers), float(head.friction)
-        arcs = tuple(r * t for r, t in zip(head.corner_radii(radius=radius),
-                                           head.corner_turns(radius=radius), strict=True))
-        if head.kind == "cylinder":                   # its wrapped arc is its land
-            arcs = (0.0,) * len(corners)
+    head, radius = model.head, model.head_radius
+    corners, lands = tuple(head.corners(radius)), tuple(head.lands(radius))
+    arcs = tuple(r * t for r, t in zip(head.corner_radii(radius), head.corner_turns(radius),
+                                       strict=True))
+    if model.cylindrical:                             # its wrapped arc is its land
+        arcs = (0.0,) * len(corners)
+    bending = model.bending_length
     zones = tuple(readings.CORNER_ZONE_BENDING_LENGTHS * bending + a for a in arcs)
-    return {"corners": corners, "lands": lands, "transducers": transducers,
-            "friction": friction, "zones": zones}
+    return {"corners": corners, "lands": lands, "transducers": tuple(head.transducers),
+            "friction": float(head.friction), "zones": zones}
 
 
 #: The time series of a :class:`BearingTransient` and their units.

@@ -299,3 +299,16 @@ def test_contact_forces_go_to_their_corner_or_land_and_sum_to_the_total():
     assert ls[1].centroid == pytest.approx(x[on_land].mean(), rel=1e-12)
     pressure = readings.contact_pressure(force, area)
     assert readings.integral(pressure, area) == pytest.approx(total, rel=1e-14)
+
+
+def test_the_depth_of_a_module_gap_is_no_tent():
+    """Two lands with a gap between them: the spacing above the head peaks in the middle
+    of the gap, where the head falls away; the span-side searches report no tent."""
+    x = np.linspace(-1.5e-3, 1.5e-3, 301)
+    gap = np.abs(x) < 0.25e-3
+    H = np.where(gap, 1e-8 + 0.35 * (0.25e-3 - np.abs(x)), 1e-8)[:, None]
+    corners = (-1.25e-3, -0.25e-3, 0.25e-3, 1.25e-3)
+    lands = ((-1.25e-3, -0.25e-3), (0.25e-3, 1.25e-3))
+    inner = [t for t in readings.tents(x, None, H, corners, lands)
+             if t.side == "span" and abs(t.corner) < 1e-3]
+    assert len(inner) == 2 and all(t.height is None for t in inner)
