@@ -20,7 +20,15 @@ import sys
 import time
 from pathlib import Path
 
-from .common import TAPE_OVERRIDES, UserError, positive_int, print_json, real
+from .common import (
+    TAPE_OVERRIDES,
+    UserError,
+    add_tape_overrides,
+    positive_int,
+    print_json,
+    real,
+    typed_overrides,
+)
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
@@ -85,11 +93,8 @@ def _tape_parser() -> argparse.ArgumentParser:
     g.add_argument("--velocity", type=real, default=None,
                    help="tape speed V, m/s, > 0 and below the string speed sqrt(T/rho) "
                         "(required, here or as velocity in --config)")
-    for flag, field, text in TAPE_OPTIONS:
-        if field == "width":
-            text = "tape width L_y, m (default 6.35e-3; not with --infinitely-wide)"
-        g.add_argument(flag, dest=field, metavar=flag[2:].upper().replace("-", "_"),
-                       type=real, default=None, help=text)
+    add_tape_overrides(g, TAPE_OPTIONS, help_of={
+        "width": "tape width L_y, m (default 6.35e-3; not with --infinitely-wide)"})
     return p
 
 
@@ -185,8 +190,7 @@ def _tape(args: argparse.Namespace):
     from ..core import validation
     from ..tape.parameters import TapeParameters
 
-    typed = {field: getattr(args, field) for _flag, field, _text in TAPE_OPTIONS
-             if getattr(args, field) is not None}
+    typed = typed_overrides(args, TAPE_OPTIONS)
     base, velocity = TapeParameters(), args.velocity
     if args.config is not None:
         from ..tape.config import load_config
