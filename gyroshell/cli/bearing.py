@@ -226,17 +226,24 @@ def _without_plate_fields(fields: dict) -> dict:
 
 
 def _refuse_unused_material(args: argparse.Namespace, params) -> None:
-    """With both D and k given, E and c (and, infinitely wide, ν) are not used."""
-    if params.bending_rigidity is None or params.foundation_stiffness is None:
+    """With the bending stiffness and k both given, E and c are not used, nor ν for the
+    infinitely wide tape or beside D11, D22, D12, D66. The bending: D or the orthotropic
+    D11, D22, D12, D66; k: itself or through the membrane stiffness A11 (k = A11/R²)."""
+    bending = params.bending_rigidity is not None or params.bending_stiffness is not None
+    shell = params.foundation_stiffness is not None or params.membrane_stiffness is not None
+    if not (bending and shell):
         return
-    unused = [("--youngs-modulus", args.youngs_modulus), ("--thickness", args.thickness)]
-    if args.infinitely_wide:
-        unused.append(("--poisson", args.poisson))
+    unused = [("--youngs-modulus", args.youngs_modulus), ("--thickness", args.thickness),
+              ("--youngs-modulus-x", getattr(args, "youngs_modulus_x", None))]
+    if args.infinitely_wide or params.bending_stiffness is not None:
+        unused += [("--poisson", args.poisson),
+                   ("--poisson-xy", getattr(args, "poisson_xy", None))]
     for option, value in unused:
         if value is not None:
             raise UserError(f"{option} is not used when the bending rigidity and the "
-                            "foundation stiffness are both given (--bending-rigidity, "
-                            "--foundation-stiffness or the --config file): drop it")
+                            "foundation stiffness are both given (--bending-rigidity or "
+                            "--bending-stiffness, --foundation-stiffness or "
+                            "--membrane-stiffness, or the --config file): drop it")
 
 
 def _air(args: argparse.Namespace):
