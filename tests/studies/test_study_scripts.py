@@ -39,6 +39,7 @@ EXPECTED = {
     "helical": ("helical_heads.csv", "helical_heads.png"),
     "frf": ("frf.csv", "frf_bode.png"),
     "bearing": ("bearing_speed.csv", "bearing_speed.png"),
+    "orthotropy": ("orthotropy_speeds.csv", "orthotropy_speeds.png"),
 }
 
 
