@@ -116,8 +116,11 @@ def test_pen_tape_critical_speed_modes_and_flying_height_in_one_command_each(cap
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("argv", [["critical"], ["modes"], ["bearing", "--velocity", "4"]])
+@pytest.mark.parametrize("argv", [["critical"], ["modes"],
+                                  ["bearing", "--velocity", "4", "--nx", "80", "--ny", "30"]])
 def test_pen_tape_full_size(capsys, argv):
+    """The file's own grid (40 intervals across); the bearing on a grid of a few seconds
+    (its default 404 x 200 takes about a minute)."""
     out = run_json(capsys, [*argv, "--config", PEN, *(["--quiet"] if argv[0] == "bearing"
                                                        else [])])
     if argv[0] == "critical":
