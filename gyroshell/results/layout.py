@@ -209,9 +209,11 @@ def json_attr(attrs: Mapping, name: str, source: str, default: str = "null"):
                              f"{text[:60]!r}") from None
 
 
-def _fields_of(attrs: Mapping, name: str, cls: type, source: str):
+def _fields_of(attrs: Mapping, name: str, cls: type, source: str,
+               optional: tuple[str, ...] = ()):
     """``cls(**attrs[name])`` for a dataclass stored as JSON (None for ``null``), its keys
-    exactly the fields, validated by ``cls`` itself."""
+    exactly the fields (those in ``optional``, added since files were first written, may
+    be absent and take their defaults), validated by ``cls`` itself."""
     data = json_attr(attrs, name, source)
     if data is None:
         return None
@@ -219,7 +221,8 @@ def _fields_of(attrs: Mapping, name: str, cls: type, source: str):
         raise InputFileError(f"{source}: {name} must be a JSON object of "
                              f"{cls.__name__} fields, got {type(data).__name__}")
     expected = {f.name for f in dataclasses.fields(cls)}
-    extra, missing = sorted(set(data) - expected), sorted(expected - set(data))
+    extra = sorted(set(data) - expected)
+    missing = sorted(expected - set(data) - set(optional))
     if extra:
         raise InputFileError(f"{source}: {name}: unknown field(s) {', '.join(extra)}; a "
                              f"{cls.__name__} has {', '.join(sorted(expected))}")
@@ -234,9 +237,9 @@ def _fields_of(attrs: Mapping, name: str, cls: type, source: str):
 def check_metadata(attrs: Mapping, source: str):
     """Check ``parameters``, ``grid`` and ``info``; returns the stored Grid (or None)."""
     from ..tape.grid import Grid
-    from ..tape.parameters import TapeParameters
+    from ..tape.parameters import ORTHOTROPIC_FIELDS, TapeParameters
 
-    _fields_of(attrs, "parameters", TapeParameters, source)
+    _fields_of(attrs, "parameters", TapeParameters, source, optional=ORTHOTROPIC_FIELDS)
     grid = _fields_of(attrs, "grid", Grid, source)
     info = json_attr(attrs, "info", source, default="{}")
     if not isinstance(info, dict):
