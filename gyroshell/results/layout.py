@@ -211,10 +211,11 @@ def json_attr(attrs: Mapping, name: str, source: str, default: str = "null"):
                              f"{text[:60]!r}") from None
 
 
-def _fields_of(attrs: Mapping, name: str, cls: type, source: str, optional=()):
+def _fields_of(attrs: Mapping, name: str, cls: type, source: str,
+               optional: tuple[str, ...] = ()):
     """``cls(**attrs[name])`` for a dataclass stored as JSON (None for ``null``), its keys
-    exactly the fields (but those of ``optional``, which may be absent: fields newer than
-    the files that lack them), validated by ``cls`` itself."""
+    exactly the fields (those in ``optional``, added since files were first written, may
+    be absent and take their defaults), validated by ``cls`` itself."""
     data = json_attr(attrs, name, source)
     if data is None:
         return None
@@ -222,7 +223,8 @@ def _fields_of(attrs: Mapping, name: str, cls: type, source: str, optional=()):
         raise InputFileError(f"{source}: {name} must be a JSON object of "
                              f"{cls.__name__} fields, got {type(data).__name__}")
     expected = {f.name for f in dataclasses.fields(cls)}
-    extra, missing = sorted(set(data) - expected), sorted(expected - set(data) - set(optional))
+    extra = sorted(set(data) - expected)
+    missing = sorted(expected - set(data) - set(optional))
     if extra:
         raise InputFileError(f"{source}: {name}: unknown field(s) {', '.join(extra)}; a "
                              f"{cls.__name__} has {', '.join(sorted(expected))}")
@@ -239,7 +241,6 @@ def check_metadata(attrs: Mapping, source: str):
     from ..tape.grid import Grid
     from ..tape.parameters import ORTHOTROPIC_FIELDS, TapeParameters
 
-    # files of release 0.1.0 know only the isotropic tape: its material fields are absent
     _fields_of(attrs, "parameters", TapeParameters, source, optional=ORTHOTROPIC_FIELDS)
     grid = _fields_of(attrs, "grid", Grid, source)
     info = json_attr(attrs, "info", source, default="{}")

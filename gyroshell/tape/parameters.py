@@ -473,7 +473,8 @@ class TapeParameters:
         tension T buckles at the wavenumber α = (k/D)^(1/4), where
         ρV² = T + min_α (Dα² + k/α²) = T + 2√(D k). It is exact for the free-edged tape
         when D12 = 0 (ν = 0); otherwise the edges' anticlastic relief lowers the critical
-        speed slightly (the lowest Lévy branch, docs/orthotropy.md): an upper bound.
+        speed slightly (the lowest Lévy branch, docs/orthotropy.md), and it is an upper
+        bound for an infinitely long tape.
         """
         return math.sqrt((self.tension + 2.0 * math.sqrt(self.D * self.k)) / self.density)
 
