@@ -81,7 +81,7 @@ def check_layer_names(base: TapeParameters, names) -> None:
     >>> check_layer_names(TapeParameters(), ["tension", "layer1.thickness"])
     Traceback (most recent call last):
     ...
-    gyroshell.ParameterError: cannot vary layer1.thickness: the tape has no layers (give them with TapeParameters.from_layers or [[layer]] tables in a tape file)
+    gyroshell.ParameterError: cannot vary layer1.thickness: the tape has no layers ...
     """
     count = 0 if base.layers is None else len(base.layers)
     for name in names:

@@ -165,6 +165,20 @@ def config_from_dict(data: dict, where: str = "", adjust=None) -> TapeConfig:
             raise ParameterError(f"{where}{', '.join(given)}: the [[layer]] stack gives the "
                                  "tape's thickness, areal density, E_x and nu_xy; drop "
                                  f"{', '.join(given)} from [tape]")
+    fields, velocity, name = _tape_fields(data, where)
+    fields = fields if adjust is None else adjust(dict(fields))
+    try:
+        if layers is None:
+            params = TapeParameters(**fields)
+        else:
+            params = TapeParameters.from_layers(layers, **fields)
+    except ParameterError as exc:
+        raise ParameterError(f"{where}{exc}") from None
+    return TapeConfig(params, velocity, name)
+
+
+def _tape_fields(data: dict, where: str) -> tuple[dict, float | None, str | None]:
+    """The TapeParameters fields (SI), the speed (m/s) and the name of a ``[tape]`` table."""
     unknown = sorted(set(data) - set(KEYS))
     if unknown:
         raise ParameterError(f"{where}unknown key(s) {', '.join(unknown)}; allowed: "
@@ -199,15 +213,7 @@ def config_from_dict(data: dict, where: str = "", adjust=None) -> TapeConfig:
                 name = value
             else:
                 fields[key] = value
-    fields = fields if adjust is None else adjust(dict(fields))
-    try:
-        if layers is None:
-            params = TapeParameters(**fields)
-        else:
-            params = TapeParameters.from_layers(layers, **fields)
-    except ParameterError as exc:
-        raise ParameterError(f"{where}{exc}") from None
-    return TapeConfig(params, velocity, name)
+    return fields, velocity, name
 
 
 def parse_quantities(key: str, value, where: str = "") -> tuple[float, ...]:

@@ -90,6 +90,18 @@ def test_kinds_that_carry_their_tape_keep_a_layered_one(kind, tmp_path):
     assert stored_parameters(path)["layers"] == [layer.as_dict() for layer in STACK]
 
 
+def own_tape(kind: str, result):
+    """The tape a result knows itself (a study's base, a bearing's model), which it stores
+    instead of one given to save; None if it knows none."""
+    if kind == "study":
+        return result.base
+    if kind == "bearing":
+        return result.model.params
+    if kind == "bearing_transient":
+        return result.final.model.params
+    return vars(result).get("params")
+
+
 @pytest.mark.slow
 def test_every_kind_stores_a_layered_tape_given_to_save(tmp_path):
     tape = TAPES["layered"]
@@ -97,10 +109,7 @@ def test_every_kind_stores_a_layered_tape_given_to_save(tmp_path):
         result = example()
         path = result.save(tmp_path / f"{kind}.nc", params=tape)
         back = TapeParameters(**stored_parameters(path))
-        # a kind that knows its own tape (a study's base, a bearing's model) stores it
-        own = {"study": lambda: result.base, "bearing": lambda: result.model.params,
-               "bearing_transient": lambda: result.final.model.params,
-               }.get(kind, lambda: vars(result).get("params"))()
+        own = own_tape(kind, result)
         assert back == tape or (own is not None and back == own), kind
         base.read(path)  # and the file passes the layout's checks
 

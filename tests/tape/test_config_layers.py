@@ -27,6 +27,8 @@ density = "{rho}"
 TYPED = (("0.5 um", "3 GPa", "2 GPa", "1 GPa", 0.3, "1.5 g/cm^3"),
          ("4.5 um", "8 GPa", "5.5 GPa", "2000 MPa", 0.35, "1360 kg/m^3"))
 SI = ((0.5e-6, 3e9, 2e9, 1e9, 0.3, 1500.0), (4.5e-6, 8e9, 5.5e9, 2e9, 0.35, 1360.0))
+LAYER_KEYS = ("thickness", "youngs_modulus_x", "youngs_modulus_y", "shear_modulus",
+              "poisson_xy", "density")
 
 
 def stack_text(layers=TYPED) -> str:
@@ -107,9 +109,8 @@ def test_refusals_name_the_file_the_layer_and_the_key(tmp_path, text, message):
 
 
 @pytest.mark.parametrize("params", [
-    TapeParameters.from_layers([dict(zip(("thickness", "youngs_modulus_x", "youngs_modulus_y",
-                                          "shear_modulus", "poisson_xy", "density"), si))
-                                for si in SI], width=12.65e-3, tension=63.0),
+    TapeParameters.from_layers([dict(zip(LAYER_KEYS, si, strict=True)) for si in SI],
+                               width=12.65e-3, tension=63.0),
     TapeParameters(youngs_modulus_y=1.0 / 3.0 * 1e10, shear_modulus=1.7e9),
     TapeParameters(bending_stiffness=(2e-7, 1.0 / 7.0 * 1e-6, 3e-8, 4e-8),
                    membrane_stiffness=3.3e4),
