@@ -198,11 +198,16 @@ class PlateCurvatures:
         mixed = sp.kron(self._lxx.T @ sp.diags(wx),
                         self._inner.T @ sp.diags(self._wy_inner) @ self._lyy, format="csr")
         bend = (sp.kron(weighted_gram(self._lxx, wx), across)
-                + r22 * sp.kron(sp.diags(wx), weighted_gram(self._lyy, self._wy_inner))
+                + _scaled(r22, sp.kron(sp.diags(wx), weighted_gram(self._lyy, self._wy_inner)))
                 + r12 * (mixed + mixed.T)
                 + r66 * sp.kron(weighted_gram(self._fx, self._hx),
                                 weighted_gram(self._fy, self._hy)))
         return (bending.D11 * bend + sp.diags(foundation * self.areas)).tocsr()
+
+
+def _scaled(ratio: float, matrix: sp.spmatrix) -> sp.spmatrix:
+    """ratio × matrix, without the copy for the isotropic ratio 1 (the same values)."""
+    return matrix if ratio == 1.0 else ratio * matrix
 
 
 def mass(grid: Grid, params: TapeParameters) -> sp.dia_matrix:
