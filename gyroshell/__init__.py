@@ -21,6 +21,7 @@ from .tape.parameters import TapeParameters, bending_rigidity, shell_stiffness  
 _HOMES: dict[str, tuple[str, ...]] = {
     # the tape: grid, operators, loads, damping, moving heads
     "tape.grid": ("Grid",),
+    "tape.material": ("BendingStiffness", "Layer", "laminate"),
     "tape.model": ("TapeModel",),
     "tape.operators": ("bending_foundation", "gyroscopic", "mass", "membrane"),
     "tape.loads": ("Harmonic", "Ramp", "gaussian_load", "pressure_load", "step"),

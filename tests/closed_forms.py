@@ -5,11 +5,18 @@
   uniform across the width.
 * Lévy: simply supported ends, free lateral edges, any ν, a load p sin(αx) uniform across
   the width: w = Y(y) sin(αx), Y from a 4th-order ODE with the free-edge conditions.
+* Orthotropic plates, the bending stiffnesses D = (D11, D22, D12, D66) (N·m) given as
+  numbers, H = D12 + 2 D66: Navier frequencies and series (all sides simply supported); the
+  Lévy solution with free lateral edges, D22 Y⁗ − 2Hα²Y″ + λY = q with D22 Y″ − D12α²Y = 0
+  and D22 Y‴ − (D12 + 4D66)α²Y′ = 0 at the edges: the static profile, the eigenvalues
+  ℓ = D11α⁴ − λ of the free-free cross-width problem (roots of its determinant) and the
+  divergence μ of the lowest branch.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.optimize import brentq
 
 from gyroshell import TapeParameters
 
@@ -80,3 +87,127 @@ def moving_line_load(p: TapeParameters, velocity: float, load_speed: float, damp
         f = (g * np.exp(1j * kappa * x)).real
         out[i] = dk * (f.sum() - 0.5 * (f[0] + f[-1])) / np.pi
     return out
+
+
+# ----- orthotropic plates ------------------------------------------------------------------
+def orthotropic_symbol(D, alpha, beta):
+    """D11 α⁴ + 2(D12 + 2 D66) α²β² + D22 β⁴, N/m³ per m: the bending of sin(αx) sin(βy)."""
+    d11, d22, d12, d66 = D
+    return d11 * alpha**4 + 2 * (d12 + 2 * d66) * alpha**2 * beta**2 + d22 * beta**4
+
+
+def orthotropic_navier_frequency(D, p: TapeParameters, m: int, n: int) -> float:
+    """V = 0 frequency of the all-sides simply supported orthotropic shell, rad/s:
+    ρω² = D11 α⁴ + 2(D12 + 2D66) α²β² + D22 β⁴ + Tα² + k."""
+    a, b = m * np.pi / p.length, n * np.pi / p.width
+    return float(np.sqrt((orthotropic_symbol(D, a, b) + p.tension * a**2 + p.k) / p.density))
+
+
+def orthotropic_navier_uniform(D, p: TapeParameters, velocity: float, x, y,
+                               terms: int = 201) -> np.ndarray:
+    """w(x, y), m, of the simply supported orthotropic shell under a unit uniform pressure:
+    Σ over odd m, n of 16 / (π² m n) sin(αx) sin(βy) / (symbol + (T − ρV²)α² + k)."""
+    S = p.tension - p.density * velocity**2
+    odd = np.arange(1, terms + 1, 2)
+    a, b = odd * np.pi / p.length, odd * np.pi / p.width
+    A, B = np.meshgrid(a, b, indexing="ij")
+    coef = 16.0 / (np.pi**2 * np.outer(odd, odd)) / (orthotropic_symbol(D, A, B)
+                                                     + S * A**2 + p.k)
+    return np.sin(np.outer(x, a)) @ coef @ np.sin(np.outer(b, y))
+
+
+def _levy_exponents(D, alpha: float, lam: float) -> np.ndarray:
+    """(r₁, r₂) with Y = e^{±r y} solving D22 r⁴ − 2Hα² r² + λ = 0, H = D12 + 2 D66."""
+    d11, d22, d12, d66 = D
+    h = (d12 + 2 * d66) * alpha**2
+    disc = np.sqrt(complex(h * h - d22 * lam))
+    return np.sqrt(np.array([h + disc, h - disc]) / d22)
+
+
+def levy_profile_orthotropic(D, p: TapeParameters, velocity: float, alpha: float,
+                             y: np.ndarray) -> np.ndarray:
+    """Y(y), m/Pa, of w = Y(y) sin(αx) under the pressure sin(αx) with free edges:
+    D22 Y⁗ − 2Hα²Y″ + (D11α⁴ + (T − ρV²)α² + k) Y = 1, D22 Y″ − D12α²Y = 0 and
+    D22 Y‴ − (D12 + 4D66)α²Y′ = 0 at y = 0, L_y."""
+    d11, d22, d12, d66 = D
+    lam = d11 * alpha**4 + (p.tension - p.density * velocity**2) * alpha**2 + p.k
+    Yp = 1.0 / lam
+    roots = _levy_exponents(D, alpha, lam)
+    roots = np.concatenate([roots, -roots])
+    rows, rhs = [], []
+    for edge in (-p.width / 2, p.width / 2):
+        e = np.exp(roots * edge)
+        rows.append(e * (d22 * roots**2 - d12 * alpha**2))
+        rhs.append(d12 * alpha**2 * Yp)
+        rows.append(e * (d22 * roots**3 - (d12 + 4 * d66) * alpha**2 * roots))
+        rhs.append(0.0)
+    c = np.linalg.solve(np.array(rows), np.array(rhs, dtype=complex))
+    return (Yp + np.exp(np.outer(np.asarray(y) - p.width / 2, roots)) @ c).real
+
+
+def levy_condition(D, alpha: float, width: float, lam: float, symmetric: bool) -> float:
+    """A real function of λ whose zeros are the free-free cross-width modes of
+    D22 Y⁗ − 2Hα²Y″ + λY = 0 (even or odd about the centre line).
+
+    The 2 × 2 determinant of the two edge conditions on the even (cosh rs) or odd
+    (sinh rs / r) solutions, divided by r₁² − r₂² (so that the double root is no spurious
+    zero) and by exp((|Re r₁| + |Re r₂|) b), b = width/2 (no overflow): real, continuous.
+    """
+    d11, d22, d12, d66 = D
+    b = width / 2
+    r = _levy_exponents(D, alpha, lam)
+    moment = d22 * r**2 - d12 * alpha**2
+    shear = d22 * r**2 - (d12 + 4 * d66) * alpha**2
+    if symmetric:
+        m, s = np.cosh(r * b) * moment, r * np.sinh(r * b) * shear
+    else:
+        small = np.abs(r) < 1e-300
+        sinhc = np.where(small, b, np.sinh(r * b) / np.where(small, 1.0, r))
+        m, s = sinhc * moment, np.cosh(r * b) * shear
+    det = (m[0] * s[1] - m[1] * s[0]) / (r[0] ** 2 - r[1] ** 2)
+    return float((det * np.exp(-np.abs(r.real).sum() * b)).real)
+
+
+def _root(f, lo: float, hi: float) -> float:
+    return brentq(f, lo, hi, xtol=1e-15 * abs(hi), rtol=1e-14)
+
+
+def levy_eigenvalues(D, alpha: float, width: float, top: float, *, points: int = 4000
+                     ) -> np.ndarray:
+    """Eigenvalues ℓ < ``top`` (N/m³ per m) of the free-free cross-width bending operator
+    D22 Y⁗ − 2Hα²Y″ + D11α⁴Y = ℓY (λ = D11α⁴ − ℓ), even and odd modes, sorted.
+
+    Every ℓ >= (D11 − D12²/D22)α⁴ (the energy density is at least that times w_xx²), so
+    the scan starts there; roots are bracketed on ``points`` steps and refined by brentq.
+    """
+    d11, d22, d12, _ = D
+    grid = np.linspace((d11 - d12 * d12 / d22) * alpha**4 * (1 - 1e-9), top, points)
+    out = []
+    for symmetric in (True, False):
+        def f(ell, s=symmetric):
+            return levy_condition(D, alpha, width, d11 * alpha**4 - ell, s)
+        values = np.array([f(ell) for ell in grid])
+        for i in np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0):
+            out.append(_root(f, grid[i], grid[i + 1]))
+    return np.sort(out)
+
+
+def levy_lowest(D, alpha: float, width: float) -> float:
+    """The lowest eigenvalue ℓ₁ of the free-free cross-width operator (the even mode next to
+    Y = 1), in [(D11 − D12²/D22)α⁴, D11α⁴]: the lowest Lévy branch (D11α⁴ for D12 = 0)."""
+    d11, d22, d12, _ = D
+    if d12 == 0:
+        return d11 * alpha**4
+    lo, hi = (d11 - d12 * d12 / d22) * alpha**4 * (1 - 1e-12), d11 * alpha**4 * (1 - 1e-15)
+
+    def f(ell):
+        return levy_condition(D, alpha, width, d11 * alpha**4 - ell, True)
+
+    assert f(lo) * f(hi) < 0, "the lowest Levy root is not bracketed"
+    return _root(f, lo, hi)
+
+
+def levy_divergence_mu(D, p: TapeParameters, alphas) -> float:
+    """μ_min = min over the axial wavenumbers α of (ℓ₁(α) + k)/α², N/m: K(V) of the
+    free-edged tape turns singular at ρV² − T = μ_min (the lowest Lévy branch at ω = 0)."""
+    return float(min((levy_lowest(D, a, p.width) + p.k) / a**2 for a in alphas))

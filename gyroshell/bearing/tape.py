@@ -48,9 +48,10 @@ _UNIT_WIDTH = np.ones(1)
 class StripOperators:
     """A, B, M, G and the nodal widths W of an infinitely wide tape (per unit width).
 
-    The plate in cylindrical bending (w_yy = 0): bending rigidity D, foundation k,
-    membrane ∫ w_x² dx, mass ρ; unknowns at the interior nodes i = 1..nx−1 of the node
-    abscissae ``x`` (m, uniform or graded).
+    The plate in cylindrical bending (w_yy = 0): bending rigidity D = D11 (the 2-D plate's
+    middle, far from the free edges, bends with D11 for an orthotropic or layered tape),
+    foundation k, membrane ∫ w_x² dx, mass ρ; unknowns at the interior nodes i = 1..nx−1
+    of the node abscissae ``x`` (m, uniform or graded).
     """
 
     def __init__(self, params: TapeParameters, x: np.ndarray) -> None:
@@ -79,10 +80,11 @@ class PlateOperators:
     Unknowns: the interior x-lines i = 1..nx−1, every node across (j fastest), as in
     :class:`gyroshell.Grid` with free edges. A is assembled by
     :class:`gyroshell.tape.operators.PlateCurvatures`, the one assembly of the tape's
-    :func:`gyroshell.tape.operators.bending_foundation`: D/2 Σ W [w_xx² + w_yy²
-    + 2ν w_xx w_yy] at the interior nodes, D/2 Σ W (1 − ν²) w_xx² at the edge nodes (the
-    edge moment M_y is zero: free-edge conditions as natural boundary conditions),
-    D (1 − ν) Σ a w_xy² over the cells (a their areas), plus k/2 Σ W w².
+    :func:`gyroshell.tape.operators.bending_foundation`: ½ Σ W [D11 w_xx² + 2 D12 w_xx w_yy
+    + D22 w_yy²] at the interior nodes, ½ Σ W (D11 − D12²/D22) w_xx² at the edge nodes (the
+    edge moment M_y = −(D12 w_xx + D22 w_yy) is zero: free-edge conditions as natural
+    boundary conditions), 2 D66 Σ a w_xy² over the cells (a their areas), plus k/2 Σ W w²
+    (``params.bending_matrix``; isotropic: D11 = D22 = D, D12 = νD, D66 = (1 − ν)D/2).
     """
 
     def __init__(self, params: TapeParameters, x, y=None) -> None:
@@ -100,7 +102,8 @@ class PlateOperators:
         self._dxx, self._dyy = curvatures.dxx, curvatures.dyy
         self._dxx_edge = curvatures.dxx_edge
         self._w_inner, self._w_edge = curvatures.w_inner, curvatures.w_edge
-        self.A = curvatures.stiffness(params.D, params.poisson, params.k)
+        self._bending = params.bending_matrix
+        self.A = curvatures.stiffness(self._bending, params.k)
         self.B = nodal_membrane(x, wy)
         self.M = nodal_mass(params.density, wx, wy)
 
@@ -113,11 +116,13 @@ class PlateOperators:
         κ(x) (1/m, at the interior x-nodes) in w_xx, uniform across the width.
 
         The bending energy above with w_xx replaced by w_xx − κ; the part linear in u is
-        −f_κ·u. It includes ν κ w_yy (the Poisson moment) and the free-edge term.
+        −f_κ·u: f_κ = D11 δxxᵀWκ + D12 δyyᵀWκ + (D11 − D12²/D22) δxx,edgeᵀW_edge κ, with
+        the Poisson moment D12 κ w_yy and the free-edge term (isotropic: D [δxxᵀWκ
+        + ν δyyᵀWκ + (1 − ν²) δxx,edgeᵀW_edge κ], bit for bit).
         """
-        p = self.params
         ny = len(self.y) - 1
+        _, r12, _, r_edge = self._bending.ratios
         k_int = self._w_inner * np.repeat(kappa, ny - 1)
-        f = self._dxx.T @ k_int + p.poisson * (self._dyy.T @ k_int)
-        f += (1 - p.poisson**2) * (self._dxx_edge.T @ (self._w_edge * np.repeat(kappa, 2)))
-        return p.D * f
+        f = self._dxx.T @ k_int + r12 * (self._dyy.T @ k_int)
+        f += r_edge * (self._dxx_edge.T @ (self._w_edge * np.repeat(kappa, 2)))
+        return self._bending.D11 * f

@@ -22,7 +22,15 @@ import sys
 import time
 from pathlib import Path
 
-from .common import TAPE_OVERRIDES, UserError, positive_int, print_json, real
+from .common import (
+    TAPE_OVERRIDES,
+    UserError,
+    add_tape_overrides,
+    positive_int,
+    print_json,
+    real,
+    typed_overrides,
+)
 from .heads import add_head_options, head_design
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
@@ -103,11 +111,8 @@ def _tape_parser() -> argparse.ArgumentParser:
     g.add_argument("--velocity", type=real, default=None,
                    help="tape speed V, m/s, > 0 and below the string speed sqrt(T/rho) "
                         "(required, here or as velocity in --config)")
-    for flag, field, text in TAPE_OPTIONS:
-        if field == "width":
-            text = "tape width L_y, m (default 6.35e-3; not with --infinitely-wide)"
-        g.add_argument(flag, dest=field, metavar=flag[2:].upper().replace("-", "_"),
-                       type=real, default=None, help=text)
+    add_tape_overrides(g, TAPE_OPTIONS, help_of={
+        "width": "tape width L_y, m (default 6.35e-3; not with --infinitely-wide)"})
     return p
 
 
@@ -210,8 +215,7 @@ def _tape(args: argparse.Namespace):
     from ..core import validation
     from ..tape.parameters import TapeParameters
 
-    typed = {field: getattr(args, field) for _flag, field, _text in TAPE_OPTIONS
-             if getattr(args, field) is not None}
+    typed = typed_overrides(args, TAPE_OPTIONS)
     base, velocity, head_table = TapeParameters(), args.velocity, None
     if args.config is not None:
         from ..tape.config import load_config
@@ -247,17 +251,24 @@ def _without_plate_fields(fields: dict) -> dict:
 
 
 def _refuse_unused_material(args: argparse.Namespace, params) -> None:
-    """With both D and k given, E and c (and, infinitely wide, ν) are not used."""
-    if params.bending_rigidity is None or params.foundation_stiffness is None:
+    """With the bending stiffness and k both given, E and c are not used, nor ν for the
+    infinitely wide tape or beside D11, D22, D12, D66. The bending: D or the orthotropic
+    D11, D22, D12, D66; k: itself or through the membrane stiffness A11 (k = A11/R²)."""
+    bending = params.bending_rigidity is not None or params.bending_stiffness is not None
+    shell = params.foundation_stiffness is not None or params.membrane_stiffness is not None
+    if not (bending and shell):
         return
-    unused = [("--youngs-modulus", args.youngs_modulus), ("--thickness", args.thickness)]
-    if args.infinitely_wide:
-        unused.append(("--poisson", args.poisson))
+    unused = [("--youngs-modulus", args.youngs_modulus), ("--thickness", args.thickness),
+              ("--youngs-modulus-x", getattr(args, "youngs_modulus_x", None))]
+    if args.infinitely_wide or params.bending_stiffness is not None:
+        unused += [("--poisson", args.poisson),
+                   ("--poisson-xy", getattr(args, "poisson_xy", None))]
     for option, value in unused:
         if value is not None:
             raise UserError(f"{option} is not used when the bending rigidity and the "
-                            "foundation stiffness are both given (--bending-rigidity, "
-                            "--foundation-stiffness or the --config file): drop it")
+                            "foundation stiffness are both given (--bending-rigidity or "
+                            "--bending-stiffness, --foundation-stiffness or "
+                            "--membrane-stiffness, or the --config file): drop it")
 
 
 def _air(args: argparse.Namespace):

@@ -66,6 +66,21 @@ def positive_int(text: str) -> int:
     return value
 
 
+def stiffness_list(text: str) -> tuple[float, float, float, float]:
+    """Four finite numbers ``D11,D22,D12,D66`` (N*m) of --bending-stiffness.
+
+    Examples
+    --------
+    >>> stiffness_list("2e-7, 1e-7, 3e-8, 4e-8")
+    (2e-07, 1e-07, 3e-08, 4e-08)
+    """
+    items = [item.strip() for item in text.split(",")]
+    if len(items) != len(BENDING_STIFFNESS_NAMES):
+        raise argparse.ArgumentTypeError(
+            f"give four numbers {','.join(BENDING_STIFFNESS_NAMES)} (N*m), got {text!r}")
+    return tuple(real(item) for item in items)
+
+
 def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
     """Speeds, m/s, from an option's text: :func:`gyroshell.studies.sweep.parse_velocities`."""
     from ..studies.sweep import parse_velocities as parse
@@ -77,6 +92,10 @@ def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
 TAPE_OVERRIDES = (
     ("--youngs-modulus", "youngs_modulus", "Young's modulus E, Pa (default 4e9)"),
     ("--poisson", "poisson", "Poisson's ratio, in (-1, 0.5) (default 0.3)"),
+    ("--youngs-modulus-y", "youngs_modulus_y",
+     "Young's modulus across the tape E_y, Pa (default: E_x, isotropic)"),
+    ("--shear-modulus", "shear_modulus",
+     "in-plane shear modulus G_xy, Pa (default: E_x / (2 (1 + nu_xy)), isotropic)"),
     ("--thickness", "thickness", "shell thickness c, m (default 20e-6)"),
     ("--radius", "radius", "wrap radius R, m (default 20e-3)"),
     ("--density", "density", "areal density rho, kg/m^2 (default 0.014)"),
@@ -86,9 +105,31 @@ TAPE_OVERRIDES = (
      "override D, N*m (default E c^3 / (12 (1 - nu^2)))"),
     ("--foundation-stiffness", "foundation_stiffness",
      "override the shell stiffness k, N/m^3 (default E c / (R^2 (1 - nu^2)))"),
+    ("--membrane-stiffness", "membrane_stiffness",
+     "membrane stiffness along the tape A11, N/m; sets k = A11 / R^2 (default: from "
+     "E_x, E_y, nu_xy and c, or the layers)"),
     ("--load", "load",
      "peak pressure P_0 of the Gaussian load (Eq. 17), Pa (default 200)"),
 )
+
+#: (flag, TapeParameters field, the option it is another name of, help): the orthotropic
+#: names of two isotropic options; typing both names of one field is refused.
+TAPE_ALIASES = (
+    ("--youngs-modulus-x", "youngs_modulus", "--youngs-modulus",
+     "Young's modulus along the tape E_x, Pa (another name of --youngs-modulus)"),
+    ("--poisson-xy", "poisson", "--poisson",
+     "major Poisson's ratio nu_xy (strain across per strain along; another name of "
+     "--poisson)"),
+)
+
+#: The bending stiffnesses, typed as one comma list: (flag, TapeParameters field, help).
+BENDING_STIFFNESS = (
+    "--bending-stiffness", "bending_stiffness",
+    "the orthotropic bending stiffnesses D11,D22,D12,D66, N*m each (D11 along the tape, "
+    "D22 across, D12 the coupling, D66 the twist; default: from E_x, E_y, G_xy, nu_xy and "
+    "c, or the layers)")
+#: Names of the bending stiffnesses, in the order --bending-stiffness takes them.
+BENDING_STIFFNESS_NAMES = ("D11", "D22", "D12", "D66")
 
 
 class _Unset(float):
@@ -116,10 +157,60 @@ def common_parser(*, velocity: bool = True) -> argparse.ArgumentParser:
     if velocity:
         g.add_argument("--velocity", type=real, default=_Unset(0.0),
                        help="tape transport speed V, m/s, >= 0 (default 0)")
-    for flag, field, text in TAPE_OVERRIDES:
-        g.add_argument(flag, dest=field, metavar=flag[2:].upper().replace("-", "_"),
-                       type=real, default=None, help=text)
+    add_tape_overrides(g, TAPE_OVERRIDES)
     return p
+
+
+def _dest(flag: str) -> str:
+    return flag[2:].replace("-", "_")
+
+
+def add_tape_overrides(group, options=TAPE_OVERRIDES, *, help_of=None) -> None:
+    """Add the physical tape options to an argparse group: ``options`` (a selection of
+    :data:`TAPE_OVERRIDES`), the aliases of :data:`TAPE_ALIASES` and
+    --bending-stiffness; ``help_of`` maps a field to a help text replacing its own.
+    Every one defaults to None (not typed)."""
+    help_of = help_of or {}
+    for flag, field, text in options:
+        group.add_argument(flag, dest=field, metavar=_dest(flag).upper(), type=real,
+                           default=None, help=help_of.get(field, text))
+    for flag, _field, _original, text in TAPE_ALIASES:
+        group.add_argument(flag, dest=_dest(flag), metavar=_dest(flag).upper(), type=real,
+                           default=None, help=text)
+    flag, field, text = BENDING_STIFFNESS
+    group.add_argument(flag, dest=field, metavar=",".join(BENDING_STIFFNESS_NAMES),
+                       type=stiffness_list, default=None, help=text)
+
+
+def typed_overrides(args: argparse.Namespace, options=TAPE_OVERRIDES) -> dict:
+    """The TapeParameters fields of the physical options typed: {field: value}, an alias
+    read as its original.
+
+    Raises
+    ------
+    UserError
+        If an option and its alias (--youngs-modulus and --youngs-modulus-x, --poisson and
+        --poisson-xy) are both typed.
+
+    Examples
+    --------
+    >>> args = common_parser().parse_args(["--youngs-modulus-x", "8e9", "--tension", "60"])
+    >>> typed_overrides(args)
+    {'tension': 60.0, 'youngs_modulus': 8000000000.0}
+    """
+    typed = {field: getattr(args, field) for _flag, field, _text in options
+             if getattr(args, field, None) is not None}
+    for flag, field, original, _text in TAPE_ALIASES:
+        value = getattr(args, _dest(flag), None)
+        if value is None:
+            continue
+        if field in typed:
+            raise UserError(f"{flag} and {original} are two names of {field}: give one")
+        typed[field] = value
+    field = BENDING_STIFFNESS[1]
+    if getattr(args, field, None) is not None:
+        typed[field] = getattr(args, field)
+    return typed
 
 
 def parameters_from_args(args: argparse.Namespace) -> TapeParameters:
@@ -128,8 +219,7 @@ def parameters_from_args(args: argparse.Namespace) -> TapeParameters:
     With ``--config`` the file's values replace the defaults of the options not typed (and
     its ``velocity`` becomes ``args.velocity``).
     """
-    kwargs = {field: getattr(args, field) for _flag, field, _text in TAPE_OVERRIDES
-              if getattr(args, field) is not None}
+    kwargs = typed_overrides(args)
     if getattr(args, "config", None):
         return _with_config(args, kwargs)
     return TapeParameters(length_ratio=args.length_ratio, edges=args.edges,
@@ -148,6 +238,12 @@ def typed_tape_options(args: argparse.Namespace) -> dict[str, str]:
     """
     typed = {field: flag for flag, field, _text in TAPE_OVERRIDES
              if getattr(args, field, None) is not None}
+    for flag, field, _original, _text in TAPE_ALIASES:
+        if getattr(args, _dest(flag), None) is not None:
+            typed[field] = flag
+    flag, field, _text = BENDING_STIFFNESS
+    if getattr(args, field, None) is not None:
+        typed[field] = flag
     for name in ("length_ratio", "edges", "spacing", "velocity"):
         value = getattr(args, name, None)
         if value is not None and not isinstance(value, (_Unset, _UnsetText)):

@@ -27,7 +27,7 @@ PLOT_DPI = 120
 def register(sub, common: argparse.ArgumentParser,
              common_without_velocity: argparse.ArgumentParser) -> None:
     from ..studies.evaluation import COMPUTE_CHOICES
-    from ..studies.points import VARIABLE_NAMES
+    from ..studies.points import LAYER_VARIABLES, VARIABLE_NAMES
 
     p = sub.add_parser(
         "study", parents=[common], help="parameter study: vary tape parameters, one row each",
@@ -45,7 +45,9 @@ def register(sub, common: argparse.ArgumentParser,
                         "(NUM evenly spaced values, both ends included); repeat for a grid. "
                         "Values in SI, or with a unit as in a --config file (20um,30um). "
                         f"NAME: {', '.join(VARIABLE_NAMES)} (SI units; the head's "
-                        "wrap_angle, wrap_in and wrap_out in degrees, or 0.03rad)")
+                        "wrap_angle, wrap_in and wrap_out in degrees, or 0.03rad), or for "
+                        f"a layered tape (--config with [[layer]] tables) {LAYER_VARIABLES}, "
+                        "layers counted from 1 at the bottom: layer2.thickness=4e-6:6e-6:5")
     p.add_argument("--compute", action="append", required=True, metavar="WHAT",
                    help=f"what to compute: {', '.join(COMPUTE_CHOICES)} (repeat or "
                         "comma-separate for several)")
@@ -137,9 +139,8 @@ def parse_values(name: str, text: str) -> list:
     import numpy as np
 
     from ..core.budget import check_study_points
-    from ..core.units import SI_UNITS
-    from ..studies.points import HEAD_VARIABLES
-    from ..tape.config import QUANTITIES, parse_quantity
+    from ..core.units import unit_of
+    from ..tape.config import parse_quantity
 
     text = text.strip()
     if not text:
@@ -164,12 +165,12 @@ def parse_values(name: str, text: str) -> list:
     if name.replace("-", "_") == "edges":
         return items
     key = name.replace("-", "_")
+    si_unit = unit_of(key)
     out = []
     for item in items:
         try:
             out.append(math.radians(real(item)) if key in DEGREE_FIELDS else real(item))
         except argparse.ArgumentTypeError as exc:
-            si_unit = QUANTITIES.get(key, SI_UNITS.get(key) if key in HEAD_VARIABLES else None)
             if si_unit is None or not item[:1].strip("+-.0123456789") == "":
                 raise UserError(f"--vary {name}: {exc}") from None
             unit = item.lstrip("+-.0123456789eE")  # "20um" -> "um"

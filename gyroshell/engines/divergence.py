@@ -40,8 +40,10 @@ __all__ = ["Divergence", "beam_mu_estimate", "divergence", "divergence_speed", "
 def beam_mu_estimate(model: TapeModel) -> float:
     """min over m of D a_m² + k / a_m², N/m: μ of the width-uniform (beam) modes.
 
-    a_m² = (4/h²) sin²(α_m h/2) is the discrete −∂²/∂x² eigenvalue of sin(α_m x), α_m = mπ/L_x.
-    Exact for ν = 0 and free edges; otherwise a close estimate of μ_min.
+    a_m² = (4/h²) sin²(α_m h/2) is the discrete −∂²/∂x² eigenvalue of sin(α_m x), α_m = mπ/L_x,
+    and D = D11 (orthotropic or layered tapes too). Exact for D12 = 0 (ν = 0) and free
+    edges, where the width-uniform vectors are eigenvectors; otherwise an estimate of μ_min
+    from above (the free edges relieve the bending towards D11 − D12²/D22).
     """
     g, p = model.grid, model.params
     alpha = np.arange(1, g.nx) * np.pi / g.length

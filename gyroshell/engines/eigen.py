@@ -59,7 +59,8 @@ def strip_frequency_estimate(params: TapeParameters, grid: Grid, velocity: float
 
     min over the discrete wavenumbers α_m = mπ/L_x of −Vα + √((Dα⁴ + Tα² + k)/ρ), the
     lowest frequency of a beam on the shell foundation moving at V (Wickert & Mote's
-    dispersion relation plus k). Returns 0 if that is not positive (V near or above critical).
+    dispersion relation plus k), D = D11 for an orthotropic or layered tape (cylindrical
+    bending). Returns 0 if that is not positive (V near or above critical).
     """
     m = np.arange(1, grid.nx)
     alpha = m * np.pi / grid.length
@@ -124,8 +125,9 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
     K(V) = (A − τB) + (τ + T − ρV²) B with B positive semi-definite, so K(V) is positive
     definite whenever ρV² − T < τ: one proof per model certifies every such speed, and the
     eigen-solver skips factoring K(V). τ = 0 holds by construction when k > 0: the bending
-    part of A is a sum of Gram forms (w_xx, w_yy)ᵀ[[1, ν], [ν, 1]](w_xx, w_yy) + ... with
-    |ν| < 1 (:func:`gyroshell.bending_foundation`), so A >= kW > 0; otherwise a
+    part of A is a sum of Gram forms (w_xx, w_yy)ᵀ[[D11, D12], [D12, D22]](w_xx, w_yy) + ...
+    with a positive-definite bending matrix (isotropic: D[[1, ν], [ν, 1]], |ν| < 1;
+    :func:`gyroshell.bending_foundation`), so A >= kW > 0; otherwise a
     factorization of A decides. With ``near_divergence``, τ is the inertia-proved shift just
     below μ_min of the divergence solver (a few factorizations, worth it for sweeps).
     Cached per model.

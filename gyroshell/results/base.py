@@ -303,7 +303,9 @@ def params_json(params) -> str:
     """JSON of a :class:`~gyroshell.TapeParameters` (``null`` for None)."""
     if params is None:
         return "null"
-    return to_json({f.name: getattr(params, f.name) for f in dataclasses.fields(params)})
+    from ..tape.config import parameter_fields
+
+    return to_json(parameter_fields(params))
 
 
 def params_from(attrs: dict):

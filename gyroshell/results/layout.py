@@ -6,8 +6,10 @@ checks the metadata every file carries and the kind's :class:`Layout`:
 
 * ``gyroshell_version``: present, a version, not newer than this gyroshell's major.minor;
 * ``parameters``: JSON ``null`` or an object with exactly the
-  :class:`~gyroshell.TapeParameters` fields, validated by TapeParameters itself (so a
-  negative tension is refused as when typed); ``grid``: likewise with the
+  :class:`~gyroshell.TapeParameters` fields (the orthotropic ones may be absent, as in the
+  files of release 0.1.0; ``layers`` a list of objects of the Layer fields), validated by
+  TapeParameters itself (so a negative tension or a stack whose thickness disagrees with
+  its layers is refused as when typed); ``grid``: likewise with the
   :class:`~gyroshell.Grid` fields; ``info``: a JSON object;
 * every variable of the layout: present (a complex one as its ``_real``/``_imag`` pair),
   on its dimensions, numbers where numbers belong (not text), finite where NaN has no
@@ -209,9 +211,11 @@ def json_attr(attrs: Mapping, name: str, source: str, default: str = "null"):
                              f"{text[:60]!r}") from None
 
 
-def _fields_of(attrs: Mapping, name: str, cls: type, source: str):
+def _fields_of(attrs: Mapping, name: str, cls: type, source: str,
+               optional: tuple[str, ...] = ()):
     """``cls(**attrs[name])`` for a dataclass stored as JSON (None for ``null``), its keys
-    exactly the fields, validated by ``cls`` itself."""
+    exactly the fields (those in ``optional``, added since files were first written, may
+    be absent and take their defaults), validated by ``cls`` itself."""
     data = json_attr(attrs, name, source)
     if data is None:
         return None
@@ -219,7 +223,8 @@ def _fields_of(attrs: Mapping, name: str, cls: type, source: str):
         raise InputFileError(f"{source}: {name} must be a JSON object of "
                              f"{cls.__name__} fields, got {type(data).__name__}")
     expected = {f.name for f in dataclasses.fields(cls)}
-    extra, missing = sorted(set(data) - expected), sorted(expected - set(data))
+    extra = sorted(set(data) - expected)
+    missing = sorted(expected - set(data) - set(optional))
     if extra:
         raise InputFileError(f"{source}: {name}: unknown field(s) {', '.join(extra)}; a "
                              f"{cls.__name__} has {', '.join(sorted(expected))}")
@@ -234,9 +239,9 @@ def _fields_of(attrs: Mapping, name: str, cls: type, source: str):
 def check_metadata(attrs: Mapping, source: str):
     """Check ``parameters``, ``grid`` and ``info``; returns the stored Grid (or None)."""
     from ..tape.grid import Grid
-    from ..tape.parameters import TapeParameters
+    from ..tape.parameters import ORTHOTROPIC_FIELDS, TapeParameters
 
-    _fields_of(attrs, "parameters", TapeParameters, source)
+    _fields_of(attrs, "parameters", TapeParameters, source, optional=ORTHOTROPIC_FIELDS)
     grid = _fields_of(attrs, "grid", Grid, source)
     info = json_attr(attrs, "info", source, default="{}")
     if not isinstance(info, dict):

@@ -43,7 +43,6 @@ This module holds the study's result and :func:`run_study`; the pieces live besi
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import os
 import time
@@ -56,6 +55,7 @@ from ..core.errors import ParameterError
 from ..core.progress import stage_progress
 from ..core.units import unit_of
 from ..results import base as results_base
+from ..tape.config import parameter_fields
 from ..tape.parameters import TapeParameters, check_velocity
 from .cache import PointCache, point_key
 from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
@@ -261,7 +261,7 @@ class _Plan:
     @property
     def task(self) -> StudyTask:
         """What every point's evaluation shares (the base tape as plain fields)."""
-        fields = {f.name: getattr(self.base, f.name) for f in dataclasses.fields(self.base)}
+        fields = parameter_fields(self.base)  # plain values: layers as dicts
         return StudyTask(fields, self.velocity, self.compute, self.count, self.bearing)
 
     def keys(self) -> list[str]:

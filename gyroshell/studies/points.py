@@ -2,7 +2,12 @@
 checks that turn a user's points into validated ones.
 
 A point is a mapping from parameter names (the :class:`~gyroshell.TapeParameters` fields in
-SI units, and ``velocity`` in m/s) to values; names may use ``-`` for ``_``.
+SI units, and ``velocity`` in m/s) to values; names may use ``-`` for ``_``. A layered tape's
+layers vary one quantity at a time as ``layer<N>.<key>``: ``layer2.thickness`` is the
+thickness (m) of the second layer from the bottom (counted from 1, in the order of the
+``[[layer]]`` tables of a tape file), ``<key>`` one of the
+:class:`~gyroshell.tape.material.Layer` fields; the tape's thickness, areal density, E_x and
+ν_xy then follow from the changed stack (:meth:`~gyroshell.TapeParameters.with_layers`).
 """
 
 from __future__ import annotations
@@ -16,19 +21,26 @@ import numpy as np
 
 from ..core import budget
 from ..core.errors import ParameterError
+from ..core.units import LAYER_NAME, LAYER_UNITS
 from ..tape.parameters import TapeParameters, check_velocity
 
-__all__ = ["HEAD_VARIABLES", "VARIABLE_NAMES", "canonical_name", "check_points",
-           "grid_points", "parameters_of"]
+__all__ = ["HEAD_VARIABLES", "LAYER_VARIABLES", "VARIABLE_NAMES", "canonical_name",
+           "check_points", "grid_points", "parameters_of"]
 
 #: Parameters of the head a bearing study (``compute="bearing"``) can vary, SI (angles in
 #: rad): :class:`gyroshell.bearing.head_config.HeadDesign` fields.
 HEAD_VARIABLES: tuple[str, ...] = ("wrap_angle", "wrap_in", "wrap_out", "land_length",
                                    "corner_radius", "module_gap")
-#: Parameters a study can vary: every TapeParameters field, plus the tape speed and the
-#: head's parameters.
+#: TapeParameters fields that are not one number: a study varies a layer's quantities one by
+#: one (:data:`LAYER_VARIABLES`), and not the four bending stiffnesses.
+NOT_SCALAR = ("bending_stiffness", "layers")
+#: Parameters a study can vary: every scalar TapeParameters field, plus the tape speed and
+#: the head's parameters.
 VARIABLE_NAMES: tuple[str, ...] = ("velocity",) + tuple(
-    f.name for f in dataclasses.fields(TapeParameters)) + HEAD_VARIABLES
+    f.name for f in dataclasses.fields(TapeParameters) if f.name not in NOT_SCALAR
+) + HEAD_VARIABLES
+#: How the quantities of a layered tape's layers are named (see the module docstring).
+LAYER_VARIABLES = f"layer<N>.<key> (key: {', '.join(LAYER_UNITS)})"
 
 
 def canonical_name(name: str) -> str:
@@ -41,13 +53,63 @@ def canonical_name(name: str) -> str:
 
     Examples
     --------
-    >>> canonical_name("youngs-modulus")
-    'youngs_modulus'
+    >>> canonical_name("youngs-modulus"), canonical_name("layer2.youngs-modulus-y")
+    ('youngs_modulus', 'layer2.youngs_modulus_y')
     """
     key = str(name).strip().replace("-", "_")
+    layer = LAYER_NAME.match(key)
+    if layer is not None:
+        number, quantity = int(layer.group(1)), layer.group(2)
+        if quantity not in LAYER_UNITS:
+            raise ParameterError(f"cannot vary {name!r}: a layer has "
+                                 f"{', '.join(LAYER_UNITS)}")
+        if number < 1:
+            raise ParameterError(f"cannot vary {name!r}: layers are counted from 1 at the "
+                                 "bottom (layer1, layer2, ...)")
+        return f"layer{number}.{quantity}"
     if key not in VARIABLE_NAMES:
-        raise ParameterError(f"cannot vary {name!r}: choose from {', '.join(VARIABLE_NAMES)}")
+        raise ParameterError(f"cannot vary {name!r}: choose from {', '.join(VARIABLE_NAMES)}, "
+                             f"or a layer's {LAYER_VARIABLES}")
     return key
+
+
+def layer_of(name: str) -> tuple[int, str] | None:
+    """(index from 0, Layer field) of a canonical ``layer<N>.<key>`` name, else None."""
+    layer = LAYER_NAME.match(name)
+    return None if layer is None else (int(layer.group(1)) - 1, layer.group(2))
+
+
+def check_layer_names(base: TapeParameters, names) -> None:
+    """Refuse a ``layer<N>.<key>`` of a layer ``base`` does not have.
+
+    Examples
+    --------
+    >>> check_layer_names(TapeParameters(), ["tension", "layer1.thickness"])
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: cannot vary layer1.thickness: the tape has no layers ...
+    """
+    count = 0 if base.layers is None else len(base.layers)
+    for name in names:
+        layer = layer_of(name)
+        if layer is None or layer[0] < count:
+            continue
+        if count == 0:
+            raise ParameterError(f"cannot vary {name}: the tape has no layers (give them with "
+                                 "TapeParameters.from_layers or [[layer]] tables in a tape "
+                                 "file)")
+        raise ParameterError(f"cannot vary {name}: the tape has {count} layer"
+                             f"{'s' if count > 1 else ''} (layer1 to layer{count}, bottom up)")
+
+
+def value_of(params: TapeParameters, velocity: float, name: str):
+    """The value of the canonical variable ``name`` on the tape ``params`` at speed V."""
+    if name == "velocity":
+        return velocity
+    layer = layer_of(name)
+    if layer is None:
+        return getattr(params, name)
+    return getattr(params.layers[layer[0]], layer[1])
 
 
 def grid_points(vary: Mapping[str, Sequence]) -> list[dict]:
@@ -102,6 +164,7 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
         For no point, or a bad one (the message names the point's index and values).
     """
     out, names = [], []
+    check_layer_names(base, {canonical_name(name) for point in points for name in point})
     for i, point in enumerate(points):
         clean = {}
         for name, value in point.items():
@@ -115,8 +178,8 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
             params, v = parameters_of(base, velocity, clean)
         except ParameterError as exc:
             raise ParameterError(f"point {i} {clean}: {exc}") from None
-        clean = {k: (v if k == "velocity" else clean[k] if k in HEAD_VARIABLES
-                     else getattr(params, k)) for k in clean}
+        clean = {k: clean[k] if k in HEAD_VARIABLES else value_of(params, v, k)
+                 for k in clean}
         out.append(clean)
     if not out:
         raise ParameterError("a study needs at least one point")
@@ -125,9 +188,23 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
 
 def parameters_of(base: TapeParameters, velocity: float, point: Mapping
                   ) -> tuple[TapeParameters, float]:
-    """The point's tape and speed V (m/s): ``base`` changed by the point's fields, and the
-    point's ``velocity`` or else ``velocity``; the head's variables are not the tape's
+    """The point's tape and speed V (m/s): ``base`` changed by the point's fields (its
+    layers by the ``layer<N>.<key>`` ones), and the point's ``velocity`` or else
+    ``velocity``; the head's variables are not the tape's
     (:func:`gyroshell.studies.head_study.head_of_point`)."""
-    changes = {k: v for k, v in point.items() if k != "velocity" and k not in HEAD_VARIABLES}
+    changes = {k: v for k, v in point.items()
+               if k != "velocity" and layer_of(k) is None and k not in HEAD_VARIABLES}
     v = check_velocity(point.get("velocity", velocity))
-    return (base.replace(**changes) if changes else base), v
+    params = base
+    layer_changes = {k: v for k, v in point.items() if layer_of(k) is not None}
+    if layer_changes:
+        check_layer_names(base, layer_changes)
+        layers = list(base.layers)
+        for name, value in layer_changes.items():
+            index, key = layer_of(name)
+            try:
+                layers[index] = dataclasses.replace(layers[index], **{key: value})
+            except ParameterError as exc:
+                raise ParameterError(f"layer{index + 1}.{exc}") from None
+        params = params.with_layers(layers)
+    return (params.replace(**changes) if changes else params), v

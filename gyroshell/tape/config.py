@@ -23,6 +23,27 @@ Keys are the :class:`~gyroshell.TapeParameters` fields plus ``velocity`` and
 ``name``; they may also sit at the top level instead of under ``[tape]``. Missing keys take
 the Table 1 defaults. An unknown key, an unknown or mismatched unit, or a value out of range
 raises :class:`~gyroshell.ParameterError` naming the file and the key.
+
+An orthotropic tape gives ``youngs_modulus_y`` (E_y, Pa) and ``shear_modulus`` (G_xy, Pa)
+beside ``youngs_modulus`` (E_x along the tape; also spelled ``youngs_modulus_x``) and
+``poisson`` (ν_xy; also ``poisson_xy``), or its stiffnesses directly:
+``bending_stiffness = ["D11 N*m", "D22 N*m", "D12 N*m", "D66 N*m"]`` and
+``membrane_stiffness = "A11 N/m"`` (k = A11/R²). A layered tape lists its layers bottom up
+as an array of tables, each with all six keys; the stack then gives the thickness, the areal
+density, E_x and ν_xy (:meth:`~gyroshell.TapeParameters.from_layers`), so ``[tape]`` must
+not::
+
+    [[layer]]                     # bottom: the back coat
+    thickness = "0.4 um"
+    youngs_modulus_x = "3 GPa"
+    youngs_modulus_y = "3 GPa"
+    shear_modulus = "1.15 GPa"
+    poisson_xy = 0.3
+    density = "1500 kg/m^3"
+
+    [[layer]]                     # then the base film, then the magnetic coat ...
+
+(see ``studies/tapes/pen_tape.toml``).
 """
 
 from __future__ import annotations
@@ -37,17 +58,29 @@ from pathlib import Path
 
 from ..core.errors import InputFileError, ParameterError
 from ..core.files import read_input
-from ..core.units import ACCEPTED, SI_UNITS
-from .parameters import TapeParameters, check_velocity
+from ..core.units import ACCEPTED, LAYER_UNITS, SI_UNITS
+from .parameters import STACK_FIELDS, TapeParameters, check_velocity
 
 #: The numeric keys of a tape file; each has its SI unit in :data:`gyroshell.core.units.SI_UNITS`.
 QUANTITIES: dict[str, str] = {key: SI_UNITS[key] for key in (
     "youngs_modulus", "poisson", "thickness", "radius", "density", "tension", "width",
     "length_ratio", "spacing", "load", "load_x", "load_y", "bending_rigidity",
-    "foundation_stiffness", "velocity")}
+    "foundation_stiffness", "velocity", "youngs_modulus_x", "poisson_xy", "youngs_modulus_y",
+    "shear_modulus", "membrane_stiffness")}
 TEXT_KEYS = ("edges", "name")
 BOOL_KEYS = ("wrap_pressure",)
-KEYS = tuple(QUANTITIES) + TEXT_KEYS + BOOL_KEYS
+#: Keys holding a list of quantities: (its unit, how many).
+LIST_KEYS: dict[str, tuple[str, int]] = {"bending_stiffness": (SI_UNITS["bending_stiffness"], 4)}
+KEYS = tuple(QUANTITIES) + TEXT_KEYS + BOOL_KEYS + tuple(LIST_KEYS)
+#: Other names of two fields, as the orthotropic literature writes them: {alias: field}.
+ALIASES: dict[str, str] = {"youngs_modulus_x": "youngs_modulus", "poisson_xy": "poisson"}
+#: The array of tables of a layered tape, bottom up; each table has every key of
+#: :data:`gyroshell.core.units.LAYER_UNITS`.
+LAYER_TABLE = "layer"
+#: What the stack of layers decides (:meth:`~gyroshell.TapeParameters.from_layers`), so
+#: that ``[tape]`` beside a ``[[layer]]`` array must not give it (nor the aliases).
+FROM_LAYERS = STACK_FIELDS + tuple(alias for alias, field in ALIASES.items()
+                                   if field in STACK_FIELDS)
 
 _VALUE = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 
@@ -72,14 +105,15 @@ def _tomllib():
 
 
 def parse_quantity(key: str, value, where: str = "", *, unit: str | None = None) -> float:
-    """A number (SI) or ``"<number> <unit>"`` for ``key``, converted to SI; ``unit`` (an
-    SI unit of :data:`~gyroshell.core.units.ACCEPTED`) for a key that is not a tape
-    field's (a head's, :mod:`gyroshell.bearing.head_config`).
+    """A number (SI) or ``"<number> <unit>"`` for ``key``, converted to SI; ``unit`` is
+    the SI unit (default: the key's in :data:`QUANTITIES`).
 
     Examples
     --------
     >>> parse_quantity("thickness", "20 um"), parse_quantity("tension", "0.09 N/mm")
     (2e-05, 90.0)
+    >>> parse_quantity("density", "1.36 g/cm^3", unit="kg/m^3")
+    1360.0
     """
     kind = QUANTITIES[key] if unit is None else unit
     prefix = f"{where}{key}"
@@ -120,6 +154,10 @@ def config_from_dict(data: dict, where: str = "", adjust=None,
     """
     others = {t: data[t] for t in tables if t in data}
     data = {k: v for k, v in data.items() if k not in others}
+    layers = None
+    if isinstance(data, dict) and LAYER_TABLE in data:
+        data = dict(data)
+        layers = layers_from(data.pop(LAYER_TABLE), where)
     if "tape" in data:
         extra = sorted(set(data) - {"tape"})
         if extra:
@@ -127,6 +165,26 @@ def config_from_dict(data: dict, where: str = "", adjust=None,
         data = data["tape"]
     if not isinstance(data, dict):
         raise ParameterError(f"{where}[tape] must be a table")
+    if layers is not None:
+        given = [key for key in FROM_LAYERS if key in data]
+        if given:
+            raise ParameterError(f"{where}{', '.join(given)}: the [[layer]] stack gives the "
+                                 "tape's thickness, areal density, E_x and nu_xy; drop "
+                                 f"{', '.join(given)} from [tape]")
+    fields, velocity, name = _tape_fields(data, where)
+    fields = fields if adjust is None else adjust(dict(fields))
+    try:
+        if layers is None:
+            params = TapeParameters(**fields)
+        else:
+            params = TapeParameters.from_layers(layers, **fields)
+    except ParameterError as exc:
+        raise ParameterError(f"{where}{exc}") from None
+    return TapeConfig(params, velocity, name, others)
+
+
+def _tape_fields(data: dict, where: str) -> tuple[dict, float | None, str | None]:
+    """The TapeParameters fields (SI), the speed (m/s) and the name of a ``[tape]`` table."""
     unknown = sorted(set(data) - set(KEYS))
     if unknown:
         raise ParameterError(f"{where}unknown key(s) {', '.join(unknown)}; allowed: "
@@ -134,9 +192,16 @@ def config_from_dict(data: dict, where: str = "", adjust=None,
     fields: dict = {}
     velocity = name = None
     for key, value in data.items():
-        if key in QUANTITIES:
+        if key in ALIASES and ALIASES[key] in data:
+            raise ParameterError(f"{where}{key} and {ALIASES[key]} are two names of "
+                                 f"{ALIASES[key]}: give one")
+        if key in LIST_KEYS:
+            fields[key] = parse_quantities(key, value, where)
+        elif key in QUANTITIES:
             number = parse_quantity(key, value, where)
-            if key == "velocity":
+            if key in ALIASES:
+                fields[ALIASES[key]] = number
+            elif key == "velocity":
                 try:
                     velocity = check_velocity(number)
                 except ParameterError as exc:
@@ -154,11 +219,58 @@ def config_from_dict(data: dict, where: str = "", adjust=None,
                 name = value
             else:
                 fields[key] = value
-    try:
-        params = TapeParameters(**(fields if adjust is None else adjust(dict(fields))))
-    except ParameterError as exc:
-        raise ParameterError(f"{where}{exc}") from None
-    return TapeConfig(params, velocity, name, others)
+    return fields, velocity, name
+
+
+def parse_quantities(key: str, value, where: str = "") -> tuple[float, ...]:
+    """A list key's values (:data:`LIST_KEYS`), each a number or ``"<number> <unit>"``.
+
+    Examples
+    --------
+    >>> parse_quantities("bending_stiffness", ["2e-7 N*m", 1e-7, "3e-8 N m", 4e-8])
+    (2e-07, 1e-07, 3e-08, 4e-08)
+    """
+    unit, count = LIST_KEYS[key]
+    if not isinstance(value, list) or len(value) != count:
+        raise ParameterError(f"{where}{key} must be a list of {count} values (D11, D22, D12, "
+                             f"D66 in {unit}), got {value!r}")
+    return tuple(parse_quantity(key, item, where, unit=unit) for item in value)
+
+
+def layers_from(tables, where: str = "") -> tuple:
+    """The :class:`~gyroshell.tape.material.Layer` stack of a file's ``[[layer]]`` array,
+    bottom up; each table must give every key of :data:`~gyroshell.core.units.LAYER_UNITS`.
+
+    Raises
+    ------
+    ParameterError
+        Naming the file, the layer (counted from 1 at the bottom) and the key: not an array
+        of tables, an empty one, an unknown or missing key, a unit or a value out of range.
+    """
+    from .material import Layer
+
+    if not isinstance(tables, list) or not all(isinstance(t, dict) for t in tables):
+        raise ParameterError(f"{where}{LAYER_TABLE} must be an array of tables, one "
+                             f"[[{LAYER_TABLE}]] per layer from the bottom up")
+    if not tables:
+        raise ParameterError(f"{where}[[{LAYER_TABLE}]]: the stack has no layer")
+    layers = []
+    for number, table in enumerate(tables, start=1):
+        here = f"{where}[[{LAYER_TABLE}]] {number}: "
+        unknown = sorted(set(table) - set(LAYER_UNITS))
+        if unknown:
+            raise ParameterError(f"{here}unknown key(s) {', '.join(unknown)}; a layer has "
+                                 f"{', '.join(LAYER_UNITS)}")
+        missing = [key for key in LAYER_UNITS if key not in table]
+        if missing:
+            raise ParameterError(f"{here}missing key(s) {', '.join(missing)}")
+        values = {key: parse_quantity(key, table[key], here, unit=unit)
+                  for key, unit in LAYER_UNITS.items()}
+        try:
+            layers.append(Layer(**values))
+        except ParameterError as exc:
+            raise ParameterError(f"{here}{exc}") from None
+    return tuple(layers)
 
 
 #: The UTF-8 byte order mark some editors put first; accepted and skipped (a BOM-prefixed
@@ -232,12 +344,37 @@ def load_config(path: str | os.PathLike[str], *, adjust=None,
     return config_from_dict(data, where=where, adjust=adjust, tables=tables)
 
 
-def _format(key: str, value) -> str:
+def parameter_fields(params: TapeParameters) -> dict:
+    """The fields of ``params`` as plain values for JSON (the ``parameters`` of a saved
+    result): ``layers`` as a list of objects of the Layer fields, ``bending_stiffness`` as
+    a list; ``TapeParameters(**fields)`` rebuilds an equal tape, every float bit-exact.
+
+    Examples
+    --------
+    >>> from gyroshell import Layer
+    >>> tape = TapeParameters.from_layers([Layer(5e-6, 8e9, 5.5e9, 2e9, 0.3, 1360.0)])
+    >>> parameter_fields(tape)["layers"]
+    [{'thickness': 5e-06, 'youngs_modulus_x': 8000000000.0, 'youngs_modulus_y': 5500000000.0,
+      'shear_modulus': 2000000000.0, 'poisson_xy': 0.3, 'density': 1360.0}]
+    >>> TapeParameters(**parameter_fields(tape)) == tape
+    True
+    """
+    out = {f.name: getattr(params, f.name) for f in dataclasses.fields(params)}
+    if params.layers is not None:
+        out["layers"] = [layer.as_dict() for layer in params.layers]
+    if params.bending_stiffness is not None:
+        out["bending_stiffness"] = list(params.bending_stiffness)
+    return out
+
+
+def _format(key: str, value, unit: str | None = None) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, str):
         return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    unit = QUANTITIES[key]
+    if key in LIST_KEYS and unit is None:
+        return "[" + ", ".join(_format(key, v, LIST_KEYS[key][0]) for v in value) + "]"
+    unit = QUANTITIES[key] if unit is None else unit
     return repr(float(value)) if unit == "1" else f'"{float(value)!r} {unit}"'
 
 
@@ -245,17 +382,23 @@ def config_text(params: TapeParameters, velocity: float | None = None,
                 name: str | None = None) -> str:
     """TOML text of a tape (SI values with their units; ``None`` fields left out).
 
-    :func:`load_config` reads it back to equal parameters (floats written exactly).
+    :func:`load_config` reads it back to equal parameters (floats written exactly). A
+    layered tape is written as its ``[[layer]]`` tables, without the fields the stack sets.
     """
     lines = ["[tape]"]
     if name is not None:
         lines.append(f"name = {_format('name', name)}")
+    layered = params.layers is not None
     for f in dataclasses.fields(params):
         value = getattr(params, f.name)
-        if value is not None:
+        if value is not None and f.name != "layers" and not (layered and f.name in FROM_LAYERS):
             lines.append(f"{f.name} = {_format(f.name, value)}")
     if velocity is not None:
         lines.append(f"velocity = {_format('velocity', check_velocity(velocity))}")
+    for layer in params.layers or ():
+        lines += ["", f"[[{LAYER_TABLE}]]"]
+        lines += [f"{key} = {_format(key, value, LAYER_UNITS[key])}"
+                  for key, value in layer.as_dict().items()]
     return "\n".join(lines) + "\n"
 
 

@@ -115,8 +115,9 @@ class TapeModel:
     def divergence_speed_estimate(self) -> float:
         """√((T + μ)/ρ), m/s, with μ = min_m (D a_m² + k/a_m²) over the width-uniform modes.
 
-        Exact for ν = 0 and free edges, otherwise close: a cheap (one vector over the
-        x-wavenumbers, no factorization) estimate of the critical speed for warnings.
+        D = D11 (orthotropic or layered tapes too). Exact for D12 = 0 (ν = 0) and free
+        edges, otherwise close (from above): a cheap (one vector over the x-wavenumbers, no
+        factorization) estimate of the critical speed for warnings.
         """
         g, p = self.grid, self.params
         alpha = np.arange(1, g.nx) * np.pi / g.length

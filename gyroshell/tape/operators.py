@@ -16,12 +16,16 @@ structure that the physics guarantees holds by construction, not by luck:
   definite, assembled from the node coordinates (uniform or graded) by
   :class:`PlateCurvatures`, exactly symmetric on any spacing.
 
-The bending energy density D/2 [w_xx² + w_yy² + 2ν w_xx w_yy + 2(1−ν) w_xy²] is summed with
+The orthotropic bending energy density ½ [D11 w_xx² + 2 D12 w_xx w_yy + D22 w_yy²
++ 4 D66 w_xy²] (:mod:`gyroshell.tape.material`; isotropic: D11 = D22 = D, D12 = νD,
+D66 = (1 − ν)D/2, i.e. D/2 [w_xx² + w_yy² + 2ν w_xx w_yy + 2(1−ν) w_xy²]) is summed with
 second differences at nodes and the twist w_xy at cell centres. In the interior this gives
-the standard 13-point biharmonic stencil. On a free edge the density is written as
-(1 − ν²) w_xx² + (w_yy + ν w_xx)², whose second part is the square of the edge moment M_y/D
-and is dropped there (Eq. 5): the variation then yields the zero-moment and zero
-Kirchhoff-shear conditions (Eqs. 5–6) as natural boundary conditions, the 2-D analogue of
+the 13-point (orthotropic) biharmonic stencil. On a free edge the density is written as
+(D11 − D12²/D22) w_xx² + (D22 w_yy + D12 w_xx)²/D22 (isotropic: D[(1 − ν²) w_xx²
++ (w_yy + ν w_xx)²]), whose second part is the square of the edge moment
+M_y = −(D12 w_xx + D22 w_yy) over D22 and is dropped there (Eq. 5): the variation then
+yields the zero-moment and zero Kirchhoff-shear conditions (Eqs. 5–6; orthotropic:
+D22 w_yyy + (D12 + 4 D66) w_xxy = 0) as natural boundary conditions, the 2-D analogue of
 ghost-point elimination but with a symmetric K. Corners lie on the simply supported ends
 (w = 0); the twisting-moment corner force there is a support reaction.
 
@@ -35,6 +39,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from .grid import Grid
+from .material import BendingStiffness
 from .parameters import TapeParameters, check_velocity
 
 
@@ -173,27 +178,36 @@ class PlateCurvatures:
         """w_xx at the free-edge nodes (None with supported edges)."""
         return None if self._edge is None else sp.kron(self._lxx, self._edge, format="csr")
 
-    def stiffness(self, rigidity: float, poisson: float, foundation: float
-                  ) -> sp.csr_matrix:
-        """A, N/m: the bending energy D/2 Σ [w_xx² + w_yy² + 2ν w_xx w_yy + 2(1−ν) w_xy²]
-        (the edge rows: (1 − ν²) w_xx², see the module notes) plus k/2 Σ W w², with the
-        rigidity D (N·m), Poisson ratio ν and foundation stiffness k (N/m³).
+    def stiffness(self, bending: BendingStiffness, foundation: float) -> sp.csr_matrix:
+        """A, N/m: the bending energy ½ Σ W [D11 w_xx² + 2 D12 w_xx w_yy + D22 w_yy²]
+        + ½ Σ a 4 D66 w_xy² (the edge rows: (D11 − D12²/D22) w_xx², see the module notes)
+        plus k/2 Σ W w², with the bending stiffnesses ``bending`` (N·m) and the foundation
+        stiffness k (N/m³).
 
-        Exactly symmetric: the one-dimensional Gram matrices are, so are their Kronecker
-        products, and the mixed term 2ν w_xx w_yy enters as C + Cᵀ.
+        Written as D11 × [...] with the ratios of :attr:`BendingStiffness.ratios`, which for
+        an isotropic plate are exactly 1, ν, 2(1 − ν), 1 − ν²: its operator is assembled by
+        the isotropic formula D [...] bit for bit. Exactly symmetric: the one-dimensional
+        Gram matrices are, so are their Kronecker products, and the mixed term
+        2 D12 w_xx w_yy enters as C + Cᵀ.
         """
-        nu, wx = poisson, self._wx
+        r22, r12, r66, r_edge = bending.ratios
+        wx = self._wx
         across = weighted_gram(self._inner, self._wy_inner)           # diagonal
         if self._edge is not None:
-            across = across + (1 - nu**2) * weighted_gram(self._edge, self._wy_edge)
+            across = across + r_edge * weighted_gram(self._edge, self._wy_edge)
         mixed = sp.kron(self._lxx.T @ sp.diags(wx),
                         self._inner.T @ sp.diags(self._wy_inner) @ self._lyy, format="csr")
         bend = (sp.kron(weighted_gram(self._lxx, wx), across)
-                + sp.kron(sp.diags(wx), weighted_gram(self._lyy, self._wy_inner))
-                + nu * (mixed + mixed.T)
-                + 2 * (1 - nu) * sp.kron(weighted_gram(self._fx, self._hx),
-                                         weighted_gram(self._fy, self._hy)))
-        return (rigidity * bend + sp.diags(foundation * self.areas)).tocsr()
+                + _scaled(r22, sp.kron(sp.diags(wx), weighted_gram(self._lyy, self._wy_inner)))
+                + r12 * (mixed + mixed.T)
+                + r66 * sp.kron(weighted_gram(self._fx, self._hx),
+                                weighted_gram(self._fy, self._hy)))
+        return (bending.D11 * bend + sp.diags(foundation * self.areas)).tocsr()
+
+
+def _scaled(ratio: float, matrix: sp.spmatrix) -> sp.spmatrix:
+    """ratio × matrix, without the copy for the isotropic ratio 1 (the same values)."""
+    return matrix if ratio == 1.0 else ratio * matrix
 
 
 def mass(grid: Grid, params: TapeParameters) -> sp.dia_matrix:
@@ -236,10 +250,11 @@ def membrane(grid: Grid) -> sp.csr_matrix:
 def bending_foundation(grid: Grid, params: TapeParameters) -> sp.csr_matrix:
     """A: plate bending plus shell foundation, N/m: symmetric positive definite.
 
-    The quadratic form ½ wᵀ A w is the discrete D/2 ∫ [w_xx² + w_yy² + 2ν w_xx w_yy
-    + 2(1−ν) w_xy²] dA + k/2 ∫ w² dA (see the module notes for the free edges), assembled
-    from the grid's node coordinates by :class:`PlateCurvatures`, as on the air bearing's
-    graded grids.
+    The quadratic form ½ wᵀ A w is the discrete ½ ∫ [D11 w_xx² + 2 D12 w_xx w_yy
+    + D22 w_yy² + 4 D66 w_xy²] dA + k/2 ∫ w² dA (isotropic: D/2 ∫ [w_xx² + w_yy²
+    + 2ν w_xx w_yy + 2(1−ν) w_xy²] dA; see the module notes for the free edges), with
+    ``params.bending_matrix`` and ``params.k``, assembled from the grid's node coordinates by
+    :class:`PlateCurvatures`, as on the air bearing's graded grids.
     """
     curvatures = PlateCurvatures(grid.x, grid.y, grid.free_edges)
-    return curvatures.stiffness(params.D, params.poisson, params.k)
+    return curvatures.stiffness(params.bending_matrix, params.k)

@@ -39,6 +39,7 @@ EXPECTED = {
     "helical": ("helical_heads.csv", "helical_heads.png"),
     "frf": ("frf.csv", "frf_bode.png"),
     "bearing": ("bearing_speed.csv", "bearing_speed.png"),
+    "orthotropy": ("orthotropy_speeds.csv", "orthotropy_speeds.png"),
     "heads": ("heads_modules.csv", "heads_modules.png"),
 }
 
@@ -112,6 +113,22 @@ def test_wavelength_longer_downstream(quick_results):
     up = obs.loc["dominant wavelength upstream of the load, V = 50", "value"]
     down = obs.loc["dominant wavelength downstream of the load, V = 50", "value"]
     assert down > up
+
+
+def test_orthotropy_table_holds_the_plane_stress_stiffnesses(quick_results):
+    """E_x = 4 GPa, nu_xy = 0.3, c = 20 um held: D11 = E_x c^3 / (12 (1 - nu^2 E_y/E_x)),
+    and the critical speed stays below the width-uniform strip's, which it nears as D12
+    (the anticlastic relief of the free edges) falls with E_y."""
+    table = pd.read_csv(quick_results / "orthotropy_speeds.csv")
+    ex, nu, c = 4e9, 0.3, 20e-6
+    det = 1 - nu**2 * table["ratio"]
+    assert ((table["D11"] - ex * c**3 / (12 * det)).abs() < 1e-12 * table["D11"]).all()
+    assert ((table["D22"] - table["ratio"] * table["D11"]).abs() < 1e-12 * table["D22"]).all()
+    assert (table["critical_speed"] <= table["strip_critical_speed"]).all()
+    gap = table["strip_critical_speed"] - table["critical_speed"]
+    assert gap.is_monotonic_increasing
+    cuts = pd.read_csv(quick_results / "orthotropy_bearing.csv")
+    assert set(cuts["ratio"]) == {0.25, 1.0, 4.0} and (cuts["spacing"] > 0).all()
 
 
 def test_unknown_study_is_a_user_error(capsys, tmp_path):
