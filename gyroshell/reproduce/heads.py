@@ -15,8 +15,8 @@ over the two wrap angles. The paper's Table 1 tape, air at 20 °C.
     default grid, computed as a head study
     (:func:`gyroshell.studies.parameter_study.run_study`, ``compute="bearing"``).
 
-The full run takes about 2.5 minutes on 2 shared cores (146 s measured at load 4.5; the
-three 2-D solves of (b) take most of it), ``--quick`` about 15 s.
+The full run took 201 s on 2 shared cores at load 3–4 (the three 2-D solves of (b) take
+most of it), ``--quick`` about 15 s.
 """
 
 from __future__ import annotations
