@@ -140,7 +140,9 @@ def test_march_from_a_flat_head_steady_state_stays_there():
     (dict(head="flat"), "head must be a Head"),
     (dict(head=FLAT, nx=8, span=1.5e-3), "nx = 8 is too small for the head"),
     (dict(head=Cylinder(2 * DEG, transducers=(1e-3,))), r"transducers\[0\] must lie"),
-    (dict(head=FLAT, velocity=0.0), "velocity must be > 0"),
+    (dict(head=FLAT, velocity=0.0), "velocity must be nonzero .*use dry=True"),
+    (dict(head=FLAT, velocity=-90.0), "below the string speed .* in magnitude"),
+    (dict(head=FLAT, velocity=math.nan), "velocity must be finite"),
     (dict(head=FLAT, dry="yes"), "dry must be True or False"),
 ])
 def test_model_refuses_bad_heads_in_one_line(kw, match):
