@@ -155,7 +155,7 @@ def effective_radius(head: Head, params: TapeParameters, velocity: float,
 def corner_grading(roughness: float, spacing: float) -> dict:
     """The corner refinement of a flat or profile head's default grid (the ``Grading``
     fields ``corner_ratio``, ``corner_width``), given the roughness σ (m) and the x-spacing
-    the grid has at the corners without it (m).
+    the grid has far from the corners (m; density 1 of :class:`~.mesh.LineGrading`).
 
     A sharp corner that touches holds the tape at σ at a kink of the head: the spacing
     rises linearly from σ on both sides, h ≈ σ + α|s|, with α the angle between the tape
@@ -165,8 +165,8 @@ def corner_grading(roughness: float, spacing: float) -> dict:
     the land side, 57 nm on a 20° flank), far below the film length R_c ε^(1/3) the grid
     is otherwise sized from. Lengths σ/α over that range are all resolved at the same
     relative resolution by a geometric grid: the spacing grows as :data:`CORNER_GROWTH`
-    times the distance from the corner beyond :data:`CORNER_WIDTH` σ, and joins
-    ``spacing`` where that reaches it."""
+    times the distance from the corner beyond :data:`CORNER_WIDTH` σ, and joins the
+    grid's own spacing where that reaches it."""
     width = CORNER_WIDTH * roughness
     return {"corner_ratio": 1.0 + spacing / (CORNER_GROWTH * width),
             "corner_width": width}
@@ -361,10 +361,13 @@ class BearingModel:
 
     def _corner_grading(self, resolution: float) -> dict:
         """The default corner refinement (``corner_ratio``, ``corner_width``): none on a
-        cylinder or dry; else :func:`corner_grading` from the zone spacing."""
+        cylinder or dry; else :func:`corner_grading` from the spacing far from the
+        corners (the zone spacing times the x-grading's ratio), so that the spacing grows
+        at CORNER_GROWTH times the distance from a corner whatever the sech zones do."""
         if self.cylindrical or self.dry:
             return {"corner_ratio": 1.0, "corner_width": None}
-        return corner_grading(self.air.roughness, self._zone_spacing(resolution))
+        return corner_grading(self.air.roughness,
+                              self._zone_spacing(resolution) * self.grading.x_ratio)
 
     @property
     def x_head(self) -> np.ndarray:
