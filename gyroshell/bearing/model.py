@@ -132,7 +132,7 @@ def foil_length_scales(params: TapeParameters, air: AirParameters, velocity: flo
     and exit length R ε^(1/3) (ε = 6μV/(T − ρV²)) and the bending length √(D/(T − ρV²));
     R is ``radius`` (m; default the tape's radius)."""
     t_eff = params.tension - params.density * velocity**2
-    eps = 6.0 * air.viscosity * velocity / t_eff
+    eps = 6.0 * air.viscosity * abs(velocity) / t_eff
     r = params.radius if radius is None else radius
     return r * eps ** (2 / 3), r * eps ** (1 / 3), math.sqrt(params.D / t_eff)
 
@@ -155,7 +155,7 @@ def effective_radius(head: Head, params: TapeParameters, velocity: float,
 def corner_grading(roughness: float, spacing: float) -> dict:
     """The corner refinement of a flat or profile head's default grid (the ``Grading``
     fields ``corner_ratio``, ``corner_width``), given the roughness σ (m) and the x-spacing
-    the grid has at the corners without it (m).
+    the grid has far from the corners (m; density 1 of :class:`~.mesh.LineGrading`).
 
     A sharp corner that touches holds the tape at σ at a kink of the head: the spacing
     rises linearly from σ on both sides, h ≈ σ + α|s|, with α the angle between the tape
@@ -165,8 +165,8 @@ def corner_grading(roughness: float, spacing: float) -> dict:
     the land side, 57 nm on a 20° flank), far below the film length R_c ε^(1/3) the grid
     is otherwise sized from. Lengths σ/α over that range are all resolved at the same
     relative resolution by a geometric grid: the spacing grows as :data:`CORNER_GROWTH`
-    times the distance from the corner beyond :data:`CORNER_WIDTH` σ, and joins
-    ``spacing`` where that reaches it."""
+    times the distance from the corner beyond :data:`CORNER_WIDTH` σ, and joins the
+    grid's own spacing where that reaches it."""
     width = CORNER_WIDTH * roughness
     return {"corner_ratio": 1.0 + spacing / (CORNER_GROWTH * width),
             "corner_width": width}
@@ -191,11 +191,24 @@ def resolution_length(l_film: float, l_bend: float) -> float:
 
 
 def _check_below_string_speed(params: TapeParameters, velocity: float) -> None:
-    """Raise unless V (m/s) is below the string speed √(T/ρ) (else the tape would not wrap)."""
+    """Raise unless |V| (m/s) is below the string speed √(T/ρ) (else the tape would not
+    wrap)."""
     if params.tension - params.density * velocity**2 <= 0.0:
         raise ParameterError(
             f"velocity must be below the string speed sqrt(T/rho) = "
-            f"{params.string_speed:.6g} m/s (the tape would not wrap), got {velocity:g}")
+            f"{params.string_speed:.6g} m/s in magnitude (the tape would not wrap), got "
+            f"{velocity:g}")
+
+
+def _checked_velocity(velocity, dry: bool) -> float:
+    """V, m/s: a finite real number, nonzero unless ``dry`` (the film needs the tape to
+    move; either direction: negative V moves the tape along −x)."""
+    velocity = validation.real("velocity", velocity, unit="m/s")
+    if velocity == 0.0 and not dry:
+        raise ParameterError("velocity must be nonzero (either sign: the tape moving along "
+                             "+x or -x) for the air film, got 0; use dry=True for the tape "
+                             "at rest")
+    return velocity
 
 
 def _resolved_grading(grading: Grading | str | None, infinitely_wide: bool,
@@ -225,7 +238,10 @@ class BearingModel:
         ``length_ratio`` are not used: the bearing sizes its own grid.
     air : AirParameters
     velocity : float
-        Tape speed V, m/s (> 0, below the string speed √(T/ρ); >= 0 if ``dry``).
+        Tape speed V, m/s: |V| below the string speed √(T/ρ), nonzero unless ``dry``;
+        V > 0 moves the tape along +x (from the head's leading corner, at negative x, to
+        its trailing one), V < 0 along −x (a linear drive reading backwards: the solution
+        over a head at −V is the mirror image of the solution at +V over the mirrored head).
     wrap_angle : float, optional
         Wrap angle θ of the tape on a cylindrical head of the tape's radius R, rad, in
         (0, π/2]: the same as ``head=Cylinder(wrap_angle)``.
@@ -282,8 +298,7 @@ class BearingModel:
         self.air = validation.instance("air", AirParameters() if air is None else air,
                                        AirParameters)
         self.dry = validation.boolean("dry", dry)
-        self.velocity = (validation.nonnegative if self.dry else validation.positive)(
-            "velocity", velocity, "m/s")
+        self.velocity = _checked_velocity(velocity, self.dry)
         self.head = _resolved_head(wrap_angle, head)
         self.cylindrical = isinstance(self.head, Cylinder)
         self.head_radius = (self.head.radius if self.cylindrical and self.head.radius
@@ -346,10 +361,13 @@ class BearingModel:
 
     def _corner_grading(self, resolution: float) -> dict:
         """The default corner refinement (``corner_ratio``, ``corner_width``): none on a
-        cylinder or dry; else :func:`corner_grading` from the zone spacing."""
+        cylinder or dry; else :func:`corner_grading` from the spacing far from the
+        corners (the zone spacing times the x-grading's ratio), so that the spacing grows
+        at CORNER_GROWTH times the distance from a corner whatever the sech zones do."""
         if self.cylindrical or self.dry:
             return {"corner_ratio": 1.0, "corner_width": None}
-        return corner_grading(self.air.roughness, self._zone_spacing(resolution))
+        return corner_grading(self.air.roughness,
+                              self._zone_spacing(resolution) * self.grading.x_ratio)
 
     @property
     def x_head(self) -> np.ndarray:
@@ -485,7 +503,7 @@ class BearingModel:
             return (f"the bending length sqrt(D/(T - rho V^2)) = {resolution:.3g} m is short "
                     f"against the {wrap:.3g} m wrap: {need}; set nx (and a grading)")
         return (f"velocity {self.velocity:g} m/s gives a film only {l_film:.3g} m long: "
-                f"{need}; use a higher velocity (the tape is then in contact with the head "
+                f"{need}; use a higher speed |V| (the tape is then in contact with the head "
                 "anyway) or set nx")
 
     def _y_count(self, ny: int | None, y_line) -> int:
@@ -549,9 +567,12 @@ class BearingModel:
         turns = dict(zip(self.head.corners(self.head_radius),
                          self.head.corner_turns(self.head_radius), strict=True))
         for c in self.head.sharp_corners(self.head_radius):
+            turn = turns.get(c, self.wrap_angle)
+            if not self.dry and turn < CORNER_FRACTION * self.wrap_angle:
+                continue     # its point load is small: the film carries it (measured)
             i = int(np.argmin(np.abs(inner - c)))
             if not self.dry:   # the film's constriction: h rising from σ at the tape's slope
-                reach = (h0 - sigma) / (START_SLOPE * turns.get(c, self.wrap_angle))
+                reach = (h0 - sigma) / (START_SLOPE * turn)
                 taper = sigma + (h0 - sigma) * -np.expm1(-np.abs(inner - c) / reach)
                 U = np.minimum(U, taper[:, None])
             U[i, :] = sigma - self.dry_field[i + 1, :]

@@ -29,10 +29,11 @@ from .results import BearingSolution, NewtonInfo
 
 #: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
 STEP_TOLERANCE = 1e-8
-#: Full steps below this relative size that no longer shrink by ROUND_OFF_STALL are
-#: round-off (quadratic convergence would have cut them to far below): converged.
-ROUND_OFF_STEP = 1e-5
-ROUND_OFF_STALL = 0.5
+#: A full step below this relative size and within ROUND_OFF_MULTIPLE of the step that
+#: the residual's round-off alone produces (:func:`_noise_step`) has converged: the state
+#: is at its round-off floor.
+ROUND_OFF_STEP = 1e-4
+ROUND_OFF_MULTIPLE = 10.0
 #: Most Newton iterations per solve.
 MAX_ITERATIONS = 60
 #: A step may shrink p to no less than this fraction of its value (compressible film).
@@ -117,7 +118,7 @@ class _Residual:
         self.h_scale = max(model.h_guess, self.sigma)
         film = model.film
         # the Couette flux through each pressure node's x-face (its control width across)
-        flux = (6.0 * model.air.viscosity * model.velocity * self.h_scale
+        flux = (6.0 * model.air.viscosity * abs(model.velocity) * self.h_scale
                 * film.x_face_length[np.nonzero(film.interior)[1]])
         if model.air.compressible:
             flux *= model.air.ambient_pressure
@@ -141,8 +142,9 @@ class _Residual:
         tape = self._abs_tape_rows @ np.concatenate([np.abs(u), np.abs(p - pa)]) \
             + self._abs_loads
         film = abs(J_pp) @ np.abs(p)
-        return float(np.finfo(float).eps
-                     * np.linalg.norm(np.concatenate([tape, film]) * self.row_scale))
+        #: the round-off of each row (its units), for the step's floor (:func:`_noise_step`)
+        self.noise_rows = np.finfo(float).eps * np.concatenate([tape, film])
+        return float(np.linalg.norm(self.noise_rows * self.row_scale))
 
     def tape(self, u, p):
         r_u = self.model.tape_residual(u, p, self.K, self.tension)
@@ -273,14 +275,14 @@ def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
     return retry
 
 
-def _at_round_off(steps: list, merit: float, noise: float) -> bool:
-    """Whether Newton has reached the state's round-off floor above the step tolerance:
-    full steps below ROUND_OFF_STEP that no longer shrink (the last above ROUND_OFF_STALL
-    times the one before; quadratic convergence would cut them far below) with the merit
-    within NOISE_MULTIPLE of its floor. A grid refined far below the bending length at a
-    corner (the plate's fourth difference scales like h⁻⁴) puts that floor there."""
-    return (len(steps) >= 2 and steps[-1] < ROUND_OFF_STEP
-            and steps[-1] > ROUND_OFF_STALL * steps[-2] and merit < NOISE_MULTIPLE * noise)
+def _noise_step(F: _Residual, solver) -> float:
+    """The relative size of the Newton step that the residual's round-off alone produces
+    (the rows' round-off :attr:`_Residual.noise_rows` with fixed pseudo-random signs,
+    through the step's factorization): the floor below which steps cannot shrink. On a
+    grid refined far below the bending length at a corner (the plate's fourth difference
+    scales like h⁻⁴) it may lie above the step tolerance."""
+    signs = np.random.default_rng(0).choice((-1.0, 1.0), size=F.noise_rows.size)
+    return _norm(solver(signs * F.noise_rows), F.model.n_u, F)
 
 
 def _record(info: NewtonInfo, step: float, merit: float, contacts: int) -> None:
@@ -323,6 +325,8 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         dz = _newton_direction(F, it)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
+        floor = (ROUND_OFF_MULTIPLE * _noise_step(F, it.solver)
+                 if _norm(dz, n_u, F) < ROUND_OFF_STEP else 0.0)
         found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol, F.noise)
         alpha, step, it.z, _ = _forced_contact_step(F, it, h, dz, found, tol)
         it.last_step = step
@@ -335,8 +339,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
                 f"residual {it.merit:.2e}, {contacts} nodes in contact")
         it.settled = np.array_equal(active_new, it.active)
         it.active = active_new
-        if alpha == 1.0 and it.settled and (
-                step < tol or _at_round_off(info.step_norms, it.merit, F.noise)):
+        if alpha == 1.0 and it.settled and step < max(tol, floor):
             lam = np.where(it.active, F.tape(it.z[:n_u], it.z[n_u:]), 0.0)
             return it.z, lam, it.active, info
         merits.append(it.merit)
@@ -633,7 +636,7 @@ def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | No
     Returns (z, λ, info). Raises ConvergenceError if the march does not get there.
     """
     info = NewtonInfo() if info is None else info
-    transit = 1.0 if model.dry else model.film_length / model.velocity
+    transit = 1.0 if model.dry else model.film_length / abs(model.velocity)
     z, s, finish = np.array(z0, dtype=float), PSEUDO_START, PSEUDO_FINISH
     for _ in range(PSEUDO_MAX_STEPS):
         if s >= finish:
@@ -666,7 +669,7 @@ def _continuation_stages(model: BearingModel) -> list[BearingModel]:
     ``model`` itself; speeds at which the model cannot be built (above the string speed,
     or a film too long for the given span) are left out."""
     speeds, v = [], model.velocity * CONTINUATION_START
-    while v > model.velocity:
+    while abs(v) > abs(model.velocity):      # either direction: |V| comes down
         speeds.append(v)
         v *= CONTINUATION_FACTOR
     stages = []

@@ -140,7 +140,9 @@ def test_march_from_a_flat_head_steady_state_stays_there():
     (dict(head="flat"), "head must be a Head"),
     (dict(head=FLAT, nx=8, span=1.5e-3), "nx = 8 is too small for the head"),
     (dict(head=Cylinder(2 * DEG, transducers=(1e-3,))), r"transducers\[0\] must lie"),
-    (dict(head=FLAT, velocity=0.0), "velocity must be > 0"),
+    (dict(head=FLAT, velocity=0.0), "velocity must be nonzero .*use dry=True"),
+    (dict(head=FLAT, velocity=-90.0), "below the string speed .* in magnitude"),
+    (dict(head=FLAT, velocity=math.nan), "velocity must be finite"),
     (dict(head=FLAT, dry="yes"), "dry must be True or False"),
 ])
 def test_model_refuses_bad_heads_in_one_line(kw, match):
@@ -148,15 +150,3 @@ def test_model_refuses_bad_heads_in_one_line(kw, match):
     with pytest.raises(ParameterError, match=match) as err:
         BearingModel(TAPE, AIR, **kw)
     assert "\n" not in str(err.value)
-
-
-@pytest.mark.slow
-def test_full_width_tape_over_a_flat_module_on_the_default_grid():
-    """12.65 mm tape, default (graded) grid: converges; the middle of the width is within
-    a few % of the infinitely wide tape at the transducer; the film stays positive."""
-    sol = solve_steady(BearingModel(TAPE.replace(width=12.65e-3), AIR, velocity=4.0,
-                                    head=FLAT))
-    strip = solve_steady(_flying())
-    mid = sol.spacing[int(np.flatnonzero(sol.x == 0.0)[0]), sol.model.ny // 2]
-    assert mid == pytest.approx(strip.central_spacing, rel=0.05)
-    assert sol.pressure.min() > 0.0 and sol.contact_force > 0.0
