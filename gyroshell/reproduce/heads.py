@@ -15,8 +15,8 @@ over the two wrap angles. The paper's Table 1 tape, air at 20 °C.
     default grid, computed as a head study
     (:func:`gyroshell.studies.parameter_study.run_study`, ``compute="bearing"``).
 
-The full run took 201 s on 2 shared cores at load 3–4 (the three 2-D solves of (b) take
-most of it), ``--quick`` about 15 s.
+The full run took 290 s on 2 cores shared with two other solves (the three 2-D solves of
+(b) take nearly all of it), ``--quick`` about 15 s.
 """
 
 from __future__ import annotations
