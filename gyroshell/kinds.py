@@ -59,7 +59,8 @@ def _bearing_attrs(ds) -> None:
     _keys_of("attribute air", AirParameters, attrs["air"])
     _keys_of("attribute info", NewtonInfo, attrs["info"])
     model = attrs["model"]
-    settings = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny", "grading")
+    settings = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny", "grading",
+                "head", "dry")
     if not isinstance(model, dict) or set(model) - set(settings):
         raise ParameterError(f"attribute model must be a JSON object of {', '.join(settings)}")
     if "grading" in model:

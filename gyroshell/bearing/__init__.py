@@ -19,6 +19,8 @@ _LAZY = {
     "BearingSolution": "results", "NewtonInfo": "results", "solve_steady": "steady",
     "BearingTransient": "results", "march": "transient", "tension_harmonic": "transient",
     "tension_step": "transient", "Grading": "mesh", "save": "storage", "load": "storage",
+    "Cylinder": "head", "FlatHead": "head", "Module": "head", "ProfileHead": "head",
+    "head_from_dict": "head",
 }
 
 __all__ = sorted(_LAZY)

@@ -277,3 +277,19 @@ class Film:
         J_h = pat["jh"].copy()
         J_h.data = np.bincount(pat["map_h"], weights=dh, minlength=J_h.nnz)
         return r, J_p, J_h
+
+
+class DryFilm(Film):
+    """No air film (a dry contact): the pressure is p_a at every node. Its rows are the
+    equations p − p_a = 0 (Pa), so the coupled model keeps its [u, p] unknowns and the
+    tape carries only its contact with the head."""
+
+    def residual(self, P: np.ndarray, H: np.ndarray, *, phi_old: np.ndarray | None = None,
+                 dt: float | None = None, jacobian: bool = True):
+        """p − p_a at the pressure unknowns (Pa); ∂/∂p the identity, ∂/∂h zero."""
+        r = (P - self.air.ambient_pressure)[self.interior]
+        if not jacobian:
+            return r, None, None
+        n_nodes = (self.nx + 1) * self.nc
+        return (r, sp.identity(self.size, format="csr"),
+                sp.csr_matrix((self.size, n_nodes)))

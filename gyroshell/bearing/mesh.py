@@ -36,32 +36,56 @@ def _gd(z):
 @dataclass(frozen=True)
 class LineGrading:
     """Refinement of one line towards ``centres`` (m): ``ratio`` (>= 1) times finer there
-    than far away, over zones of width ``width`` (m)."""
+    than far away, over zones of width ``width`` (m); and, if ``corner_ratio`` > 1, an
+    algebraic refinement towards the same centres, ``corner_ratio`` times finer still at
+    them, whose spacing grows in proportion to the distance s from the centre beyond
+    ``corner_width`` (m): the density term (corner_ratio − 1)/√(1 + (s/corner_width)²),
+    analytic, integrating to an asinh (a geometric grid about each centre, so resolving a
+    length scale far below the zone's width costs only a logarithm of their ratio)."""
 
     ratio: float
     width: float
     centres: tuple[float, ...]
+    corner_ratio: float = 1.0
+    corner_width: float = 0.0
+
+    @property
+    def graded(self) -> bool:
+        """Whether the line is graded at all (else its nodes are uniform)."""
+        return self.ratio != 1.0 or self.corner_ratio != 1.0
 
     def density(self, t: np.ndarray) -> np.ndarray:
         t = np.asarray(t, dtype=float)
         g = np.ones_like(t)
         for c in self.centres:
-            g = g + (self.ratio - 1.0) * _sech((t - c) / self.width)
+            if self.ratio != 1.0:
+                g = g + (self.ratio - 1.0) * _sech((t - c) / self.width)
+            if self.corner_ratio != 1.0:
+                g = g + (self.corner_ratio - 1.0) / np.hypot(1.0, (t - c) / self.corner_width)
         return g
 
     def cumulative(self, t: np.ndarray) -> np.ndarray:
         t = np.asarray(t, dtype=float)
         s = t.copy()
         for c in self.centres:
-            s = s + (self.ratio - 1.0) * self.width * (_gd((t - c) / self.width)
-                                                       - _gd(-c / self.width))
+            if self.ratio != 1.0:
+                s = s + (self.ratio - 1.0) * self.width * (_gd((t - c) / self.width)
+                                                           - _gd(-c / self.width))
+            if self.corner_ratio != 1.0:
+                w = self.corner_width
+                s = s + (self.corner_ratio - 1.0) * w * (np.arcsinh((t - c) / w)
+                                                         - np.arcsinh(-c / w))
         return s
+
+
+def _graded(grading: LineGrading | None) -> bool:
+    return grading is not None and grading.graded
 
 
 def line_nodes(length: float, n: int, grading: LineGrading | None = None) -> np.ndarray:
     """n + 1 node coordinates on [0, length] (m): uniform, or equally spaced in the
     graded coordinate S (see the module notes); exact to round-off, ends exact."""
-    if grading is None or grading.ratio == 1.0:
+    if not _graded(grading):
         return np.linspace(0.0, length, n + 1)
     total = float(grading.cumulative(length))
     s = np.linspace(0.0, total, n + 1)
@@ -84,6 +108,59 @@ def symmetric_line_nodes(length: float, n: int, grading: LineGrading | None = No
     return t
 
 
+def _inverse(grading: LineGrading | None, s: np.ndarray, lo: float, hi: float) -> np.ndarray:
+    """t in [lo, hi] with S(t) = s (S the grading's cumulative; the identity if None)."""
+    if not _graded(grading):
+        return s.copy()
+    n = max(len(s), 2)
+    dense = np.linspace(lo, hi, 64 * n + 1)
+    t = np.interp(s, grading.cumulative(dense), dense)
+    for _ in range(4):                                          # Newton: S' = g >= 1
+        t = t - (grading.cumulative(t) - s) / grading.density(t)
+    return np.clip(t, lo, hi)
+
+
+def piecewise_line_nodes(length: float, n: int, grading: LineGrading | None,
+                         breaks: tuple[float, ...], *, fewest: int = 2) -> np.ndarray:
+    """n + 1 node coordinates on [0, length] (m) with a node exactly on every break (m,
+    inside the line): the nodes of :func:`line_nodes`, moved so that the k-th break is the
+    node nearest to it in the graded coordinate S. Between breaks the nodes are at equal
+    steps of S, so the spacing stays smooth: at a break it changes by a factor
+    1 + O(1/n), i.e. h_{i+1} − h_i = O(h²) as before. Mirror-symmetric breaks and grading
+    give exactly mirror-symmetric nodes.
+
+    Raises
+    ------
+    ValueError
+        If ``n`` leaves fewer than ``fewest`` intervals between two breaks.
+    """
+    knots = np.unique(np.clip(np.asarray(breaks, dtype=float), 0.0, length))
+    knots = knots[(knots > 0.0) & (knots < length)]
+    if len(knots) == 0:
+        return symmetric_line_nodes(length, n, grading)
+    cum = grading.cumulative if _graded(grading) else (lambda t: np.asarray(t, float))
+    edges = np.concatenate([[0.0], knots, [length]])
+    S = cum(edges)
+    index = np.rint(n * (S - S[0]) / (S[-1] - S[0])).astype(int)
+    index[0], index[-1] = 0, n
+    counts = np.diff(index)
+    if counts.min() < fewest:
+        raise ValueError(f"{n} intervals leave {counts.min()} between two of the head's "
+                         f"corners, fewer than {fewest}")
+    t = np.empty(n + 1)
+    for k in range(len(edges) - 1):
+        s = np.linspace(S[k], S[k + 1], counts[k] + 1)
+        t[index[k]:index[k + 1] + 1] = _inverse(grading, s, edges[k], edges[k + 1])
+        t[index[k]], t[index[k + 1]] = edges[k], edges[k + 1]
+    mirror = length - t[::-1]
+    if np.allclose(t, mirror, rtol=0, atol=1e-9 * length / n):
+        t = 0.5 * (t + mirror)
+        t[index] = edges      # the breaks exact again (mirror-symmetric to round-off)
+        if n % 2 == 0:
+            t[n // 2] = 0.5 * length if not np.isin(n // 2, index[1:-1]) else t[n // 2]
+    return t
+
+
 @dataclass(frozen=True)
 class Grading:
     """How a 2-D bearing grid is graded.
@@ -101,28 +178,44 @@ class Grading:
     y_width : float
         Width δ of the refined zone at each edge, m (the free-edge layer is about 0.5 mm
         wide on the Table 1 tape).
+    corner_ratio : float or None
+        Spacing far from the corners over the spacing at them of the algebraic corner
+        refinement (>= 1; 1: none), on top of the x-grading (:class:`LineGrading`): the
+        spacing grows in proportion to the distance from each corner, so it resolves the
+        film's constriction where a corner touches. None: the model's default (none on a
+        cylinder; on a flat or profile head flying on its film see
+        :func:`gyroshell.bearing.model.corner_grading`).
+    corner_width : float or None
+        Distance from a corner (m) beyond which that spacing grows in proportion to it
+        (None: the model's default).
     """
 
     x_ratio: float = 1.0
     x_width: float | None = None
     y_ratio: float = 1.0
     y_width: float = 0.5e-3
+    corner_ratio: float | None = None
+    corner_width: float | None = None
 
     def __post_init__(self) -> None:
-        for name in ("x_ratio", "y_ratio"):
-            validation.real(name, getattr(self, name), low=1.0)
-        for name in ("x_width", "y_width"):
+        for name in ("x_ratio", "y_ratio", "corner_ratio"):
+            if getattr(self, name) is not None or name != "corner_ratio":
+                validation.real(name, getattr(self, name), low=1.0)
+        for name in ("x_width", "y_width", "corner_width"):
             if getattr(self, name) is not None or name == "y_width":
                 validation.positive(name, getattr(self, name), "m")
 
     @property
     def uniform(self) -> bool:
-        return self.x_ratio == 1.0 and self.y_ratio == 1.0
+        return (self.x_ratio == 1.0 and self.y_ratio == 1.0
+                and self.corner_ratio in (None, 1.0))
 
     def x_line(self, length: float, corners: tuple[float, float]) -> LineGrading | None:
-        if self.x_ratio == 1.0:
+        corner = self.corner_ratio or 1.0
+        if self.x_ratio == 1.0 and corner == 1.0:
             return None
-        return LineGrading(float(self.x_ratio), float(self.x_width), tuple(corners))
+        return LineGrading(float(self.x_ratio), float(self.x_width or 0.0), tuple(corners),
+                           float(corner), float(self.corner_width or 0.0))
 
     def y_line(self, width: float) -> LineGrading | None:
         if self.y_ratio == 1.0:
@@ -131,7 +224,8 @@ class Grading:
 
     def as_dict(self) -> dict:
         return {"x_ratio": self.x_ratio, "x_width": self.x_width, "y_ratio": self.y_ratio,
-                "y_width": self.y_width}
+                "y_width": self.y_width, "corner_ratio": self.corner_ratio,
+                "corner_width": self.corner_width}
 
 
 #: No grading: uniform spacing each way.
@@ -140,11 +234,13 @@ UNIFORM = Grading()
 
 def intervals_for(length: float, finest: float, grading: LineGrading | None) -> int:
     """Number of intervals, a multiple of 4 (the grid twice as coarse is then nested and
-    has a middle node), putting the finest spacing (at the refinement centres) at about
+    has a middle node), putting the finest spacing of the sech zones (at the refinement
+    centres, without an algebraic corner term, which refines further within) at about
     ``finest`` (m)."""
     if grading is None:
         n = length / finest
-    else:
-        peak = float(np.max(grading.density(np.array(grading.centres))))
+    else:   # the finest spacing of the sech zones (the corner term refines within them)
+        zones = LineGrading(grading.ratio, grading.width, grading.centres)
+        peak = float(np.max(zones.density(np.array(grading.centres))))
         n = float(grading.cumulative(length)) / (finest * peak)
     return max(4, 4 * round(0.25 * n))

@@ -26,9 +26,15 @@ from ..core.errors import ParameterError
 from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
 from .air import AIR_VISCOSITY, AirParameters
-from .film import Film
-from .geometry import check_wrap_angle, dry_curvature, dry_gap
-from .mesh import UNIFORM, Grading, intervals_for, symmetric_line_nodes
+from .film import DryFilm, Film
+from .head import CORNER_FRACTION, Cylinder, Head
+from .mesh import (
+    UNIFORM,
+    Grading,
+    intervals_for,
+    piecewise_line_nodes,
+    symmetric_line_nodes,
+)
 from .tape import PlateOperators, StripOperators
 
 #: Spans outside the wrap, in units of the larger of the film and bending lengths
@@ -85,22 +91,96 @@ Y_EDGE_SPACING = 12e-6
 X_GRADING_WIDTH = 1.5
 #: Fewest intervals along x.
 MIN_INTERVALS_ALONG = 8
+#: Longest span of a flat or profile head, m (its spans are straight: no shallow-shell
+#: limit; a sanity bound on the domain).
+MAX_SPAN_FLAT = 0.1
+#: The default grid of a flat or profile head resolves its shortest land, gap or wrapped
+#: corner arc with at least this fraction of the resolution length ...
+FEATURE_RESOLUTION = 0.5
+#: ... and leaves at least this many intervals between two sharp corners.
+FEWEST_BETWEEN_CORNERS = 4
+#: The default grid of a flat or profile head flying on its film refines towards every
+#: corner geometrically (:func:`corner_grading`): spacing CORNER_GROWTH times the distance
+#: from the corner beyond CORNER_WIDTH roughnesses. Measured (1 mm land, 2°/2°, Table 1
+#: tape, 4 m/s, 1-D, against Richardson on 2 and 4 times finer grids): the spacing at
+#: x = 0 within 0.21 % (growth 0.25, width 5 σ; 806 intervals, 0.04 s), 0.10 % at growth
+#: 0.125, 0.85 % at 0.5; the width matters only logarithmically (0.17-0.66 % for 2.5-25 σ).
+CORNER_GROWTH = 0.25
+CORNER_WIDTH = 5.0
 #: Classical flexible-foil constant, used only to size the domain and guess a start.
 _FOIL_GUESS = 0.64
+#: Newton's start over a flat or profile head: this fraction of the foil spacing scale
+#: R_c ε^(2/3) at its sharpest corner (the sub-ambient flat pulls the tape far below it;
+#: measured on single modules, 0.3-3 mm, 0.5-4°, 1-8 m/s: 7-13 iterations from 0.1,
+#: 20-100 from the foil spacing itself) ...
+FLAT_START = 0.1
+#: ... and, dry, this fraction of the tent scale θ ℓ_bend; the sharp corners start at σ,
+#: and (at speed) the spacing next to them rises from σ at this fraction of the corner's
+#: turn: the tape's slope over the land at a touching corner (measured: 0.16 of the
+#: 2° turn of a 1 mm land at 4 m/s; the start need only have the constriction's shape).
+DRY_START = 0.25
+START_SLOPE = 0.25
 
 
 class BearingGridWarning(UserWarning):
     """The grid is coarse enough that the result may be off (the message says by how much)."""
 
 
-def foil_length_scales(params: TapeParameters, air: AirParameters, velocity: float
-                       ) -> tuple[float, float, float]:
+def foil_length_scales(params: TapeParameters, air: AirParameters, velocity: float,
+                       radius: float | None = None) -> tuple[float, float, float]:
     """(h_foil, ℓ_film, ℓ_bend), m: the flexible-foil spacing scale R ε^(2/3), the entrance
-    and exit length R ε^(1/3) (ε = 6μV/(T − ρV²)) and the bending length √(D/(T − ρV²))."""
+    and exit length R ε^(1/3) (ε = 6μV/(T − ρV²)) and the bending length √(D/(T − ρV²));
+    R is ``radius`` (m; default the tape's radius)."""
     t_eff = params.tension - params.density * velocity**2
-    eps = 6.0 * air.viscosity * velocity / t_eff
-    r = params.radius
+    eps = 6.0 * air.viscosity * abs(velocity) / t_eff
+    r = params.radius if radius is None else radius
     return r * eps ** (2 / 3), r * eps ** (1 / 3), math.sqrt(params.D / t_eff)
+
+
+def effective_radius(head: Head, params: TapeParameters, velocity: float,
+                     radius: float) -> float:
+    """The radius R_c the tape bends to at the head's sharpest corner, m, sizing its film:
+    the cylinder's radius; for other heads the smallest over corners turning by at least
+    5 % of the wrap of max(r_c, ℓ_bend/θ_c) (a sharp corner is rounded by bending over the
+    bending length ℓ_bend = √(D/(T − ρV²)))."""
+    if isinstance(head, Cylinder):
+        return radius
+    l_bend = math.sqrt(params.D / (params.tension - params.density * velocity**2))
+    radii = [max(r, l_bend / t) for r, t in zip(head.corner_radii(radius),
+                                               head.corner_turns(radius), strict=True)
+             if t >= CORNER_FRACTION * head.wrap]
+    return float(min(radii))
+
+
+def corner_grading(roughness: float, spacing: float) -> dict:
+    """The corner refinement of a flat or profile head's default grid (the ``Grading``
+    fields ``corner_ratio``, ``corner_width``), given the roughness σ (m) and the x-spacing
+    the grid has far from the corners (m; density 1 of :class:`~.mesh.LineGrading`).
+
+    A sharp corner that touches holds the tape at σ at a kink of the head: the spacing
+    rises linearly from σ on both sides, h ≈ σ + α|s|, with α the angle between the tape
+    and the head (the tape's slope over the land, 0.16 of the corner's turn on a 1 mm land
+    at 4 m/s, and the flank angle minus it on the flank): the film's constriction, which
+    meters the flow onto the land and so sets the spacing over it, is σ/α long (3.6 µm on
+    the land side, 57 nm on a 20° flank), far below the film length R_c ε^(1/3) the grid
+    is otherwise sized from. Lengths σ/α over that range are all resolved at the same
+    relative resolution by a geometric grid: the spacing grows as :data:`CORNER_GROWTH`
+    times the distance from the corner beyond :data:`CORNER_WIDTH` σ, and joins the
+    grid's own spacing where that reaches it."""
+    width = CORNER_WIDTH * roughness
+    return {"corner_ratio": 1.0 + spacing / (CORNER_GROWTH * width),
+            "corner_width": width}
+
+
+def _resolved_head(wrap_angle, head) -> Head:
+    """The head from the constructor's ``wrap_angle`` / ``head`` (exactly one)."""
+    if (wrap_angle is None) == (head is None):
+        raise ParameterError("give exactly one of wrap_angle (rad, a cylinder of the tape's "
+                             f"radius) and head (a Cylinder, FlatHead or ProfileHead), got "
+                             f"wrap_angle={wrap_angle!r} and head={type(head).__name__}")
+    if head is None:
+        return Cylinder(wrap_angle)
+    return validation.instance("head", head, Head)
 
 
 def resolution_length(l_film: float, l_bend: float) -> float:
@@ -111,11 +191,24 @@ def resolution_length(l_film: float, l_bend: float) -> float:
 
 
 def _check_below_string_speed(params: TapeParameters, velocity: float) -> None:
-    """Raise unless V (m/s) is below the string speed √(T/ρ) (else the tape would not wrap)."""
+    """Raise unless |V| (m/s) is below the string speed √(T/ρ) (else the tape would not
+    wrap)."""
     if params.tension - params.density * velocity**2 <= 0.0:
         raise ParameterError(
             f"velocity must be below the string speed sqrt(T/rho) = "
-            f"{params.string_speed:.6g} m/s (the tape would not wrap), got {velocity:g}")
+            f"{params.string_speed:.6g} m/s in magnitude (the tape would not wrap), got "
+            f"{velocity:g}")
+
+
+def _checked_velocity(velocity, dry: bool) -> float:
+    """V, m/s: a finite real number, nonzero unless ``dry`` (the film needs the tape to
+    move; either direction: negative V moves the tape along −x)."""
+    velocity = validation.real("velocity", velocity, unit="m/s")
+    if velocity == 0.0 and not dry:
+        raise ParameterError("velocity must be nonzero (either sign: the tape moving along "
+                             "+x or -x) for the air film, got 0; use dry=True for the tape "
+                             "at rest")
+    return velocity
 
 
 def _resolved_grading(grading: Grading | str | None, infinitely_wide: bool,
@@ -127,7 +220,7 @@ def _resolved_grading(grading: Grading | str | None, infinitely_wide: bool,
     elif isinstance(grading, str):
         if grading != "uniform":
             raise ParameterError(f"grading must be a Grading or 'uniform', got {grading!r}")
-        grading = UNIFORM
+        grading = replace(UNIFORM, corner_ratio=1.0)
     elif not isinstance(grading, Grading):
         raise ParameterError(f"grading must be a Grading or 'uniform', got {grading!r}")
     if grading.x_width is None:
@@ -136,7 +229,7 @@ def _resolved_grading(grading: Grading | str | None, infinitely_wide: bool,
 
 
 class BearingModel:
-    """A tape flying over a cylindrical head on its self-generated air film.
+    """A tape flying over a head on its self-generated air film.
 
     Parameters
     ----------
@@ -145,9 +238,17 @@ class BearingModel:
         ``length_ratio`` are not used: the bearing sizes its own grid.
     air : AirParameters
     velocity : float
-        Tape speed V, m/s (> 0, below the string speed √(T/ρ)).
-    wrap_angle : float
-        Wrap angle θ of the tape on the head, rad, in (0, π/2].
+        Tape speed V, m/s: |V| below the string speed √(T/ρ), nonzero unless ``dry``;
+        V > 0 moves the tape along +x (from the head's leading corner, at negative x, to
+        its trailing one), V < 0 along −x (a linear drive reading backwards: the solution
+        over a head at −V is the mirror image of the solution at +V over the mirrored head).
+    wrap_angle : float, optional
+        Wrap angle θ of the tape on a cylindrical head of the tape's radius R, rad, in
+        (0, π/2]: the same as ``head=Cylinder(wrap_angle)``.
+    head : Head, optional
+        The head (:mod:`gyroshell.bearing.head`): a Cylinder, FlatHead or ProfileHead;
+        exactly one of ``wrap_angle`` and ``head``. The domain is [x_first − span,
+        x_last + span] in head coordinates (``head.extent``).
     infinitely_wide : bool
         Infinitely wide tape (1-D, per unit width) instead of the free-edged 2-D tape.
     span : float, optional
@@ -171,6 +272,12 @@ class BearingModel:
         2-D tape's grid is graded towards the free edges and the wrap corners
         (:data:`DEFAULT_GRADING`), the infinitely wide tape's is uniform. ``"uniform"``:
         uniform each way. A grading given to an infinitely wide tape grades its x-grid.
+        Every corner is a refinement centre, and a flat or profile head's grid has a node
+        exactly on every sharp corner.
+    dry : bool
+        No air film (p = p_a; the tape and its contact with the head only): the dry
+        string and plate over the head, corner forces at rest (V may be 0; it enters only
+        through T − ρV²).
 
     Raises
     ------
@@ -183,45 +290,112 @@ class BearingModel:
     """
 
     def __init__(self, params: TapeParameters, air: AirParameters | None = None, *,
-                 velocity: float, wrap_angle: float, infinitely_wide: bool = False,
-                 span: float | None = None, nx: int | None = None, ny: int | None = None,
-                 grading: Grading | str | None = None) -> None:
+                 velocity: float, wrap_angle: float | None = None, head: Head | None = None,
+                 infinitely_wide: bool = False, span: float | None = None,
+                 nx: int | None = None, ny: int | None = None,
+                 grading: Grading | str | None = None, dry: bool = False) -> None:
         self.params = validation.instance("params", params, TapeParameters)
         self.air = validation.instance("air", AirParameters() if air is None else air,
                                        AirParameters)
-        self.velocity = validation.positive("velocity", velocity, "m/s")
-        self.wrap_angle = check_wrap_angle(wrap_angle)
+        self.dry = validation.boolean("dry", dry)
+        self.velocity = _checked_velocity(velocity, self.dry)
+        self.head = _resolved_head(wrap_angle, head)
+        self.cylindrical = isinstance(self.head, Cylinder)
+        self.head_radius = (self.head.radius if self.cylindrical and self.head.radius
+                            else params.radius)
+        self.head.check(self.head_radius)
+        self.wrap_angle = self.head.wrap
         self.infinitely_wide = validation.boolean("infinitely_wide", infinitely_wide)
         _check_below_string_speed(params, self.velocity)
-        h_foil, l_film, l_bend = foil_length_scales(params, self.air, self.velocity)
+        self.scale_radius = effective_radius(self.head, params, self.velocity,
+                                             self.head_radius)
+        h_foil, l_film, l_bend = foil_length_scales(params, self.air, self.velocity,
+                                                    self.scale_radius)
+        if self.dry:
+            h_foil, l_film = 0.0, 0.0
+        self.film_length, self.bending_length = l_film, l_bend
         self.h_guess = _FOIL_GUESS * h_foil
         self.span = self._checked_span(span, l_film, l_bend)
-        self.length = params.radius * self.wrap_angle + 2.0 * self.span
+        x_first, x_last = self.head.extent(self.head_radius)
+        self.length = ((self.head_radius * self.wrap_angle if self.cylindrical
+                        else x_last - x_first) + 2.0 * self.span)
         self.grading = _resolved_grading(grading, self.infinitely_wide,
                                          X_GRADING_WIDTH * max(l_film, l_bend))
-        x_line = self._x_count(nx, l_film, resolution_length(l_film, l_bend),
-                               span is not None)
+        resolution = self._resolution(l_film, l_bend)
+        if self.grading.corner_ratio is None:
+            self.grading = replace(self.grading, **self._corner_grading(resolution))
+        x_line = self._x_count(nx, l_film, resolution, span is not None)
         if self.infinitely_wide and ny is not None:
             raise ParameterError(f"ny applies to the 2-D tape only: leave it None with "
                                  f"infinitely_wide=True, got {ny!r}")
         y_line = None if self.infinitely_wide else self.grading.y_line(params.width)
         ny = None if self.infinitely_wide else self._y_count(ny, y_line)
         budget.check_steady(self.nx, ny)          # before any array of the grid's size
-        self.x = symmetric_line_nodes(self.length, self.nx, x_line)
+        self.x = self._x_nodes(x_line)
         self._check_film_resolved(l_film, x_line)
+        tape_params = (params if self.cylindrical else params.replace(
+            foundation_stiffness=self.head.foundation_stiffness(params)))
         if self.infinitely_wide:
             self.ny, self.y, self.nc = None, None, 1
-            self.tape = StripOperators(params, self.x)
+            self.tape = StripOperators(tape_params, self.x)
         else:
             self._build_y_line(ny, y_line)
-            self.tape = PlateOperators(params, self.x, self.y)
+            self.tape = PlateOperators(tape_params, self.x, self.y)
         self._couple_film_and_loads()
+
+    def _resolution(self, l_film: float, l_bend: float) -> float:
+        """The length the default x-grid resolves, m (:func:`resolution_length`; dry: the
+        bending length; a flat or profile head also its shortest feature)."""
+        length = l_bend if self.dry else resolution_length(l_film, l_bend)
+        if not self.cylindrical:
+            length = min(length, FEATURE_RESOLUTION
+                         * self.head.shortest_feature(self.head_radius))
+        return length
+
+    def _zone_spacing(self, resolution: float) -> float:
+        """The default x-spacing at the corners without the corner term, m: the
+        resolution length over 12 (1-D uniform), 6 (2-D uniform) or 15 (graded)."""
+        if self.grading.x_ratio != 1.0:
+            return X_RESOLUTION_GRADED * resolution
+        return (X_RESOLUTION if self.infinitely_wide else X_RESOLUTION_2D) * resolution
+
+    def _corner_grading(self, resolution: float) -> dict:
+        """The default corner refinement (``corner_ratio``, ``corner_width``): none on a
+        cylinder or dry; else :func:`corner_grading` from the spacing far from the
+        corners (the zone spacing times the x-grading's ratio), so that the spacing grows
+        at CORNER_GROWTH times the distance from a corner whatever the sech zones do."""
+        if self.cylindrical or self.dry:
+            return {"corner_ratio": 1.0, "corner_width": None}
+        return corner_grading(self.air.roughness,
+                              self._zone_spacing(resolution) * self.grading.x_ratio)
+
+    @property
+    def x_head(self) -> np.ndarray:
+        """The node abscissae in head coordinates, m (from the head's middle)."""
+        return self.x - 0.5 * self.length
+
+    def _internal(self, xs) -> tuple[float, ...]:
+        """Head abscissae (m) as positions along the domain [0, length], m."""
+        return tuple(0.5 * self.length + float(c) for c in xs)
+
+    def _x_nodes(self, x_line) -> np.ndarray:
+        """The x-nodes, m on [0, length]: a flat or profile head's with a node on every
+        sharp corner (:func:`~.mesh.piecewise_line_nodes`)."""
+        breaks = () if self.cylindrical else self._internal(
+            self.head.sharp_corners(self.head_radius))
+        try:
+            return piecewise_line_nodes(self.length, self.nx, x_line, breaks,
+                                        fewest=FEWEST_BETWEEN_CORNERS)
+        except ValueError as exc:
+            raise ParameterError(f"nx = {self.nx} is too small for the head: {exc}; use a "
+                                 "larger nx (or the default)") from None
 
     def _checked_span(self, span: float | None, l_film: float, l_bend: float) -> float:
         """The span, m: given (checked) or the default, within [MIN_SPAN_LENGTHS times
         the longer of the film and bending lengths, MAX_SPAN_RADII R]."""
         longest = max(l_film, l_bend)
-        low, high = MIN_SPAN_LENGTHS * longest, MAX_SPAN_RADII * self.params.radius
+        low = MIN_SPAN_LENGTHS * longest
+        high = MAX_SPAN_RADII * self.head_radius if self.cylindrical else MAX_SPAN_FLAT
         if low > high:
             raise ParameterError(self._too_long_for_the_head(l_film, l_bend))
         if span is None:
@@ -234,8 +408,9 @@ class BearingModel:
                 f"span must be in [{low:.3g}, {high:.3g}] m, got {span:g}: at least "
                 f"{MIN_SPAN_LENGTHS:g} {which} lengths ({MIN_SPAN_LENGTHS:g} x {longest:.3g} m) "
                 "for the film "
-                "pressure to return to ambient before the tape's pinned end, at most the "
-                "head radius R for the shallow-shell gap")
+                "pressure to return to ambient before the tape's pinned end, at most "
+                + ("the head radius R for the shallow-shell gap" if self.cylindrical
+                   else f"{MAX_SPAN_FLAT:g} m"))
         return span
 
     def _too_long_for_the_head(self, l_film: float, l_bend: float) -> str:
@@ -244,7 +419,8 @@ class BearingModel:
         t_eff = self.effective_tension()
         shortest = MIN_SPAN_LENGTHS * max(l_film, l_bend)
         head = (f"spans of {MIN_SPAN_LENGTHS:g} times it ({shortest:.3g} m) "
-                f"exceed the head radius R = {p.radius:g} m (the shallow-shell gap)")
+                + (f"exceed the head radius R = {self.head_radius:g} m (the shallow-shell "
+                   "gap)" if self.cylindrical else f"exceed {MAX_SPAN_FLAT:g} m"))
         if l_bend > l_film:
             return (f"the tape is too stiff to wrap the head: its bending length "
                     f"sqrt(D/(T - rho V^2)) = {l_bend:.3g} m is so long that {head}; use a "
@@ -254,7 +430,8 @@ class BearingModel:
         text = (f"the film is too thick for the head: eps = 6 mu V/(T - rho V^2) = {eps:.3g} "
                 f"(viscosity {air.viscosity:g} Pa*s, velocity {v:g} m/s, T - rho V^2 = "
                 f"{t_eff:.3g} N/m) gives a film length R eps^(1/3) = {l_film:.3g} m and a "
-                f"spacing scale R eps^(2/3) = {p.radius * eps ** (2 / 3):.3g} m, and {head}; ")
+                f"spacing scale R eps^(2/3) = {self.scale_radius * eps ** (2 / 3):.3g} m, and "
+                f"{head}; ")
         if air.viscosity > 10.0 * AIR_VISCOSITY:
             return text + (f"the viscosity {air.viscosity:g} Pa*s makes the film thick: use "
                            f"one nearer air's {AIR_VISCOSITY:g} Pa*s")
@@ -267,9 +444,8 @@ class BearingModel:
                  span_given: bool):
         """The number of x-intervals :attr:`nx` (default from the ``resolution`` length, m;
         see :meth:`_default_nx`), checked; returns the x-line's grading (None: uniform)."""
-        half_wrap = 0.5 * self.params.radius * self.wrap_angle
-        x_line = self.grading.x_line(self.length, (0.5 * self.length - half_wrap,
-                                                   0.5 * self.length + half_wrap))
+        x_line = self.grading.x_line(self.length, self._internal(
+            self.head.corners(self.head_radius)))
         if nx is None:
             nx = self._default_nx(x_line, l_film, resolution, span_given)
         self.nx = validation.integer("nx", nx, low=MIN_INTERVALS_ALONG,
@@ -281,11 +457,11 @@ class BearingModel:
         of the wrap's corners, the film's entrance and exit (see :data:`MAX_FILM_SPACING`;
         the plateau between them may be coarser). A tape whose flexible-foil spacing is
         below the roughness lies on the head: it has no film to resolve."""
-        if self.h_guess / _FOIL_GUESS < self.air.roughness:
+        if self.dry or self.h_guess / _FOIL_GUESS < self.air.roughness:
             return
-        half_wrap = 0.5 * self.params.radius * self.wrap_angle
         mid = 0.5 * (self.x[1:] + self.x[:-1])
-        zone = np.abs(np.abs(mid - 0.5 * self.length) - half_wrap) <= l_film
+        corners = np.array(self._internal(self.head.corners(self.head_radius)))
+        zone = np.min(np.abs(mid[:, None] - corners[None, :]), axis=1) <= l_film
         coarsest = float(np.diff(self.x)[zone].max()) if zone.any() else self.hx
         if coarsest <= MAX_FILM_SPACING * l_film:
             return
@@ -293,7 +469,7 @@ class BearingModel:
         needed = step * math.ceil(self.nx * coarsest / (MAX_FILM_SPACING * l_film) / step)
         raise ParameterError(
             f"nx = {self.nx} is too coarse for the film: it leaves {coarsest:.3g} m between "
-            f"nodes at the wrap's corners, more than the film length R eps^(1/3) = "
+            f"nodes at the head's corners, more than the film length R eps^(1/3) = "
             f"{l_film:.3g} m, and "
             f"the spacings are then wrong by up to 50 % (measured: h_c 48 % low at 1.9 film "
             f"lengths, 2 % at 0.9); use nx >= {needed} (or the default)")
@@ -305,7 +481,7 @@ class BearingModel:
             spacing = (X_RESOLUTION if self.infinitely_wide else X_RESOLUTION_2D) * resolution
             nx = 2 * math.ceil(0.5 * self.length / spacing)
         else:
-            nx = intervals_for(self.length, X_RESOLUTION_GRADED * resolution, x_line)
+            nx = intervals_for(self.length, self._zone_spacing(resolution), x_line)
         if nx > MAX_INTERVALS_ALONG:
             raise ParameterError(self._too_many_intervals(nx, l_film, resolution,
                                                           span_given))
@@ -315,7 +491,7 @@ class BearingModel:
                             span_given: bool) -> str:
         """The message for a default grid of more than MAX_INTERVALS_ALONG intervals,
         naming what makes it so fine: a long given span or a film short against the wrap."""
-        wrap = self.params.radius * self.wrap_angle
+        wrap = self.length - 2.0 * self.span
         need = (f"resolving the {resolution:.3g} m {'film' if resolution == l_film else 'bending'}"
                 f" length over the {self.length:.3g} m domain needs {nx} intervals, more "
                 f"than the limit {MAX_INTERVALS_ALONG}")
@@ -327,7 +503,7 @@ class BearingModel:
             return (f"the bending length sqrt(D/(T - rho V^2)) = {resolution:.3g} m is short "
                     f"against the {wrap:.3g} m wrap: {need}; set nx (and a grading)")
         return (f"velocity {self.velocity:g} m/s gives a film only {l_film:.3g} m long: "
-                f"{need}; use a higher velocity (the tape is then in contact with the head "
+                f"{need}; use a higher speed |V| (the tape is then in contact with the head "
                 "anyway) or set nx")
 
     def _y_count(self, ny: int | None, y_line) -> int:
@@ -359,25 +535,68 @@ class BearingModel:
 
     def _couple_film_and_loads(self) -> None:
         """The film on the tape's grid, and the loads of the dry wrapped configuration."""
-        params = self.params
-        self.film = Film(self.nx, self.nc, np.diff(self.x),
+        film = DryFilm if self.dry else Film
+        self.film = film(self.nx, self.nc, np.diff(self.x),
                          None if self.infinitely_wide else np.diff(self.y), self.air,
                          self.velocity)
         self.n_u = self.tape.n
         self.n_p = self.film.size
-        w0 = dry_gap(self.x, self.length, params.radius, self.wrap_angle)
-        self.dry_field = np.repeat(w0[:, None], self.nc, axis=1)
-        self.kappa = dry_curvature(self.x, self.length, params.radius, self.wrap_angle)
+        x, r = self.x_head, self.head_radius
+        if self.infinitely_wide:
+            self.dry_field = self.head.dry_gap(x, radius=r)[:, None]
+        else:
+            self.dry_field = np.broadcast_to(self.head.dry_gap(x, self.y, radius=r),
+                                             (self.nx + 1, self.nc)).copy()
+        self.kappa = self.head.dry_curvature(x, radius=r)
         self.f_kappa = self.tape.curvature_load(self.kappa)
         self.W = self.tape.W
         self.kappa_nodes = np.repeat(self.kappa, self.nc)
         self.pressure_load = self._pressure_load_matrix()
 
+    def _corner_start(self) -> np.ndarray:
+        """u of Newton's start on a flat or profile head (or dry): h = :data:`FLAT_START`
+        foil spacings above the dry gap (dry: :data:`DRY_START` θ ℓ_bend), the sharp
+        corners at the roughness σ (in contact: their point loads are carried at once)."""
+        h0 = (DRY_START * self.wrap_angle * self.bending_length if self.dry
+              else FLAT_START * self.h_guess / _FOIL_GUESS)
+        sigma = self.air.roughness
+        h0 = max(h0, sigma)
+        U = np.full((self.nx - 1, self.nc), h0)
+        inner = self.x_head[1:-1]
+        held = np.zeros(U.shape, dtype=bool)
+        turns = dict(zip(self.head.corners(self.head_radius),
+                         self.head.corner_turns(self.head_radius), strict=True))
+        for c in self.head.sharp_corners(self.head_radius):
+            turn = turns.get(c, self.wrap_angle)
+            if not self.dry and turn < CORNER_FRACTION * self.wrap_angle:
+                continue     # its point load is small: the film carries it (measured)
+            i = int(np.argmin(np.abs(inner - c)))
+            if not self.dry:   # the film's constriction: h rising from σ at the tape's slope
+                reach = (h0 - sigma) / (START_SLOPE * turn)
+                taper = sigma + (h0 - sigma) * -np.expm1(-np.abs(inner - c) / reach)
+                U = np.minimum(U, taper[:, None])
+            U[i, :] = sigma - self.dry_field[i + 1, :]
+            held[i, :] = True
+        if not self.dry or not held.any():
+            return U.ravel()
+        # dry: the tape with its sharp corners held at σ (the exact state when only they
+        # touch; the active set of a 4th-order operator otherwise moves a node per step)
+        held = held.ravel()
+        rhs = np.where(held, U.ravel(), self.f_kappa
+                       - self.effective_tension() * self.W * self.kappa_nodes)
+        keep = sp.diags((~held).astype(float))
+        system = (keep @ self.K() + sp.diags(held.astype(float))).tocsc()
+        from scipy.sparse.linalg import spsolve
+
+        return spsolve(system, rhs)
+
     def __repr__(self) -> str:
         kind = "infinitely wide" if self.infinitely_wide else f"width {self.params.width:g} m"
         grid = "graded" if self.graded else "uniform"
-        return (f"BearingModel(V={self.velocity:g} m/s, wrap={math.degrees(self.wrap_angle):g}"
-                f" deg, {kind}, L_x={self.length:.4g} m, nx={self.nx}, ny={self.ny}, {grid})")
+        dry = ", dry" if self.dry else ""
+        return (f"BearingModel(V={self.velocity:g} m/s, {self.head.kind} head, wrap="
+                f"{math.degrees(self.wrap_angle):g} deg, {kind}, L_x={self.length:.4g} m, "
+                f"nx={self.nx}, ny={self.ny}, {grid}{dry})")
 
     def _pressure_load_matrix(self) -> sp.csr_matrix:
         """L with L (p − p_a) the nodal air forces, N: the exact integral of the bilinear
@@ -428,9 +647,16 @@ class BearingModel:
 
     def at_velocity(self, velocity: float) -> BearingModel:
         """The same tape, head and grid at another speed V, m/s (for continuation)."""
-        return BearingModel(self.params, self.air, velocity=velocity,
-                            wrap_angle=self.wrap_angle, infinitely_wide=self.infinitely_wide,
-                            span=self.span, nx=self.nx, ny=self.ny, grading=self.grading)
+        return self.rebuilt(velocity=velocity)
+
+    def rebuilt(self, **changes) -> BearingModel:
+        """The same model with some constructor arguments changed (velocity, nx, ny,
+        infinitely_wide, head, span, grading, dry)."""
+        kw = dict(velocity=self.velocity, head=self.head,
+                  infinitely_wide=self.infinitely_wide, span=self.span, nx=self.nx,
+                  ny=self.ny, grading=self.grading, dry=self.dry)
+        kw.update(changes)
+        return BearingModel(self.params, self.air, **kw)
 
     # ----- state <-> fields ----------------------------------------------------------------
     @property
@@ -453,7 +679,7 @@ class BearingModel:
     @property
     def graded(self) -> bool:
         """Whether the grid is graded (non-uniform) in x or y."""
-        return not (self.grading.x_ratio == 1.0
+        return not (self.grading.x_ratio == 1.0 and self.grading.corner_ratio == 1.0
                     and (self.infinitely_wide or self.grading.y_ratio == 1.0))
 
     def effective_tension(self, tension: float | None = None) -> float:
@@ -524,6 +750,9 @@ class BearingModel:
         the wrap pressure (T − ρV²) κ + p_a. :func:`gyroshell.bearing.steady.solve_steady`
         starts a 2-D tape from a better (solved) state, :func:`~gyroshell.bearing.steady.
         initial_state`."""
+        if not self.cylindrical or self.dry:     # the corners' loads are point loads
+            return np.concatenate([self._corner_start(),
+                                   np.full(self.n_p, self.air.ambient_pressure)])
         u = np.full(self.n_u, self.h_guess)
         kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)
         p = self.air.ambient_pressure + self.effective_tension() * kappa[

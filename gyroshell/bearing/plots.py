@@ -19,6 +19,8 @@ SPACING_AXIS_SPAN = 3.0
 MAP_TOP_SPACINGS = 10.0
 #: Smallest spacing of the colour scale, µm (LogNorm needs a positive floor).
 MAP_FLOOR_UM = 1e-3
+#: The contour panel shows the tape's height range and this fraction more each way.
+CONTOUR_MARGIN = 0.15
 #: Nodes whose spacing is within this fraction above the roughness count as in contact.
 CONTACT_MARGIN = 1e-9
 
@@ -129,3 +131,123 @@ def transient_spacing(run, ax=None):
     ax.set_ylabel("spacing (µm)")
     ax.legend()
     return ax
+
+
+def _marks(solution, ax, *, labels: bool = True) -> None:
+    """The head's lands (shaded), corners (dotted) and transducer lines (dashed), mm."""
+    lay = solution._layout
+    for k, (a, b) in enumerate(lay["lands"]):
+        ax.axvspan(a * MM, b * MM, color="0.92", zorder=0,
+                   label="land" if labels and k == 0 else None)
+    for k, c in enumerate(lay["corners"]):
+        ax.axvline(c * MM, color="0.5", lw=0.8, ls=":",
+                   label="corner" if labels and k == 0 else None)
+    for k, t in enumerate(lay["transducers"]):
+        ax.axvline(t * MM, color="C2", lw=0.9, ls="--",
+                   label="transducer" if labels and k == 0 else None)
+
+
+def _head_contour(solution) -> np.ndarray:
+    """z_h(x) along the middle of the width, m (head coordinates)."""
+    m = solution.model
+    z = np.asarray(m.head.surface(solution.x, None if m.infinitely_wide else m.y,
+                                  radius=m.head_radius))
+    return z if z.ndim == 1 else z[:, m.ny // 2]
+
+
+def head_contour(solution, ax=None):
+    """The head contour z_h(x) and the tape z_h + h along the middle of the width (µm),
+    with the lands, corners and transducer lines marked."""
+    plt = _plt()
+    ax = plt.subplots(figsize=(7, 2.6))[1] if ax is None else ax
+    m = solution.model
+    col = 0 if m.infinitely_wide else m.ny // 2
+    x, z = solution.x * MM, _head_contour(solution)
+    tape = (z + solution.spacing[:, col]) * UM
+    low, high = tape.min(), tape.max()
+    bottom = low - CONTOUR_MARGIN * (high - low)      # the flanks fall far below the tape
+    ax.fill_between(x, np.maximum(z * UM, bottom), bottom, color="0.75", label="head")
+    ax.plot(x, tape, color="C0", lw=1.0, label="tape")
+    _marks(solution, ax, labels=False)
+    ax.set_xlim(x[0], x[-1])
+    ax.set_ylim(bottom, high + CONTOUR_MARGIN * (high - low))
+    ax.set_ylabel("z (µm)")
+    ax.legend(loc="lower center", fontsize=8)
+    return ax
+
+
+def head_spacing(solution, ax=None):
+    """Spacing h(x) along the middle of the width (µm) over the head's lands, corners and
+    transducer lines (each labelled with its spacing), the tents marked, and p − p_a (kPa)
+    on a twin axis."""
+    plt = _plt()
+    ax = plt.subplots(figsize=(7, 3.6))[1] if ax is None else ax
+    m = solution.model
+    col = 0 if m.infinitely_wide else m.ny // 2
+    x = solution.x * MM
+    h = solution.spacing[:, col] * UM
+    _marks(solution, ax)
+    ax.plot(x, h, color="C0", label="spacing h")
+    tents = [t for t in solution.tents if t.height is not None]
+    if tents:
+        ax.plot([t.x * MM for t in tents], [t.height * UM for t in tents], "v", color="C1",
+                ms=5, label="tent")
+    for line in solution.transducer_lines:
+        ax.annotate(f"{line.centre * UM:.3g} µm", (line.x * MM, line.centre * UM),
+                    xytext=(3, 6), textcoords="offset points", fontsize=7, color="C2")
+    on_land = np.zeros(len(x), dtype=bool)       # the scale of the lands, not of the gaps
+    for a, b in solution._layout["lands"]:
+        on_land |= (solution.x >= a) & (solution.x <= b)
+    top = np.max(h[on_land]) if on_land.any() else np.max(h)
+    ax.set_ylim(0, SPACING_AXIS_SPAN / 2 * max(top, MAP_FLOOR_UM))
+    ax.set_xlim(x[0], x[-1])
+    ax.set_xlabel("x from the head's middle (mm), tape moves →")
+    ax.set_ylabel("spacing h (µm)", color="C0")
+    twin = ax.twinx()
+    twin.plot(x, (solution.pressure[:, col] - m.air.ambient_pressure) / PA_PER_KPA,
+              color="C3", lw=1.0)
+    twin.axhline(0.0, color="C3", lw=0.5, ls=":")
+    twin.set_ylabel("p − p_a (kPa)", color="C3")
+    ax.legend(loc="upper left", fontsize=7)
+    ax.set_title(f"V = {m.velocity:g} m/s, h_min = {solution.minimum_spacing * UM:.3g} µm, "
+                 f"drag {solution.drag:.3g} {'N/m' if m.infinitely_wide else 'N'}, "
+                 f"T_out/T_in = {solution.tension_ratio:.4f}", fontsize=9)
+    return ax
+
+
+def transducer_cut(solution, ax=None):
+    """The spacing across the width along each transducer line (µm), its mean dashed."""
+    plt = _plt()
+    ax = plt.subplots(figsize=(6, 3.4))[1] if ax is None else ax
+    m = solution.model
+    if m.infinitely_wide:
+        raise ValueError("the infinitely wide tape has no width to cut across")
+    for k, line in enumerate(solution.transducer_lines):
+        ax.plot(m.y * MM, line.spacing * UM, color=f"C{k}", marker=".", ms=3,
+                label=f"x = {line.x * MM:.3g} mm: min {line.minimum * UM:.3g}, "
+                      f"mean {line.mean * UM:.3g} µm")
+        ax.axhline(line.mean * UM, color=f"C{k}", lw=0.6, ls="--")
+    ax.axhline(m.air.roughness * UM, color="0.5", lw=0.8, ls=":", label="roughness")
+    ax.set_xlabel("y across the width (mm)")
+    ax.set_ylabel("spacing along the transducer line (µm)")
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def head_overview(solution):
+    """One figure: the head contour and the tape, the spacing and pressure along the
+    middle of the width, and (2-D, with transducers) the transducer-line cuts across the
+    width. Returns the Figure."""
+    plt = _plt()
+    cut = not solution.model.infinitely_wide and bool(solution.transducer_lines)
+    fig = plt.figure(figsize=(8, 8.5 if cut else 6))
+    grid = fig.add_gridspec(3 if cut else 2, 1, height_ratios=[1, 1.6, 1.4][:3 if cut else 2])
+    top = fig.add_subplot(grid[0])
+    head_contour(solution, top)
+    middle = fig.add_subplot(grid[1], sharex=top)
+    head_spacing(solution, middle)
+    if cut:
+        transducer_cut(solution, fig.add_subplot(grid[2]))
+    fig.tight_layout()
+    return fig

@@ -15,13 +15,16 @@ import dataclasses
 import math
 import warnings
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from ..core import validation
 from ..core.errors import ParameterError
 from ..results.base import Result, dataset, from_json, params_from
+from . import readings
 from .air import AirParameters
+from .head import head_from_dict
 from .mesh import Grading
 from .model import BearingGridWarning, BearingModel
 
@@ -147,9 +150,118 @@ class BearingSolution(Result, kind="bearing"):
         or below the roughness σ (then :attr:`minimum_spacing` is σ, not a flying height)."""
         return self.contact_nodes > 0 or self.minimum_spacing <= self.model.air.roughness
 
+    # ----- what the head designer reads (gyroshell.bearing.readings) -------------------------
+    @cached_property
+    def _layout(self) -> dict:
+        return _head_layout(self.model)
+
+    @cached_property
+    def transducer_lines(self) -> tuple[readings.TransducerLine, ...]:
+        """The spacing along each of the head's transducer lines x = x_t across the width
+        (cubic interpolation along x, exact at nodes), with its centre value, minimum and
+        trapezoid mean per line (:func:`gyroshell.bearing.readings.transducer_lines`)."""
+        lay = self._layout
+        return readings.transducer_lines(self.x, self.y, self.spacing, lay["transducers"],
+                                         lay["corners"])
+
+    @cached_property
+    def tents(self) -> tuple[readings.Tent, ...]:
+        """The tents next to each corner on its land and span sides: height (m) and x (m)
+        of the spacing's local maximum along the middle of the width, and the largest
+        across the width; None where there is none (:func:`gyroshell.bearing.readings.
+        tents` defines them)."""
+        lay = self._layout
+        return readings.tents(self.x, self.y, self.spacing, lay["corners"], lay["lands"],
+                              lay["transducers"])
+
+    @cached_property
+    def _contact_shares(self):
+        lay, m = self._layout, self.model
+        return readings.contact_shares(self.x, _nodal(m, self.contact), m.film.cell_area,
+                                       lay["corners"], lay["lands"], lay["zones"])
+
+    @property
+    def corner_forces(self) -> tuple[readings.ContactShare, ...]:
+        """The contact of each corner: the nodes within its zone (the corner's wrapped arc
+        plus :data:`~gyroshell.bearing.readings.CORNER_ZONE_BENDING_LENGTHS` bending
+        lengths √(D/(T − ρV²))), their force (N; N/m if infinitely wide), peak contact
+        pressure (Pa), force centroid (m) and node count."""
+        return self._contact_shares[0]
+
+    @property
+    def land_forces(self) -> tuple[readings.ContactShare, ...]:
+        """The contact of each land outside the corner zones (as :attr:`corner_forces`);
+        corner and land forces sum to :attr:`contact_force`."""
+        return self._contact_shares[1]
+
+    @property
+    def contact_pressure(self) -> np.ndarray:
+        """The contact-pressure distribution, Pa, on every node, shape (nx + 1, nc): the
+        nodal contact force over the node's control area (0 at the pinned span ends)."""
+        m = self.model
+        return readings.contact_pressure(_nodal(m, self.contact), m.film.cell_area)
+
+    @cached_property
+    def shear_stress(self) -> np.ndarray:
+        """The air's shear stress on the tape, Pa, on every node, shape (nx + 1, nc);
+        > 0 resists the tape's motion: τ = μV/(h + 2λ_e) + (h/2) ∂p/∂x with first-order
+        slip (:func:`gyroshell.bearing.readings.shear_stress`); 0 for a dry model (no
+        air film)."""
+        m = self.model
+        if m.dry:
+            return np.zeros_like(self.spacing)
+        h = np.maximum(self.spacing, _FILM_FLOOR * m.air.roughness)   # as the film does
+        return readings.shear_stress(self.x, h, self.pressure, m.velocity, m.air)
+
+    @cached_property
+    def _drag(self) -> readings.Drag:
+        m = self.model
+        return readings.drag(readings.integral(self.shear_stress, m.film.cell_area),
+                             self.contact_force, self._layout["friction"], m.params.tension,
+                             None if m.infinitely_wide else m.params.width)
+
+    @property
+    def viscous_drag(self) -> float:
+        """∫ τ dA over the film (the whole domain: head and spans), N (N/m if infinitely
+        wide)."""
+        return self._drag.viscous
+
+    @property
+    def friction_drag(self) -> float:
+        """The head's friction coefficient μ_f times the total contact force, N (N/m)."""
+        return self._drag.friction
+
+    @property
+    def drag(self) -> float:
+        """Viscous plus friction drag, N (N/m if infinitely wide)."""
+        return self._drag.total
+
+    @property
+    def tension_rise(self) -> float:
+        """The drag per unit width, N/m: the rise of the tension across the head to first
+        order (the model keeps T uniform along the tape; see :mod:`.readings`)."""
+        return self._drag.tension_rise
+
+    @property
+    def tension_ratio(self) -> float:
+        """1 + :attr:`tension_rise` / T: outgoing over incoming tension to first order
+        (friction alone over a wrap θ: 1 + μ_f θ (T − ρV²)/T, the capstan law e^{μ_f θ}
+        of the moving tape's T − ρV² to first order)."""
+        return self._drag.tension_ratio
+
+    def readings(self) -> dict:
+        """The designer's readings as plain JSON values (part of :meth:`summary`)."""
+        return {"transducer_lines": [line.as_dict() for line in self.transducer_lines],
+                "tents": [tent.as_dict() for tent in self.tents],
+                "corner_forces": [share.as_dict() for share in self.corner_forces],
+                "land_forces": [share.as_dict() for share in self.land_forces],
+                "viscous_drag": self.viscous_drag, "friction_drag": self.friction_drag,
+                "drag": self.drag, "tension_rise": self.tension_rise,
+                "tension_ratio": self.tension_ratio, "friction": self._layout["friction"]}
+
     def summary(self) -> dict:
-        """The scalar outputs (SI; the wrap angle also in degrees): what ``gyroshell bearing
-        --json`` prints."""
+        """The scalar outputs (SI; the wrap angle also in degrees) and the designer's
+        readings (:meth:`readings`): what ``gyroshell bearing --json`` prints."""
         m = self.model
         x_min, y_min = self.minimum_location
         return {
@@ -187,6 +299,7 @@ class BearingSolution(Result, kind="bearing"):
             "finest_y_spacing": None if m.infinitely_wide else float(np.diff(m.y).min()),
             "unknowns": m.unknowns,
             "wrap_angle_degrees": math.degrees(m.wrap_angle),
+            **self.readings(),
         }
 
     # ----- the result protocol -----------------------------------------------------------
@@ -211,7 +324,8 @@ class BearingSolution(Result, kind="bearing"):
 
     def to_frame(self):
         """The nodal fields as a table: x (from the middle of the wrap) and y (0 if
-        infinitely wide), m, the spacing h, m, and the pressure p, Pa."""
+        infinitely wide), m, the spacing h, m, the pressure p, the air's shear stress on
+        the tape and the contact pressure, Pa."""
         import pandas as pd
 
         m = self.model
@@ -219,7 +333,9 @@ class BearingSolution(Result, kind="bearing"):
         X, Y = np.meshgrid(self.x, y, indexing="ij")
         return pd.DataFrame({"x": X.ravel(), "y": Y.ravel(),
                              "spacing": self.spacing.ravel(),
-                             "pressure": self.pressure.ravel()})
+                             "pressure": self.pressure.ravel(),
+                             "shear_stress": self.shear_stress.ravel(),
+                             "contact_pressure": self.contact_pressure.ravel()})
 
     def plot(self, ax=None):
         """The spacing along the middle of the width with the pressure on a twin axis
@@ -328,6 +444,28 @@ class BearingTransient(Result, kind="bearing_transient"):
         return transient_spacing(self, ax)
 
 
+#: Spacings below this fraction of the roughness are floored there (as in the film).
+_FILM_FLOOR = 0.5
+
+
+def _head_layout(model: BearingModel) -> dict:
+    """The head's corners, lands, transducers (m, head coordinates), friction coefficient
+    and each corner's contact zone half-width (m: its wrapped arc r_c θ_c plus
+    :data:`~gyroshell.bearing.readings.CORNER_ZONE_BENDING_LENGTHS` bending lengths
+    √(D/(T − ρV²)); a cylinder's corners, its tangent points, get the bending lengths
+    only: its wrapped arc is its land)."""
+    head, radius = model.head, model.head_radius
+    corners, lands = tuple(head.corners(radius)), tuple(head.lands(radius))
+    arcs = tuple(r * t for r, t in zip(head.corner_radii(radius), head.corner_turns(radius),
+                                       strict=True))
+    if model.cylindrical:                             # its wrapped arc is its land
+        arcs = (0.0,) * len(corners)
+    bending = model.bending_length
+    zones = tuple(readings.CORNER_ZONE_BENDING_LENGTHS * bending + a for a in arcs)
+    return {"corners": corners, "lands": lands, "transducers": tuple(head.transducers),
+            "friction": float(head.friction), "zones": zones}
+
+
 #: The time series of a :class:`BearingTransient` and their units.
 _SERIES = {"t": "s", "tension": "N/m", "central_spacing": "m", "minimum_spacing": "m",
            "contact_force": "N", "newton_iterations": "1"}
@@ -359,7 +497,12 @@ def _state_variables(sol: BearingSolution, prefix: str = "") -> dict:
             f"{prefix}departure": (("x", "y"), _nodal(m, sol.u),
                                    {"units": "m",
                                     "long_name": "from the dry wrapped configuration"}),
-            f"{prefix}contact": (("x", "y"), _nodal(m, sol.contact), {"units": "N"})}
+            f"{prefix}contact": (("x", "y"), _nodal(m, sol.contact), {"units": "N"}),
+            # derived (recomputed on reading): for other tools that open the file
+            f"{prefix}shear_stress": (("x", "y"), sol.shear_stress,
+                                      {"units": "Pa", "long_name": "air shear on the tape"}),
+            f"{prefix}contact_pressure": (("x", "y"), sol.contact_pressure,
+                                          {"units": "Pa"})}
 
 
 def _state_from(ds, model: BearingModel, info: NewtonInfo,
@@ -374,11 +517,14 @@ def _settings(model: BearingModel) -> dict:
     """The keyword arguments that rebuild ``model`` with its tape and air."""
     return {"velocity": model.velocity, "wrap_angle": model.wrap_angle,
             "infinitely_wide": model.infinitely_wide, "span": model.span, "nx": model.nx,
-            "ny": model.ny, "grading": model.grading.as_dict()}
+            "ny": model.ny, "grading": model.grading.as_dict(),
+            "head": model.head.as_dict(), "dry": model.dry}
 
 
-#: The keys of a file's ``model`` attribute (``grading`` may be absent: older files).
+#: The keys of a file's ``model`` attribute (``grading``, ``head`` and ``dry`` may be
+#: absent: older files, whose head is the cylinder of ``wrap_angle``, flying).
 _SETTINGS = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny")
+_OPTIONAL_SETTINGS = ("grading", "head", "dry")
 
 
 def _stored_dict(attrs, name: str, allowed, required=()) -> dict:
@@ -425,7 +571,7 @@ def _check_stored_sizes(ds, nx, ny, names) -> None:
 def _model_from(ds, prefix: str = "") -> BearingModel:
     """The model rebuilt from a file's attributes, checked against its node coordinates."""
     a = ds.attrs
-    settings = _stored_dict(a, "model", (*_SETTINGS, "grading"), _SETTINGS)
+    settings = _stored_dict(a, "model", (*_SETTINGS, *_OPTIONAL_SETTINGS), _SETTINGS)
     _check_stored_sizes(ds, settings["nx"], settings["ny"],
                         [f"{prefix}{k}" for k in ("departure", "pressure", "contact")])
     grading = settings.get("grading", {})   # files written before graded grids: uniform
@@ -433,6 +579,9 @@ def _model_from(ds, prefix: str = "") -> BearingModel:
         raise ParameterError(f"the file's grading must be an object with keys among "
                              f"{sorted(Grading().as_dict())}, got {grading!r}")
     settings["grading"] = Grading(**grading)
+    if "head" in settings:      # the head rebuilds the wrap
+        settings["head"] = head_from_dict(settings["head"])
+        del settings["wrap_angle"]
     air = _stored_dict(a, "air", [f.name for f in dataclasses.fields(AirParameters)])
     with warnings.catch_warnings():   # the grid was the saver's choice: no warning on load
         warnings.simplefilter("ignore", BearingGridWarning)

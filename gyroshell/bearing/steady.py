@@ -24,11 +24,16 @@ from ..core import validation
 from ..core.errors import ConvergenceError, ParameterError
 from ..linalg.factorization import SuperLUFactor
 from ..tape.parameters import MIN_INTERVALS_ACROSS
-from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel, foil_length_scales
+from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel
 from .results import BearingSolution, NewtonInfo
 
 #: Relative Newton step (|δu|/h_scale, |δp|/(T/R)) at which the solve has converged.
 STEP_TOLERANCE = 1e-8
+#: A full step below this relative size and within ROUND_OFF_MULTIPLE of the step that
+#: the residual's round-off alone produces (:func:`_noise_step`) has converged: the state
+#: is at its round-off floor.
+ROUND_OFF_STEP = 1e-4
+ROUND_OFF_MULTIPLE = 10.0
 #: Most Newton iterations per solve.
 MAX_ITERATIONS = 60
 #: A step may shrink p to no less than this fraction of its value (compressible film).
@@ -44,6 +49,9 @@ CHORD_CONTRACTION = 0.1
 #: Newton steps below this relative size are taken in full (the quadratic regime: the
 #: scaled residual may already sit at its round-off floor, where a line search only stalls).
 FULL_STEP = 1e-5
+#: A merit within this multiple of its round-off floor cannot guide a line search: full
+#: steps are taken (Newton's own contraction decides).
+NOISE_MULTIPLE = 100.0
 #: Smallest line-search step before a step is taken anyway.
 MIN_STEP = 1.0 / 256.0
 #: Sufficient decrease of the line search: the merit must fall by this fraction of α ...
@@ -105,19 +113,38 @@ class _Residual:
         self.sigma = model.air.roughness
         self.film_kw = ({} if transient is None else
                         {"phi_old": transient.phi_old, "dt": transient.dt})
-        t_wrap = max(model.effective_tension(tension) / model.params.radius, 1.0)
+        t_wrap = max(model.effective_tension(tension) / model.scale_radius, 1.0)
         self.t_scale = t_wrap
         self.h_scale = max(model.h_guess, self.sigma)
         film = model.film
         # the Couette flux through each pressure node's x-face (its control width across)
-        flux = (6.0 * model.air.viscosity * model.velocity * self.h_scale
+        flux = (6.0 * model.air.viscosity * abs(model.velocity) * self.h_scale
                 * film.x_face_length[np.nonzero(film.interior)[1]])
         if model.air.compressible:
             flux *= model.air.ambient_pressure
+        if model.dry:       # the rows p − p_a (Pa)
+            flux = np.full(model.n_p, t_wrap)
         self.row_scale = np.concatenate([1.0 / (t_wrap * model.W), 1.0 / flux])
         J_uu = self.K if transient is None else self.K + transient.jacobian
         # The tape rows [J_uu, −L] do not change within a solve: assembled once.
         self.tape_rows = sp.hstack([J_uu, -model.pressure_load], format="csr")
+        self._abs_tape_rows = abs(self.tape_rows)
+        self._abs_loads = (np.abs(model.effective_tension(tension) * model.W
+                                  * model.kappa_nodes) + np.abs(model.f_kappa))
+
+    def _noise(self, u, p, J_pp) -> float:
+        """The scaled residual's round-off floor (the merit's): machine ε times the
+        magnitudes of the terms each row sums, |K||u| + |L||p − p_a| + the wrap loads on
+        the tape rows, |∂r_p/∂p||p| on the film rows. On a grid refined far below the
+        bending length at a corner the tape rows' floor (∝ h⁻⁴) can exceed a converged
+        state's residual: a line search below it sees only noise."""
+        pa = self.model.air.ambient_pressure
+        tape = self._abs_tape_rows @ np.concatenate([np.abs(u), np.abs(p - pa)]) \
+            + self._abs_loads
+        film = abs(J_pp) @ np.abs(p)
+        #: the round-off of each row (its units), for the step's floor (:func:`_noise_step`)
+        self.noise_rows = np.finfo(float).eps * np.concatenate([tape, film])
+        return float(np.linalg.norm(self.noise_rows * self.row_scale))
 
     def tape(self, u, p):
         r_u = self.model.tape_residual(u, p, self.K, self.tension)
@@ -139,6 +166,8 @@ class _Residual:
         res = np.concatenate([np.where(active, gap, r_u), r_p])
         if not jacobian:
             return res, active, None
+        #: the round-off floor of the merit at the last state whose Jacobian was formed
+        self.noise = self._noise(u, p, J_pp)
         rows_u = self.tape_rows
         if active.any():
             rows_u = (sp.diags((~active).astype(float)) @ rows_u
@@ -165,19 +194,22 @@ class _Residual:
         return float(np.linalg.norm(res * self.row_scale))
 
 
-def _line_search(F, model, z, dz, h, active, merit, tol):
+def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):
     """Backtracking from the largest admissible step (:func:`_step_limit`, and p kept
     above a fifth of itself) on the scaled residual, each trial projected onto h >= σ.
+    Full steps are taken when the step is small (the quadratic regime) or the merit is
+    within NOISE_MULTIPLE of its round-off floor ``noise`` (:meth:`_Residual.noise`).
     Returns (α, relative step size, trial state, trial merit)."""
     n_u = model.n_u
-    alpha = _step_limit(h, dz[:n_u], active, F.sigma)
+    # dry (no film, a linear complementarity problem): no h³ coefficients to protect
+    alpha = 1.0 if model.dry else _step_limit(h, dz[:n_u], active, F.sigma)
     if model.air.compressible:
         p, dp = z[n_u:], dz[n_u:]
         shrink = dp < -(1 - PRESSURE_KEEP) * p
         if shrink.any():
             alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink] / dp[shrink])))
     step = _norm(dz, n_u, F)
-    full = step < max(tol, FULL_STEP)
+    full = step < max(tol, FULL_STEP) or (noise is not None and merit < NOISE_MULTIPLE * noise)
     if full:     # near round-off the merit can no longer decrease reliably: full steps
         alpha = 1.0
     while True:
@@ -243,6 +275,16 @@ def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
     return retry
 
 
+def _noise_step(F: _Residual, solver) -> float:
+    """The relative size of the Newton step that the residual's round-off alone produces
+    (the rows' round-off :attr:`_Residual.noise_rows` with fixed pseudo-random signs,
+    through the step's factorization): the floor below which steps cannot shrink. On a
+    grid refined far below the bending length at a corner (the plate's fourth difference
+    scales like h⁻⁴) it may lie above the step tolerance."""
+    signs = np.random.default_rng(0).choice((-1.0, 1.0), size=F.noise_rows.size)
+    return _norm(solver(signs * F.noise_rows), F.model.n_u, F)
+
+
 def _record(info: NewtonInfo, step: float, merit: float, contacts: int) -> None:
     """Append one iteration (its step, scaled residual and contact count) to ``info``."""
     info.iterations += 1
@@ -283,7 +325,9 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         dz = _newton_direction(F, it)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
-        found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol)
+        floor = (ROUND_OFF_MULTIPLE * _noise_step(F, it.solver)
+                 if _norm(dz, n_u, F) < ROUND_OFF_STEP else 0.0)
+        found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol, F.noise)
         alpha, step, it.z, _ = _forced_contact_step(F, it, h, dz, found, tol)
         it.last_step = step
         it.res, active_new, it.J = F(it.z, jacobian=True)
@@ -295,7 +339,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
                 f"residual {it.merit:.2e}, {contacts} nodes in contact")
         it.settled = np.array_equal(active_new, it.active)
         it.active = active_new
-        if alpha == 1.0 and step < tol and it.settled:
+        if alpha == 1.0 and it.settled and step < max(tol, floor):
             lam = np.where(it.active, F.tape(it.z[:n_u], it.z[n_u:]), 0.0)
             return it.z, lam, it.active, info
         merits.append(it.merit)
@@ -362,7 +406,23 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
             progress("pseudo-time did not reach the state: continuation in V")
         z, lam, info = _continuation(model, tension, progress, iteration_log)
     info.seconds = time.perf_counter() - start
+    check_cavitation(model, z[model.n_u:])
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
+
+
+def check_cavitation(model: BearingModel, p: np.ndarray, when: str = "") -> None:
+    """Refuse an incompressible film state with p < 0 absolute (Pa): a gas film cannot
+    cavitate below vacuum, and the incompressible Reynolds equation has no cavitation
+    model here (the compressible film, φ = p h, stays positive by construction)."""
+    if model.air.compressible or model.dry or p.size == 0 or p.min() >= 0.0:
+        return
+    k = int(np.argmin(p))
+    i, j = np.argwhere(model.film.pressure_index == k)[0]
+    where = f"x = {model.x_head[i]:.4g} m" + ("" if model.infinitely_wide
+                                              else f", y = {model.y[j]:.4g} m")
+    raise ParameterError(
+        f"the incompressible film would cavitate: p = {p[k]:.4g} Pa absolute at {where}"
+        f"{when}; use compressible=True (the compressible film stays positive)")
 
 
 def check_steady_arguments(model, z0, tension, progress, iteration_log):
@@ -393,6 +453,11 @@ def check_steady_arguments(model, z0, tension, progress, iteration_log):
 #: A 2-D tape with at least this many unknowns starts Newton from its solution on a grid
 #: twice as coarse (recursively), interpolated; smaller ones from the infinitely wide tape ...
 COARSE_START_MIN_UNKNOWNS = 20_000
+#: An infinitely wide tape over a flat or profile head with more than this many
+#: x-intervals starts from its solution on the grid twice as coarse (recursively): the
+#: corner-start (:meth:`BearingModel.initial_state`) leads Newton there in a few
+#: iterations only on coarse grids.
+COARSE_START_MIN_NX = 4000
 #: ... unless that grid would be coarser than this at the edges (m): an under-resolved
 #: free-edge row falsely touches down and the coarse solve would lead Newton astray.
 COARSE_START_MAX_Y_SPACING = 110e-6
@@ -412,7 +477,10 @@ def initial_state(model: BearingModel, *,
     (optional) get one line per start solved and per Newton iteration, as in
     :func:`solve_steady`."""
     if model.infinitely_wide:
-        return model.initial_state()
+        z = None
+        if not model.cylindrical and not model.dry and model.nx > COARSE_START_MIN_NX:
+            z = _coarse_state(model, coarse_min_unknowns, progress, iteration_log)
+        return model.initial_state() if z is None else z
     z = (_coarse_state(model, coarse_min_unknowns, progress, iteration_log)
          if model.unknowns >= coarse_min_unknowns else None)
     return _extruded_strip_state(model, progress, iteration_log) if z is None else z
@@ -427,14 +495,14 @@ def _coarse_state(model: BearingModel, coarse_min_unknowns: int, progress=None,
     iterations move the free edges down from the infinitely wide start; on the coarse grid
     they cost a fraction of a fine-grid factorization."""
     nx = model.nx // 2 + (model.nx // 2) % 2
-    ny = model.ny // 2 + (model.ny // 2) % 2
-    if ny < MIN_INTERVALS_ACROSS or nx < MIN_INTERVALS_ALONG:
+    ny = None if model.infinitely_wide else model.ny // 2 + (model.ny // 2) % 2
+    if (ny is not None and ny < MIN_INTERVALS_ACROSS) or nx < MIN_INTERVALS_ALONG:
         return None
     try:
         coarse = _quiet_model(model, nx, ny)
     except ParameterError:     # too coarse for the film: no coarse start
         return None
-    if coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
+    if ny is not None and coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
         return None
     try:   # Newton, then pseudo-time (no continuation in V): cheap on a coarse grid
         start = initial_state(coarse, coarse_min_unknowns=coarse_min_unknowns,
@@ -454,6 +522,10 @@ def _interpolated_state(model: BearingModel, coarse: BearingModel,
                         sol: BearingSolution) -> np.ndarray:
     """The state [u, p] of ``sol`` (on ``coarse``'s grid) interpolated bilinearly onto
     ``model``'s grid."""
+    if model.infinitely_wide:
+        u = np.interp(model.x, coarse.x, (sol.spacing - coarse.dry_field)[:, 0])[1:-1]
+        p = np.interp(model.x, coarse.x, sol.pressure[:, 0])[1:-1]
+        return np.concatenate([u, p])
     from scipy.interpolate import RegularGridInterpolator
 
     X, Y = np.meshgrid(model.x, model.y, indexing="ij")
@@ -471,18 +543,14 @@ def _quiet_model(model: BearingModel, nx: int, ny: int) -> BearingModel:
     a start only needs to lead Newton, not to be accurate."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
-        return BearingModel(model.params, model.air, velocity=model.velocity,
-                            wrap_angle=model.wrap_angle, span=model.span, nx=nx, ny=ny,
-                            grading=model.grading)
+        return model.rebuilt(nx=nx, ny=ny)
 
 
 def _extruded_strip_state(model: BearingModel, progress=None,
                           iteration_log=None) -> np.ndarray:
     """The infinitely wide tape's steady state on the model's x-grid (its flexible-foil
     start if Newton fails there), repeated across the width."""
-    strip = BearingModel(model.params, model.air, velocity=model.velocity,
-                         wrap_angle=model.wrap_angle, infinitely_wide=True,
-                         span=model.span, nx=model.nx, grading=model.grading)
+    strip = model.rebuilt(infinitely_wide=True, ny=None)
     if progress is not None:
         progress(f"start: solving the infinitely wide tape on the same x-grid "
                  f"({strip.unknowns} unknowns)")
@@ -568,7 +636,7 @@ def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | No
     Returns (z, λ, info). Raises ConvergenceError if the march does not get there.
     """
     info = NewtonInfo() if info is None else info
-    transit = foil_length_scales(model.params, model.air, model.velocity)[1] / model.velocity
+    transit = 1.0 if model.dry else model.film_length / abs(model.velocity)
     z, s, finish = np.array(z0, dtype=float), PSEUDO_START, PSEUDO_FINISH
     for _ in range(PSEUDO_MAX_STEPS):
         if s >= finish:
@@ -601,7 +669,7 @@ def _continuation_stages(model: BearingModel) -> list[BearingModel]:
     ``model`` itself; speeds at which the model cannot be built (above the string speed,
     or a film too long for the given span) are left out."""
     speeds, v = [], model.velocity * CONTINUATION_START
-    while v > model.velocity:
+    while abs(v) > abs(model.velocity):      # either direction: |V| comes down
         speeds.append(v)
         v *= CONTINUATION_FACTOR
     stages = []

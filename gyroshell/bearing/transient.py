@@ -29,7 +29,7 @@ from ..engines.newmark import check_steps
 from . import budget
 from .model import BearingModel
 from .results import BearingSolution, BearingTransient, NewtonInfo
-from .steady import newton
+from .steady import check_cavitation, newton
 
 #: Newmark's default parameters: the trapezoidal rule (no numerical damping).
 NEWMARK_BETA = 0.25
@@ -181,10 +181,10 @@ def march(start: BearingSolution, *, dt: float, steps: int,
             v_tilde = v + (1.0 - gamma) * dt * a
             force = _moving_force(moving_load, t, model.n_u)
             terms = _StepTerms(model, G, dt, beta, gamma, u_tilde, v_tilde, phi, force)
-            T_now = _tension_at(T, t, floor)
-            z, lam, _, info = newton(model, np.concatenate([u, p]), tension=T_now,
-                                     transient=terms, info=NewtonInfo())
+            z, lam, _, info = newton(model, np.concatenate([u, p]), tension=(
+                T_now := _tension_at(T, t, floor)), transient=terms, info=NewtonInfo())
             u, p = z[:model.n_u], z[model.n_u:]
+            check_cavitation(model, p, f" at t = {t:g} s")
             a, v = terms.kinematics(u)
             phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
             if n % record_every == 0 or n == steps:

@@ -1,4 +1,6 @@
-"""``gyroshell bearing``: the tape flying over a cylindrical head on its air film.
+"""``gyroshell bearing``: the tape flying over a head on its air film: a cylinder (the
+default), a flat head of one or more modules, or a measured contour (``--head``, the head
+options of :mod:`.heads` and the ``[head]`` table of ``--config``).
 
 The bearing has its own tape options: the physical ones of the other sub-commands, without
 the plate grid's ``--spacing``, ``--length-ratio`` and ``--edges`` (the bearing sizes its
@@ -29,11 +31,13 @@ from .common import (
     real,
     typed_overrides,
 )
+from .heads import add_head_options, head_design
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
-#: The files ``--out DIR`` writes.
-OUT_FILES = ("summary.json", "fields.csv")
+#: The files ``--out DIR`` writes: the summary, the fields, and the readings' tables (the
+#: spacing across the width along each transducer line; each corner's contact and tents).
+OUT_FILES = ("summary.json", "fields.csv", "transducer_lines.csv", "corners.csv")
 #: The tape options of the bearing: those of the plate sub-commands but ``--load``.
 TAPE_OPTIONS = tuple(option for option in TAPE_OVERRIDES if option[1] != "load")
 #: The plate fields a --config file may set that the bearing does not use (replaced).
@@ -61,20 +65,34 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     del common
     p = sub.add_parser(
         "bearing", parents=[_tape_parser()], help="steady head-tape air bearing (flying height)",
-        description="Steady flying state of the tape over a cylindrical head of the tape's "
-                    "radius R: compressible Reynolds film with slip coupled to the shell "
-                    "model, contact where the spacing reaches the roughness. Prints the "
-                    "central and minimum spacings (m). Air at 20 C by default; --velocity "
+        description="Steady flying state of the tape over a head (--head: a cylinder of the "
+                    "tape's radius R by default, a flat head with sharp or rounded corners "
+                    "and one or more modules, or a measured contour): compressible Reynolds "
+                    "film with slip coupled to the shell model, contact where the spacing "
+                    "reaches the roughness. Prints the central and minimum spacings (m) and "
+                    "the head's readings (transducer lines, tents, corner forces, drag). "
+                    "Air at 20 C by default; --velocity "
                     "is required here (> 0, e.g. 4). The bearing sizes its own grid "
                     "(--nx, --ny): the plate grid's --spacing, --length-ratio and --edges "
                     "and the plate load --load do not exist here.")
+    add_head_options(p)
     _add_bearing_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     p.add_argument("--out", metavar="DIR", default=None,
-                   help="write summary.json and the spacing/pressure fields (fields.csv) "
-                        "into DIR (created if missing; its parent must exist)")
+                   help="write summary.json, the spacing/pressure fields (fields.csv), the "
+                        "spacing across the width along each transducer line "
+                        "(transducer_lines.csv) and each corner's contact force and tents "
+                        "(corners.csv) into DIR (created if missing; its parent must exist)")
     p.add_argument("--plot", metavar="FILE.png", default=None,
-                   help="write a PNG of the spacing and pressure")
+                   help="write a PNG of the spacing and pressure (over a flat or measured "
+                        "head, or with --transducers: the head's contour, the spacing over "
+                        "its lands and corners and the transducer lines across the width)")
+    p.add_argument("--error-estimate", action="store_true",
+                   help="also solve on a grid with half the intervals each way and report "
+                        "the differences of the spacings (central, minimum, each transducer "
+                        "line's minimum and mean), m, as grid_error: about the grid's own "
+                        "error if the readings converge at first order, three times it at "
+                        "second (costs about a quarter of the solve more)")
     p.add_argument("--quiet", action="store_true",
                    help="no progress lines (by default stderr gets the model's size and an "
                         "estimate of the time, then one line per Newton iteration and stage)")
@@ -103,8 +121,6 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
     from ..bearing import air as a
 
     g = p.add_argument_group("air bearing (SI units)")
-    g.add_argument("--wrap-angle", type=real, default=15.0,
-                   help="wrap angle of the tape on the head, degrees, in (0, 90] (default 15)")
     g.add_argument("--viscosity", type=real, default=a.AIR_VISCOSITY,
                    help=f"air viscosity, Pa*s (default {a.AIR_VISCOSITY:g}, air at 20 C)")
     g.add_argument("--ambient-pressure", type=real, default=a.AMBIENT_PRESSURE,
@@ -144,27 +160,35 @@ def run(args: argparse.Namespace) -> int:
     from ..core.files import folder_transaction, transaction
 
     _refuse_unused_in_mode(args)
-    params, velocity = _tape(args)
+    params, velocity, head_table = _tape(args)
+    design = head_design(args, head_table, args.config)
+    head = design.head()   # the contour's checks: transducers on it, a profile file's
     air = _air(args)
     out = _check_outputs(args)
-    model = _model(args, params, air, velocity)
+    model = _model(args, params, air, velocity, head)
     sol = _solve(model, None if args.quiet else _progress)
     summary = sol.summary()
-    # the angle as typed: degrees -> radians -> degrees need not give it back exactly
-    summary["wrap_angle_degrees"] = args.wrap_angle
+    if args.error_estimate:
+        summary["grid_error"] = _grid_error(args, sol, (params, air, velocity, head))
+    if design.kind == "cylinder":
+        # the angle as typed: degrees -> radians -> degrees need not give it back exactly
+        summary["wrap_angle_degrees"] = (15.0 if design.wrap_angle is None else
+                                         args.wrap_angle if args.wrap_angle is not None
+                                         else math.degrees(design.wrap_angle))
     # every output, or none (and no folder this run created)
     with transaction() if out is None else folder_transaction(out):
         if out is not None:
             _write_out(out, sol, summary)
         if args.plot is not None:
-            from ..bearing.plots import overview
+            from ..bearing.plots import head_overview, overview
             from ..reproduce._common import save_figure
 
-            save_figure(overview(sol), Path(args.plot))
+            plain = head.kind == "cylinder" and not head.transducers
+            save_figure((overview if plain else head_overview)(sol), Path(args.plot))
     if args.json:
         print_json(summary)
     else:
-        _print_text(sol)
+        _print_text(sol, summary.get("grid_error"))
     return 0
 
 
@@ -185,18 +209,19 @@ def _refuse_unused_in_mode(args: argparse.Namespace) -> None:
 
 
 def _tape(args: argparse.Namespace):
-    """(TapeParameters, velocity in m/s) of the tape options and --config, validated. The
-    plate-grid fields, which the bearing does not use, are set so that they pass."""
+    """(TapeParameters, velocity in m/s, the file's [head] table or None) of the tape
+    options and --config, validated. The plate-grid fields, which the bearing does not use,
+    are set so that they pass."""
     from ..core import validation
     from ..tape.parameters import TapeParameters
 
     typed = typed_overrides(args, TAPE_OPTIONS)
-    base, velocity = TapeParameters(), args.velocity
+    base, velocity, head_table = TapeParameters(), args.velocity, None
     if args.config is not None:
         from ..tape.config import load_config
 
-        cfg = load_config(args.config, adjust=_without_plate_fields)
-        base = cfg.params
+        cfg = load_config(args.config, adjust=_without_plate_fields, tables=("head",))
+        base, head_table = cfg.params, cfg.tables.get("head")
         velocity = cfg.velocity if velocity is None else velocity
         if base.edges != "free" and not args.infinitely_wide:
             raise UserError(f"{args.config}: edges = {base.edges!r}: the bearing's tape has "
@@ -211,7 +236,7 @@ def _tape(args: argparse.Namespace):
     if velocity <= 0.0:
         raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
                         f"got {velocity:g}")
-    return params, params.check_velocity(velocity)
+    return params, params.check_velocity(velocity), head_table
 
 
 def _without_plate_fields(fields: dict) -> dict:
@@ -268,9 +293,11 @@ def _check_outputs(args: argparse.Namespace) -> Path | None:
     return check_output_folder_with_files(args.out, OUT_FILES, option="--out")
 
 
-def _model(args: argparse.Namespace, params, air, velocity: float):
-    """The BearingModel of the arguments (speed, wrap, grid) on the tape and the air; a
-    grid coarse enough to be off (BearingGridWarning) is one ``gyroshell: warning:`` line."""
+def _model(args: argparse.Namespace, params, air, velocity: float, head, *, nx=None,
+           ny=None):
+    """The BearingModel of the arguments (speed, head, grid) on the tape and the air; a
+    grid coarse enough to be off (BearingGridWarning) is one ``gyroshell: warning:`` line.
+    ``nx``, ``ny``: other intervals than the arguments'."""
     import warnings
 
     from ..bearing import BearingModel
@@ -279,9 +306,10 @@ def _model(args: argparse.Namespace, params, air, velocity: float):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", BearingGridWarning)
         model = BearingModel(params, air, velocity=velocity,
-                             wrap_angle=math.radians(args.wrap_angle),
+                             head=head,
                              infinitely_wide=args.infinitely_wide, span=args.span,
-                             nx=args.nx, ny=args.ny,
+                             nx=args.nx if nx is None else nx,
+                             ny=args.ny if ny is None else ny,
                              grading="uniform" if args.uniform else None)
     for warning in caught:
         if issubclass(warning.category, BearingGridWarning):
@@ -290,6 +318,29 @@ def _model(args: argparse.Namespace, params, air, velocity: float):
             warnings.warn_explicit(warning.message, warning.category, warning.filename,
                                    warning.lineno)
     return model
+
+
+def _grid_error(args: argparse.Namespace, sol, inputs) -> dict:
+    """The spacings of ``sol`` less those on the grid with half its intervals each way
+    (m): the coarse grid's intervals and, per reading, the difference."""
+    from ..tape.parameters import MIN_INTERVALS_ACROSS
+
+    model = sol.model
+    nx = max(8, model.nx // 2)
+    ny = None if model.infinitely_wide else max(MIN_INTERVALS_ACROSS, 2 * (model.ny // 4))
+    progress = None if args.quiet else _progress
+    if progress is not None:
+        progress(f"error estimate: the same on {nx}" + ("" if ny is None else f" x {ny}")
+                 + " intervals")
+    coarse = _solve(_model(args, *inputs, nx=nx, ny=ny), progress)
+    return {"coarse_nx": nx, "coarse_ny": ny,
+            "central_spacing": sol.central_spacing - coarse.central_spacing,
+            "minimum_spacing": sol.minimum_spacing - coarse.minimum_spacing,
+            "transducer_lines": [
+                {"x": fine.x, "minimum": fine.minimum - rough.minimum,
+                 "mean": fine.mean - rough.mean}
+                for fine, rough in zip(sol.transducer_lines, coarse.transducer_lines,
+                                       strict=True)]}
 
 
 def _progress(message: str) -> None:
@@ -353,7 +404,7 @@ def _solve(model, progress):
     return sol
 
 
-def _print_text(sol) -> None:
+def _print_text(sol, grid_error: dict | None = None) -> None:
     """The headline numbers as text."""
     model = sol.model
     force_unit = "N/m" if model.infinitely_wide else "N"
@@ -364,6 +415,24 @@ def _print_text(sol) -> None:
     print(f"minimum spacing:  {sol.minimum_spacing:.6e} m at {where}")
     print(f"air force:        {sol.air_force:.6e} {force_unit}")
     print(f"contact force:    {sol.contact_force:.6e} {force_unit} ({sol.contact_nodes} nodes)")
+    for line in sol.transducer_lines:
+        print(f"transducer line:  x = {line.x:.4e} m: minimum {line.minimum:.6e} m, "
+              f"mean {line.mean:.6e} m")
+    for share in sol.corner_forces:
+        print(f"corner:           x = {share.where[0]:.4e} m: contact force "
+              f"{share.force:.6e} {force_unit}")
+    for tent in sol.tents:
+        if tent.height is not None:
+            print(f"tent:             {tent.height:.6e} m at x = {tent.x:.4e} m "
+                  f"({tent.side} side of the corner at {tent.corner:.4e} m)")
+    print(f"drag:             {sol.drag:.6e} {force_unit} (viscous {sol.viscous_drag:.6e}, "
+          f"friction {sol.friction_drag:.6e}); tension rise {sol.tension_rise:.6e} N/m, "
+          f"ratio {sol.tension_ratio:.6f}")
+    if grid_error is not None:
+        lines = "".join(f", line x = {line['x']:.4e} m: minimum {line['minimum']:+.3e}, "
+                        f"mean {line['mean']:+.3e}" for line in grid_error["transducer_lines"])
+        print(f"grid error:       against half the intervals: central "
+              f"{grid_error['central_spacing']:+.3e} m{lines}")
     print(f"Newton:           {sol.info.iterations} iterations, {sol.info.seconds:.2f} s")
 
 
@@ -373,5 +442,39 @@ def _write_out(out: Path, sol, summary: dict) -> None:
 
     fields = sol.to_frame().rename(columns=FIELD_COLUMNS)
     write_atomic(out / "fields.csv", lambda tmp: fields.to_csv(tmp, index=False))
+    lines, corners = readings_tables(sol)
+    write_atomic(out / "transducer_lines.csv", lambda tmp: lines.to_csv(tmp, index=False))
+    write_atomic(out / "corners.csv", lambda tmp: corners.to_csv(tmp, index=False))
     write_atomic(out / "summary.json",
                  lambda tmp: tmp.write_text(json.dumps(summary, indent=1) + "\n"))
+
+
+def readings_tables(sol):
+    """(transducer lines, corners) as DataFrames, units in the column names: the spacing
+    across the width along each line (one row per node; y empty if infinitely wide), and
+    per corner its contact force (N, N/m if infinitely wide), peak contact pressure, force
+    centroid and nodes in contact, and its tents on the land and span sides (NaN: none)."""
+    import pandas as pd
+
+    model = sol.model
+    ys = [math.nan] if model.infinitely_wide else list(model.y)
+    lines = pd.DataFrame(
+        [{"line": k, "x_m": line.x, "y_m": y, "spacing_m": float(h),
+          "line_minimum_m": line.minimum, "line_mean_m": line.mean}
+         for k, line in enumerate(sol.transducer_lines, start=1)
+         for y, h in zip(ys, line.spacing, strict=True)],
+        columns=["line", "x_m", "y_m", "spacing_m", "line_minimum_m", "line_mean_m"])
+    unit = "N_per_m" if model.infinitely_wide else "N"
+    rows = []
+    for k, share in enumerate(sol.corner_forces, start=1):
+        row = {"corner": k, "x_m": share.where[0], f"contact_force_{unit}": share.force,
+               "peak_contact_pressure_Pa": share.peak_pressure,
+               "centroid_m": math.nan if share.centroid is None else share.centroid,
+               "contact_nodes": share.nodes}
+        for tent in sol.tents:
+            if tent.corner == share.where[0]:
+                row[f"{tent.side}_tent_height_m"] = (math.nan if tent.height is None
+                                                     else tent.height)
+                row[f"{tent.side}_tent_x_m"] = math.nan if tent.x is None else tent.x
+        rows.append(row)
+    return lines, pd.DataFrame(rows)

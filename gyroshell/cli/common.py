@@ -254,7 +254,8 @@ def typed_tape_options(args: argparse.Namespace) -> dict[str, str]:
 def _with_config(args: argparse.Namespace, kwargs: dict) -> TapeParameters:
     from ..tape.config import load_config
 
-    cfg = load_config(args.config)
+    cfg = load_config(args.config, tables=getattr(args, "config_tables", ()))
+    args.tables = cfg.tables  # the other tables a sub-command asked for ([head])
     typed = typed_tape_options(args)
     kwargs.update({name: getattr(args, name) for name in ("length_ratio", "edges", "spacing")
                    if name in typed})

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 
 from ..core.errors import ParameterError
@@ -16,6 +17,7 @@ from .common import (
     real,
     typed_tape_options,
 )
+from .heads import DEGREE_FIELDS, add_head_options, head_design, typed_head_options
 from .saving import add_save_option, check_save_path
 
 #: Resolution of the --plot files, dots per inch.
@@ -32,16 +34,20 @@ def register(sub, common: argparse.ArgumentParser,
         description="Vary tape parameters over a grid (every combination of the --vary "
                     "values) and compute, per point, the critical speed, the lowest "
                     "frequencies with the stability (stable/divergence/flutter), the static "
-                    "deflection or the period. Points run in local worker processes, or on a "
-                    "running Dask cluster with --scheduler. A point that fails is reported in "
-                    "its row. SI units: m, Pa, N/m, kg/m^2, m/s.")
+                    "deflection, the period or the air bearing over a head (--compute "
+                    "bearing: spacings, transducer lines, tents, corner forces, drag; the "
+                    "head's options below, or [head] in --config). Points run in local "
+                    "worker processes, or on a running Dask cluster with --scheduler. A "
+                    "point that fails is reported in its row. SI units: m, Pa, N/m, kg/m^2, "
+                    "m/s; the head's angles in degrees.")
     p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
                    help="a parameter and its values: NAME=V1,V2,... or NAME=START:STOP:NUM "
                         "(NUM evenly spaced values, both ends included); repeat for a grid. "
                         "Values in SI, or with a unit as in a --config file (20um,30um). "
-                        f"NAME: {', '.join(VARIABLE_NAMES)} (SI units), or for a layered "
-                        f"tape (--config with [[layer]] tables) {LAYER_VARIABLES}, layers "
-                        "counted from 1 at the bottom: layer2.thickness=4e-6:6e-6:5")
+                        f"NAME: {', '.join(VARIABLE_NAMES)} (SI units; the head's "
+                        "wrap_angle, wrap_in and wrap_out in degrees, or 0.03rad), or for "
+                        f"a layered tape (--config with [[layer]] tables) {LAYER_VARIABLES}, "
+                        "layers counted from 1 at the bottom: layer2.thickness=4e-6:6e-6:5")
     p.add_argument("--compute", action="append", required=True, metavar="WHAT",
                    help=f"what to compute: {', '.join(COMPUTE_CHOICES)} (repeat or "
                         "comma-separate for several)")
@@ -70,8 +76,23 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (points, computed, cached, failed, seconds, "
                         "executor) instead of the table")
-    p.set_defaults(func=run)
+    _add_bearing_options(p)
+    p.set_defaults(func=run, config_tables=("head",))
     register_campbell(sub, common_without_velocity)
+
+
+def _add_bearing_options(p: argparse.ArgumentParser) -> None:
+    """The head and grid of --compute bearing."""
+    add_head_options(p, title="head of --compute bearing")
+    g = p.add_argument_group("air bearing grid of --compute bearing")
+    g.add_argument("--infinitely-wide", action="store_true",
+                   help="the 1-D infinitely wide tape (per unit width) instead of the 2-D "
+                        "tape with free edges")
+    g.add_argument("--nx", type=positive_int, default=None,
+                   help="intervals along x (default: the bearing's default grid)")
+    g.add_argument("--ny", type=positive_int, default=None,
+                   help="intervals across the width, even, 2-D only (default: the "
+                        "bearing's default grid)")
 
 
 def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> None:
@@ -137,7 +158,9 @@ def parse_values(name: str, text: str) -> list:
         if num < 1:
             raise UserError(f"--vary {name}={text}: NUM must be >= 1")
         check_study_points(num, what=f"--vary {name}={text}")
-        return [float(v) for v in np.linspace(start, stop, num)]
+        values = [float(v) for v in np.linspace(start, stop, num)]
+        degrees = name.replace("-", "_") in DEGREE_FIELDS
+        return [math.radians(v) for v in values] if degrees else values
     items = [item.strip() for item in text.split(",")]
     if name.replace("-", "_") == "edges":
         return items
@@ -146,7 +169,7 @@ def parse_values(name: str, text: str) -> list:
     out = []
     for item in items:
         try:
-            out.append(real(item))
+            out.append(math.radians(real(item)) if key in DEGREE_FIELDS else real(item))
         except argparse.ArgumentTypeError as exc:
             if si_unit is None or not item[:1].strip("+-.0123456789") == "":
                 raise UserError(f"--vary {name}: {exc}") from None
@@ -199,6 +222,7 @@ def run(args: argparse.Namespace) -> int:
     vary = parse_vary(args.vary)
     compute = [c.strip() for item in args.compute for c in item.split(",") if c.strip()]
     _check_study_options(args, typed, vary, compute)
+    bearing = _bearing_setup(args, vary, compute)
     from ..results.base import NETCDF_SUFFIXES, TABLE_SUFFIXES
 
     check_save_path(args.save)
@@ -215,7 +239,7 @@ def run(args: argparse.Namespace) -> int:
                        count=3 if args.count is None else args.count,
                        workers=args.workers, scheduler=args.scheduler,
                        cache=args.cache, progress=False if args.quiet else None,
-                       **_connect_timeout(args))
+                       bearing=bearing, **_connect_timeout(args))
     from ..core.files import transaction
 
     with transaction():  # every output of the run, or none
@@ -239,6 +263,34 @@ def _check_study_options(args: argparse.Namespace, typed: dict[str, str], vary: 
     if args.count is not None and "modes" not in compute:
         raise UserError("--count is the number of frequencies of --compute modes; add "
                         "--compute modes or drop --count")
+
+
+def _bearing_setup(args: argparse.Namespace, vary: dict, compute: list[str]):
+    """The BearingStudy of --compute bearing (the head options over the [head] table of
+    --config, the grid options); without it, every head or grid option is refused."""
+    table = getattr(args, "tables", {}).get("head")
+    grid = [flag for flag, given in (("--infinitely-wide", args.infinitely_wide),
+                                     ("--nx", args.nx is not None),
+                                     ("--ny", args.ny is not None)) if given]
+    if "bearing" not in compute:
+        typed = typed_head_options(args) + grid
+        if typed:
+            raise UserError(f"{typed[0]} sets up --compute bearing: add it or drop {typed[0]}")
+        if table is not None:
+            raise UserError(f"{args.config}: its [head] table is the head of --compute "
+                            "bearing: add it, or drop the table")
+        return None
+    design = head_design(args, table, args.config)
+    from .heads import HEAD_FLAGS
+
+    for name in vary:
+        if getattr(args, name, None) is not None and name in HEAD_FLAGS:
+            raise UserError(f"{HEAD_FLAGS[name]} and --vary {name} both set {name}: every "
+                            "point takes its value from --vary, so give one of them")
+    from ..studies.head_study import BearingStudy
+
+    return BearingStudy(head=design, infinitely_wide=args.infinitely_wide, nx=args.nx,
+                        ny=args.ny)
 
 
 def _connect_timeout(args: argparse.Namespace) -> dict:

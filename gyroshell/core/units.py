@@ -17,6 +17,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 import re
 
 #: SI unit of each named quantity (ASCII: ``^`` for powers, ``*`` for products).
@@ -30,6 +31,11 @@ SI_UNITS: dict[str, str] = {
     "critical_speed": "m/s", "divergence_speed": "m/s", "growth_rate": "1/s",
     "omega": "rad/s", "frequency": "Hz", "period": "s", "load_point_deflection": "m",
     "max_deflection": "m",
+    # heads (issue 19): their design parameters and what a bearing study reports
+    "wrap_angle": "rad", "wrap_in": "rad", "wrap_out": "rad", "land_length": "m",
+    "corner_radius": "m", "module_gap": "m", "friction": "1", "central_spacing": "m",
+    "minimum_spacing": "m", "tension_rise": "N/m",
+    "tension_ratio": "1",
 }
 
 #: SI unit of each quantity of one layer of a stack (a ``[[layer]]`` table of a tape file;
@@ -58,6 +64,7 @@ ACCEPTED: dict[str, dict[str, float]] = {
     "N/m^3": {"N/m^3": 1.0, "Pa/m": 1.0, "MPa/m": 1e6, "GPa/m": 1e9},
     "m/s": {"m/s": 1.0, "mm/s": 1e-3, "km/h": 1 / 3.6, "in/s": 0.0254},
     "1": {"": 1.0, "1": 1.0},
+    "rad": {"rad": 1.0, "mrad": 1e-3, "deg": math.pi / 180.0, "°": math.pi / 180.0},
 }
 
 #: How an ASCII unit is printed on a figure.

@@ -19,7 +19,8 @@ from ._common import Settings
 
 #: Study names in the order ``all`` runs them.
 STUDIES: tuple[str, ...] = ("critical", "fig2", "fig3", "fig4", "fig5", "fig6", "period",
-                            "observations", "helical", "frf", "bearing", "orthotropy")
+                            "observations", "helical", "frf", "bearing", "orthotropy",
+                            "heads")
 
 
 def run_study(name: str, out: str | Path, settings: Settings | None = None) -> list[Path]:

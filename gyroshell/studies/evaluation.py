@@ -20,7 +20,7 @@ __all__ = ["COMPUTE_CHOICES", "MAX_COUNT", "STABILITY_VALUES", "check_compute", 
            "evaluate", "result_columns"]
 
 #: What a study can compute at each point.
-COMPUTE_CHOICES: tuple[str, ...] = ("critical", "modes", "static", "period")
+COMPUTE_CHOICES: tuple[str, ...] = ("critical", "modes", "static", "period", "bearing")
 #: Most frequencies per point (the eigen-solver's limit,
 #: :data:`gyroshell.linalg.qep.problem.MAX_COUNT`; not imported: it loads scipy).
 MAX_COUNT = 50
@@ -49,8 +49,9 @@ def check_compute(compute: str | Sequence[str]) -> tuple[str, ...]:
     return tuple(dict.fromkeys(items))
 
 
-def result_columns(compute: Sequence[str], count: int) -> list[str]:
-    """Names of the computed columns, in order, for ``compute`` and ``count``.
+def result_columns(compute: Sequence[str], count: int, bearing=None) -> list[str]:
+    """Names of the computed columns, in order, for ``compute`` and ``count`` (and, for
+    ``bearing``, the setup's :attr:`~gyroshell.studies.head_study.BearingStudy.columns`).
 
     Examples
     --------
@@ -69,11 +70,13 @@ def result_columns(compute: Sequence[str], count: int) -> list[str]:
         cols += ["period"]
     if "modes" in compute or "period" in compute:
         cols += ["stability"]
+    if "bearing" in compute:
+        cols += list(bearing.columns)
     return cols + ["error"]
 
 
 def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
-             count: int) -> dict:
+             count: int, bearing=None) -> dict:
     """Compute one point; returns the computed columns (see :func:`result_columns`).
 
     Parameters
@@ -89,6 +92,8 @@ def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
         What to compute (:data:`COMPUTE_CHOICES`).
     count : int
         Frequencies for ``modes``.
+    bearing : BearingStudy, optional
+        The head, air and grid of ``bearing`` (:mod:`gyroshell.studies.head_study`).
 
     Returns
     -------
@@ -98,7 +103,7 @@ def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
         reported in ``error`` (``"static: SupercriticalError: message"``; several joined by
         " | "), while the other quantities of the point are kept.
     """
-    row: dict = {c: math.nan for c in result_columns(compute, count)}
+    row: dict = {c: math.nan for c in result_columns(compute, count, bearing)}
     if "stability" in row:
         row["stability"] = ""
     errors: list[str] = []
@@ -109,6 +114,13 @@ def evaluate(base: dict, velocity: float, point: dict, compute: tuple[str, ...],
         except Exception as exc:  # reported in the row; the study goes on
             errors.append(f"{name}: {type(exc).__name__}: {exc}".replace("\n", " "))
 
+    if "bearing" in compute:
+        from .head_study import bearing_row
+
+        attempt("bearing", lambda: row.update(bearing_row(base, velocity, point, bearing)))
+        if set(compute) == {"bearing"}:
+            row["error"] = " | ".join(errors)
+            return row
     built: list = []
     attempt("model", lambda: built.append(_model_of(base, velocity, point)))
     if built:
@@ -173,7 +185,7 @@ _NUMBER_RANGES = {"critical_speed": (0.0, False, "m/s"), "divergence_speed": (0.
                   "max_deflection": (-math.inf, False, "m"), "period": (0.0, True, "s")}
 
 
-def check_row(row: object, compute: Sequence[str], count: int) -> dict:
+def check_row(row: object, compute: Sequence[str], count: int, bearing=None) -> dict:
     """A row read back (from a cache), checked as strictly as a computed one: exactly the
     columns of :func:`result_columns`, each number real (NaN, or finite and in its range),
     ``stability`` one of :data:`STABILITY_VALUES`, ``error`` text. Returns the row with
@@ -192,17 +204,18 @@ def check_row(row: object, compute: Sequence[str], count: int) -> dict:
     ...
     gyroshell.ParameterError: critical_speed must be a number >= 0 m/s or NaN, got 'fast'
     """
-    columns = result_columns(compute, count)
+    columns = result_columns(compute, count, bearing)
     if not isinstance(row, dict) or set(row) != set(columns):
         got = sorted(row) if isinstance(row, dict) else type(row).__name__
         raise ParameterError(f"row must have the columns {', '.join(columns)}, got {got}")
     out = {}
+    bearing_columns = set(bearing.columns) if bearing is not None else set()
     for column in columns:
-        out[column] = _checked_cell(column, row[column])
+        out[column] = _checked_cell(column, row[column], column in bearing_columns)
     return out
 
 
-def _checked_cell(column: str, value: object):
+def _checked_cell(column: str, value: object, of_bearing: bool = False):
     """One value of a row, checked (see :func:`check_row`)."""
     if column == "error":
         if not isinstance(value, str):
@@ -213,7 +226,13 @@ def _checked_cell(column: str, value: object):
             raise ParameterError(f"stability must be one of "
                                  f"{', '.join(repr(v) for v in STABILITY_VALUES)}, got {value!r}")
         return value
-    low, infinite, unit = _NUMBER_RANGES["omega" if column.startswith("omega_") else column]
+    if of_bearing:
+        from .head_study import number_range
+
+        (low, unit), infinite = number_range(column), False
+    else:
+        low, infinite, unit = _NUMBER_RANGES["omega" if column.startswith("omega_")
+                                              else column]
     allowed = (f"a number >= {low:g} {unit}" if low > -math.inf else f"a finite number {unit}")
     allowed += " (or inf)" if infinite else ""
     if isinstance(value, bool) or not isinstance(value, (int, float)):

@@ -56,6 +56,7 @@ class StudyTask:
     velocity: float
     compute: tuple[str, ...]
     count: int
+    bearing: object = None   # a BearingStudy for compute="bearing"
 
 
 def check_executor(workers: int | None, scheduler: str | None, chunk_size: int | None,
@@ -109,7 +110,8 @@ def _automatic_size(todo: list, slots: int, chunk_size: int | None) -> int:
 def evaluate_chunk(task: StudyTask, points: list[tuple[int, dict]]) -> Rows:
     """Evaluate several points of one study in one task (:func:`evaluation.evaluate
     <gyroshell.studies.evaluation.evaluate>` on each)."""
-    return [(i, evaluation.evaluate(task.base, task.velocity, point, task.compute, task.count))
+    return [(i, evaluation.evaluate(task.base, task.velocity, point, task.compute, task.count,
+                                    task.bearing))
             for i, point in points]
 
 

@@ -20,6 +20,11 @@ at every point:
 ``period``
     ``period`` = 2π/ω₁ (s), the dominant period of the load-point response (the band edge
     of its spectrum; see :mod:`gyroshell.reproduce.period`), and ``stability``.
+``bearing``
+    The steady air bearing over a head (``bearing=BearingStudy(head, ...)``): central,
+    minimum and transducer-line spacings, tents, corner forces, drag and tension rise
+    (:mod:`~gyroshell.studies.head_study`); points may also vary the head
+    (:data:`~gyroshell.studies.points.HEAD_VARIABLES`).
 
 Every point is an independent task. They run in this process (``workers=1``), in local
 worker processes (``workers=N``, the default is the number of CPUs; no setup), or on a Dask
@@ -55,12 +60,13 @@ from ..tape.parameters import TapeParameters, check_velocity
 from .cache import PointCache, point_key
 from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
 from .executors import CONNECT_TIMEOUT, Executor, StudyTask, check_executor, connected, execute
-from .points import VARIABLE_NAMES, canonical_name, check_points, grid_points
+from .head_study import BearingStudy, head_of_point
+from .points import HEAD_VARIABLES, VARIABLE_NAMES, canonical_name, check_points, grid_points
 
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "StudyResult", "run_study"]
+__all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "BearingStudy", "StudyResult", "run_study"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,6 +93,9 @@ class StudyResult(results_base.Result, kind="study"):
     info : dict
         ``points``, ``computed`` (points run now), ``cached`` (points read from the cache),
         ``seconds``, ``executor``, ``chunk_size``.
+    bearing : dict or None
+        The head, air and grid of a ``bearing`` study
+        (:meth:`~gyroshell.studies.head_study.BearingStudy.spec`).
     """
 
     table: pd.DataFrame
@@ -96,6 +105,7 @@ class StudyResult(results_base.Result, kind="study"):
     compute: tuple[str, ...]
     count: int
     info: dict = field(default_factory=dict)
+    bearing: dict | None = None
 
     @property
     def failed(self) -> pd.DataFrame:
@@ -153,8 +163,11 @@ class StudyResult(results_base.Result, kind="study"):
 
     def _persistence_attrs(self) -> dict:
         """The metadata of a study file (also used by the previous release's converter)."""
-        return {"params": self.base, "velocity": self.velocity, "varied": list(self.varied),
-                "compute": list(self.compute), "count": self.count, "info": self.info}
+        attrs = {"params": self.base, "velocity": self.velocity, "varied": list(self.varied),
+                 "compute": list(self.compute), "count": self.count, "info": self.info}
+        if self.bearing is not None:
+            attrs["bearing"] = self.bearing
+        return attrs
 
     @classmethod
     def _from_saved(cls, table: pd.DataFrame, attrs: Mapping) -> StudyResult:
@@ -165,7 +178,8 @@ class StudyResult(results_base.Result, kind="study"):
                 table[col] = table[col].fillna("").astype(str)
         return cls(table, results_base.params_from(attrs), float(from_json(attrs["velocity"])),
                    tuple(from_json(attrs["varied"])), tuple(from_json(attrs["compute"])),
-                   int(from_json(attrs["count"])), from_json(attrs.get("info", "{}")))
+                   int(from_json(attrs["count"])), from_json(attrs.get("info", "{}")),
+                   from_json(attrs["bearing"]) if "bearing" in attrs else None)
 
 
 
@@ -174,7 +188,7 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
               velocity: float = 0.0, count: int = 3, workers: int | None = None,
               scheduler: str | None = None, connect_timeout: float = CONNECT_TIMEOUT,
               cache: str | os.PathLike[str] | None = None, chunk_size: int | None = None,
-              progress: bool | None = None) -> StudyResult:
+              progress: bool | None = None, bearing: BearingStudy | None = None) -> StudyResult:
     """Run a parameter study; one row per point.
 
     Parameters
@@ -182,12 +196,11 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     base : TapeParameters, optional
         The tape the points change (default: Table 1).
     vary : mapping name -> values, optional
-        A grid: every combination of the values (first name slowest). Names are the
-        TapeParameters fields (SI units) and ``velocity`` (m/s).
+        A grid: every combination (first name slowest) of :data:`VARIABLE_NAMES`' values, SI.
     points : sequence of mappings, optional
         Or a list of points, e.g. ``[{"tension": 80, "velocity": 50}, ...]``.
     compute : str or sequence of str
-        Any of ``critical``, ``modes``, ``static``, ``period`` (see the module docstring).
+        Any of ``critical``, ``modes``, ``static``, ``period``, ``bearing`` (module doc).
     velocity : float
         Tape speed V, m/s, where a point does not set it.
     count : int
@@ -208,6 +221,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     progress : bool, optional
         True: a bar on stderr, False: nothing, None: the bar on a terminal, else one line
         per stage (:class:`gyroshell.core.progress.StageLines`).
+    bearing : BearingStudy, optional
+        The head, air and grid of ``compute="bearing"`` (default ``BearingStudy()``).
 
     Returns
     -------
@@ -226,9 +241,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     >>> list(study.table.columns)
     ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
     """
-    plan = _plan(base, vary, points, compute, velocity, count)
-    where = check_executor(workers, scheduler, chunk_size, connect_timeout)
-    return _run(plan, where, cache, progress)
+    return _run(_plan(base, vary, points, compute, velocity, count, bearing),
+                check_executor(workers, scheduler, chunk_size, connect_timeout), cache, progress)
 
 
 @dataclass(frozen=True)
@@ -242,24 +256,27 @@ class _Plan:
     varied: tuple[str, ...]
     compute: tuple[str, ...]
     count: int
+    bearing: BearingStudy | None = None
 
     @property
     def task(self) -> StudyTask:
         """What every point's evaluation shares (the base tape as plain fields)."""
         fields = parameter_fields(self.base)  # plain values: layers as dicts
-        return StudyTask(fields, self.velocity, self.compute, self.count)
+        return StudyTask(fields, self.velocity, self.compute, self.count, self.bearing)
 
     def keys(self) -> list[str]:
         """Each point's cache key: its values, the rest of the study and the version."""
         from ..core.version import __version__
 
         task = self.task
-        spec = json.dumps([task.base, self.velocity, self.compute, self.count, __version__],
-                          sort_keys=True, default=repr)
+        parts = [task.base, self.velocity, self.compute, self.count, __version__]
+        if self.bearing is not None:
+            parts.append(self.bearing.spec())
+        spec = json.dumps(parts, sort_keys=True, default=repr)
         return [point_key(spec, p) for p in self.points]
 
 
-def _plan(base, vary, points, compute, velocity, count) -> _Plan:
+def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
     """The study's settings validated (ParameterError names what is wrong)."""
     base = TapeParameters() if base is None else base
     validation.instance("base", base, TapeParameters)
@@ -272,7 +289,33 @@ def _plan(base, vary, points, compute, velocity, count) -> _Plan:
     pts, varied = check_points(base, velocity, raw)
     if vary is not None:
         varied = tuple(canonical_name(n) for n in vary)
-    return _Plan(base, velocity, pts, varied, compute, int(count))
+    bearing = _bearing_plan(base, pts, varied, compute, bearing)
+    return _Plan(base, velocity, pts, varied, compute, int(count), bearing)
+
+
+def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...],
+                  compute: tuple[str, ...], bearing) -> BearingStudy | None:
+    """The bearing setup with its columns, every point's head checked; None without
+    ``bearing`` in ``compute`` (then no head variable may vary and no setup be given)."""
+    if "bearing" not in compute:
+        heads = [name for name in varied if name in HEAD_VARIABLES]
+        if heads:
+            raise ParameterError(f"{', '.join(heads)}: a head's parameters vary in a bearing "
+                                 "study: add compute='bearing'")
+        if bearing is not None:
+            raise ParameterError("bearing sets up compute='bearing': add it to compute or "
+                                 "drop bearing")
+        return None
+    bearing = BearingStudy() if bearing is None else bearing
+    validation.instance("bearing", bearing, BearingStudy)
+    if base.edges != "free" and not bearing.infinitely_wide:
+        raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
+    for i, point in enumerate(pts):
+        try:
+            head_of_point(bearing, point).head()   # the contour's own checks too
+        except ParameterError as exc:
+            raise ParameterError(f"point {i} {point}: {exc}") from None
+    return bearing.with_columns(base)
 
 
 def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyResult:
@@ -285,7 +328,7 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
     keys, pts = plan.keys(), plan.points
     ours = set(keys)
     cache = PointCache(cache)
-    done = cache.done(lambda key, row: check_row(row, plan.compute, plan.count)
+    done = cache.done(lambda key, row: check_row(row, plan.compute, plan.count, plan.bearing)
                       if key in ours else row)
     rows: dict[int, dict] = {i: done[k] for i, k in enumerate(keys) if k in done}
     todo = [(i, pts[i]) for i in range(len(pts)) if i not in rows]
@@ -302,14 +345,14 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
         executor, size = execute(todo, record, plan.task, where, client)
     import pandas as pd
 
-    columns = result_columns(plan.compute, plan.count)
+    columns = result_columns(plan.compute, plan.count, plan.bearing)
     records = [{"point": i, **pts[i], **{c: rows[i][c] for c in columns}}
                for i in range(len(pts))]
     table = pd.DataFrame(records, columns=["point", *plan.varied, *columns])
     info = {"points": len(pts), "computed": len(todo), "cached": len(pts) - len(todo),
             "seconds": time.perf_counter() - t0, "executor": executor, "chunk_size": size}
     return StudyResult(table, plan.base, plan.velocity, plan.varied, plan.compute,
-                       plan.count, info)
+                       plan.count, info, None if plan.bearing is None else plan.bearing.spec())
 
 
 def _where_text(where: Executor, todo: list) -> str:

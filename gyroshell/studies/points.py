@@ -24,15 +24,21 @@ from ..core.errors import ParameterError
 from ..core.units import LAYER_NAME, LAYER_UNITS
 from ..tape.parameters import TapeParameters, check_velocity
 
-__all__ = ["LAYER_VARIABLES", "VARIABLE_NAMES", "canonical_name", "check_points",
-           "grid_points", "parameters_of"]
+__all__ = ["HEAD_VARIABLES", "LAYER_VARIABLES", "VARIABLE_NAMES", "canonical_name",
+           "check_points", "grid_points", "parameters_of"]
 
+#: Parameters of the head a bearing study (``compute="bearing"``) can vary, SI (angles in
+#: rad): :class:`gyroshell.bearing.head_config.HeadDesign` fields.
+HEAD_VARIABLES: tuple[str, ...] = ("wrap_angle", "wrap_in", "wrap_out", "land_length",
+                                   "corner_radius", "module_gap")
 #: TapeParameters fields that are not one number: a study varies a layer's quantities one by
 #: one (:data:`LAYER_VARIABLES`), and not the four bending stiffnesses.
 NOT_SCALAR = ("bending_stiffness", "layers")
-#: Parameters a study can vary: every scalar TapeParameters field, plus the tape speed.
+#: Parameters a study can vary: every scalar TapeParameters field, plus the tape speed and
+#: the head's parameters.
 VARIABLE_NAMES: tuple[str, ...] = ("velocity",) + tuple(
-    f.name for f in dataclasses.fields(TapeParameters) if f.name not in NOT_SCALAR)
+    f.name for f in dataclasses.fields(TapeParameters) if f.name not in NOT_SCALAR
+) + HEAD_VARIABLES
 #: How the quantities of a layered tape's layers are named (see the module docstring).
 LAYER_VARIABLES = f"layer<N>.<key> (key: {', '.join(LAYER_UNITS)})"
 
@@ -172,7 +178,8 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
             params, v = parameters_of(base, velocity, clean)
         except ParameterError as exc:
             raise ParameterError(f"point {i} {clean}: {exc}") from None
-        clean = {k: value_of(params, v, k) for k in clean}
+        clean = {k: clean[k] if k in HEAD_VARIABLES else value_of(params, v, k)
+                 for k in clean}
         out.append(clean)
     if not out:
         raise ParameterError("a study needs at least one point")
@@ -183,8 +190,10 @@ def parameters_of(base: TapeParameters, velocity: float, point: Mapping
                   ) -> tuple[TapeParameters, float]:
     """The point's tape and speed V (m/s): ``base`` changed by the point's fields (its
     layers by the ``layer<N>.<key>`` ones), and the point's ``velocity`` or else
-    ``velocity``."""
-    changes = {k: v for k, v in point.items() if k != "velocity" and layer_of(k) is None}
+    ``velocity``; the head's variables are not the tape's
+    (:func:`gyroshell.studies.head_study.head_of_point`)."""
+    changes = {k: v for k, v in point.items()
+               if k != "velocity" and layer_of(k) is None and k not in HEAD_VARIABLES}
     v = check_velocity(point.get("velocity", velocity))
     params = base
     layer_changes = {k: v for k, v in point.items() if layer_of(k) is not None}

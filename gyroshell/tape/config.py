@@ -92,6 +92,8 @@ class TapeConfig:
     params: TapeParameters
     velocity: float | None = None
     name: str | None = None
+    #: Other tables the caller asked for (``tables=`` of :func:`load_config`), as parsed.
+    tables: dict = dataclasses.field(default_factory=dict)
 
 
 def _tomllib():
@@ -142,12 +144,16 @@ def parse_quantity(key: str, value, where: str = "", *, unit: str | None = None)
     return number * factor
 
 
-def config_from_dict(data: dict, where: str = "", adjust=None) -> TapeConfig:
+def config_from_dict(data: dict, where: str = "", adjust=None,
+                     tables: tuple[str, ...] = ()) -> TapeConfig:
     """Validate a parsed TOML table (see the module docstring) into a :class:`TapeConfig`.
 
     ``adjust``, if given, maps the file's TapeParameters fields (a dict, SI) to those to
-    validate (see :func:`load_config`).
+    validate (see :func:`load_config`); ``tables`` names other tables the file may hold
+    beside the tape's (kept unparsed in :attr:`TapeConfig.tables`).
     """
+    others = {t: data[t] for t in tables if t in data}
+    data = {k: v for k, v in data.items() if k not in others}
     layers = None
     if isinstance(data, dict) and LAYER_TABLE in data:
         data = dict(data)
@@ -174,7 +180,7 @@ def config_from_dict(data: dict, where: str = "", adjust=None) -> TapeConfig:
             params = TapeParameters.from_layers(layers, **fields)
     except ParameterError as exc:
         raise ParameterError(f"{where}{exc}") from None
-    return TapeConfig(params, velocity, name)
+    return TapeConfig(params, velocity, name, others)
 
 
 def _tape_fields(data: dict, where: str) -> tuple[dict, float | None, str | None]:
@@ -301,7 +307,8 @@ def config_text_of(raw: bytes, where: str) -> str:
                              f"{exc.start}): TOML files are UTF-8") from None
 
 
-def load_config(path: str | os.PathLike[str], *, adjust=None) -> TapeConfig:
+def load_config(path: str | os.PathLike[str], *, adjust=None,
+                tables: tuple[str, ...] = ()) -> TapeConfig:
     """Read a tape definition (TOML, see the module docstring).
 
     Parameters
@@ -313,6 +320,9 @@ def load_config(path: str | os.PathLike[str], *, adjust=None) -> TapeConfig:
         validate: a caller that does not use some of them (the air bearing has no plate
         grid: ``spacing``, ``length_ratio``, the load) replaces them before
         :class:`TapeParameters` checks them.
+    tables : tuple of str
+        Other tables the file may hold beside the tape's (the bearing's ``[head]``):
+        returned unparsed in :attr:`TapeConfig.tables`; any other table is refused.
 
     Raises
     ------
@@ -331,7 +341,7 @@ def load_config(path: str | os.PathLike[str], *, adjust=None) -> TapeConfig:
         data = _tomllib().loads(text)
     except _tomllib().TOMLDecodeError as exc:
         raise ParameterError(f"{where}not valid TOML: {exc}") from None
-    return config_from_dict(data, where=where, adjust=adjust)
+    return config_from_dict(data, where=where, adjust=adjust, tables=tables)
 
 
 def parameter_fields(params: TapeParameters) -> dict:

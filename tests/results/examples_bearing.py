@@ -8,6 +8,7 @@ from collections.abc import Callable
 
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.model import BearingGridWarning
 from gyroshell.bearing.steady import solve_steady
 from gyroshell.bearing.transient import march, tension_step
@@ -17,6 +18,8 @@ from gyroshell.results.base import Result
 INTERVALS = 60
 #: A coarse free-edged tape (its default grid is graded).
 INTERVALS_2D = (40, 8)
+#: A coarse free-edged tape over a flat head.
+INTERVALS_FLAT = (64, 8)
 TIME_STEP = 1e-5
 STEPS = 3
 
@@ -40,6 +43,19 @@ def steady_2d() -> Result:
     return solve_steady(_model(infinitely_wide=False))
 
 
+def steady_flat_2d() -> Result:
+    """A free-edged tape over a flat module with transducers and friction: its head and
+    the designer's readings (summary, derived fields) go through the file too."""
+    head = FlatHead((Module(1e-3),), math.radians(2.0), math.radians(2.0),
+                    transducers=(0.0, 0.2345e-3), friction=0.2)
+    with warnings.catch_warnings():  # coarse on purpose
+        warnings.simplefilter("ignore", BearingGridWarning)
+        model = BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
+                             head=head, nx=INTERVALS_FLAT[0], ny=INTERVALS_FLAT[1],
+                             span=1e-3)
+    return solve_steady(model)
+
+
 def transient() -> Result:
     """A few steps after a tension step."""
     return march(solve_steady(_model()), dt=TIME_STEP, steps=STEPS,
@@ -47,6 +63,8 @@ def transient() -> Result:
 
 
 EXAMPLES: dict[str, Callable[[], Result]] = {
-    "bearing": steady_2d,  # the 2-D state (graded y, mirror fold); 1-D in test_bearing_kinds
+    # the 2-D state (graded y, mirror fold) over a flat head with transducers and friction;
+    # the cylinder in 2-D and 1-D in test_bearing_kinds
+    "bearing": steady_flat_2d,
     "bearing_transient": transient,
 }

@@ -153,7 +153,8 @@ def test_summary_table_and_plot(tmp_path):
     assert s["unknowns"] == sol.model.unknowns
     assert s["wrap_angle_degrees"] == pytest.approx(15.0, rel=1e-12)
     frame = sol.to_frame()
-    assert list(frame.columns) == ["x", "y", "spacing", "pressure"]
+    assert list(frame.columns) == ["x", "y", "spacing", "pressure", "shear_stress",
+                                   "contact_pressure"]
     assert len(frame) == (sol.model.nx + 1) * sol.model.nc
     assert np.array_equal(frame["spacing"].to_numpy(), sol.spacing.ravel())
     assert isinstance(sol.plot(), matplotlib.axes.Axes)

@@ -40,6 +40,7 @@ EXPECTED = {
     "frf": ("frf.csv", "frf_bode.png"),
     "bearing": ("bearing_speed.csv", "bearing_speed.png"),
     "orthotropy": ("orthotropy_speeds.csv", "orthotropy_speeds.png"),
+    "heads": ("heads_modules.csv", "heads_modules.png"),
 }
 
 

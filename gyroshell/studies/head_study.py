@@ -1,0 +1,179 @@
+"""Head design studies: what ``compute="bearing"`` computes at a point of a parameter study.
+
+A point may change the tape (its fields, ``velocity``) and the head
+(:data:`~gyroshell.studies.points.HEAD_VARIABLES`: the cylinder's ``wrap_angle``, the
+wraps ``wrap_in`` and ``wrap_out``, ``land_length``, ``corner_radius``, ``module_gap``; in
+SI units, angles in rad). Each point solves the steady flying state
+(:func:`gyroshell.bearing.steady.solve_steady`) of the tape over the point's head and
+reports, per point:
+
+``central_spacing``, ``minimum_spacing``
+    m (:class:`~gyroshell.bearing.results.BearingSolution`).
+``transducer_<i>_min_spacing``, ``transducer_<i>_mean_spacing``
+    m, the spacing's minimum and mean across the width along the i-th transducer line
+    (i = 1, 2, ... in the head's order).
+``corner_<j>_tent_height``, ``corner_<j>_tent_x``, ``corner_<j>_force``
+    The tent next to the j-th corner on its land side, along the middle of the width
+    (its height, m, and position, m from the head's middle; NaN where the spacing has no
+    local maximum there, :attr:`~gyroshell.bearing.results.BearingSolution.tents`) and
+    the corner's contact force (N; N/m per unit width when infinitely wide).
+``contact_force``, ``viscous_drag``, ``friction_drag``, ``drag``
+    N (N/m per unit width when infinitely wide).
+``tension_rise``, ``tension_ratio``
+    N/m and 1: the drag per unit width, and 1 + tension_rise / T.
+``newton_iterations``
+    The solve's Newton iterations.
+
+The number of transducer and corner columns is the base head's; a point whose head has
+another number of corners fails in its row.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from ..bearing.air import AirParameters
+from ..bearing.head_config import HeadDesign, check_design, kind_fields
+from ..core import validation
+from ..core.errors import ParameterError
+from ..tape.parameters import TapeParameters
+from .points import HEAD_VARIABLES, parameters_of
+
+__all__ = ["BearingStudy", "bearing_row", "head_of_point"]
+
+#: The columns every bearing point reports before its transducer and corner columns.
+LEADING = ("central_spacing", "minimum_spacing")
+#: ... and after them.
+TRAILING = ("contact_force", "viscous_drag", "friction_drag", "drag", "tension_rise",
+            "tension_ratio", "newton_iterations")
+#: The values each bearing column may take: (lowest, unit) (NaN is always allowed).
+NUMBER_RANGES = {"spacing": (0.0, "m"), "tent_height": (-math.inf, "m"),
+                 "tent_x": (-math.inf, "m"), "force": (0.0, "N or N/m"),
+                 "contact_force": (0.0, "N or N/m"), "viscous_drag": (-math.inf, "N or N/m"),
+                 "friction_drag": (0.0, "N or N/m"), "drag": (-math.inf, "N or N/m"),
+                 "tension_rise": (-math.inf, "N/m"), "tension_ratio": (0.0, "1"),
+                 "newton_iterations": (0.0, "1")}
+
+
+@dataclass(frozen=True)
+class BearingStudy:
+    """What every bearing point of a study shares beside the tape.
+
+    Attributes
+    ----------
+    head : HeadDesign
+        The base head (:class:`gyroshell.bearing.head_config.HeadDesign`); points change
+        its fields.
+    air : AirParameters or None
+        The air film (None: air at 20 °C).
+    infinitely_wide : bool
+        Solve the 1-D infinitely wide tape (per unit width) instead of the 2-D tape.
+    nx, ny : int or None
+        The grid's intervals (None: the bearing's default grid at each point).
+    columns : tuple of str
+        The columns of a point (:meth:`with_columns` fills them for the base tape; empty
+        until then).
+    """
+
+    head: HeadDesign = dataclasses.field(default_factory=HeadDesign)
+    air: AirParameters | None = None
+    infinitely_wide: bool = False
+    nx: int | None = None
+    ny: int | None = None
+    columns: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        validation.instance("head", self.head, HeadDesign)
+        validation.instance("air", self.air, AirParameters, optional=True)
+        validation.boolean("infinitely_wide", self.infinitely_wide)
+        validation.integer("nx", self.nx, low=1, optional=True)
+        validation.integer("ny", self.ny, low=1, optional=True)
+        if self.infinitely_wide and self.ny is not None:
+            raise ParameterError("ny applies to the 2-D tape only: leave it None with "
+                                 "infinitely_wide=True")
+        object.__setattr__(self, "head", check_design(self.head))
+
+    def spec(self) -> dict:
+        """The setup as plain JSON values, lists for tuples (a cache key's part, a saved
+        study's metadata: it reads back equal)."""
+        return json.loads(json.dumps({
+            "head": dataclasses.asdict(self.head),
+            "air": None if self.air is None else dataclasses.asdict(self.air),
+            "infinitely_wide": self.infinitely_wide, "nx": self.nx, "ny": self.ny}))
+
+    def with_columns(self, base: TapeParameters) -> BearingStudy:
+        """This setup with the columns of its points over the tape ``base`` (the head is
+        built here: one its constructor refuses, transducers off it, is refused now)."""
+        head = self.head.head()
+        transducers = len(head.transducers)
+        corners = len(head.corners(radius=base.radius))
+        out = list(LEADING)
+        for i in range(1, transducers + 1):
+            out += [f"transducer_{i}_min_spacing", f"transducer_{i}_mean_spacing"]
+        for j in range(1, corners + 1):
+            out += [f"corner_{j}_tent_height", f"corner_{j}_tent_x", f"corner_{j}_force"]
+        return dataclasses.replace(self, columns=tuple(out + list(TRAILING)))
+
+
+def head_of_point(setup: BearingStudy, point: Mapping) -> HeadDesign:
+    """The point's head design: the base head with the point's head variables (checked
+    whole, :func:`~gyroshell.bearing.head_config.check_design`; a variable the head's kind
+    has not is refused, naming it)."""
+    changes = {k: v for k, v in point.items() if k in HEAD_VARIABLES}
+    if not changes:
+        return setup.head
+    kind = setup.head.kind
+    for name in changes:
+        if name not in kind_fields(kind):
+            raise ParameterError(f"{name} is not a parameter of a {kind} head")
+    return setup.head.replace(**changes)
+
+
+def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -> dict:
+    """Solve the point's steady bearing; its columns (see the module docstring)."""
+    from ..bearing import BearingModel
+    from ..bearing.steady import solve_steady
+
+    tape = {k: v for k, v in point.items() if k not in HEAD_VARIABLES}
+    params, v = parameters_of(TapeParameters(**base), velocity, tape)
+    model = BearingModel(params, setup.air, velocity=v,
+                         head=head_of_point(setup, point).head(),
+                         infinitely_wide=setup.infinitely_wide, nx=setup.nx, ny=setup.ny)
+    return readings_row(solve_steady(model), list(setup.columns))
+
+
+def readings_row(sol, columns: list[str]) -> dict:
+    """A solution's readings as the study's columns."""
+    row = {"central_spacing": sol.central_spacing, "minimum_spacing": sol.minimum_spacing,
+           "contact_force": sol.contact_force, "viscous_drag": sol.viscous_drag,
+           "friction_drag": sol.friction_drag, "drag": sol.drag,
+           "tension_rise": sol.tension_rise, "tension_ratio": sol.tension_ratio,
+           "newton_iterations": float(sol.info.iterations)}
+    for i, line in enumerate(sol.transducer_lines, start=1):
+        row[f"transducer_{i}_min_spacing"] = line.minimum
+        row[f"transducer_{i}_mean_spacing"] = line.mean
+    tents = [tent for tent in sol.tents if tent.side == "land"]
+    forces = sol.corner_forces
+    for j, (tent, force) in enumerate(zip(tents, forces, strict=True), start=1):
+        row[f"corner_{j}_tent_height"] = math.nan if tent.height is None else tent.height
+        row[f"corner_{j}_tent_x"] = math.nan if tent.x is None else tent.x
+        row[f"corner_{j}_force"] = force.force
+    if set(row) != set(columns):
+        raise ParameterError(f"this point's head has {len(forces)} corners and "
+                             f"{len(sol.transducer_lines)} transducer lines, not those of "
+                             "the study's base head")
+    return {c: float(row[c]) for c in columns}
+
+
+def number_range(column: str) -> tuple[float, str]:
+    """(lowest value, unit) of a bearing column (see :data:`NUMBER_RANGES`)."""
+    if column.endswith("_spacing"):
+        return NUMBER_RANGES["spacing"]
+    for suffix in ("tent_height", "tent_x", "force"):
+        if column.startswith("corner_") and column.endswith(suffix):
+            return NUMBER_RANGES[suffix]
+    return NUMBER_RANGES[column]

@@ -1,0 +1,118 @@
+"""`gyroshell bearing` over real heads: the JSON carries the readings, the files agree with
+it, the TOML table and the options fly the same head, the cylinder through --head is
+today's answer, and --error-estimate is the difference of the two grids' solves."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import pandas as pd
+import pytest
+
+from gyroshell import TapeParameters
+from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.head import FlatHead, Module
+from gyroshell.bearing.steady import initial_state, solve_steady
+
+#: The issue's command, infinitely wide (1-D: a few hundredths of a second).
+FLAT_1D = ["bearing", "--head", "flat", "--land-length", "1e-3", "--wrap-in", "2",
+           "--wrap-out", "2", "--transducers", "0", "--velocity", "4", "--infinitely-wide",
+           "--quiet"]
+
+
+def _json(cli, argv) -> dict:
+    run = cli([*argv, "--json"])
+    assert run.code == 0, run.err
+    return json.loads(run.out)
+
+
+def _direct(nx=None):
+    head = FlatHead((Module(1e-3),), math.radians(2), math.radians(2), transducers=(0.0,))
+    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=head,
+                         infinitely_wide=True, nx=nx)
+    return solve_steady(model, z0=initial_state(model))
+
+
+def test_the_flat_head_json_is_the_direct_solve(cli):
+    out = _json(cli, FLAT_1D)
+    sol = _direct()
+    assert out["central_spacing"] == sol.central_spacing
+    (line,) = out["transducer_lines"]
+    assert line["x"] == 0.0 and line["minimum"] == sol.transducer_lines[0].minimum
+    assert [c["force"] for c in out["corner_forces"]] == [c.force for c in sol.corner_forces]
+    assert out["drag"] == sol.drag and out["tension_ratio"] == sol.tension_ratio
+    assert "wrap_angle_degrees" not in out or out["wrap_angle_degrees"] == pytest.approx(4.0)
+
+
+def test_the_cylinder_through_head_is_todays_answer(cli):
+    today = _json(cli, ["bearing", "--velocity", "4", "--infinitely-wide", "--quiet"])
+    named = _json(cli, ["bearing", "--head", "cylinder", "--wrap-angle", "15", "--velocity",
+                        "4", "--infinitely-wide", "--quiet"])
+    for key in ("central_spacing", "minimum_spacing", "air_force", "newton_iterations"):
+        assert named[key] == today[key]
+    assert named["wrap_angle_degrees"] == today["wrap_angle_degrees"] == 15.0
+
+
+def test_the_toml_head_flies_as_the_options(cli, tmp_path):
+    path = tmp_path / "head.toml"
+    path.write_text('[tape]\nvelocity = "4 m/s"\n\n[head]\nkind = "flat"\n'
+                    'land_length = "1 mm"\nwrap_in = "2 deg"\nwrap_out = "2 deg"\n'
+                    'transducers = ["0 mm"]\nfriction = 0.2\n')
+    from_file = _json(cli, ["bearing", "--config", path, "--infinitely-wide", "--quiet"])
+    typed = _json(cli, [*FLAT_1D, "--friction", "0.2"])
+    assert from_file["transducer_lines"] == typed["transducer_lines"]
+    assert from_file["friction_drag"] == typed["friction_drag"] > 0.0
+    # friction: the Coulomb drag is mu times the contact force
+    assert typed["friction_drag"] == pytest.approx(0.2 * typed["contact_force"], rel=1e-12)
+
+
+def test_out_tables_hold_the_readings_of_the_json(cli, tmp_path):
+    out = _json(cli, [*FLAT_1D, "--transducers", "-2e-4,0", "--out", tmp_path / "run"])
+    lines = pd.read_csv(tmp_path / "run" / "transducer_lines.csv")
+    corners = pd.read_csv(tmp_path / "run" / "corners.csv")
+    assert lines.x_m.tolist() == [line["x"] for line in out["transducer_lines"]]
+    assert lines.spacing_m.tolist() == [line["minimum"] for line in out["transducer_lines"]]
+    assert corners.x_m.tolist() == [c["x"] for c in out["corner_forces"]]
+    assert corners.contact_force_N_per_m.tolist() == [c["force"] for c in out["corner_forces"]]
+    land = [t["height"] for t in out["tents"] if t["side"] == "land"]
+    assert corners.land_tent_height_m.tolist() == land
+
+
+def test_error_estimate_is_the_difference_from_half_the_intervals(cli):
+    out = _json(cli, [*FLAT_1D, "--error-estimate"])
+    error = out["grid_error"]
+    assert error["coarse_nx"] == out["nx"] // 2 and error["coarse_ny"] is None
+    fine, coarse = _direct(out["nx"]), _direct(out["nx"] // 2)
+    assert error["central_spacing"] == fine.central_spacing - coarse.central_spacing
+    (line,) = error["transducer_lines"]
+    assert line["minimum"] == (fine.transducer_lines[0].minimum
+                               - coarse.transducer_lines[0].minimum)
+
+
+def test_plot_draws_the_head_figure(cli, tmp_path):
+    png = tmp_path / "head.png"
+    run = cli([*FLAT_1D, "--plot", png])
+    assert run.code == 0, run.err
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 20_000
+
+
+def test_text_output_names_the_readings(cli):
+    run = cli(FLAT_1D)
+    assert run.code == 0, run.err
+    assert run.out.count("corner:") == 2 and "transducer line:  x = 0.0000e+00 m" in run.out
+    assert "tension rise" in run.out
+
+
+@pytest.mark.slow
+def test_two_dimensional_flat_head_reads_its_line_across_the_width(cli, tmp_path):
+    argv = ["bearing", "--head", "flat", "--land-length", "1e-3", "--wrap-in", "2",
+            "--wrap-out", "2", "--transducers", "0", "--velocity", "4", "--nx", "60", "--ny",
+            "24", "--quiet", "--out", tmp_path / "run"]
+    out = _json(cli, argv)
+    (line,) = out["transducer_lines"]
+    across = pd.read_csv(tmp_path / "run" / "transducer_lines.csv")
+    assert len(across) == out["ny"] + 1 and across.y_m.is_monotonic_increasing
+    assert line["minimum"] == across.spacing_m.min() <= line["mean"]
+    # the free edges let the suction out: the line is higher at the edges than mid-width
+    assert across.spacing_m.iloc[0] > line["centre"] and across.spacing_m.iloc[-1] > line["centre"]

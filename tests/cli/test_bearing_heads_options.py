@@ -1,0 +1,212 @@
+"""The head options of `gyroshell bearing` and the `[head]` table of a TOML file: the design
+they state (SI, angles in rad), the table and the options agreeing, and every mistake refused
+in one line with exit code 2 before any numerical work."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from gyroshell.bearing.head_config import HeadDesign, ModuleShape
+from gyroshell.cli import build_parser
+from gyroshell.cli.heads import head_design
+
+FLAT = ["--head", "flat", "--land-length", "1e-3", "--wrap-in", "2", "--wrap-out", "3"]
+THREE_MODULES = """
+[tape]
+tension = "90 N/m"
+velocity = "4 m/s"
+
+[head]
+kind = "flat"
+land_length = "1 mm"
+corner_radius = ["5 um", "0 um"]
+wrap_in = "2 deg"
+wrap_out = "3 deg"
+modules = 3
+module_gap = "0.3 mm"
+transducers = ["-1.3 mm", "0 mm", "1.3 mm"]
+friction = 0.2
+"""
+
+
+def _design(argv, table=None, config=None) -> HeadDesign:
+    args = build_parser().parse_args(["bearing", "--velocity", "4", *argv])
+    return head_design(args, table, config)
+
+
+def _one_error_line(run) -> str:
+    assert run.code == 2, run.err
+    assert "Traceback" not in run.err and len(run.error_lines) == 1, run.err
+    assert run.error_lines[0].startswith("gyroshell: error: ")
+    return run.error_lines[0]
+
+
+def test_no_head_option_is_the_cylinder_of_the_tape():
+    design = _design([])
+    assert design.kind == "cylinder" and design.wrap_angle is None and design.radius is None
+
+
+def test_flat_head_options_in_si_units():
+    design = _design([*FLAT, "--corner-radius", "5e-6,0", "--modules", "3", "--module-gap",
+                      "3e-4", "--transducers", "-1.3e-3,0,1.3e-3", "--friction", "0.2"])
+    assert design.kind == "flat" and design.land_length == 1e-3
+    assert design.wrap_in == math.radians(2) and design.wrap_out == math.radians(3)
+    assert design.corner_radius == (5e-6, 0.0) and design.modules == 3
+    assert design.module_gap == 3e-4 and design.friction == 0.2
+    assert design.transducers == (-1.3e-3, 0.0, 1.3e-3)
+    # three equal coplanar modules, the gap between each two
+    assert design._gaps() == (3e-4, 3e-4) and design.module_count == 3
+
+
+def test_the_toml_table_states_the_same_head_as_the_options(tmp_path):
+    from gyroshell.tape.config import load_config
+
+    path = tmp_path / "head.toml"
+    path.write_text(THREE_MODULES)
+    table = load_config(path, tables=("head",)).tables["head"]
+    from_file = _design([], table, path)
+    from_options = _design([*FLAT, "--corner-radius", "5e-6,0", "--modules", "3",
+                            "--module-gap", "3e-4", "--transducers", "-1.3e-3,0,1.3e-3",
+                            "--friction", "0.2"])
+    assert from_file == from_options
+    # an option typed beside the file wins over the file's value
+    assert _design(["--wrap-in", "1"], table, path).wrap_in == math.radians(1)
+
+
+def test_per_module_tables_and_a_profile_relative_to_the_file(tmp_path):
+    from gyroshell.bearing.head_config import design_from_table
+    from gyroshell.tape.config import _tomllib
+
+    table = _tomllib().loads("""
+[head]
+kind = "flat"
+land_length = "1 mm"
+wrap_in = "1 deg"
+wrap_out = "1 deg"
+module_gap = ["0.2 mm", "0.3 mm"]
+[[head.module]]
+tilt = "-0.5 deg"
+[[head.module]]
+height = "1 um"
+land_length = "0.5 mm"
+[[head.module]]
+tilt = "0.5 deg"
+""")["head"]
+    design = design_from_table(table)
+    assert design.module_count == 3 and design._gaps() == (2e-4, 3e-4)
+    assert design.module_shapes[1] == ModuleShape(land_length=5e-4, height=1e-6)
+    assert design.module_shapes[0].tilt == -math.radians(0.5)
+    measured = design_from_table({"kind": "profile", "profile": "head.csv",
+                                  "wrap_in": "2 deg", "wrap_out": 0.01}, folder=tmp_path)
+    assert measured.profile == str(tmp_path / "head.csv") and measured.wrap_out == 0.01
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--head", "flat", "--land-length", "1e-3", "--wrap-in", "2", "--wrap-angle", "10"],
+     "--wrap-angle is an option of a cylinder head, and this head is a flat (--head flat)"),
+    (["--land-length", "1e-3"],
+     "--land-length is an option of a flat head, and this head is a cylinder (the default "
+     "cylinder)"),
+    (["--head", "flat", "--land-length", "1e-3"], "a flat head needs a wrap: --wrap-in and "
+                                                  "--wrap-out are both 0, so nothing presses "
+                                                  "the tape onto the head"),
+    (["--head", "flat", "--land-length", "1e-3", "--wrap-in", "0", "--wrap-out", "0"],
+     "a flat head needs a wrap"),
+    (["--head", "flat", "--wrap-in", "2"], "a flat head needs its land length: give "
+                                           "--land-length"),
+    ([*FLAT, "--modules", "3"], "3 modules need the gap between them: give --module-gap"),
+    ([*FLAT, "--modules", "2", "--module-gap", "-1e-4"], "--module-gap must be >= 0 m"),
+    ([*FLAT, "--module-gap", "1e-4"], "--module-gap is the gap between modules, and this "
+                                      "head has one"),
+    ([*FLAT, "--modules", "9", "--module-gap", "1e-4"], "--modules must be an integer in "
+                                                        "[1, 8], got 9"),
+    ([*FLAT, "--modules", "0"], "--modules must be an integer in [1, 8], got 0"),
+    ([*FLAT[:6], "--wrap-out", "50"], "--wrap-out must be in [0, 45] degrees, got 50"),
+    ([*FLAT, "--wrap-in", "-1"], "--wrap-in must be in [0, 45] degrees, got -1"),
+    ([*FLAT, "--friction", "-0.1"], "--friction must be >= 0, got -0.1"),
+    ([*FLAT, "--transducers", "0,,1e-4"], "--transducers: an empty item"),
+    ([*FLAT, "--corner-radius", "1e-6,1e-6,1e-6"], "--corner-radius takes one radius or two"),
+    (["--head", "wedge"], "--head must be cylinder, flat or a measured contour FILE.csv, got "
+                          "'wedge'"),
+    (["--head", "head.csv", "--land-length", "1e-3"],
+     "--land-length is an option of a flat head, and this head is a profile (--head "
+     "head.csv)"),
+    (["--wrap-angle", "0"], "--wrap-angle must be in (0, 90] degrees, got 0"),
+])
+def test_bad_head_options_one_line_exit_2(cli, argv, message):
+    line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide", *argv]))
+    assert message in line
+
+
+@pytest.mark.parametrize("table, message", [
+    ('kind = "wedge"', "[head] kind must be one of cylinder, flat, profile, got 'wedge'"),
+    ('kind = "flat"\nland = "1 mm"', "[head] unknown key(s) land; allowed: kind,"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "2 parsec"',
+     "[head] wrap_in: unit 'parsec' is not a unit of rad (use one of: rad, mrad, deg, °)"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = 2',
+     "[head] wrap_in must be in [0, 0.785398] rad, got 2"),
+    ('wrap_angle = "15 deg"\nland_length = "1 mm"',
+     "[head] land_length is an option of a flat head, and this head is a cylinder ([head] "
+     "without a kind)"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\nmodules = 2\n'
+     'module_gap = "0.1 mm"\n[[head.module]]\ntilt = "1 deg"',
+     "[head] modules = 2 but 1 [head] module tables are given"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\n[[head.module]]\nangle = 1',
+     "[head] module[0] unknown key(s) angle; allowed: land_length, corner_radius, height"),
+    ('kind = "profile"\nwrap_in = "1 deg"', "a measured head needs its contour: give "
+                                            "[head] profile"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\ntransducers = ["0 m", true]',
+     "[head] transducers[1] must be a number or '<number> <unit>', got True"),
+])
+def test_bad_head_tables_name_the_file_and_key(cli, tmp_path, table, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(f'[tape]\nvelocity = "4 m/s"\n\n[head]\n{table}\n')
+    line = _one_error_line(cli(["bearing", "--config", path, "--infinitely-wide"]))
+    assert f"bad.toml: {message}" in line
+
+
+def test_other_commands_refuse_a_head_table(cli, tmp_path):
+    path = tmp_path / "head.toml"
+    path.write_text(THREE_MODULES)
+    line = _one_error_line(cli(["static", "--config", path]))
+    assert "unknown key(s) head beside [tape]" in line
+
+
+PROFILE_ROWS = "x_m,z_m\n" + "".join(f"{x * 1e-4:.6e},{-(x * 1e-4) ** 2 / 0.04:.6e}\n"
+                                     for x in range(-10, 11))
+
+
+@pytest.mark.parametrize("argv, contents, message", [
+    ([*FLAT, "--transducers", "0,2e-3"], None,
+     "transducers[1] must lie on the head's wrapped region [-0.0005, 0.0005] m"),
+    ([*FLAT, "--corner-radius", "0.01"], None, "is shorter than its corner radii allow"),
+    (["--head", "{csv}", "--wrap-in", "1"], "", "the profile file is empty"),
+    (["--head", "{csv}", "--wrap-in", "1"], "x,z\n0,0\n1e-4,oops\n", "row 2 is not numbers"),
+    (["--head", "{csv}", "--wrap-in", "1"], "0,0\n2e-4,0\n1e-4,0\n3e-4,0\n",
+     "x must be strictly increasing"),
+    (["--head", "{csv}", "--wrap-in", "1", "--wrap-out", "1", "--transducers", "1"],
+     PROFILE_ROWS, "transducers[0] must lie on the head's wrapped region"),
+])
+def test_contour_refusals_before_the_solve(cli, tmp_path, argv, contents, message):
+    """What needs the contour (its corners, its extent, its file) is refused in one line
+    when the head is built, before the outputs are touched or anything is solved."""
+    csv = tmp_path / "head.csv"
+    if contents is not None:
+        csv.write_text(contents)
+    out = tmp_path / "never"
+    argv = [a.replace("{csv}", str(csv)) for a in argv]
+    line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide", *argv,
+                                "--out", out]))
+    assert message in line
+    assert not out.exists()
+
+
+def test_a_profile_larger_than_memory_allows_is_refused(cli, tmp_path, monkeypatch):
+    csv = tmp_path / "huge.csv"
+    csv.write_text(PROFILE_ROWS * 20)
+    monkeypatch.setenv("GYROSHELL_MEMORY_LIMIT", "1000")
+    line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide",
+                                "--head", csv, "--wrap-in", "1"]))
+    assert "huge.csv" in line and "more than the limit 1 kB" in line
