@@ -271,9 +271,11 @@ class BearingModel:
         How the grid is graded (:class:`gyroshell.bearing.mesh.Grading`). Default: the
         2-D tape's grid is graded towards the free edges and the wrap corners
         (:data:`DEFAULT_GRADING`), the infinitely wide tape's is uniform. ``"uniform"``:
-        uniform each way. A grading given to an infinitely wide tape grades its x-grid.
-        Every corner is a refinement centre, and a flat or profile head's grid has a node
-        exactly on every sharp corner.
+        uniform each way (no corner refinement either). A grading given to an infinitely
+        wide tape grades its x-grid. Every corner is a refinement centre, and a flat or
+        profile head's grid has a node exactly on every sharp corner; flying on its film,
+        it is also geometric about every corner unless the grading's ``corner_ratio`` is
+        set (:func:`corner_grading`: the film's constriction where a corner touches).
     dry : bool
         No air film (p = p_a; the tape and its contact with the head only): the dry
         string and plate over the head, corner forces at rest (V may be 0; it enters only
