@@ -271,9 +271,11 @@ class BearingModel:
         How the grid is graded (:class:`gyroshell.bearing.mesh.Grading`). Default: the
         2-D tape's grid is graded towards the free edges and the wrap corners
         (:data:`DEFAULT_GRADING`), the infinitely wide tape's is uniform. ``"uniform"``:
-        uniform each way. A grading given to an infinitely wide tape grades its x-grid.
-        Every corner is a refinement centre, and a flat or profile head's grid has a node
-        exactly on every sharp corner.
+        uniform each way (no corner refinement either). A grading given to an infinitely
+        wide tape grades its x-grid. Every corner is a refinement centre, and a flat or
+        profile head's grid has a node exactly on every sharp corner; flying on its film,
+        it is also geometric about every corner unless the grading's ``corner_ratio`` is
+        set (:func:`corner_grading`: the film's constriction where a corner touches).
     dry : bool
         No air film (p = p_a; the tape and its contact with the head only): the dry
         string and plate over the head, corner forces at rest (V may be 0; it enters only
@@ -553,11 +555,14 @@ class BearingModel:
         self.kappa_nodes = np.repeat(self.kappa, self.nc)
         self.pressure_load = self._pressure_load_matrix()
 
-    def _corner_start(self) -> np.ndarray:
+    def _corner_start(self, dry: bool | None = None) -> np.ndarray:
         """u of Newton's start on a flat or profile head (or dry): h = :data:`FLAT_START`
-        foil spacings above the dry gap (dry: :data:`DRY_START` θ ℓ_bend), the sharp
-        corners at the roughness σ (in contact: their point loads are carried at once)."""
-        h0 = (DRY_START * self.wrap_angle * self.bending_length if self.dry
+        foil spacings above the dry gap, tapering to the roughness σ at the sharp corners
+        turning by at least 5 % of the wrap (in contact: their point loads are carried at
+        once); ``dry`` (default: the model's): the dry tape, :data:`DRY_START` θ ℓ_bend
+        above the dry gap but with the sharp corners held at σ, solved."""
+        dry = self.dry if dry is None else dry
+        h0 = (DRY_START * self.wrap_angle * self.bending_length if dry
               else FLAT_START * self.h_guess / _FOIL_GUESS)
         sigma = self.air.roughness
         h0 = max(h0, sigma)
@@ -568,27 +573,32 @@ class BearingModel:
                          self.head.corner_turns(self.head_radius), strict=True))
         for c in self.head.sharp_corners(self.head_radius):
             turn = turns.get(c, self.wrap_angle)
-            if not self.dry and turn < CORNER_FRACTION * self.wrap_angle:
+            if not dry and turn < CORNER_FRACTION * self.wrap_angle:
                 continue     # its point load is small: the film carries it (measured)
             i = int(np.argmin(np.abs(inner - c)))
-            if not self.dry:   # the film's constriction: h rising from σ at the tape's slope
-                reach = (h0 - sigma) / (START_SLOPE * turn)
+            if not dry:   # the film's constriction: h rising from σ at the tape's slope
+                reach = max(h0 - sigma, sigma) / (START_SLOPE * turn)
                 taper = sigma + (h0 - sigma) * -np.expm1(-np.abs(inner - c) / reach)
                 U = np.minimum(U, taper[:, None])
             U[i, :] = sigma - self.dry_field[i + 1, :]
             held[i, :] = True
-        if not self.dry or not held.any():
+        if not dry or not held.any():
             return U.ravel()
         # dry: the tape with its sharp corners held at σ (the exact state when only they
         # touch; the active set of a 4th-order operator otherwise moves a node per step)
         held = held.ravel()
-        rhs = np.where(held, U.ravel(), self.f_kappa
+        scale = np.where(held, self.stiffness_diagonal, 0.0)   # rows scaled like K's
+        rhs = np.where(held, scale * U.ravel(), self.f_kappa
                        - self.effective_tension() * self.W * self.kappa_nodes)
         keep = sp.diags((~held).astype(float))
-        system = (keep @ self.K() + sp.diags(held.astype(float))).tocsc()
+        system = (keep @ self.K() + sp.diags(scale)).tocsc()
         from scipy.sparse.linalg import spsolve
 
-        return spsolve(system, rhs)
+        u = spsolve(system, rhs)
+        # held exactly: h = σ to the last bit, so that the contact rule λ > c (h − σ)
+        # (c ~ D/h⁴ on the corner's fine cells) is not decided by the solve's round-off
+        u[held] = U.ravel()[held]
+        return u
 
     def __repr__(self) -> str:
         kind = "infinitely wide" if self.infinitely_wide else f"width {self.params.width:g} m"
@@ -745,14 +755,20 @@ class BearingModel:
         area = self.film.cell_area[self.film.interior]
         return float(np.sum(area * (p - self.air.ambient_pressure)))
 
+    def dry_start(self, u: np.ndarray | None = None) -> np.ndarray:
+        """[u (m), p = p_a (Pa)]: by default the dry tape over the head with its sharp
+        corners held at σ (Newton's second start over a flat or profile head: at low
+        speeds the film's suction barely pulls the tape below its dry tents)."""
+        u = self._corner_start(dry=True) if u is None else u
+        return np.concatenate([u, np.full(self.n_p, self.air.ambient_pressure)])
+
     def initial_state(self) -> np.ndarray:
         """The flexible-foil start [u (m), p (Pa)]: the foil spacing scale everywhere and
         the wrap pressure (T − ρV²) κ + p_a. :func:`gyroshell.bearing.steady.solve_steady`
         starts a 2-D tape from a better (solved) state, :func:`~gyroshell.bearing.steady.
         initial_state`."""
         if not self.cylindrical or self.dry:     # the corners' loads are point loads
-            return np.concatenate([self._corner_start(),
-                                   np.full(self.n_p, self.air.ambient_pressure)])
+            return self.dry_start(self._corner_start())
         u = np.full(self.n_u, self.h_guess)
         kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)
         p = self.air.ambient_pressure + self.effective_tension() * kappa[

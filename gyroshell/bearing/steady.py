@@ -613,15 +613,33 @@ class _PseudoTime:
 
 
 def _newton_or_pseudo_time(model, z0, tension, info, progress, iteration_log):
-    """Newton from z0; if it fails, pseudo-transient continuation from z0."""
+    """Newton from z0; over a flat or profile head of an infinitely wide tape, if it fails,
+    Newton from the dry tape (:meth:`BearingModel.dry_start`: at low speeds the film
+    barely pulls the tape below its dry tents); if that fails, pseudo-transient
+    continuation from z0."""
     try:
         z, lam, _, info = newton(model, z0, tension=tension, info=info, log=iteration_log)
         return z, lam, info
     except ConvergenceError as exc:
         if progress is not None:
-            progress(f"{exc}: pseudo-time continuation")
+            progress(f"{exc}: " + ("Newton from the dry tape" if _dry_retry(model)
+                                   else "pseudo-time continuation"))
+    if _dry_retry(model):
+        try:
+            z, lam, _, info = newton(model, model.dry_start(), tension=tension, info=info,
+                                     log=iteration_log)
+            return z, lam, info
+        except ConvergenceError as exc:
+            if progress is not None:
+                progress(f"{exc}: pseudo-time continuation")
     return pseudo_transient(model, z0, tension=tension, info=info, progress=progress,
                             iteration_log=iteration_log)
+
+
+def _dry_retry(model: BearingModel) -> bool:
+    """Whether Newton gets a second start from the dry tape (infinitely wide, flat or
+    profile head, at speed)."""
+    return model.infinitely_wide and not (model.cylindrical or model.dry)
 
 
 def pseudo_transient(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,

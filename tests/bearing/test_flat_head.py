@@ -126,9 +126,12 @@ def test_two_d_flat_head_smoke_and_storage_round_trip(tmp_path):
     assert np.array_equal(back.p, sol.p) and np.array_equal(back.contact, sol.contact)
 
 
-def test_march_from_a_flat_head_steady_state_stays_there():
-    """A steady state is a fixed point of the coupled march (constant tension)."""
-    start = solve_steady(_flying())
+@pytest.mark.parametrize("velocity", [4.0, -4.0], ids=["+V", "-V"])
+def test_march_from_a_flat_head_steady_state_stays_there(velocity):
+    """A steady state is a fixed point of the coupled march (constant tension), in either
+    direction of the tape."""
+    start = solve_steady(BearingModel(TAPE, AIR, velocity=velocity, head=FLAT,
+                                      infinitely_wide=True))
     run = march(start, dt=2e-6, steps=4)
     np.testing.assert_allclose(run.final.u, start.u, rtol=0, atol=1e-6 * np.abs(start.u).max())
     assert run.final.contact_nodes == start.contact_nodes
