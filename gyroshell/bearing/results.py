@@ -270,7 +270,8 @@ class BearingSolution(Result, kind="bearing"):
             "minimum_x": x_min,
             "minimum_y": y_min,
             "central_pressure": self.central_pressure,
-            "wrap_pressure": m.effective_tension() / m.params.radius,
+            "wrap_pressure": (m.effective_tension() / m.head_radius if m.cylindrical
+                              else None),
             "air_force": self.air_force,
             "contact_force": self.contact_force,
             "contact_nodes": self.contact_nodes,

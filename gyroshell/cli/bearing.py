@@ -109,7 +109,8 @@ def _tape_parser() -> argparse.ArgumentParser:
                         "load keys (spacing, length_ratio, load, load_x, load_y) do not "
                         "apply to the bearing (the file is still checked whole)")
     g.add_argument("--velocity", type=real, default=None,
-                   help="tape speed V, m/s, > 0 and below the string speed sqrt(T/rho) "
+                   help="tape speed V, m/s, nonzero, |V| below the string speed "
+                        "sqrt(T/rho); negative: the tape runs along -x (reversed) "
                         "(required, here or as velocity in --config)")
     add_tape_overrides(g, TAPE_OPTIONS, help_of={
         "width": "tape width L_y, m (default 6.35e-3; not with --infinitely-wide)"})
@@ -231,12 +232,13 @@ def _tape(args: argparse.Namespace):
                           spacing=width / PLATE_INTERVALS, load=0.0, load_x=None, load_y=None)
     _refuse_unused_material(args, params)
     if velocity is None:
-        raise UserError("velocity must be > 0 m/s for an air bearing: give --velocity "
-                        "(e.g. --velocity 4) or velocity in the --config file")
-    if velocity <= 0.0:
-        raise UserError(f"velocity must be > 0 m/s for an air bearing (e.g. --velocity 4), "
-                        f"got {velocity:g}")
-    return params, params.check_velocity(velocity), head_table
+        raise UserError("velocity must be nonzero for an air bearing: give --velocity "
+                        "(e.g. --velocity 4, or -4 for the tape running backwards) or "
+                        "velocity in the --config file")
+    if velocity == 0.0:
+        raise UserError("velocity must be nonzero for an air bearing (e.g. --velocity 4, or "
+                        "-4 for the tape running backwards), got 0")
+    return params, math.copysign(params.check_velocity(abs(velocity)), velocity), head_table
 
 
 def _without_plate_fields(fields: dict) -> dict:

@@ -80,13 +80,25 @@ def test_bearing_does_not_change_other_commands_defaults(capsys):
 
 def test_velocity_is_required(capsys):
     assert main(["bearing", "--infinitely-wide"]) == 2
-    assert "velocity must be > 0" in capsys.readouterr().err
+    assert "velocity must be nonzero" in capsys.readouterr().err
+
+
+def test_a_negative_velocity_runs_the_tape_backwards_and_mirrors_the_state(capsys):
+    """Over the symmetric cylinder the state at -V is the mirror image of the one at +V:
+    the same central and minimum spacings, the minimum at -x."""
+    forward = _json(capsys, ["bearing", "--infinitely-wide", "--velocity", "4", "--json"])
+    backward = _json(capsys, ["bearing", "--infinitely-wide", "--velocity", "-4", "--json"])
+    assert backward["velocity"] == -4.0
+    for key in ("central_spacing", "minimum_spacing"):
+        assert backward[key] == pytest.approx(forward[key], rel=1e-9)
+    assert backward["minimum_x"] == pytest.approx(-forward["minimum_x"], rel=1e-12)
+    assert forward["minimum_x"] > 0.0          # the exit corner: downstream of the middle
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("argv, message", [
-    (["--velocity", "0"], "velocity must be > 0"),
-    (["--velocity", "-3"], "velocity must be > 0"),
+    (["--velocity", "0"], "velocity must be nonzero"),
+    (["--velocity", "-90"], "string speed"),
     (["--velocity", "90"], "string speed"),
     (["--wrap-angle", "0"], "--wrap-angle must be in (0, 90] degrees"),
     (["--wrap-angle", "120"], "--wrap-angle must be in (0, 90] degrees"),
