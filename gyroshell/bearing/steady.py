@@ -152,15 +152,17 @@ class _Residual:
             r_u = r_u + self.transient.tape_terms(u)[0]
         return r_u
 
-    def __call__(self, z, *, jacobian: bool, force=None):
+    def __call__(self, z, *, jacobian: bool, force=None, active=None):
         """(residual, contact set, Jacobian or None). ``force``: nodes put in the contact
-        set whatever their residual (the nodes a Newton step predicts below σ)."""
+        set whatever their residual (the nodes a Newton step predicts below σ);
+        ``active``: the contact set itself, in place of the rule."""
         m = self.model
         u, p = z[:m.n_u], z[m.n_u:]
         r_u = self.tape(u, p)
         r_p, J_pp, J_pu = m.film_residual(u, p, jacobian=jacobian, **self.film_kw)
         gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.sigma)
-        active = r_u > gap
+        if active is None:
+            active = r_u > gap
         if force is not None:
             active = active | force
         res = np.concatenate([np.where(active, gap, r_u), r_p])
@@ -275,6 +277,51 @@ def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
     return retry
 
 
+#: Most updates of the contact set within one linearization (:func:`_contact_set_step`).
+MAX_SET_UPDATES = 30
+
+
+def _contact_set_step(F, it: _Iterate, h, dz, found, tol):
+    """The step again with a contact set consistent with its own linearization, if the
+    step ``found`` (α, step, trial, merit) was damped or failed while the full step would
+    change the contact set; the better of the two.
+
+    The primal–dual active-set rule applied to the linearized problem (J fixed at the
+    iterate): a step with set A predicts the spacing h + δu and the contact forces
+    λ = r_u + [J_uu, −L] δz (the tape rows are linear); the next set is
+    {λ − c (h + δu − σ) > 0}: the free nodes the step takes below σ enter, the contact
+    nodes whose force turns negative leave, all at once. Repeated until the set repeats
+    (at most MAX_SET_UPDATES factorizations), so a plate's land contact zone, whose nodes
+    press their neighbours down, grows or shrinks by many nodes per Newton iteration
+    instead of a few. Updates ``it.solver`` and ``it.active`` when that step is taken."""
+    model = F.model
+    n_u = model.n_u
+    alpha, step, _, merit_t = found
+    if (alpha == 1.0 and _decreased(merit_t, it.merit, alpha)) or step < FULL_STEP:
+        return found
+    u, p = it.z[:n_u], it.z[n_u:]
+    r_u = F.tape(u, p)
+    active, d, solver = it.active, dz, it.solver
+    for _ in range(MAX_SET_UPDATES):
+        lam = r_u + F.tape_rows @ d
+        nxt = lam - F.c * (h + d[:n_u] - F.sigma) > 0.0
+        if np.array_equal(nxt, active):
+            break
+        active = nxt
+        res_a, _, J_a = F(it.z, jacobian=True, active=active)
+        solver = F.factor(J_a)
+        d = solver(res_a)
+        if not np.all(np.isfinite(d)):
+            return found
+    if d is dz:
+        return found
+    retry = _line_search(F, model, it.z, d, h, active, it.merit, tol)
+    if retry[3] >= merit_t:
+        return found
+    it.solver, it.active = solver, active
+    return retry
+
+
 def _noise_step(F: _Residual, solver) -> float:
     """The relative size of the Newton step that the residual's round-off alone produces
     (the rows' round-off :attr:`_Residual.noise_rows` with fixed pseudo-random signs,
@@ -319,6 +366,12 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     n_u = model.n_u
     F = _Residual(model, tension, transient)
     it = _Iterate(F, z0)
+    # A start that touches the head (a neighbouring state: the infinitely wide tape, a
+    # coarser grid, a pseudo-time step) has its contact set grown and shrunk by the
+    # linearized active-set rule; a start clear of the head keeps the damped steps with
+    # the forced entry of the nodes a step takes below σ (far from the state, e.g. a
+    # lifted tape, pseudo-time leads Newton instead).
+    contact_step = _contact_set_step if it.active.any() else _forced_contact_step
     merits, alphas = [it.merit], []
     for _ in range(max_iterations):
         h = it.z[:n_u] + model.dry_field[1:-1, :].ravel()
@@ -328,7 +381,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         floor = (ROUND_OFF_MULTIPLE * _noise_step(F, it.solver)
                  if _norm(dz, n_u, F) < ROUND_OFF_STEP else 0.0)
         found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol, F.noise)
-        alpha, step, it.z, _ = _forced_contact_step(F, it, h, dz, found, tol)
+        alpha, step, it.z, _ = contact_step(F, it, h, dz, found, tol)
         it.last_step = step
         it.res, active_new, it.J = F(it.z, jacobian=True)
         it.merit = F.merit(it.res)

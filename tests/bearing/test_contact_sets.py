@@ -1,0 +1,79 @@
+"""Contact sets that move many nodes per Newton iteration (issue #19): a 2-D tape over
+two modules, the second raised by 0.3 µm, touches down on that land over a zone of the
+plate. Newton's contact-set update (the primal–dual active-set rule on the linearized
+problem, :func:`gyroshell.bearing.steady._contact_set_step`) reaches it in a few
+iterations; the previous strategy (damped steps, the nodes a step takes below σ forced
+into the set once per iteration, then pseudo-time) takes hundreds, to the same state.
+
+The state must satisfy the contact conditions exactly: h >= σ on every node, λ >= 0 and
+λ = 0 wherever h > σ (complementarity), with λ the contact forces."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+
+from gyroshell import TapeParameters
+from gyroshell.bearing import AirParameters, BearingModel, steady
+from gyroshell.bearing.head import FlatHead, Module
+from gyroshell.bearing.model import BearingGridWarning
+
+DEG = math.pi / 180.0
+AIR = AirParameters()
+#: Two modules, the second raised: a 2 mm tape touches down on the second land.
+TWO = FlatHead((Module(0.8e-3), Module(0.5e-3, height=0.3e-6)), 1.5 * DEG, 3 * DEG,
+               gaps=(0.2e-3,))
+#: Newton iterations allowed for the 2-D solve (the issue's bound; measured 8).
+MAX_NEWTON = 30
+
+
+def _model(nx=96, ny=16):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BearingGridWarning)
+        return BearingModel(TapeParameters(width=2e-3), AIR, velocity=4.0, head=TWO,
+                            nx=nx, ny=ny)
+
+
+@pytest.fixture(scope="module")
+def solved():
+    model = _model()
+    return model, steady.solve_steady(model)
+
+
+def test_land_touchdown_converges_in_few_newton_iterations(solved):
+    model, sol = solved
+    assert sol.info.iterations <= MAX_NEWTON
+    assert not sol.info.pseudo_time and not sol.info.continuation
+    # the land zone: many more nodes than the corner lines of the two modules
+    assert sol.contact_nodes > 2 * model.nc
+
+
+def test_contact_conditions_hold_exactly(solved):
+    """h − σ >= 0 to round-off, λ >= 0, λ = 0 where h > σ (beyond round-off)."""
+    model, sol = solved
+    sigma = AIR.roughness
+    h = sol.spacing[1:-1, :].ravel()
+    lam = sol.contact
+    floor = 1e-12 * sigma
+    assert h.min() >= sigma - floor
+    assert lam.min() >= 0.0
+    assert np.all(lam[h > sigma + floor] == 0.0)
+    assert np.all(np.abs(h[lam > 0.0] - sigma) <= floor)
+
+
+@pytest.mark.slow
+def test_same_state_as_the_previous_strategy(solved, monkeypatch):
+    """With the previous contact step (:func:`steady._forced_contact_step` in place of the
+    set update) the solve takes hundreds of iterations and ends in the same state, to the
+    solver's tolerance."""
+    model, sol = solved
+    monkeypatch.setattr(steady, "_contact_set_step", steady._forced_contact_step)
+    old = steady.solve_steady(model)
+    assert old.info.iterations > 3 * sol.info.iterations
+    np.testing.assert_array_equal(old.contact > 0.0, sol.contact > 0.0)
+    h_tol = steady.STEP_TOLERANCE * max(model.h_guess, AIR.roughness)
+    np.testing.assert_allclose(old.spacing, sol.spacing, rtol=0, atol=10 * h_tol)
+    np.testing.assert_allclose(old.pressure, sol.pressure, rtol=1e-8, atol=0)
