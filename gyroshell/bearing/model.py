@@ -27,7 +27,7 @@ from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
 from .air import AIR_VISCOSITY, AirParameters
 from .film import DryFilm, Film
-from .head import CORNER_FRACTION, Cylinder, Head
+from .head import CORNER_FRACTION, Cylinder, FlatHead, Head
 from .mesh import (
     UNIFORM,
     Grading,
@@ -190,6 +190,26 @@ def resolution_length(l_film: float, l_bend: float) -> float:
     return min(l_film, max(l_bend, BENDING_RESOLVED * l_film))
 
 
+def _check_rounded_corners_flown(head: Head, dry: bool) -> None:
+    """Refuse rounded corners on a flat head over an air film: not solved yet.
+
+    The tape touches a rounded corner tangentially at a point that slides along the arc
+    between nodes as Newton iterates; without a grid centred on that point Newton does not
+    converge (measured: 200-300 iterations and no grid convergence for r_c = 5 um), and a
+    default grid sized from the arc r_c θ_c needs far more intervals than allowed. The dry
+    model (``dry=True``, with ``nx`` given) takes them, slowly (about 100 iterations).
+    """
+    if dry or not isinstance(head, FlatHead):
+        return
+    radii = [r for r in head.corner_radii() if r > 0.0]
+    if radii:
+        raise ParameterError(
+            f"corner_radius must be 0 (sharp corners) for a flat head over an air film, got "
+            f"{max(radii):g} m: rounded corners are not solved with the film yet (the tape's "
+            "tangent contact slides between the grid's nodes; docs/bearing.md, Heads); the "
+            "dry model (dry=True, nx given) takes them")
+
+
 def _check_below_string_speed(params: TapeParameters, velocity: float) -> None:
     """Raise unless |V| (m/s) is below the string speed √(T/ρ) (else the tape would not
     wrap)."""
@@ -306,6 +326,7 @@ class BearingModel:
         self.head_radius = (self.head.radius if self.cylindrical and self.head.radius
                             else params.radius)
         self.head.check(self.head_radius)
+        _check_rounded_corners_flown(self.head, self.dry)
         self.wrap_angle = self.head.wrap
         self.infinitely_wide = validation.boolean("infinitely_wide", infinitely_wide)
         _check_below_string_speed(params, self.velocity)

@@ -182,6 +182,8 @@ PROFILE_ROWS = "x_m,z_m\n" + "".join(f"{x * 1e-4:.6e},{-(x * 1e-4) ** 2 / 0.04:.
     ([*FLAT, "--transducers", "0,2e-3"], None,
      "transducers[1] must lie on the head's wrapped region [-0.0005, 0.0005] m"),
     ([*FLAT, "--corner-radius", "0.01"], None, "is shorter than its corner radii allow"),
+    ([*FLAT, "--corner-radius", "20e-6"], None,
+     "corner_radius must be 0 (sharp corners) for a flat head over an air film, got 2e-05 m"),
     (["--head", "{csv}", "--wrap-in", "1"], "", "the profile file is empty"),
     (["--head", "{csv}", "--wrap-in", "1"], "x,z\n0,0\n1e-4,oops\n", "row 2 is not numbers"),
     (["--head", "{csv}", "--wrap-in", "1"], "0,0\n2e-4,0\n1e-4,0\n3e-4,0\n",
