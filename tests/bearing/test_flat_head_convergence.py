@@ -136,7 +136,9 @@ def _assert_mirror_images(a, b, rtol):
 
 
 @pytest.mark.parametrize("head, width, kw, rtol", [
-    (TWO, None, {}, 1e-5), (UNEQUAL, 2e-3, dict(nx=96, ny=16, span=1e-3), 1e-9)],
+    # 5.6 s (three solves on the two-module head's default grid): with the slow tests
+    pytest.param(TWO, None, {}, 1e-5, marks=pytest.mark.slow),
+    (UNEQUAL, 2e-3, dict(nx=96, ny=16, span=1e-3), 1e-9)],
     ids=["1-D two modules", "2-D unequal wraps"])
 def test_reversed_tape_over_the_mirrored_head_is_the_mirror_image(head, width, kw, rtol):
     """Reflecting x -> −x maps the equations at +V over a head onto those at −V over the
