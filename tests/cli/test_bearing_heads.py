@@ -7,13 +7,13 @@ from __future__ import annotations
 import json
 import math
 
-import pandas as pd
 import pytest
 
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.steady import initial_state, solve_steady
+from gyroshell.core.files import read_csv_exact
 
 #: The issue's command, infinitely wide (1-D: a few hundredths of a second).
 FLAT_1D = ["bearing", "--head", "flat", "--land-length", "1e-3", "--wrap-in", "2",
@@ -69,8 +69,8 @@ def test_the_toml_head_flies_as_the_options(cli, tmp_path):
 
 def test_out_tables_hold_the_readings_of_the_json(cli, tmp_path):
     out = _json(cli, [*FLAT_1D, "--transducers", "-2e-4,0", "--out", tmp_path / "run"])
-    lines = pd.read_csv(tmp_path / "run" / "transducer_lines.csv")
-    corners = pd.read_csv(tmp_path / "run" / "corners.csv")
+    lines = read_csv_exact(tmp_path / "run" / "transducer_lines.csv")
+    corners = read_csv_exact(tmp_path / "run" / "corners.csv")
     assert lines.x_m.tolist() == [line["x"] for line in out["transducer_lines"]]
     assert lines.spacing_m.tolist() == [line["minimum"] for line in out["transducer_lines"]]
     assert corners.x_m.tolist() == [c["x"] for c in out["corner_forces"]]
@@ -111,7 +111,7 @@ def test_two_dimensional_flat_head_reads_its_line_across_the_width(cli, tmp_path
             "24", "--quiet", "--out", tmp_path / "run"]
     out = _json(cli, argv)
     (line,) = out["transducer_lines"]
-    across = pd.read_csv(tmp_path / "run" / "transducer_lines.csv")
+    across = read_csv_exact(tmp_path / "run" / "transducer_lines.csv")
     assert len(across) == out["ny"] + 1 and across.y_m.is_monotonic_increasing
     assert line["minimum"] == across.spacing_m.min() <= line["mean"]
     # the free edges let the suction out: the line is higher at the edges than mid-width

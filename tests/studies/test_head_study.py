@@ -15,6 +15,7 @@ from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.head_config import HeadDesign
 from gyroshell.bearing.steady import solve_steady
+from gyroshell.core.files import read_csv_exact
 from gyroshell.studies.head_study import BearingStudy
 from gyroshell.studies.parameter_study import run_study
 
@@ -145,9 +146,7 @@ def test_the_study_command(cli, tmp_path):
                "--vary", "wrap_in=1,3deg", "--velocity", "4", "--workers", "1", "--out", out,
                "--quiet"])
     assert run.code == 0, run.err
-    import pandas as pd
-
-    table = pd.read_csv(out)
+    table = read_csv_exact(out)
     assert table.wrap_in.tolist() == [math.radians(1.0), math.radians(3.0)]
     assert table.error.isna().all()          # empty: every point succeeded
     assert (table.transducer_1_min_spacing > 0).all()
