@@ -25,14 +25,18 @@ CONTOUR_MARGIN = 0.15
 CONTACT_MARGIN = 1e-9
 
 
-def centreline(solution, ax=None, *, pressure: bool = True):
-    """Spacing h(x) along the middle of the width (µm), with p − p_a (kPa) on a twin axis."""
-    plt = _plt()
-    ax = plt.subplots(figsize=(7, 3.6))[1] if ax is None else ax
+def _centre_line(solution, ax):
+    """(Axes, model, column, x in mm, h in µm) of the middle of the width (a new Axes if
+    ``ax`` is None)."""
+    ax = _plt().subplots(figsize=(7, 3.6))[1] if ax is None else ax
     m = solution.model
     col = 0 if m.infinitely_wide else m.ny // 2
-    x = solution.x * MM
-    h = solution.spacing[:, col] * UM
+    return ax, m, col, solution.x * MM, solution.spacing[:, col] * UM
+
+
+def centreline(solution, ax=None, *, pressure: bool = True):
+    """Spacing h(x) along the middle of the width (µm), with p − p_a (kPa) on a twin axis."""
+    ax, m, col, x, h = _centre_line(solution, ax)
     ax.plot(x, h, color="C0", label="spacing h")
     half = 0.5 * m.params.radius * m.wrap_angle * MM
     for s in (-half, half):
@@ -180,12 +184,7 @@ def head_spacing(solution, ax=None):
     """Spacing h(x) along the middle of the width (µm) over the head's lands, corners and
     transducer lines (each labelled with its spacing), the tents marked, and p − p_a (kPa)
     on a twin axis."""
-    plt = _plt()
-    ax = plt.subplots(figsize=(7, 3.6))[1] if ax is None else ax
-    m = solution.model
-    col = 0 if m.infinitely_wide else m.ny // 2
-    x = solution.x * MM
-    h = solution.spacing[:, col] * UM
+    ax, m, col, x, h = _centre_line(solution, ax)
     _marks(solution, ax)
     ax.plot(x, h, color="C0", label="spacing h")
     tents = [t for t in solution.tents if t.height is not None]

@@ -252,6 +252,17 @@ def _newton_direction(F: _Residual, it: _Iterate) -> np.ndarray:
     return it.solver(it.res)
 
 
+def _kept_if_better(F, model, it, dz, h, active, solver, found, merit_t, tol):
+    """Line-search the candidate step ``dz`` (with its contact set ``active`` and the
+    factorization ``solver``) and keep it if its merit beats ``merit_t``, the damped step
+    ``found``'s; else ``found``."""
+    retry = _line_search(F, model, it.z, dz, h, active, it.merit, tol)
+    if retry[3] >= merit_t:
+        return found
+    it.solver, it.active = solver, active
+    return retry
+
+
 def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
     """The step again with the free nodes it would take below σ held there, if the damped
     step ``found`` (α, step, trial, merit) failed because of them; the better of the two.
@@ -270,11 +281,7 @@ def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
     dz_f = forced(res_f)
     if not np.all(np.isfinite(dz_f)):
         return found
-    retry = _line_search(F, model, it.z, dz_f, h, active_f, it.merit, tol)
-    if retry[3] >= merit_t:
-        return found
-    it.solver, it.active = forced, active_f
-    return retry
+    return _kept_if_better(F, model, it, dz_f, h, active_f, forced, found, merit_t, tol)
 
 
 #: Most updates of the contact set within one linearization (:func:`_contact_set_step`).
@@ -315,11 +322,7 @@ def _contact_set_step(F, it: _Iterate, h, dz, found, tol):
             return found
     if d is dz:
         return found
-    retry = _line_search(F, model, it.z, d, h, active, it.merit, tol)
-    if retry[3] >= merit_t:
-        return found
-    it.solver, it.active = solver, active
-    return retry
+    return _kept_if_better(F, model, it, d, h, active, solver, found, merit_t, tol)
 
 
 def _noise_step(F: _Residual, solver) -> float:
