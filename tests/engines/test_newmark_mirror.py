@@ -276,3 +276,15 @@ def test_the_cli_marches_the_half_unless_told_no_symmetry(cli):
         full["max_load_point_displacement"], rel=ROUND_OFF)
     text = cli(argv[:-1]).out
     assert "on the symmetric half (" in text
+
+
+# ----- the paper's grid -----------------------------------------------------------------------
+@pytest.mark.slow
+def test_the_papers_run_on_the_table_1_grid_is_the_same_on_the_half():
+    """L_x/L_y = 4, 164 x 41 intervals, 250 steps of 2 µs at 50 m/s (the paper's run)."""
+    model = TapeModel(TapeParameters(length_ratio=4))
+    stepper = Newmark(model, 50.0, dt=DT)
+    options = dict(snapshot_times=[100e-6, 500e-6], centerline_times=[250e-6],
+                   record_energy=True, progress=False)
+    half, full = (stepper.march(250, symmetry=s, **options) for s in (True, False))
+    assert_same_run(half, full, model)
