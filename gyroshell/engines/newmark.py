@@ -101,9 +101,10 @@ def check_force(force, size: int, name: str = "force", unit: str = "N") -> np.nd
 class SharedFactorizations:
     """The factorizations of K_eq kept for one :func:`sharing_factorizations` block.
 
-    Keyed by the tape (its class, parameters and grid, so that equal models share; a model
-    that cannot be hashed is keyed by its identity and kept alive by the entry), V, Δt, β,
-    γ, C, the back-end and the unknowns marched (all, or the symmetric half).
+    Keyed by the tape (a :class:`TapeModel` by its parameters and grid, so that equal
+    models share; any other model object, subclasses included, by its identity, kept alive
+    by the entry), V, Δt, β, γ, C, the back-end and the unknowns marched (all, or the
+    symmetric half).
 
     Attributes
     ----------
@@ -186,13 +187,17 @@ def sharing_factorizations() -> Iterator[SharedFactorizations]:
 
 
 def _model_key(model: TapeModel) -> tuple[Hashable, object]:
-    """(the sharing key of a tape, what the key needs kept alive)."""
-    try:
-        key = (type(model), model.params, model.grid)
-        hash(key)
-        return key, None
-    except (AttributeError, TypeError):
-        return ("object", id(model)), model
+    """(the sharing key of a tape, what the key needs kept alive): a TapeModel's operators
+    are those of its parameters and grid; any other model (a subclass may hold more) is
+    itself."""
+    if type(model) is TapeModel:
+        try:
+            key = ("tape", model.params, model.grid)
+            hash(key)
+            return key, None
+        except TypeError:
+            pass
+    return ("object", id(model)), model
 
 
 class _FixedForce:

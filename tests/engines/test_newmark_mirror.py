@@ -288,3 +288,13 @@ def test_the_papers_run_on_the_table_1_grid_is_the_same_on_the_half():
                    record_energy=True, progress=False)
     half, full = (stepper.march(250, symmetry=s, **options) for s in (True, False))
     assert_same_run(half, full, model)
+
+
+def test_other_models_share_only_with_themselves(counted):
+    """A TapeModel subclass may hold more than its parameters say: keyed by identity."""
+    params = TapeParameters(length_ratio=3, spacing=WIDTH / 10)
+    one, other = EdgeSpringTape(params), EdgeSpringTape(params)
+    with sharing_factorizations():
+        for model in (one, one, other):
+            march(model, SPEED, dt=DT, steps=5, progress=False)
+    assert len(counted) == 2
