@@ -36,7 +36,8 @@ DIVERGENCE_TOL = 1e-12
 #: Seed of ARPACK's start vector: reproducible results.
 START_SEED = 12345
 
-__all__ = ["Divergence", "beam_mu_estimate", "divergence", "divergence_speed", "safe_shift"]
+__all__ = ["Divergence", "beam_mu_estimate", "divergence", "divergence_speed", "proved_shift",
+           "safe_shift"]
 
 
 def beam_mu_estimate(model: TapeModel) -> float:
@@ -135,6 +136,16 @@ def safe_shift(model: TapeModel, *, tries: int = SHIFT_TRIES
     if factors is None:
         return 0.0, None
     return tau, factor_inertia(model.A - tau * model.B)
+
+
+def proved_shift(model: TapeModel, *, tries: int = SHIFT_TRIES) -> float | None:
+    """τ of :func:`safe_shift` without a factorization to return, N/m: the counts and the
+    proof on the mirror halves only (a few half-width LDLᵀ factorizations); None if the
+    counts were not informative."""
+    pencils = _Pencils(model)
+    tau, factors = _safe_shift(pencils, beam_mu_estimate(model), tries)
+    pencils.release(factors)
+    return None if factors is None else tau
 
 
 def _safe_shift(pencils: _Pencils, tau: float, tries: int) -> tuple[float, list | None]:

@@ -130,7 +130,8 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
     with a positive-definite bending matrix (isotropic: D[[1, ν], [ν, 1]], |ν| < 1;
     :func:`gyroshell.bending_foundation`), so A >= kW > 0; otherwise a
     factorization of A decides. With ``near_divergence``, τ is the inertia-proved shift just
-    below μ_min of the divergence solver (a few factorizations, worth it for sweeps).
+    below μ_min of the divergence solver (a few half-width factorizations, worth it for
+    sweeps).
     Cached per model.
     """
     known = _FLOORS.get(model)
@@ -140,10 +141,9 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
         return None
     tau = None
     if near_divergence:
-        from .divergence import safe_shift
+        from .divergence import proved_shift
 
-        tau_d, factor = safe_shift(model)
-        tau = tau_d if factor is not None else None
+        tau = proved_shift(model)
     if tau is None and model.params.k > 0:
         tau = 0.0
     if tau is None:
