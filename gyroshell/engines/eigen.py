@@ -314,7 +314,8 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
             factor.release()
     return _joined(model, velocity, count, parts, {
         "antisymmetric_below": below, "count_frequency": omega_bar,
-        "count_factorization": counted_by})
+        "count_factorization": counted_by,
+        "count_factor_solved": bool(below and anti.info.get("shift_factor_reused"))})
 
 
 def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: dict
