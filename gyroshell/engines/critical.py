@@ -5,7 +5,13 @@
     the root is sought for the smooth f(V) = −λ₀² (λ₀ the eigenvalue nearest zero):
     f = ω₁² > 0 below critical, −(Re λ₀)² < 0 above (divergence).
 (b) Divergence route: K(V) = A + (T − ρV²)B loses definiteness at V_div = √((T + μ_min)/ρ)
-    (:func:`gyroshell.divergence`, one ``eigsh``).
+    (:func:`gyroshell.divergence`, ``eigsh`` on the mirror halves).
+
+:func:`critical_speeds` runs (b) first and starts (a) just below its speed (DIVERGENCE_GAP),
+on the half that holds the buckling mode: (a) still finds its own zero of ω₁² by
+extrapolating its eigen-solves and brackets it by a sign change, the point above proved by
+an inertia count of K(V) (f <= 0 exactly where K(V) is not positive definite). L_x/L_y =
+19: 3 eigen-solves and one count instead of 8 eigen-solves from :func:`default_guess`.
 
 For a conservative gyroscopic system an eigenvalue is zero exactly when K is singular, so
 the two must agree; they are computed by different algorithms and compared.

@@ -14,12 +14,16 @@ once per model (:func:`stiffness_floor`), the damping matrix, and the tape's mir
 about its centre line (:mod:`gyroshell.tape.mirror`): below critical and undamped, the symmetric
 and antisymmetric modes are computed on two problems of half the size, the antisymmetric
 ones only as many as the inertia of their half counts below the symmetric ones
-(:func:`_mirror_modes`).
+(:func:`_mirror_modes`). The factorization that counts them (CHOLMOD's LDLᴴ of
+Q_a(iω̄), or SuperLU's) also serves their Lanczos solve, shifted at iω̄: the frequencies
+wanted are then the extreme ones just below the shift, and no second factorization is made
+(L_x/L_y = 19, V = 50 m/s: 41 half-size solves instead of 49).
 """
 
 from __future__ import annotations
 
 import math
+import time
 import weakref
 
 import numpy as np
@@ -296,8 +300,10 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
                            options=options)
     omega_bar = float(sym.omega[-1])
     M, G, K, first = halves["antisymmetric"]
+    t0 = time.perf_counter()
     factor, counted_by = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
                                       options.factorization)
+    count_time = time.perf_counter() - t0
     try:
         below = factor.negatives
         if below is None or symmetric + below < count:
@@ -315,7 +321,8 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
     return _joined(model, velocity, count, parts, {
         "antisymmetric_below": below, "count_frequency": omega_bar,
         "count_factorization": counted_by,
-        "count_factor_solved": bool(below and anti.info.get("shift_factor_reused"))})
+        "count_factor_solved": bool(below and anti.info.get("shift_factor_reused")),
+        "count_time": count_time})
 
 
 def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: dict
@@ -331,6 +338,8 @@ def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: 
     info = dict(sym.info)
     for key in ("factor_time", "solve_time", "substitution_time", "operator_applications"):
         info[key] = sum(r.info.get(key, 0) or 0 for r, _ in parts)
+    # the count's factorization is the antisymmetric half's (its solves reuse it)
+    info["factor_time"] += mirror["count_time"]
     info.update(max_residual=float(res.max()), mirror={
         "symmetric": int(np.count_nonzero(order < sym.count)),
         "antisymmetric": int(np.count_nonzero(order >= sym.count)), **mirror})

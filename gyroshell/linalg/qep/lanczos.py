@@ -4,6 +4,11 @@ The shift-invert operator T of the Hermitian pencil (:class:`~.problem.EnergyOpe
 self-adjoint in the energy inner product, so a Krylov-Schur (thick-restart Lanczos)
 iteration with full reorthogonalization finds its Ritz pairs (notes of
 :mod:`gyroshell.linalg.qep`).
+
+With the shift below the lowest frequency, the wanted θ = 1/(ω − ω_s) are the largest
+positive ones. Where the inertia counts at least ``count`` frequencies below the shift
+(a caller's count shift, e.g. the mirror halves' ω̄), exactly those are asked for: their θ
+are the most negative ones, the other extreme of T's spectrum, and converge as fast.
 """
 
 from __future__ import annotations
