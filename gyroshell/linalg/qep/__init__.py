@@ -24,7 +24,9 @@ eigenvalue of Q(iω) crosses zero only downwards when K > 0, with slope −(ω²
 automatic shift lies below the lowest frequency, where Q(iω_s) is positive definite: a
 Cholesky factorization (CHOLMOD, :mod:`gyroshell.linalg.cholesky`, where cvxopt is installed)
 proves the count zero by succeeding; otherwise, or where it fails, SuperLU's LDLᴴ counts
-the negative pivots (Sylvester).
+the negative pivots (Sylvester). A caller that already counted at its shift (the mirror
+halves' count, :mod:`gyroshell.engines.eigen`) passes that factorization on
+(``solve_qep(..., shift_factor=)``) and no second one is made.
 
 *Undamped, K indefinite* (above critical), and *damped*. No Hermitian structure and no
 certificate: ARPACK (``eigs``) on the linearization A z = λ B z, A = [[0, I], [−K, −G − C]],
@@ -37,7 +39,9 @@ to the energy norm.
 
 Each eigenvalue is finally polished with the quadratic Rayleigh functional (the root of
 m λ² + g λ + κ = 0, m = φᴴMφ, g = φᴴ(G + C)φ, κ = φᴴKφ, nearest to it) and every pair's
-backward error is checked.
+backward error is checked; on the Lanczos path both come from one product of each matrix
+with the vectors (``spectrum.products``), and that one residual pass also decides the
+fall-back to ARPACK.
 
 Modules
 -------
