@@ -1,0 +1,167 @@
+"""Running studies: one after another in this process, or their parts on local workers.
+
+A study module either has ``run(out, settings)`` only (one piece of work), or splits its
+computation into independent parts:
+
+* ``parts(settings)``: the parts' keys (hashable, picklable), in the order the study
+  computes them;
+* ``compute_part(settings, key)``: one part's numbers (picklable: frames, dicts, arrays);
+* ``write(out, settings, results)``: the tables and figures from the parts' results, given
+  in the order of ``parts``; returns the written files.
+
+``run(out, settings)`` of such a study is ``write(out, settings, [compute_part(settings,
+key) for key in parts(settings)])``, so the same code computes every number whether the
+parts run here or on workers. Workers hold BLAS to one thread, and so does the run in this
+process: the numbers do not depend on the number of workers.
+
+On workers (:func:`run_parallel`), the parts go to a pool of local processes
+(:func:`gyroshell.core.parallel.process_pool`), the costliest first (:data:`COST`, seconds
+measured on the full settings), and each study's ``write`` runs on a worker as soon as its
+parts are in. Workers write into a hidden staging folder inside ``out``; the files are then
+moved into place through :func:`gyroshell.core.files.atomic_path` (inside the CLI's
+transaction: every file of the run, or none), and the staging folder is removed, whatever
+happens.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import importlib
+import os
+import shutil
+import tempfile
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+from ..core.files import atomic_path
+from ..core.parallel import blas_threads, process_pool
+from ..core.progress import stage_progress
+from ._common import Settings
+
+#: Seconds a part (or a study without parts, key None) took on the full settings, measured
+#: alone (benchmarks/bench_reproduce.py); only the order of the work depends on them
+#: (costliest first, so that two workers finish together). Unlisted work counts 1 s.
+COST: dict[tuple[str, object], float] = {
+    ("period", 0.0): 9.0, ("period", 25.0): 9.0, ("period", 50.0): 11.0,
+    ("period", 75.0): 13.0, ("period", 90.0): 13.0, ("period", 95.0): 13.0,
+    ("period", 100.0): 13.0,
+    ("fig2", 0.0): 6.0, ("fig2", 50.0): 6.0, ("fig2", 90.0): 6.0, ("fig2", 100.0): 6.0,
+    ("critical", None): 8.0, ("bearing", None): 10.0, ("heads", None): 8.0,
+    ("orthotropy", None): 10.0, ("helical", None): 4.0, ("frf", None): 3.0,
+    ("observations", None): 4.0, ("fig5", None): 3.0, ("fig6", None): 3.0,
+}
+
+
+def study_module(name: str):
+    """The module of study ``name`` (imported on first use)."""
+    return importlib.import_module(f"{__package__}.{name}")
+
+
+def run_parts(module, out: Path, settings: Settings) -> list[Path]:
+    """``run`` of a study with parts: every part here, in order, then ``write``."""
+    results = [module.compute_part(settings, key) for key in module.parts(settings)]
+    return module.write(out, settings, results)
+
+
+def run_here(name: str, out: Path, settings: Settings) -> list[Path]:
+    """Study ``name`` in this process, BLAS held to one thread (as on the workers)."""
+    with blas_threads(1):
+        return study_module(name).run(out, settings)
+
+
+# ----- the workers' tasks ------------------------------------------------------------------
+def _timed(function: Callable, *args):
+    start = time.perf_counter()
+    return function(*args), time.perf_counter() - start
+
+
+def _compute_task(name: str, settings: Settings, key):
+    return _timed(study_module(name).compute_part, settings, key)
+
+
+def _write_task(name: str, staging: Path, settings: Settings, results: list):
+    return _timed(study_module(name).write, staging, settings, results)
+
+
+def _run_task(name: str, staging: Path, settings: Settings):
+    return _timed(study_module(name).run, staging, settings)
+
+
+# ----- the parent ----------------------------------------------------------------------------
+@dataclasses.dataclass
+class _Study:
+    name: str
+    keys: list | None             # None: a study without parts
+    results: dict = dataclasses.field(default_factory=dict)
+    seconds: float = 0.0
+    files: list[Path] | None = None
+
+
+def run_parallel(names: Sequence[str], out: Path, settings: Settings, workers: int, *,
+                 log: Callable[[str], object] | None = print) -> dict[str, list[Path]]:
+    """Run the studies ``names`` on ``workers`` local processes into ``out``; logs each
+    study's time (the seconds its parts and its writing took on the workers) as it
+    finishes. Returns the written files per study, in the order of ``names``."""
+    quiet = dataclasses.replace(settings, progress=False)  # no bars from the workers
+    studies = {}
+    for name in names:
+        module = study_module(name)
+        keys = list(module.parts(settings)) if hasattr(module, "parts") else None
+        studies[name] = _Study(name, keys)
+    tasks = [(name, key) for name, s in studies.items() for key in (s.keys or [None])]
+    tasks.sort(key=lambda t: -COST.get(t, 1.0))  # stable: equal costs keep the study order
+    staging = Path(tempfile.mkdtemp(prefix=".gyroshell-reproduce-", dir=out))
+    try:
+        with process_pool(workers) as pool, stage_progress(
+                len(tasks) + sum(s.keys is not None for s in studies.values()),
+                "reproduce", progress=settings.progress, unit="part") as bar:
+            pending = {}
+            for name, key in tasks:
+                if studies[name].keys is None:
+                    future = pool.submit(_run_task, name, staging, quiet)
+                else:
+                    future = pool.submit(_compute_task, name, quiet, key)
+                pending[future] = (name, key, "compute")
+            _collect(pool, pending, studies, staging, quiet, bar, log)
+        written = {}
+        for name in names:
+            written[name] = [_move(path, out) for path in studies[name].files]
+        return written
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
+
+
+def _collect(pool, pending: dict, studies: dict, staging: Path, settings: Settings, bar,
+             log) -> None:
+    """Wait for the tasks; submit each study's ``write`` once its parts are in."""
+    from concurrent.futures import FIRST_COMPLETED, wait
+
+    while pending:
+        done, _ = wait(pending, return_when=FIRST_COMPLETED)
+        for future in done:
+            name, key, what = pending.pop(future)
+            value, seconds = future.result()
+            study = studies[name]
+            study.seconds += seconds
+            bar.update(1)
+            if what == "compute" and study.keys is not None:
+                study.results[key] = value
+                if len(study.results) == len(study.keys):
+                    results = [study.results[k] for k in study.keys]
+                    pending[pool.submit(_write_task, name, staging, settings, results)] = (
+                        name, None, "write")
+                continue
+            study.files = list(value)
+            if log is not None:
+                log(f"{name}: {study.seconds:.1f} s -> "
+                    f"{', '.join(p.name for p in study.files)}")
+
+
+def _move(staged: Path, out: Path) -> Path:
+    """Move a file a worker wrote into the staging folder to ``out`` (staged with the
+    active transaction, if any)."""
+    target = out / Path(staged).name
+    with atomic_path(target, option="out") as tmp:
+        os.replace(staged, tmp)
+    return target
