@@ -20,29 +20,51 @@ paper's "t = ∞" pictures).
 
 F(t) is either f(t) F (a fixed force with a time profile, by default the nodal forces of
 the model's Gaussian pressure switched on at t = 0) or moving heads
-(:mod:`gyroshell.tape.moving_loads`). A :class:`Newmark` object holds one factorization for
-one (V, Δt, β, γ, C) and can march any number of runs with it; :func:`march` is the
+(:mod:`gyroshell.tape.moving_loads`). A :class:`Newmark` object holds the factorizations for
+one (V, Δt, β, γ, C) and can march any number of runs with them; :func:`march` is the
 one-call form.
+
+Mirror symmetry. When the tape is mirror symmetric about y = L_y/2
+(:func:`gyroshell.tape.mirror.mirror_split`: A, B, M and G checked on the assembled
+operators), and so are the damping C, the force (‖R F − F‖ ≤ 10⁻¹⁴ ‖F‖; a moving head
+only with its centre on the centre line at every step and an even shape across the width)
+and the initial state w⁰, v⁰, the answer stays symmetric: w = P_s z with z on the symmetric
+half. The march then solves M_s a + (G_s + C_s) v + K_s z = P_sᵀ F, with the half's
+matrices X_s = P_sᵀ X P_s and their own K_eq factored once, and expands what it records
+(history, snapshots, centre lines, the final state) to the full field; the energy of the
+half, ½v_sᵀM_s v_s + ½zᵀK_s z − (P_sᵀF)ᵀz, is that of the full field because P_s has
+orthonormal columns. The result equals a full march to round-off and says which was used
+(``info["symmetry"]``: "half" or "full"); ``symmetry=False`` always marches all the
+unknowns. Nothing is assumed: any asymmetric input gives the full march.
+
+Shared factorizations. Inside ``with sharing_factorizations():`` every :class:`Newmark`
+for the same tape (equal parameters and grid) at the same (V, Δt, β, γ, C, back-end) uses
+one factorization of each K_eq (full or half), made by the first that needs it and dropped
+when the outermost block ends; outside such a block nothing is kept between objects.
 """
 
 from __future__ import annotations
 
+import contextvars
 import math
 import time
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Hashable, Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import asdict
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..core import budget, validation
 from ..core.errors import ConvergenceError, ParameterError
 from ..core.parallel import blas_threads as limit_blas_threads
 from ..core.progress import LongWork
-from ..linalg.factorization import factorize
+from ..linalg.factorization import factorize, resolve_backend
 from ..results.transient import Recorder, TransientResult
 from ..tape.damping import Damping, as_damping
 from ..tape.loads import TimeProfile, step
+from ..tape.mirror import SymmetricHalf, mirror_split
 from ..tape.model import TapeModel
 from ..tape.moving_loads import MovingLoad, PreparedLoads, as_loads, check_contact_steps
 from ..tape.parameters import check_velocity
@@ -72,6 +94,103 @@ def check_force(force, size: int, name: str = "force", unit: str = "N") -> np.nd
     return validation.vector(name, force, size, unit)
 
 
+class SharedFactorizations:
+    """The factorizations of K_eq kept for one :func:`sharing_factorizations` block.
+
+    Keyed by the tape (its class, parameters and grid, so that equal models share; a model
+    that cannot be hashed is keyed by its identity and kept alive by the entry), V, Δt, β,
+    γ, C, the back-end and the unknowns marched (all, or the symmetric half).
+
+    Attributes
+    ----------
+    factorizations : int
+        Factorizations made in the block.
+    reuses : int
+        Times a Newmark object was given one made before.
+    """
+
+    def __init__(self) -> None:
+        self._factors: dict[Hashable, tuple] = {}
+        self.factorizations = 0
+        self.reuses = 0
+
+    def __len__(self) -> int:
+        return len(self._factors)
+
+    def __repr__(self) -> str:
+        return (f"SharedFactorizations({len(self)} kept, {self.factorizations} made, "
+                f"{self.reuses} reused)")
+
+    def factor(self, key: Hashable, keep_alive: object, build: Callable[[], object]
+               ) -> tuple[object, bool]:
+        """(the factorization under ``key``, whether it was made before); ``build()`` makes
+        it the first time (``keep_alive`` is held with it)."""
+        if key in self._factors:
+            self.reuses += 1
+            return self._factors[key][0], True
+        factor = build()
+        self._factors[key] = (factor, keep_alive)
+        self.factorizations += 1
+        return factor, False
+
+    def clear(self) -> None:
+        """Drop every kept factorization."""
+        self._factors.clear()
+
+
+_SHARING: contextvars.ContextVar[SharedFactorizations | None] = contextvars.ContextVar(
+    "gyroshell_shared_factorizations", default=None)
+
+
+@contextmanager
+def sharing_factorizations() -> Iterator[SharedFactorizations]:
+    """A block in which Newmark objects of the same tape and (V, Δt, β, γ, C, back-end)
+    share their factorizations of K_eq.
+
+    The first :class:`Newmark` that needs a K_eq (full or half) factors it; every later one
+    in the block with equal settings uses that factor (``info["factor_shared"]`` is then
+    True and ``info["factorizations"]`` does not grow). A nested block is the outer one;
+    the factors are dropped when the outermost block ends. The sharing follows the context
+    (:mod:`contextvars`): other threads and worker processes do not see it.
+
+    Yields
+    ------
+    SharedFactorizations
+        The block's factors, with counts of those made and reused.
+
+    Examples
+    --------
+    >>> from gyroshell import TapeModel, TapeParameters
+    >>> model = TapeModel(TapeParameters(spacing=6.35e-3 / 8))
+    >>> with sharing_factorizations() as shared:
+    ...     a = march(model, 10.0, dt=2e-6, steps=5)
+    ...     b = march(model, 10.0, dt=2e-6, steps=9)
+    >>> shared.factorizations, shared.reuses, b.info["factor_shared"]
+    (1, 1, True)
+    """
+    current = _SHARING.get()
+    if current is not None:
+        yield current
+        return
+    shared = SharedFactorizations()
+    token = _SHARING.set(shared)
+    try:
+        yield shared
+    finally:
+        _SHARING.reset(token)
+        shared.clear()
+
+
+def _model_key(model: TapeModel) -> tuple[Hashable, object]:
+    """(the sharing key of a tape, what the key needs kept alive)."""
+    try:
+        key = (type(model), model.params, model.grid)
+        hash(key)
+        return key, None
+    except (AttributeError, TypeError):
+        return ("object", id(model)), model
+
+
 class _FixedForce:
     """F(t) = f(t) F at the instants of one run, with the load-point interpolation row."""
 
@@ -81,11 +200,17 @@ class _FixedForce:
                  times: np.ndarray) -> None:
         if not callable(profile):
             raise ParameterError("profile must be callable: f(t) with t in s")
-        self.force, self.profile, self.times = force, profile, times
+        self.force, self.profile, self.row, self.times = force, profile, row, times
         self._tmp = np.empty_like(force)
         # r @ w through the row's few non-zeros: no BLAS call (no BLAS threads) per step
         self._idx = np.flatnonzero(row)
         self._wts = row[self._idx]
+
+    def on_half(self, half: SymmetricHalf) -> _FixedForce:
+        """The same forcing on the symmetric half's unknowns z: P_sᵀ F, and the row P_sᵀ r
+        (r·w = r·P_s z)."""
+        return _FixedForce(half.restrict(self.force), self.profile, half.restrict(self.row),
+                           self.times)
 
     def factor(self, n: int) -> float:
         f = float(self.profile(float(self.times[n])))
@@ -105,6 +230,27 @@ class _FixedForce:
 
     def displacement(self, n: int, w: np.ndarray, out: np.ndarray) -> None:
         out[0] = w[self._idx] @ self._wts
+
+
+class _Operators:
+    """The matrices of the unknowns one march moves (all, or the symmetric half ``half``)
+    and the factor of their K_eq."""
+
+    def __init__(self, K, damped_gyroscopic, C, m: np.ndarray, factor, shared: bool,
+                 half: SymmetricHalf | None) -> None:
+        self.K, self.damped_gyroscopic, self.C, self.m = K, damped_gyroscopic, C, m
+        self.factor, self.shared, self.half = factor, shared, half
+
+    @property
+    def unknowns(self) -> int:
+        return len(self.m)
+
+    def initial_acceleration(self, w, v, force0) -> np.ndarray:
+        return (force0 - self.K @ w - self.damped_gyroscopic @ v) / self.m
+
+    def energy(self, w, v, force) -> float:
+        return float(0.5 * np.dot(v * self.m, v) + 0.5 * np.dot(w, self.K @ w)
+                     - np.dot(force, w))
 
 
 class Newmark:
@@ -130,9 +276,11 @@ class Newmark:
 
     Notes
     -----
-    Construction assembles K(V), G(V), C and factors K_eq (the expensive part, reported as
-    ``info["factor_time"]``); :meth:`march` then costs one substitution per step plus a few
-    vector operations and one (G + C) mat-vec.
+    Construction assembles K(V), G(V), C; the first march that needs K_eq on all the
+    unknowns, or on the symmetric half (module notes), factors it (the expensive part,
+    reported as ``info["factor_time"]``), once per object, or once per
+    :func:`sharing_factorizations` block. :meth:`march` then costs one substitution per
+    step plus a few vector operations and one (G + C) mat-vec.
     """
 
     def __init__(self, model: TapeModel, velocity: float = 0.0, *, dt: float,
@@ -159,17 +307,17 @@ class Newmark:
         self.damped_gyroscopic.sort_indices()
         self.m = np.ascontiguousarray(model.mass_diagonal, dtype=float)
         self.blas_threads = blas_threads
-        dt, b, g = self.dt, self.beta, self.gamma
-        K_eq = (model.M + (g * dt) * self.damped_gyroscopic + (b * dt * dt) * self.K).tocsc()
-        with limit_blas_threads(blas_threads):
-            self.factor = factorize(K_eq, backend)
-        self.info = {"backend": self.factor.name, "factor_time": self.factor.factor_time,
-                     "unknowns": model.unknowns, "factorizations": 1,
+        #: The LU back-end's name (refused here if unknown or not installed).
+        self.backend = resolve_backend(backend)
+        self._operators: dict[str, _Operators] = {}
+        self._half_allowed: bool | None = None
+        self.info = {"backend": self.backend, "factor_time": 0.0,
+                     "unknowns": model.unknowns, "factorizations": 0,
                      "blas_threads": blas_threads}
 
     def __repr__(self) -> str:
         return (f"Newmark(V={self.velocity:g} m/s, dt={self.dt:g} s, beta={self.beta:g}, "
-                f"gamma={self.gamma:g}, damping={self.damping}, backend={self.factor.name!r},"
+                f"gamma={self.gamma:g}, damping={self.damping}, backend={self.backend!r},"
                 f" n={self.model.unknowns})")
 
     @property
@@ -179,6 +327,11 @@ class Newmark:
         warnings.warn("Newmark.D is deprecated; use damped_gyroscopic (G + C)",
                       DeprecationWarning, stacklevel=2)
         return self.damped_gyroscopic
+
+    @property
+    def factor(self):
+        """The factorization of K_eq on all the unknowns (made on first use)."""
+        return self._system(None).factor
 
     # ----- pieces ---------------------------------------------------------------------
     def initial_acceleration(self, w0: np.ndarray, v0: np.ndarray, force0: np.ndarray
@@ -201,17 +354,77 @@ class Newmark:
             return np.zeros(n)
         return check_force(vector, n, name, unit)  # a new array: the march writes into it
 
-    def _prepare_forcing(self, load, force, profile, times: np.ndarray):
-        """The run's F(t): moving heads, or f(t) F with F ``force`` or the model's force."""
+    def _fixed_force(self, load, force, profile) -> np.ndarray | None:
+        """The checked fixed force F (N), or None with moving heads."""
         if load is not None:
             if force is not None:
                 raise ParameterError("give either load (moving heads) or force, not both")
             if profile is not step:
                 raise ParameterError("profile applies to a fixed load; a moving head's time "
                                      "dependence is its contact windows (ContactWindows)")
+            return None
+        return self.model.force if force is None else check_force(force, self.model.unknowns)
+
+    def _prepare_forcing(self, load, force, profile, times: np.ndarray):
+        """The run's F(t): moving heads, or f(t) F with F the checked fixed ``force``."""
+        if load is not None:
             return PreparedLoads(self.model, as_loads(load), times)
-        force = self.model.force if force is None else check_force(force, self.model.unknowns)
         return _FixedForce(force, profile, self.model.load_point_row, times)
+
+    # ----- the unknowns marched: all, or the symmetric half --------------------------------
+    def _half(self, symmetry: bool, w: np.ndarray, v: np.ndarray, force) -> SymmetricHalf | None:
+        """The symmetric half if the tape, C, w⁰, v⁰ and the fixed force (None: moving heads,
+        checked on their prepared centres later) are all mirror symmetric, else None."""
+        if not symmetry or not self._half_possible():
+            return None
+        half = SymmetricHalf.of(self.model.grid)
+        vectors = (w, v) if force is None else (w, v, force)
+        return half if all(half.is_symmetric(x) for x in vectors) else None
+
+    def _half_possible(self) -> bool:
+        """The tape (:func:`mirror_split`) and the damping C are mirror symmetric."""
+        if self._half_allowed is None:
+            split = mirror_split(self.model)
+            self._half_allowed = split is not None and (
+                self.C is None or SymmetricHalf.of(self.model.grid).is_invariant(self.C))
+        return self._half_allowed
+
+    def _system(self, half: SymmetricHalf | None) -> _Operators:
+        """The operators and factor of all the unknowns (``half`` None) or of the half."""
+        which = "full" if half is None else "half"
+        if which not in self._operators:
+            if half is None:
+                K, GC, C, m = self.K, self.damped_gyroscopic, self.C, self.m
+            else:
+                M_s, G_s, K_s = mirror_split(self.model).matrices(self.model, self.velocity,
+                                                                  "symmetric")
+                C = None if self.C is None else half.project(self.C)
+                GC = G_s if C is None else (G_s + C).tocsr()
+                GC.sort_indices()
+                K, m = K_s, np.ascontiguousarray(M_s.diagonal(), dtype=float)
+            factor, shared = self._factored(which, K, GC, m)
+            self._operators[which] = _Operators(K, GC, C, m, factor, shared, half)
+        return self._operators[which]
+
+    def _factored(self, which: str, K, GC, m: np.ndarray) -> tuple[object, bool]:
+        """The factor of K_eq = M + γΔt (G + C) + βΔt² K (this object's, or the block's of
+        :func:`sharing_factorizations`) and whether it was shared."""
+        def build():
+            dt, b, g = self.dt, self.beta, self.gamma
+            K_eq = (sp.diags(m) + (g * dt) * GC + (b * dt * dt) * K).tocsc()
+            with limit_blas_threads(self.blas_threads):
+                factor = factorize(K_eq, self.backend)
+            self.info["factorizations"] += 1
+            self.info["factor_time"] += factor.factor_time
+            return factor
+
+        sharing = _SHARING.get()
+        if sharing is None:
+            return build(), False
+        model, alive = _model_key(self.model)
+        key = (model, self.velocity, self.dt, self.beta, self.gamma, self.damping,
+               self.backend, which)
+        return sharing.factor(key, alive, build)
 
     # ----- the march --------------------------------------------------------------------
     def march(self, steps: int, *, profile: TimeProfile = step,
@@ -221,7 +434,8 @@ class Newmark:
               snapshot_times: Sequence[float] | None = None, snapshot_every: int | None = None,
               centerline_times: Sequence[float] | None = None,
               record_energy: bool = False, progress: bool | None = None,
-              blowup_factor: float = BLOWUP_FACTOR) -> TransientResult:
+              blowup_factor: float = BLOWUP_FACTOR, symmetry: bool = True
+              ) -> TransientResult:
         """March ``steps`` steps from (w⁰, v⁰) at t0 under F(t).
 
         Parameters
@@ -250,6 +464,11 @@ class Newmark:
         blowup_factor : float
             Stop with ConvergenceError once max |w| exceeds this many times its scale
             max(max|w⁰|, max|F| / max diag K, Δt steps max|v⁰|), m (> 0).
+        symmetry : bool
+            March the symmetric half when the tape, damping, force and initial state are
+            all mirror symmetric about y = L_y/2 (module notes; the result is the same to
+            round-off, ``info["symmetry"]`` says "half" or "full"); False: always all the
+            unknowns.
 
         Returns
         -------
@@ -262,25 +481,40 @@ class Newmark:
         """
         steps, t0 = check_steps(steps), validation.real("t0", t0, unit="s")
         blowup_factor = validation.positive("blowup_factor", blowup_factor)
+        symmetry = validation.boolean("symmetry", symmetry)
         kept = dict(snapshot_times=snapshot_times, snapshot_every=snapshot_every,
                     centerline_times=centerline_times)
-        work = self._plan(steps, load, kept, record_energy, progress)
-        times = t0 + self.dt * np.arange(steps + 1)  # t_n, s
-        forcing = self._prepare_forcing(load, force, profile, times)
+        fixed = self._fixed_force(load, force, profile)
         w, v = self._state(w0, "w0", "m"), self._state(v0, "v0", "m/s")
-        a = self.initial_acceleration(w, v, forcing.vector(0))
-        recorder = Recorder(self.model.grid, steps, self.dt, t0, **kept)
+        half = self._half(symmetry, w, v, fixed)
+        work = self._plan(steps, load, kept, record_energy, progress, half)
+        times = t0 + self.dt * np.arange(steps + 1)  # t_n, s
+        forcing = self._prepare_forcing(load, fixed, profile, times)
+        if half is not None and fixed is None and \
+                not forcing.mirror_symmetric(self.model.grid.width):
+            half = None
         bound = self._blowup_bound(w, v, forcing, steps, blowup_factor)
+        system = self._system(half)
+        if half is not None:  # z = P_sᵀ w; max|z| <= √2 max|w| bounds the same run
+            forcing, w, v, bound = (forcing.on_half(half), half.restrict(w),
+                                    half.restrict(v), math.sqrt(2.0) * bound)
+        a = system.initial_acceleration(w, v, forcing.vector(0))
+        recorder = Recorder(self.model.grid, steps, self.dt, t0, **kept)
         state, history, energy, timing = self._timed_loop(
-            steps, times, (w, v, a), forcing, recorder, bound, record_energy, work)
-        return self._result(times, history, recorder, state, energy, timing, load is not None)
+            system, steps, times, (w, v, a), forcing, recorder, bound, record_energy, work)
+        if half is not None:
+            state = tuple(half.expand(x) for x in state)
+        return self._result(system, times, history, recorder, state, energy, timing,
+                            load is not None)
 
-    def _plan(self, steps: int, load, kept, record_energy: bool, progress) -> LongWork:
+    def _plan(self, steps: int, load, kept, record_energy: bool, progress,
+              half: SymmetricHalf | None) -> LongWork:
         """Check the run before any of its per-step arrays exists: the heads' contact windows
         against Δt, the memory of all it keeps per step (:func:`budget.check_transient`:
         times, history, heads' positions and weights, energy, fields) and, from
         :data:`TRIAL_FROM_STEPS` steps on, its time measured on :data:`TRIAL_STEPS` trial
-        steps; returns the run's progress (shorter runs are timed on their first steps)."""
+        steps (on the half if the inputs known so far allow it); returns the run's progress
+        (shorter runs are timed on their first steps)."""
         grid = self.model.grid
         loads = None if load is None else as_loads(load)
         if loads is not None:
@@ -296,14 +530,16 @@ class Newmark:
                         size=f"a transient of {steps} steps of {self.model.unknowns} unknowns",
                         advice="use fewer steps, a larger dt or a larger spacing")
         if steps >= TRIAL_FROM_STEPS:
-            work.assess(self._trial_step_time(), f"{TRIAL_STEPS} trial steps")
+            work.assess(self._trial_step_time(self._system(half)), f"{TRIAL_STEPS} trial steps")
         return work
 
-    def _trial_step_time(self) -> float:
+    def _trial_step_time(self, system: _Operators) -> float:
         """Seconds per step, measured on :data:`TRIAL_STEPS` steps from rest under the
         model's force, on scratch vectors, after one untimed warm-up step."""
-        n = self.model.unknowns
+        n = system.unknowns
         forcing = _FixedForce(self.model.force, step, self.model.load_point_row, np.zeros(1))
+        if system.half is not None:
+            forcing = forcing.on_half(system.half)
         w, v, a = (np.zeros(n) for _ in range(3))
         w_t, v_t, rhs, tmp, tmp2 = (np.empty(n) for _ in range(5))
         start = 0.0
@@ -311,13 +547,13 @@ class Newmark:
             for k in range(TRIAL_STEPS + 1):
                 start = time.perf_counter() if k == 1 else start
                 self._predict(w, v, a, w_t, v_t, tmp)
-                self._right_hand_side(0, w_t, v_t, forcing, rhs, tmp, tmp2)
-                w = self.factor.solve(rhs)
+                self._right_hand_side(system, 0, w_t, v_t, forcing, rhs, tmp, tmp2)
+                w = system.factor.solve(rhs)
                 self._correct(w, w_t, v_t, a, v)
         return (time.perf_counter() - start) / TRIAL_STEPS
 
-    def _timed_loop(self, steps, times, state, forcing, recorder, bound, record_energy,
-                    work):
+    def _timed_loop(self, system, steps, times, state, forcing, recorder, bound,
+                    record_energy, work):
         """The time loop with its progress (``work``) and BLAS threads; returns the final
         (w, v, a), the history under each head (m), the energy (J, or None) and the
         (solve, loop) times, s."""
@@ -326,18 +562,20 @@ class Newmark:
         energy = np.empty(steps + 1) if record_energy else None
         start = time.perf_counter()
         with work as bar, limit_blas_threads(self.blas_threads):
-            w, v, a, solve_time = self._loop(steps, times, w, v, a, forcing, recorder,
-                                             history, energy, bound, bar)
+            w, v, a, solve_time = self._loop(system, steps, times, w, v, a, forcing,
+                                             recorder, history, energy, bound, bar)
         return (w, v, a), history, energy, (solve_time, time.perf_counter() - start)
 
-    def _result(self, times, history, recorder, state, energy, timing,
+    def _result(self, system, times, history, recorder, state, energy, timing,
                 moving_load: bool) -> TransientResult:
         """The TransientResult of a finished run; ``info`` gains the run's statistics."""
         steps = len(times) - 1
         solve_time, loop_time = timing
         info = dict(self.info, steps=steps, solve_time=solve_time, loop_time=loop_time,
                     step_time=loop_time / steps, damping=asdict(self.damping),
-                    moving_load=moving_load)
+                    moving_load=moving_load, factor_time=system.factor.factor_time,
+                    factor_shared=system.shared, marched_unknowns=system.unknowns,
+                    symmetry="full" if system.half is None else "half")
         heads = history if history.shape[1] > 1 else None
         w, v, a = state
         return TransientResult(times, history[:, 0].copy(), recorder.snapshots(times), w, v,
@@ -366,14 +604,14 @@ class Newmark:
         np.multiply(a, (1.0 - self.gamma) * dt, out=v_t)
         v_t += v
 
-    def _right_hand_side(self, n, w_t, v_t, forcing, rhs, tmp, tmp2) -> None:
+    def _right_hand_side(self, system, n, w_t, v_t, forcing, rhs, tmp, tmp2) -> None:
         """f_eq = M w̃ + (G + C)(γΔt w̃ − βΔt² ṽ) + βΔt² F(t_n) (Eq. 16)."""
         bdt2 = self.beta * self.dt * self.dt
         np.multiply(w_t, self.gamma * self.dt, out=tmp)
         np.multiply(v_t, bdt2, out=tmp2)
         tmp -= tmp2
-        np.multiply(self.m, w_t, out=rhs)
-        rhs += self.damped_gyroscopic @ tmp
+        np.multiply(system.m, w_t, out=rhs)
+        rhs += system.damped_gyroscopic @ tmp
         forcing.add(n, bdt2, rhs)
 
     def _correct(self, w_new, w_t, v_t, a, v) -> None:
@@ -383,20 +621,27 @@ class Newmark:
         np.multiply(a, self.gamma * self.dt, out=v)
         v += v_t
 
-    def _loop(self, steps, times, w, v, a, forcing, recorder, history, energy, bound, bar):
-        """The time loop; fills ``history`` (and ``energy``) and returns (w, v, a, solve s)."""
-        solve, wanted = self.factor.solve, recorder.wanted
+    def _loop(self, system, steps, times, w, v, a, forcing, recorder, history, energy,
+              bound, bar):
+        """The time loop; fills ``history`` (and ``energy``) and returns (w, v, a, solve s)
+        on the marched unknowns (the half's z if ``system.half``)."""
+        solve, wanted, half = system.factor.solve, recorder.wanted, system.half
         w_t, v_t, rhs, tmp, tmp2 = (np.empty_like(w) for _ in range(5))
+        field = None if half is None else np.empty(self.model.unknowns)
+
+        def record(n, w):
+            recorder.record(n, w if half is None else half.expand(w, field))
+
         forcing.displacement(0, w, history[0])
         if energy is not None:
-            energy[0] = self.energy(w, v, forcing.vector(0))
-        recorder.record(0, w)
+            energy[0] = system.energy(w, v, forcing.vector(0))
+        record(0, w)
         solve_time = 0.0
         n = 0
         try:
             for n in range(1, steps + 1):
                 self._predict(w, v, a, w_t, v_t, tmp)
-                self._right_hand_side(n, w_t, v_t, forcing, rhs, tmp, tmp2)
+                self._right_hand_side(system, n, w_t, v_t, forcing, rhs, tmp, tmp2)
                 tick = time.perf_counter()
                 w = solve(rhs)  # Eq. 12
                 solve_time += time.perf_counter() - tick
@@ -406,9 +651,9 @@ class Newmark:
                     raise _blowup(n, times[n], size, bound, self)
                 forcing.displacement(n, w, history[n])
                 if energy is not None:
-                    energy[n] = self.energy(w, v, forcing.vector(n))
+                    energy[n] = system.energy(w, v, forcing.vector(n))
                 if wanted[n]:
-                    recorder.record(n, w)
+                    record(n, w)
                 bar.update(1)
         except FloatingPointError as exc:
             raise ConvergenceError(f"Newmark march overflowed at step {n} (t = "
@@ -444,7 +689,8 @@ def march(model: TapeModel, velocity: float = 0.0, *, dt: float, steps: int,
     keep the :class:`Newmark` object instead to reuse its factorization across runs with
     the same (V, Δt, β, γ, C). See :meth:`Newmark.march` for ``options`` (profile, force,
     load, w0, v0, t0, snapshot_times, snapshot_every, centerline_times, record_energy,
-    progress, blowup_factor).
+    progress, blowup_factor, symmetry); wrap several calls in :func:`sharing_factorizations`
+    to factor each K_eq once across them.
     """
     steps = check_steps(steps)
     return Newmark(model, velocity, dt=dt, beta=beta, gamma=gamma, damping=damping,

@@ -119,3 +119,107 @@ def mirror_split(model) -> MirrorSplit | None:
     except TypeError:  # not weak-referenceable: no cache
         pass
     return split
+
+
+#: Relative size of ‖R f − f‖₂ below which a vector (force, initial state) counts as mirror
+#: symmetric: round-off of its assembly, far below any physical asymmetry.
+VECTOR_RTOL = 1e-14
+
+
+@dataclass(frozen=True)
+class SymmetricHalf:
+    """The numbering of the symmetric half P_s of a grid's unknowns, for vectors.
+
+    Unknowns are numbered line by line, ``n_across`` per line; the half keeps ``columns``
+    = ⌈n_across/2⌉ per line, column k standing for the pair (k, n_across − 1 − k) (the
+    centre alone when n_across is odd), as the columns of :attr:`MirrorSplit.symmetric`.
+    With it the time loop moves between a symmetric field w = P_s z and its half z by
+    slicing, without a sparse product.
+
+    Examples
+    --------
+    >>> half = SymmetricHalf(n_lines=1, n_across=3)
+    >>> half.expand(np.array([np.sqrt(2.0), 5.0]))
+    array([1., 5., 1.])
+    >>> half.restrict(np.array([1.0, 5.0, 1.0]))  # P_sᵀ f
+    array([1.41421356, 5.        ])
+    """
+
+    n_lines: int
+    n_across: int
+
+    @classmethod
+    def of(cls, grid) -> SymmetricHalf:
+        """The half of a :class:`gyroshell.tape.grid.Grid`'s unknowns."""
+        return cls(grid.n_lines, grid.n_across)
+
+    @property
+    def columns(self) -> int:
+        """Half columns per line (⌈n_across/2⌉)."""
+        return (self.n_across + 1) // 2
+
+    @property
+    def unknowns(self) -> int:
+        """Unknowns of the half, n_s = n_lines · columns."""
+        return self.n_lines * self.columns
+
+    @property
+    def value_weights(self) -> np.ndarray:
+        """w_j / z_k for j = k or its mirror: 1/√2 on pairs, 1 on a centre line (w = P_s z)."""
+        weights = np.full(self.columns, 1 / math.sqrt(2))
+        if self.n_across % 2:
+            weights[-1] = 1.0
+        return weights
+
+    @property
+    def force_weights(self) -> np.ndarray:
+        """(P_sᵀ f)_k / f_k for a symmetric f: √2 on pairs, 1 on a centre line."""
+        return 1.0 / self.value_weights
+
+    def index(self, unknown: np.ndarray) -> np.ndarray:
+        """Half unknown k of full unknowns j (the pair's, or the centre's), integer arrays."""
+        line, j = np.divmod(np.asarray(unknown), self.n_across)
+        return line * self.columns + np.minimum(j, self.n_across - 1 - j)
+
+    def weight(self, unknown: np.ndarray) -> np.ndarray:
+        """w_j / z_index(j) of full unknowns j (:attr:`value_weights`)."""
+        j = np.asarray(unknown) % self.n_across
+        return self.value_weights[np.minimum(j, self.n_across - 1 - j)]
+
+    def reflect(self, vector: np.ndarray) -> np.ndarray:
+        """R f: the vector over the unknowns mirrored across the centre line (a new array)."""
+        return vector.reshape(self.n_lines, self.n_across)[:, ::-1].ravel()
+
+    def is_symmetric(self, vector: np.ndarray, rtol: float = VECTOR_RTOL) -> bool:
+        """‖R f − f‖₂ ≤ rtol ‖f‖₂ (a zero vector is symmetric)."""
+        f = np.asarray(vector, dtype=float)
+        return bool(np.linalg.norm(self.reflect(f) - f) <= rtol * np.linalg.norm(f))
+
+    def restrict(self, vector: np.ndarray) -> np.ndarray:
+        """P_sᵀ f (a new array of the half's unknowns); exact for any f."""
+        f = vector.reshape(self.n_lines, self.n_across)
+        c, pairs = self.columns, self.n_across // 2
+        out = np.empty((self.n_lines, c))
+        np.add(f[:, :pairs], f[:, ::-1][:, :pairs], out=out[:, :pairs])
+        out[:, :pairs] *= 1 / math.sqrt(2)
+        if c > pairs:
+            out[:, -1] = f[:, pairs]
+        return out.ravel()
+
+    def expand(self, half: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+        """w = P_s z over all the unknowns (into ``out`` if given)."""
+        out = np.empty(self.n_lines * self.n_across) if out is None else out
+        w = out.reshape(self.n_lines, self.n_across)
+        c = self.columns
+        np.multiply(half.reshape(self.n_lines, c), self.value_weights, out=w[:, :c])
+        w[:, c:] = w[:, :self.n_across - c][:, ::-1]
+        return out
+
+    def project(self, matrix: sp.spmatrix) -> sp.csr_matrix:
+        """P_sᵀ A P_s (an operator on the half's unknowns)."""
+        P = _reflection(self.n_lines, self.n_across)[1]
+        return (P.T @ sp.csr_matrix(matrix) @ P).tocsr()
+
+    def is_invariant(self, matrix: sp.spmatrix) -> bool:
+        """R A R = A to round-off (entry-wise, :data:`SYMMETRY_RTOL`)."""
+        return _invariant(_reflection(self.n_lines, self.n_across)[0], matrix)

@@ -16,6 +16,7 @@ several heads are a list of loads (see :func:`drum_heads`).
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -371,7 +372,13 @@ class PreparedLoads:
 
     ``add(n, scale, out)`` adds scale · F(t_n) (N) into ``out`` touching only the cells
     under each head; ``displacement(n, w, out)`` writes w under each head's centre (m).
+
+    :meth:`on_half` gives the same heads on the symmetric half's unknowns, for heads that
+    :meth:`mirror_symmetric` accepts.
     """
+
+    #: The symmetric half the vectors live on (None: all the unknowns).
+    half = None
 
     def __init__(self, model: TapeModel, loads: Sequence[MovingLoad], times: np.ndarray):
         grid, params = model.grid, model.params
@@ -398,8 +405,32 @@ class PreparedLoads:
         self._field = np.empty(0)
         self._interp = _interpolation(grid, self.centres)
 
+    def on_half(self, half) -> PreparedLoads:
+        """These heads on the unknowns z of the symmetric half ``half`` (a
+        :class:`gyroshell.tape.mirror.SymmetricHalf`; w = P_s z), for heads that
+        :meth:`mirror_symmetric` accepts: ``add`` then adds P_sᵀ F(t_n) (the cells left of
+        and on the centre line, times the half's force weights), ``vector`` returns it, and
+        ``displacement`` reads w = P_s z under the centres."""
+        folded = copy.copy(self)
+        idx, wts = self._interp
+        folded.half, folded._force_weights = half, half.force_weights
+        folded._interp = half.index(idx), wts * half.weight(idx)  # w_j = weight(j) z_index(j)
+        return folded
+
+    def mirror_symmetric(self, width: float) -> bool:
+        """True if every head's force is symmetric about y = ``width``/2 (m) at every step:
+        its centre on the centre line (to 1e-14 of the width) and a shape across the width
+        that is even (the Gaussian or uniform shape; a user's shape is not assumed even).
+        The path along x, the contact windows and the pressure do not matter."""
+        centred = np.abs(self.centres[:, :, 1] - 0.5 * width) <= 1e-14 * width
+        return bool(np.all(centred)) and all(
+            isinstance(ay.shape, (GaussianShape, UniformShape)) for _, ay, _, _ in self._axes)
+
     def add(self, n: int, scale: float, out: np.ndarray) -> None:
         """out += scale · F(t_n), N (only the cells under the heads are touched)."""
+        if self.half is not None:
+            self._add_half(n, scale, out)
+            return
         grid = self.grid
         view = out.reshape(grid.n_lines, grid.n_across)
         for k in range(self.heads):
@@ -415,9 +446,31 @@ class PreparedLoads:
             np.multiply(fx[:, None], fy[None, :], out=ax.block(ay.width))
             block += ax.block(ay.width)
 
+    def _add_half(self, n: int, scale: float, out: np.ndarray) -> None:
+        """out += scale · P_sᵀ F(t_n) over the half's unknowns (F symmetric)."""
+        columns = self.half.columns
+        view = out.reshape(self.grid.n_lines, columns)
+        for k in range(self.heads):
+            e = self.envelopes[n, k]
+            if e == 0.0:
+                continue
+            ax, ay, ix, iy = self._axes[k]
+            i0, j0 = int(ix[n]), int(iy[n])
+            kept = min(ay.width, columns - j0)
+            if kept <= 0:
+                continue
+            fx = ax.integrals(i0, self.centres[n, k, 0])
+            fy = ay.integrals(j0, self.centres[n, k, 1])[:kept]
+            fy *= self._force_weights[j0:j0 + kept]
+            fy *= scale * e * self.amplitudes[k]
+            block = ax.block(kept)
+            np.multiply(fx[:, None], fy[None, :], out=block)
+            view[i0:i0 + ax.width, j0:j0 + kept] += block
+
     def vector(self, n: int) -> np.ndarray:
-        """F(t_n), N (allocates: for the initial acceleration and energies)."""
-        out = np.zeros(self.grid.unknowns)
+        """F(t_n), N (P_sᵀ F(t_n) with ``half``; allocates: for the initial acceleration and
+        energies)."""
+        out = np.zeros(self.grid.unknowns if self.half is None else self.half.unknowns)
         self.add(n, 1.0, out)
         return out
 
