@@ -16,7 +16,7 @@ from ..core.errors import ParameterError
 from ..core.files import check_output_folder
 from ..core.parallel import check_process_count
 from ._common import Settings
-from ._runner import run_here, run_parallel
+from ._runner import run_here, run_parallel, sharing
 
 #: Study names in the order ``all`` runs them.
 STUDIES: tuple[str, ...] = ("critical", "fig2", "fig3", "fig4", "fig5", "fig6", "period",
@@ -64,12 +64,13 @@ def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None
         out.mkdir(parents=True, exist_ok=True)
         return run_parallel(expanded, out, settings, workers, log=log)
     written: dict[str, list[Path]] = {}
-    for name in expanded:
-        start = time.perf_counter()
-        written[name] = run_study(name, out, settings)
-        if log is not None:
-            files = ", ".join(p.name for p in written[name])
-            log(f"{name}: {time.perf_counter() - start:.1f} s -> {files}")
+    with sharing():
+        for name in expanded:
+            start = time.perf_counter()
+            written[name] = run_study(name, out, settings)
+            if log is not None:
+                files = ", ".join(p.name for p in written[name])
+                log(f"{name}: {time.perf_counter() - start:.1f} s -> {files}")
     return written
 
 

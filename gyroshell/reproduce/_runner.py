@@ -65,13 +65,37 @@ def run_parts(module, out: Path, settings: Settings) -> list[Path]:
 
 
 def run_here(name: str, out: Path, settings: Settings) -> list[Path]:
-    """Study ``name`` in this process, BLAS held to one thread (as on the workers)."""
-    with blas_threads(1):
+    """Study ``name`` in this process, BLAS held to one thread (as on the workers), its
+    transients sharing factorizations (with those of the studies before it, inside
+    :func:`sharing`)."""
+    with blas_threads(1), sharing():
         return study_module(name).run(out, settings)
+
+
+def sharing():
+    """A block in which transients of the same tape and (V, Δt, β, γ, C) share one
+    factorization (:func:`gyroshell.engines.newmark.sharing_factorizations`): fig2, period,
+    fig5, fig6 and observations march the L_x/L_y = 19 tape at the paper's Δt."""
+    from ..engines.newmark import sharing_factorizations
+
+    return sharing_factorizations()
+
+
+#: This worker's sharing block, entered by its first task and kept open for its life, so
+#: that every part it runs shares factorizations with the parts it ran before.
+_WORKER_SHARING: list = []
+
+
+def _share_in_worker() -> None:
+    if not _WORKER_SHARING:
+        block = sharing()
+        block.__enter__()
+        _WORKER_SHARING.append(block)
 
 
 # ----- the workers' tasks ------------------------------------------------------------------
 def _timed(function: Callable, *args):
+    _share_in_worker()
     start = time.perf_counter()
     return function(*args), time.perf_counter() - start
 
