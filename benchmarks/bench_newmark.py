@@ -4,6 +4,11 @@ The floor of the method is one forward/back substitution per step with the facto
 K_eq; the per-step time divided by a bare substitution (same factor, same vector length)
 says how much the predictors, right-hand side, correctors and recorders add. Target: <= 1.3.
 
+The paper's load sits at mid-width, so by default the march moves only the mirror-symmetric
+half (:mod:`gyroshell.engines.newmark`, module notes); the last table times, in alternating
+rounds, the full-size step (``symmetry=False``), the half-size step and the bare full-size
+substitution. Target: half step <= 0.55 x the full-size bare substitution.
+
 Cases: the paper's run (L_x/L_y = 4 on the Table 1 grid, 250 steps of 2 µs, "about 20
 minutes" on its workstation) and L_x/L_y = 19, 500 steps. Every installed LU back-end is
 timed; all figures are medians of repeated runs. Usage::
@@ -60,7 +65,7 @@ def bench_backend(model: TapeModel, steps: int, backend: str, repeats: int) -> d
     for _ in range(repeats):
         start = time.perf_counter()
         stepper = Newmark(model, VELOCITY, dt=DT, backend=backend)
-        result = stepper.march(steps, progress=False)
+        result = stepper.march(steps, progress=False, symmetry=False)
         whole.append(time.perf_counter() - start)
         per_step.append(result.info["step_time"])
         factor.append(result.info["factor_time"])
@@ -77,9 +82,56 @@ def bench_blas_threads(model: TapeModel, steps: int, repeats: int) -> tuple[floa
     out = []
     for threads in (None, 1):
         stepper = Newmark(model, VELOCITY, dt=DT, blas_threads=threads)
-        out.append(statistics.median(stepper.march(steps, progress=False).info["step_time"]
-                                     for _ in range(repeats)))
+        out.append(statistics.median(
+            stepper.march(steps, progress=False, symmetry=False).info["step_time"]
+            for _ in range(repeats)))
     return out[0], out[1]
+
+
+def bench_mirror(model: TapeModel, steps: int, repeats: int) -> dict:
+    """Medians over alternating rounds (s): the full-size step, the half-size step, and bare
+    substitutions of the full and the half factor (one BLAS thread), with the factor times.
+
+    Each round marches full size, then the half, then times both bare substitutions, so a
+    change in the machine's load shifts all four alike.
+    """
+    stepper = Newmark(model, VELOCITY, dt=DT)
+    full_run = stepper.march(steps, progress=False, symmetry=False)
+    half_run = stepper.march(steps, progress=False)
+    assert half_run.info["symmetry"] == "half", "the paper's load should march the half"
+    half_factor = stepper.half_factor
+    rng = np.random.default_rng(0)
+    rhs_full = rng.standard_normal(model.unknowns)
+    rhs_half = rng.standard_normal(half_run.info["marched_unknowns"])
+    rounds: dict[str, list[float]] = {"full": [], "half": [], "bare": [], "bare_half": []}
+    for _ in range(repeats):
+        rounds["full"].append(stepper.march(steps, progress=False, symmetry=False
+                                            ).info["step_time"])
+        rounds["half"].append(stepper.march(steps, progress=False).info["step_time"])
+        with blas_one_thread():
+            rounds["bare"].append(median_time(partial(stepper.factor.solve, rhs_full), 21))
+            rounds["bare_half"].append(median_time(partial(half_factor.solve, rhs_half), 21))
+    out = {k: statistics.median(v) for k, v in rounds.items()}
+    out.update(factor_full=full_run.info["factor_time"],
+               factor_half=half_run.info["factor_time"],
+               unknowns=model.unknowns, half_unknowns=half_run.info["marched_unknowns"],
+               difference=float(np.abs(half_run.load_point - full_run.load_point).max()
+                                / np.abs(full_run.load_point).max()))
+    return out
+
+
+def print_mirror(r: dict) -> None:
+    print(f"  mirror half ({r['half_unknowns']} of {r['unknowns']} unknowns; factor "
+          f"{r['factor_half']:.3f} s vs {r['factor_full']:.3f} s; load-point history "
+          f"equal to {r['difference']:.1e} relative):")
+    print(f"    bare full substitution {1e3 * r['bare']:8.3f} ms")
+    print(f"    full-size step         {1e3 * r['full']:8.3f} ms  "
+          f"({r['full'] / r['bare']:.2f}x the bare full substitution)")
+    print(f"    half-size step         {1e3 * r['half']:8.3f} ms  "
+          f"({r['half'] / r['bare']:.2f}x the bare full substitution, target <= 0.55; "
+          f"{r['half'] / r['full']:.2f}x the full step)")
+    print(f"    bare half substitution {1e3 * r['bare_half']:8.3f} ms  "
+          f"(half step / bare half {r['half'] / r['bare_half']:.2f})")
 
 
 def main() -> None:
@@ -95,7 +147,8 @@ def main() -> None:
           f"medians of {args.repeats} runs; back-ends: {', '.join(available_backends())}")
     for ratio, steps in cases:
         model = TapeModel(TapeParameters(length_ratio=ratio))
-        Newmark(model, VELOCITY, dt=DT).march(min(steps, 50), progress=False)  # warm-up
+        Newmark(model, VELOCITY, dt=DT).march(min(steps, 50), progress=False,
+                                              symmetry=False)  # warm-up
         g = model.grid
         print(f"\nL_x/L_y = {ratio:g}: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns, "
               f"{steps} steps")
@@ -108,6 +161,7 @@ def main() -> None:
         free, one = bench_blas_threads(model, steps, max(3, args.repeats // 2))
         print(f"  BLAS threads (default back-end): as found {1e3 * free:.3f} ms/step, "
               f"held to one {1e3 * one:.3f} ms/step ({free / one:.2f}x)")
+        print_mirror(bench_mirror(model, steps, args.repeats))
 
 
 if __name__ == "__main__":

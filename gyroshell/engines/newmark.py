@@ -333,6 +333,14 @@ class Newmark:
         """The factorization of K_eq on all the unknowns (made on first use)."""
         return self._system(None).factor
 
+    @property
+    def half_factor(self):
+        """The factorization of the symmetric half's K_eq (made on first use), or None if
+        the tape or its damping is not mirror symmetric (module notes)."""
+        if not self._half_possible():
+            return None
+        return self._system(SymmetricHalf.of(self.model.grid)).factor
+
     # ----- pieces ---------------------------------------------------------------------
     def initial_acceleration(self, w0: np.ndarray, v0: np.ndarray, force0: np.ndarray
                              ) -> np.ndarray:
@@ -434,8 +442,7 @@ class Newmark:
               snapshot_times: Sequence[float] | None = None, snapshot_every: int | None = None,
               centerline_times: Sequence[float] | None = None,
               record_energy: bool = False, progress: bool | None = None,
-              blowup_factor: float = BLOWUP_FACTOR, symmetry: bool = True
-              ) -> TransientResult:
+              blowup_factor: float = BLOWUP_FACTOR, symmetry: bool = True) -> TransientResult:
         """March ``steps`` steps from (w⁰, v⁰) at t0 under F(t).
 
         Parameters
@@ -462,13 +469,11 @@ class Newmark:
         progress : bool or None
             Show a progress bar on stderr; None: only if stderr is a terminal.
         blowup_factor : float
-            Stop with ConvergenceError once max |w| exceeds this many times its scale
-            max(max|w⁰|, max|F| / max diag K, Δt steps max|v⁰|), m (> 0).
+            Stop with ConvergenceError once max |w| exceeds this many times its scale,
+            max(max|w⁰|, max|F| / max diag K, Δt steps max|v⁰|) m (> 0).
         symmetry : bool
-            March the symmetric half when the tape, damping, force and initial state are
-            all mirror symmetric about y = L_y/2 (module notes; the result is the same to
-            round-off, ``info["symmetry"]`` says "half" or "full"); False: always all the
-            unknowns.
+            March the mirror-symmetric half when the inputs allow it (module notes; the
+            same result to round-off, ``info["symmetry"]``); False: all the unknowns.
 
         Returns
         -------
@@ -481,31 +486,37 @@ class Newmark:
         """
         steps, t0 = check_steps(steps), validation.real("t0", t0, unit="s")
         blowup_factor = validation.positive("blowup_factor", blowup_factor)
-        symmetry = validation.boolean("symmetry", symmetry)
-        kept = dict(snapshot_times=snapshot_times, snapshot_every=snapshot_every,
-                    centerline_times=centerline_times)
-        fixed = self._fixed_force(load, force, profile)
-        w, v = self._state(w0, "w0", "m"), self._state(v0, "v0", "m/s")
-        half = self._half(symmetry, w, v, fixed)
+        kept = _kept(snapshot_times, snapshot_every, centerline_times)
+        w, v, fixed, half = self._inputs(load, force, profile, w0, v0, symmetry)
         work = self._plan(steps, load, kept, record_energy, progress, half)
         times = t0 + self.dt * np.arange(steps + 1)  # t_n, s
-        forcing = self._prepare_forcing(load, fixed, profile, times)
-        if half is not None and fixed is None and \
+        system, forcing, w, v, bound = self._marched(
+            half, self._prepare_forcing(load, fixed, profile, times), w, v, blowup_factor)
+        recorder, state, history, energy, timing = self._timed_loop(
+            system, times, (w, v), forcing, kept, bound, record_energy, work)
+        return self._result(system, times, history, recorder, state, energy, timing, load)
+
+    def _inputs(self, load, force, profile, w0, v0, symmetry):
+        """The checked w⁰ (m), v⁰ (m/s), fixed force (N, None with moving heads) and the
+        symmetric half if all the inputs known before the run's instants allow it."""
+        symmetry = validation.boolean("symmetry", symmetry)
+        fixed = self._fixed_force(load, force, profile)
+        w, v = self._state(w0, "w0", "m"), self._state(v0, "v0", "m/s")
+        return w, v, fixed, self._half(symmetry, w, v, fixed)
+
+    def _marched(self, half: SymmetricHalf | None, forcing, w, v, blowup_factor: float):
+        """(operators, forcing, w⁰, v⁰, blow-up bound in m) on the unknowns to march: the
+        half if ``half`` is given and moving heads (checked now, on their centres) keep
+        it, with z = P_sᵀ w (max|z| <= √2 max|w|, so √2 times the bound is the same run's)."""
+        if half is not None and isinstance(forcing, PreparedLoads) and \
                 not forcing.mirror_symmetric(self.model.grid.width):
             half = None
-        bound = self._blowup_bound(w, v, forcing, steps, blowup_factor)
-        system = self._system(half)
-        if half is not None:  # z = P_sᵀ w; max|z| <= √2 max|w| bounds the same run
-            forcing, w, v, bound = (forcing.on_half(half), half.restrict(w),
-                                    half.restrict(v), math.sqrt(2.0) * bound)
-        a = system.initial_acceleration(w, v, forcing.vector(0))
-        recorder = Recorder(self.model.grid, steps, self.dt, t0, **kept)
-        state, history, energy, timing = self._timed_loop(
-            system, steps, times, (w, v, a), forcing, recorder, bound, record_energy, work)
-        if half is not None:
-            state = tuple(half.expand(x) for x in state)
-        return self._result(system, times, history, recorder, state, energy, timing,
-                            load is not None)
+        steps = len(forcing.times if isinstance(forcing, _FixedForce) else forcing.envelopes)
+        bound = self._blowup_bound(w, v, forcing, steps - 1, blowup_factor)
+        if half is None:
+            return self._system(None), forcing, w, v, bound
+        return (self._system(half), forcing.on_half(half), half.restrict(w), half.restrict(v),
+                math.sqrt(2.0) * bound)
 
     def _plan(self, steps: int, load, kept, record_energy: bool, progress,
               half: SymmetricHalf | None) -> LongWork:
@@ -552,28 +563,34 @@ class Newmark:
                 self._correct(w, w_t, v_t, a, v)
         return (time.perf_counter() - start) / TRIAL_STEPS
 
-    def _timed_loop(self, system, steps, times, state, forcing, recorder, bound,
-                    record_energy, work):
-        """The time loop with its progress (``work``) and BLAS threads; returns the final
-        (w, v, a), the history under each head (m), the energy (J, or None) and the
-        (solve, loop) times, s."""
-        w, v, a = state
+    def _timed_loop(self, system, times, state, forcing, kept, bound, record_energy, work):
+        """The time loop from (w⁰, v⁰) with its recorder (of ``kept``), progress (``work``)
+        and BLAS threads; returns the recorder, the final (w, v, a) over all the unknowns,
+        the history under each head (m), the energy (J, or None) and the (solve, loop)
+        times, s."""
+        steps = len(times) - 1
+        w, v = state
+        a = system.initial_acceleration(w, v, forcing.vector(0))
+        recorder = Recorder(self.model.grid, steps, self.dt, times[0], **kept)
         history = np.empty((steps + 1, forcing.heads))
         energy = np.empty(steps + 1) if record_energy else None
         start = time.perf_counter()
         with work as bar, limit_blas_threads(self.blas_threads):
             w, v, a, solve_time = self._loop(system, steps, times, w, v, a, forcing,
                                              recorder, history, energy, bound, bar)
-        return (w, v, a), history, energy, (solve_time, time.perf_counter() - start)
+        timing = (solve_time, time.perf_counter() - start)
+        if system.half is not None:
+            w, v, a = (system.half.expand(x) for x in (w, v, a))
+        return recorder, (w, v, a), history, energy, timing
 
-    def _result(self, system, times, history, recorder, state, energy, timing,
-                moving_load: bool) -> TransientResult:
+    def _result(self, system, times, history, recorder, state, energy, timing, load
+                ) -> TransientResult:
         """The TransientResult of a finished run; ``info`` gains the run's statistics."""
         steps = len(times) - 1
         solve_time, loop_time = timing
         info = dict(self.info, steps=steps, solve_time=solve_time, loop_time=loop_time,
                     step_time=loop_time / steps, damping=asdict(self.damping),
-                    moving_load=moving_load, factor_time=system.factor.factor_time,
+                    moving_load=load is not None, factor_time=system.factor.factor_time,
                     factor_shared=system.shared, marched_unknowns=system.unknowns,
                     symmetry="full" if system.half is None else "half")
         heads = history if history.shape[1] > 1 else None
@@ -647,8 +664,9 @@ class Newmark:
                 solve_time += time.perf_counter() - tick
                 self._correct(w, w_t, v_t, a, v)
                 size = np.abs(w, out=tmp).max()  # NaN propagates: "not <=" catches it
-                if not size <= bound:
-                    raise _blowup(n, times[n], size, bound, self)
+                if not size <= bound:  # said in w's units: z = √2 w on the pairs
+                    shown = 1.0 if half is None else 1 / math.sqrt(2.0)
+                    raise _blowup(n, times[n], shown * size, shown * bound, self)
                 forcing.displacement(n, w, history[n])
                 if energy is not None:
                     energy[n] = system.energy(w, v, forcing.vector(n))
@@ -659,6 +677,12 @@ class Newmark:
             raise ConvergenceError(f"Newmark march overflowed at step {n} (t = "
                                    f"{times[n]:.6g} s): {exc}") from None
         return w, v, a, solve_time
+
+
+def _kept(snapshot_times, snapshot_every, centerline_times) -> dict:
+    """What a run keeps besides its history, as :class:`Recorder` takes it."""
+    return dict(snapshot_times=snapshot_times, snapshot_every=snapshot_every,
+                centerline_times=centerline_times)
 
 
 def _how_many(times) -> int:

@@ -222,7 +222,9 @@ class TransientResult(Result, kind="transient"):
     velocity, dt, beta, gamma : float
         Tape speed V (m/s), time step Δt (s) and Newmark's β, γ.
     info : dict
-        Run statistics: back-end, factor_time, solve_time, loop_time (s), steps, unknowns.
+        Run statistics: back-end, factor_time, solve_time, loop_time (s), steps, unknowns;
+        ``symmetry`` ("half" if the mirror-symmetric half was marched, else "full") and
+        ``marched_unknowns``.
     head_displacements : numpy.ndarray or None
         With several moving heads: w under each head's current centre, m, shape
         (steps + 1, heads); ``load_point`` is then head 0's column.
@@ -309,6 +311,7 @@ class TransientResult(Result, kind="transient"):
             "backend": info.get("backend"), "factor_time": info.get("factor_time"),
             "loop_time": info.get("loop_time"), "step_time": info.get("step_time"),
             "moving_load": bool(info.get("moving_load", self.head_displacements is not None)),
+            "symmetry": info.get("symmetry", "full"),
             "damping": damping.get("viscous", 0.0),
             "rayleigh": [damping.get("mass_coefficient", 0.0),
                          damping.get("stiffness_coefficient", 0.0)],
