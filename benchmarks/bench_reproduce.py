@@ -7,7 +7,8 @@ Each round runs ``gyroshell reproduce STUDY ... --out TMP`` (default ``all``) in
 interpreter for this tree on ``--workers`` processes, with ``--serial`` also on one, and,
 with ``--baseline DIR``, for another source tree (e.g. ``git archive main | tar -x -C
 DIR``), in alternating order. Prints each study's time as the run logged it (with several
-workers: the seconds its parts took on the workers), the wall time of the whole run, and
+workers: the seconds its parts took on the workers), the wall time of the whole run and the
+CPU time of its studies (on a shared machine the better measure of the work done), and
 their medians over the rounds with the ratio baseline/new. Then it compares the files of
 the last round: byte-identical files, and for the CSV files that differ the largest
 relative difference of their numbers (the reproductions march the symmetric half of
@@ -28,23 +29,37 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parents[1]
-LINE = re.compile(r"^(\w+): ([0-9.]+) s -> ")
+LINE = re.compile(r"^(\w+): ([0-9.]+) s \(CPU ([0-9.]+) s\) -> ")
+OLD_LINE = re.compile(r"^(\w+): ([0-9.]+) s -> ")
 
 
 def run_tree(tree: Path, studies: list[str], out: Path, extra: list[str]) -> dict[str, float]:
     """Per-study seconds (the run's log lines) and the wall time ("total") of one run."""
     env = {**os.environ, "PYTHONPATH": str(tree)}
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), _children_cpu()
     proc = subprocess.run([sys.executable, "-m", "gyroshell", "reproduce", *studies,
                            "--out", str(out), *extra], env=env, cwd=tree,
                           capture_output=True, text=True)
-    wall = time.perf_counter() - start
+    wall, cpu = time.perf_counter() - start, _children_cpu() - cpu
     if proc.returncode:
         raise SystemExit(f"{tree}: exit {proc.returncode}\n{proc.stderr[-2000:]}")
-    times = {m.group(1): float(m.group(2)) for m in map(LINE.match, proc.stdout.splitlines())
-             if m}
-    times["total"] = wall
+    lines = [m for m in map(LINE.match, proc.stdout.splitlines()) if m]
+    if not lines:  # an older tree logs "name: 12.3 s -> files", without the CPU time
+        lines = [m for m in map(OLD_LINE.match, proc.stdout.splitlines()) if m]
+    times = {m.group(1): float(m.group(2)) for m in lines}
+    times["total"], times["cpu"] = wall, cpu
+    study_cpu = [float(m.group(3)) for m in lines if m.re is LINE]
+    if study_cpu:  # the workers' CPU time, which the children's usage does not see
+        times["cpu"] = sum(study_cpu)
     return times
+
+
+def _children_cpu() -> float:
+    """CPU seconds (user + system) of the finished child processes and their children."""
+    import resource
+
+    use = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return use.ru_utime + use.ru_stime
 
 
 def compare(old: Path, new: Path) -> list[str]:
@@ -112,11 +127,13 @@ def main(argv: list[str] | None = None) -> int:
                 results[name].append(run_tree(tree, studies, out, extra))
                 print(f"round {r + 1}, {name}: total {results[name][-1]['total']:.1f} s",
                       flush=True)
-        names = [k for k in results["new"][0] if k != "total"] + ["total"]
+        names = [k for k in results["new"][0] if k not in ("total", "cpu")] + ["total",
+                                                                                 "cpu"]
         med = {case: {k: statistics.median(run.get(k, float("nan")) for run in runs)
                       for k in names} for case, runs in results.items()}
-        print(f"\nmedians over {args.rounds} round(s), s (studies as logged; total: wall "
-              "time of the run):")
+        print(f"\nmedians over {args.rounds} round(s), s (studies as logged; total: the "
+              "run's wall time; cpu: its studies' CPU time as logged, or the process's CPU "
+              "time, imports included, for a tree that does not log it):")
         print(f"  {'study':14s}" + "".join(f"{c:>16s}" for c in cases)
               + ("     baseline/new" if args.baseline else ""))
         for k in names:

@@ -16,7 +16,7 @@ from ..core.errors import ParameterError
 from ..core.files import check_output_folder
 from ..core.parallel import check_process_count
 from ._common import Settings
-from ._runner import run_here, run_parallel, sharing
+from ._runner import run_here, run_parallel, sharing, study_line
 
 #: Study names in the order ``all`` runs them.
 STUDIES: tuple[str, ...] = ("critical", "fig2", "fig3", "fig4", "fig5", "fig6", "period",
@@ -45,11 +45,12 @@ def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None
         Output folder (created if missing).
     settings : Settings, optional
     log : callable or None
-        Called with one line per finished study (its time, s, and files).
+        Called with one line per finished study: its time and CPU time, s, and its files.
     workers : int
         Local processes (>= 1). With more than one, the studies' independent parts run
         concurrently (one BLAS thread each) and the files are the same, number for number,
-        as with one; each study's time is then the seconds its parts took on the workers.
+        as with one; each study's time (and CPU time) is then the sum over its parts on the
+        workers.
     """
     names = list(names)
     expanded = list(STUDIES) if "all" in names else names
@@ -66,11 +67,11 @@ def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None
     written: dict[str, list[Path]] = {}
     with sharing():
         for name in expanded:
-            start = time.perf_counter()
+            start, cpu = time.perf_counter(), time.process_time()
             written[name] = run_study(name, out, settings)
             if log is not None:
-                files = ", ".join(p.name for p in written[name])
-                log(f"{name}: {time.perf_counter() - start:.1f} s -> {files}")
+                log(study_line(name, time.perf_counter() - start,
+                               time.process_time() - cpu, written[name]))
     return written
 
 

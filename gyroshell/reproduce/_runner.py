@@ -39,17 +39,22 @@ from ..core.parallel import blas_threads, process_pool
 from ..core.progress import stage_progress
 from ._common import Settings
 
-#: Seconds a part (or a study without parts, key None) took on the full settings, measured
-#: alone (benchmarks/bench_reproduce.py); only the order of the work depends on them
-#: (costliest first, so that two workers finish together). Unlisted work counts 1 s.
+#: Rough CPU seconds of the costliest parts (or studies without parts, key None) on the full
+#: settings: only the order of the work depends on them (costliest first, so that the
+#: workers finish together; the rest keep the study order). Unlisted work counts 1 s.
 COST: dict[tuple[str, object], float] = {
-    ("period", 0.0): 9.0, ("period", 25.0): 9.0, ("period", 50.0): 11.0,
-    ("period", 75.0): 13.0, ("period", 90.0): 13.0, ("period", 95.0): 13.0,
-    ("period", 100.0): 13.0,
-    ("fig2", 0.0): 6.0, ("fig2", 50.0): 6.0, ("fig2", 90.0): 6.0, ("fig2", 100.0): 6.0,
-    ("critical", None): 8.0, ("bearing", None): 10.0, ("heads", None): 8.0,
-    ("orthotropy", None): 10.0, ("helical", None): 4.0, ("frf", None): 3.0,
-    ("observations", None): 4.0, ("fig5", None): 3.0, ("fig6", None): 3.0,
+    **{("period", v): c for v, c in ((0.0, 8), (25.0, 8), (50.0, 9), (75.0, 11), (90.0, 12),
+                                      (95.0, 12), (100.0, 16))},
+    **{("fig2", v): 5.0 for v in (0.0, 50.0, 90.0, 100.0)},
+    ("critical", ("free", 19.0)): 6.0, ("critical", ("simply-supported", 19.0)): 6.0,
+    ("critical", ("free", 4.0)): 2.0, ("critical", ("simply-supported", 4.0)): 2.0,
+    ("bearing", ("maps",)): 6.0, ("bearing", ("transient",)): 4.0,
+    **{("heads", ("width", v)): 4.0 for v in (2.0, 4.0, 8.0)},
+    ("heads", ("wraps",)): 3.0, ("heads", ("modules",)): 2.0,
+    **{("orthotropy", ("bearing", r)): 3.0 for r in (0.25, 1.0, 4.0)},
+    ("helical", None): 6.0, ("observations", "reflection"): 3.0,
+    ("observations", "wavelengths"): 2.0, ("fig3", None): 2.0, ("fig4", None): 2.0,
+    ("fig5", None): 2.0, ("fig6", None): 2.0,
 }
 
 
@@ -95,9 +100,16 @@ def _share_in_worker() -> None:
 
 # ----- the workers' tasks ------------------------------------------------------------------
 def _timed(function: Callable, *args):
+    """(the call's value, its wall seconds, its CPU seconds in this process)."""
     _share_in_worker()
-    start = time.perf_counter()
-    return function(*args), time.perf_counter() - start
+    start, cpu = time.perf_counter(), time.process_time()
+    value = function(*args)
+    return value, time.perf_counter() - start, time.process_time() - cpu
+
+
+def study_line(name: str, seconds: float, cpu: float, files: Sequence[Path]) -> str:
+    """The log line of a finished study: its time and CPU time (s), its files."""
+    return f"{name}: {seconds:.1f} s (CPU {cpu:.1f} s) -> {', '.join(p.name for p in files)}"
 
 
 def _compute_task(name: str, settings: Settings, key):
@@ -119,6 +131,7 @@ class _Study:
     keys: list | None             # None: a study without parts
     results: dict = dataclasses.field(default_factory=dict)
     seconds: float = 0.0
+    cpu: float = 0.0
     files: list[Path] | None = None
 
 
@@ -135,6 +148,7 @@ def run_parallel(names: Sequence[str], out: Path, settings: Settings, workers: i
         studies[name] = _Study(name, keys)
     tasks = [(name, key) for name, s in studies.items() for key in (s.keys or [None])]
     tasks.sort(key=lambda t: -COST.get(t, 1.0))  # stable: equal costs keep the study order
+    _preload()
     staging = Path(tempfile.mkdtemp(prefix=".gyroshell-reproduce-", dir=out))
     try:
         with process_pool(workers) as pool, stage_progress(
@@ -156,6 +170,20 @@ def run_parallel(names: Sequence[str], out: Path, settings: Settings, workers: i
         shutil.rmtree(staging, ignore_errors=True)
 
 
+#: Modules the fork server imports before it starts the workers, so that each worker
+#: starts with them instead of importing them again (a few seconds per worker).
+PRELOAD = ("numpy", "scipy.sparse.linalg", "scipy.signal", "pandas", "matplotlib",
+           "gyroshell.reproduce._common", "gyroshell.engines.newmark", "gyroshell.engines.eigen")
+
+
+def _preload() -> None:
+    """Ask the fork server (where it is used and not started yet) to import PRELOAD."""
+    import multiprocessing
+
+    if "forkserver" in multiprocessing.get_all_start_methods():
+        multiprocessing.get_context("forkserver").set_forkserver_preload(list(PRELOAD))
+
+
 def _collect(pool, pending: dict, studies: dict, staging: Path, settings: Settings, bar,
              log) -> None:
     """Wait for the tasks; submit each study's ``write`` once its parts are in."""
@@ -165,9 +193,10 @@ def _collect(pool, pending: dict, studies: dict, staging: Path, settings: Settin
         done, _ = wait(pending, return_when=FIRST_COMPLETED)
         for future in done:
             name, key, what = pending.pop(future)
-            value, seconds = future.result()
+            value, seconds, cpu = future.result()
             study = studies[name]
             study.seconds += seconds
+            study.cpu += cpu
             bar.update(1)
             if what == "compute" and study.keys is not None:
                 study.results[key] = value
@@ -178,8 +207,7 @@ def _collect(pool, pending: dict, studies: dict, staging: Path, settings: Settin
                 continue
             study.files = list(value)
             if log is not None:
-                log(f"{name}: {study.seconds:.1f} s -> "
-                    f"{', '.join(p.name for p in study.files)}")
+                log(study_line(name, study.seconds, study.cpu, study.files))
 
 
 def _move(staged: Path, out: Path) -> Path:
