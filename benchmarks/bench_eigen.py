@@ -19,7 +19,11 @@ Prints medians (s) over alternating rounds of:
   .venv-slepc/bin/pip install dolfinx-solver-complex``);
 * a 20-speed sweep (0-95 m/s, 6 modes) by continuation against 20 separate ``modes`` calls
   on fresh models, and the continued sweep split over 2 local processes (``workers=2``);
-* the critical speed (both routes).
+* the critical speed (both routes);
+* with ``--baseline DIR`` (a tree of the state before a change, e.g. ``git archive main |
+  tar -x -C DIR``): the same ``modes`` call, sweep, separate calls and critical speed on
+  this tree and on DIR, each round in a fresh process per tree (PYTHONPATH = the tree),
+  alternating which tree goes first, with the medians side by side.
 
 Timings on a shared machine vary: read the medians and the ratios measured in one run.
 """
@@ -221,6 +225,71 @@ def bench_critical(args) -> None:
           f" |a-b|/b = {result.relative_difference:.1e}")
 
 
+# ----- before / after: each tree in its own process -------------------------------------
+def child(task: str, ratio: float, count: int) -> dict:
+    """One timed round of ``task`` on the gyroshell this process imports (public API
+    only, so that an older tree runs it too)."""
+    speeds = np.linspace(0.0, 95.0, 20)
+    model = fresh_model(ratio)
+    t0 = time.perf_counter()
+    if task == "modes":
+        info = modes(model, 50.0, count).info
+        out = {"factor": info["factor_time"], "substitutions": info.get("substitution_time"),
+               "ops": info["operator_applications"]}
+    elif task == "sweep":
+        sweep(model, speeds, count, continuation=True)
+        out = {}
+    elif task == "separate":
+        t0 = time.perf_counter()   # fresh models assembled inside, as in bench_sweep
+        for v in speeds:
+            modes(fresh_model(ratio), v, count)
+        out = {}
+    else:
+        result = critical_speeds(model)
+        out = {"evaluations": result.info["evaluations"], "speed": result.critical_speed}
+    out["total"] = time.perf_counter() - t0
+    return out
+
+
+def tree_round(tree: Path, task: str, args) -> dict:
+    env = dict(os.environ, PYTHONPATH=str(tree))
+    out = subprocess.run([sys.executable, str(Path(__file__).resolve()), "--child", task,
+                          "--length-ratio", str(args.length_ratio), "--count",
+                          str(args.count)], capture_output=True, text=True, env=env,
+                         check=False)
+    if out.returncode != 0:
+        raise RuntimeError(f"{tree}: {out.stderr.strip().splitlines()[-1:]}")
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def bench_baseline(args) -> None:
+    here, before = Path(__file__).resolve().parents[1], Path(args.baseline).resolve()
+    print(f"before/after: this tree against {before}, alternating rounds, a fresh process "
+          "per round and tree")
+    tasks = [("modes", args.rounds), ("sweep", args.sweep_rounds),
+             ("separate", args.sweep_rounds), ("critical", args.sweep_rounds)]
+    for task, rounds in tasks:
+        if task in args.skip or (task == "separate" and "sweep" in args.skip):
+            continue
+        rows = {"after": [], "before": []}
+        for k in range(rounds):
+            order = (("after", here), ("before", before))
+            for name, tree in (order if k % 2 == 0 else order[::-1]):
+                rows[name].append(tree_round(tree, task, args))
+        a, b = med(rows["after"], "total"), med(rows["before"], "total")
+        line = f"  {task:9s} before {b:.3f} s, after {a:.3f} s (after/before {a / b:.2f})"
+        if task == "modes":
+            fa, sa = med(rows["after"], "factor"), med(rows["after"], "substitutions")
+            fb, sb = med(rows["before"], "factor"), med(rows["before"], "substitutions")
+            line += (f"; floor before {fb + sb:.3f} s ({(fb + sb) / b:.0%} of its total), "
+                     f"after {fa + sa:.3f} s ({(fa + sa) / a:.0%}); solves "
+                     f"{rows['before'][0]['ops']} -> {rows['after'][0]['ops']}")
+        if task == "critical":
+            line += (f"; eigen-solves of route (a) {rows['before'][0]['evaluations']} -> "
+                     f"{rows['after'][0]['evaluations']}")
+        print(line)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=3)
@@ -228,8 +297,17 @@ def main() -> None:
     ap.add_argument("--count", type=int, default=6)
     ap.add_argument("--length-ratio", type=float, default=19.0)
     ap.add_argument("--skip", nargs="*", default=(), choices=("modes", "sweep", "critical"))
+    ap.add_argument("--baseline", metavar="DIR",
+                    help="a tree of the state before the change, timed beside this one")
+    ap.add_argument("--child", choices=("modes", "sweep", "separate", "critical"),
+                    help=argparse.SUPPRESS)
     args = ap.parse_args()
+    if args.child:
+        print(json.dumps(child(args.child, args.length_ratio, args.count)))
+        return
     print(f"python {sys.version.split()[0]}")
+    if args.baseline:
+        bench_baseline(args)
     if "modes" not in args.skip:
         bench_modes(args)
     if "sweep" not in args.skip:

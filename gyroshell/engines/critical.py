@@ -61,6 +61,33 @@ def _f_of(result) -> tuple[float, np.ndarray]:
     return float(-abs(lam[0]) ** 2), result.vectors[:, 0]
 
 
+def _proved_definite(K, factorization: str) -> bool:
+    """True if the symmetric K is proved positive definite: CHOLMOD's Cholesky succeeds
+    (where selected), else SuperLU's inertia shows no negative or zero pivot."""
+    if resolve_factorization(factorization) == "cholmod":
+        factor = cholesky.cholesky(K)
+        if factor is not None:
+            factor.release()
+            return True
+    return factor_inertia(K).definite
+
+
+def _proved_indefinite(K, factorization: str) -> bool:
+    """True if the symmetric K is proved not positive definite: SuperLU's inertia counts a
+    negative pivot or finds K singular (a Cholesky that succeeds proves the opposite at
+    once, where CHOLMOD is selected); False where the count is unknown."""
+    if resolve_factorization(factorization) == "cholmod":
+        factor = cholesky.cholesky(K)
+        if factor is not None:
+            factor.release()
+            return False
+        counted = cholesky.negative_count(K)   # LDLᵀ: the count, 2.5x faster than SuperLU
+        if counted is not None:
+            return counted > 0
+    factor = factor_inertia(K)
+    return factor.singular or (factor.negatives is not None and factor.negatives > 0)
+
+
 #: Options of ``modes`` under which the root search may use the mirror-symmetric halves.
 _HALF_OPTIONS = {"factorization", "tol"}
 
@@ -77,10 +104,11 @@ class _HalfCritical:
     not definite, both are computed again and the choice is renewed.
     """
 
-    def __init__(self, model: TapeModel, split, count: int, options: dict) -> None:
+    def __init__(self, model: TapeModel, split, count: int, options: dict,
+                 which: str | None = None, extra: dict | None = None) -> None:
         self.model, self.split, self.count = model, split, count
-        self.options = {"sigma": 0, "method": "arpack", **options}
-        self.which: str | None = None
+        self.options = {"sigma": 0, "method": "arpack", **(extra or {}), **options}
+        self.which: str | None = which
 
     def _half(self, which: str, velocity: float) -> float:
         M, G, K = self.split.matrices(self.model, velocity, which)
@@ -92,12 +120,17 @@ class _HalfCritical:
 
     def _definite(self, which: str, velocity: float) -> bool:
         K = self.split.matrices(self.model, velocity, which)[2]
-        if resolve_factorization(self.options.get("factorization", "auto")) == "cholmod":
-            factor = cholesky.cholesky(K)
-            if factor is not None:
-                factor.release()
-                return True
-        return factor_inertia(K).definite
+        return _proved_definite(K, self.options.get("factorization", "auto"))
+
+    def indefinite(self, velocity: float) -> bool:
+        """True if K(V) is proved not positive definite (f(V) <= 0 without an eigen-solve:
+        for a conservative gyroscopic system some λ² >= 0 exactly when K(V) is not
+        positive definite): a half, the kept one first, whose K_h(V) is not."""
+        first = self.which or "symmetric"
+        other = "antisymmetric" if first == "symmetric" else "symmetric"
+        factorization = self.options.get("factorization", "auto")
+        return any(_proved_indefinite(self.split.matrices(self.model, velocity, w)[2],
+                                      factorization) for w in (first, other))
 
     def __call__(self, velocity: float) -> float:
         if self.which is not None:
@@ -148,13 +181,31 @@ def default_guess(model: TapeModel) -> float:
 class _Counted:
     """f(s) = critical_function at V = √s, remembered, counted and capped at ``limit``."""
 
-    def __init__(self, model: TapeModel, count: int, options: dict, limit: int) -> None:
-        self.model, self.count, self.options, self.limit = model, count, options, limit
+    def __init__(self, model: TapeModel, count: int, options: dict, limit: int,
+                 which: str | None = None, extra: dict | None = None) -> None:
+        self.model, self.count, self.limit = model, count, limit
         split = mirror_split(model) if set(options) <= _HALF_OPTIONS else None
-        self.half = None if split is None else _HalfCritical(model, split, count, options)
+        self.half = None if split is None else _HalfCritical(model, split, count, options,
+                                                             which, extra)
+        self.options = {**(extra or {}), **options}
         self.trace: list[tuple[float, float]] = []
         self.below: list[tuple[float, float]] = []   # (s, ω₁²) with ω₁² > 0
         self.above = math.inf                         # smallest s with f <= 0
+        self.inertia_checks = 0
+
+    def indefinite(self, s: float) -> bool:
+        """True if K(√s) is proved not positive definite by inertia (then f <= 0 there and
+        s caps the bracket); one factorization per half instead of an eigen-solve."""
+        velocity = check_speed(self.model, math.sqrt(s))
+        self.inertia_checks += 1
+        if self.half is not None:
+            found = self.half.indefinite(velocity)
+        else:
+            found = _proved_indefinite(self.model.K(velocity),
+                                       self.options.get("factorization", "auto"))
+        if found:
+            self.above = min(self.above, s)
+        return found
 
     def __call__(self, s: float) -> float:
         if len(self.trace) >= self.limit:
@@ -217,7 +268,7 @@ def _next_trial(f: _Counted) -> float:
 
 def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
                          xtol: float = 1e-9, count: int = 1, max_evaluations: int = 30,
-                         **options) -> tuple[float, dict]:
+                         step: float | None = None, **options) -> tuple[float, dict]:
     """(a) The speed where the lowest frequency reaches zero, m/s, and diagnostics.
 
     Below the root ω₁²(s), s = V², is smooth; above it the eigenvalue nearest zero may
@@ -239,6 +290,16 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
         Eigenvalue pairs per solve (see :func:`critical_function`).
     max_evaluations : int
         Most eigen-solves allowed (>= 2).
+    step : float, optional
+        Relative step in s = V² from the first point below to the second, in (0, 0.1);
+        default ADVANCE_FACTOR − 1 (0.4 %). A guess known to lie close below the root
+        (:func:`critical_speeds` starts DIVERGENCE_GAP below route (b)'s speed) wants a
+        step of that size.
+
+    Each trial aims ``xtol`` below the extrapolated zero, so that it lands below the root
+    and closes the bracket with the next prediction; the point just above that confirms
+    the sign change is an inertia count of K(V) (f <= 0 exactly where K(V) is not positive
+    definite), not an eigen-solve.
 
     Raises
     ------
@@ -251,35 +312,91 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
     guess = validation.positive("guess", guess, "m/s")
     xtol = validation.real("xtol", xtol, low=0.0, high=MAX_XTOL, low_open=True, high_open=True)
     max_evaluations = validation.integer("max_evaluations", max_evaluations, low=2)
-    f = _Counted(model, count, options, max_evaluations)
-    _first_subcritical(f, float(guess) ** 2)
-    s = f.highest_below * ADVANCE_FACTOR
+    step = ADVANCE_FACTOR - 1 if step is None else validation.real(
+        "step", step, low=0.0, high=MAX_XTOL, low_open=True, high_open=True)
+    return _search(_Counted(model, count, options, max_evaluations), float(guess), xtol,
+                   step)
+
+
+def _search(f: _Counted, guess: float, xtol: float, step: float) -> tuple[float, dict]:
+    """The root search of :func:`critical_speed_eigen` on the counted f, from ``guess``
+    (m/s), with the relative ``xtol`` and first ``step`` (both in s = V²)."""
+    _first_subcritical(f, guess**2)
+    s = f.highest_below * (1 + step)
     while True:
         if s < f.above:
             f(s)
         pred = _next_trial(f)
         if abs(pred - f.highest_below) <= 2 * xtol * pred:
             cap = pred * (1 + 2 * xtol)   # confirm the sign change just above
-            if cap >= f.above or f(cap) <= 0:
+            if cap >= f.above or f.indefinite(cap) or f(cap) <= 0:
                 root = math.sqrt(pred)
                 break
             pred = cap * (1 + 2 * xtol)
-        s = pred
-    return root, {"evaluations": len(f.trace),
+        # aim just below the predicted zero: a landing there closes the bracket next time
+        s = max(pred * (1 - xtol), 0.5 * (f.highest_below + pred))
+    return root, {"evaluations": len(f.trace), "inertia_checks": f.inertia_checks,
                   "bracket": (math.sqrt(f.highest_below), math.sqrt(f.above)),
                   "trace": f.trace}
+
+
+#: Without a ``guess``, route (a) starts this fraction below route (b)'s speed (in s = V²
+#: twice that), with a first step of the same size: close enough that the secant through
+#: the first two points predicts the zero of ω₁²(s) to within ``xtol`` = 1e-9 (the
+#: curvature error grows with the square of the gap: 2.4e-8 at 1e-6 on the L_x/L_y = 19
+#: tape), so three eigen-solves and one inertia count settle the root.
+DIVERGENCE_GAP = 1e-7
+#: ARPACK's basis for the solves about σ = 0 that close: the pair ±iω₁ nearest zero is far
+#: from the others there, and a short basis converges in fewer solves (19 against 25).
+NEAR_ROOT_NCV = 10
+
+
+def _from_divergence(model: TapeModel, div, options: dict) -> tuple[float, dict]:
+    """Route (a) started just below route (b)'s speed, on the half of its buckling mode."""
+    options = dict(options)
+    options.pop("guess", None)
+    xtol = validation.real("xtol", options.pop("xtol", 1e-9), low=0.0, high=MAX_XTOL,
+                           low_open=True, high_open=True)
+    count = options.pop("count", 1)
+    limit = validation.integer("max_evaluations", options.pop("max_evaluations", 30), low=2)
+    step = options.pop("step", None)
+    step = DIVERGENCE_GAP if step is None else validation.real(
+        "step", step, low=0.0, high=MAX_XTOL, low_open=True, high_open=True)
+    f = _Counted(model, count, options, limit, _half_of(model, div.mode),
+                 {"ncv": NEAR_ROOT_NCV})
+    return _search(f, div.speed * (1 - DIVERGENCE_GAP), xtol, step)
+
+
+def _half_of(model: TapeModel, mode: np.ndarray) -> str | None:
+    """"symmetric" or "antisymmetric": the mirror half a mode lies in (None: neither, or
+    no mirror symmetry)."""
+    split = mirror_split(model)
+    if split is None:
+        return None
+    sym = np.linalg.norm(split.symmetric.T @ mode)
+    anti = np.linalg.norm(split.antisymmetric.T @ mode)
+    return "symmetric" if sym > anti else "antisymmetric"
 
 
 def critical_speeds(model: TapeModel, **options) -> CriticalSpeeds:
     """Critical speed by both routes (a) and (b), with the context values, m/s.
 
     ``options`` go to :func:`critical_speed_eigen` (``guess``, ``xtol``, solver options).
+    Without a ``guess``, route (b) runs first and route (a)'s root search starts
+    DIVERGENCE_GAP below its speed, on the mirror half that holds the buckling mode (the
+    other half's K_h(V) is still proved definite at each speed): route (a)'s root is still
+    the zero of its own eigen-solves' ω₁², extrapolated and bracketed by a sign change, so
+    the comparison of the two routes keeps its meaning; it needs 3-4 eigen-solves instead
+    of about 8 from :func:`default_guess`.
     """
     p = model.params
     t0 = time.perf_counter()
     div = divergence(model)
     t1 = time.perf_counter()
-    v_a, info = critical_speed_eigen(model, **options)
+    if options.get("guess") is None and math.isfinite(div.speed) and div.speed > 0:
+        v_a, info = _from_divergence(model, div, options)
+    else:
+        v_a, info = critical_speed_eigen(model, **options)
     t2 = time.perf_counter()
     info.update(divergence_time=t1 - t0, critical_time=t2 - t1, mu=div.mu)
     info.pop("trace", None)

@@ -19,6 +19,8 @@ import scipy.sparse.linalg as spla
 from ..core import validation
 from ..core.errors import ConvergenceError, ParameterError
 from ..core.parallel import blas_threads
+from ..linalg import cholesky
+from ..linalg.factorization import resolve_factorization
 from ..linalg.inertia import InertiaFactor, factor_inertia
 from ..results.critical import Divergence
 from ..tape.model import TapeModel
@@ -34,7 +36,8 @@ DIVERGENCE_TOL = 1e-12
 #: Seed of ARPACK's start vector: reproducible results.
 START_SEED = 12345
 
-__all__ = ["Divergence", "beam_mu_estimate", "divergence", "divergence_speed", "safe_shift"]
+__all__ = ["Divergence", "beam_mu_estimate", "divergence", "divergence_speed", "proved_shift",
+           "safe_shift"]
 
 
 def beam_mu_estimate(model: TapeModel) -> float:
@@ -51,6 +54,71 @@ def beam_mu_estimate(model: TapeModel) -> float:
     return float(np.min(p.D * a2 + p.k / a2))
 
 
+class _Pencils:
+    """The pencil A φ = μ B φ as the mirror-symmetric halves (:mod:`gyroshell.tape.mirror`:
+    A_h = P_hᵀAP_h, B_h = P_hᵀBP_h, whose eigenvalues together are the full pencil's) or
+    whole, and the factorization of A − τB half by half.
+
+    A count on the halves is the sum of theirs; a half-width factorization has an eighth
+    of the full one's work and a quarter of its entries (the fill of a strip grows with
+    the square of its width). CHOLMOD's LDLᵀ counts and solves where it is selected
+    (:func:`gyroshell.linalg.factorization.resolve_factorization`), SuperLU's otherwise.
+    """
+
+    def __init__(self, model: TapeModel, *, factorization: str = "auto") -> None:
+        from ..tape.mirror import mirror_split
+
+        A, B = model.A, model.B
+        split = mirror_split(model)
+        if split is None:
+            self.parts = [(A, B, None)]
+        else:
+            self.parts = [((P.T @ A @ P).tocsr(), (P.T @ B @ P).tocsr(), P)
+                          for P in (split.symmetric, split.antisymmetric)]
+        self.cholmod = resolve_factorization(factorization) == "cholmod"
+        #: Per part, the negative count at the last shift that had some (or None).
+        self.counted: list | None = None
+
+    def order(self) -> list[int]:
+        """The parts, the one likeliest to hold μ_min first: the one with the most
+        eigenvalues below the last shift that had any (the symmetric half on ties)."""
+        counted = self.counted or [0] * len(self.parts)
+        return sorted(range(len(self.parts)), key=lambda k: -counted[k])
+
+    def above(self, k: int, mu: float) -> bool:
+        """True if part k is proved to have no eigenvalue at or below μ (N/m): a Cholesky
+        (CHOLMOD) or an inertia count of A_k − μB_k without a negative or zero pivot."""
+        A, B, _ = self.parts[k]
+        matrix = A - mu * B
+        if self.cholmod:
+            factor = cholesky.cholesky(matrix)
+            if factor is not None:
+                factor.release()
+                return True
+            return False
+        return factor_inertia(matrix).definite
+
+    def factor(self, tau: float) -> list:
+        """Factorizations of A_h − τB_h (``negatives``: their inertia, None if unknown)."""
+        factors = []
+        for A, B, _ in self.parts:
+            matrix = A - tau * B
+            factor = cholesky.ldl(matrix) if self.cholmod else None
+            factors.append(factor_inertia(matrix) if factor is None else factor)
+        return factors
+
+    @staticmethod
+    def negatives(factors: list) -> int | None:
+        counts = [f.negatives for f in factors]
+        return None if any(c is None for c in counts) else sum(counts)
+
+    @staticmethod
+    def release(factors) -> None:
+        for factor in factors or ():
+            if hasattr(factor, "release"):
+                factor.release()
+
+
 def safe_shift(model: TapeModel, *, tries: int = SHIFT_TRIES
                ) -> tuple[float, InertiaFactor | None]:
     """A shift τ < μ_min close to it, proved by inertia, and the factorization of A − τB.
@@ -59,17 +127,41 @@ def safe_shift(model: TapeModel, *, tries: int = SHIFT_TRIES
     eigenvalues below τ grows like √(τ − μ_min): the squared inertia counts at two shifts
     are nearly linear in τ and extrapolate to μ_min. Each guess is checked (no negative
     pivot); if the counts are not informative the shift is halved, down to τ = 0.
+    The counts are taken on the mirror halves where the tape has them (:class:`_Pencils`);
+    the factorization returned is SuperLU's of the full A − τB (None where τ = 0).
     """
-    A, B = model.A, model.B
+    pencils = _Pencils(model)
+    tau, factors = _safe_shift(pencils, beam_mu_estimate(model), tries)
+    pencils.release(factors)
+    if factors is None:
+        return 0.0, None
+    return tau, factor_inertia(model.A - tau * model.B)
+
+
+def proved_shift(model: TapeModel, *, tries: int = SHIFT_TRIES) -> float | None:
+    """τ of :func:`safe_shift` without a factorization to return, N/m: the counts and the
+    proof on the mirror halves only (a few half-width LDLᵀ factorizations); None if the
+    counts were not informative."""
+    pencils = _Pencils(model)
+    tau, factors = _safe_shift(pencils, beam_mu_estimate(model), tries)
+    pencils.release(factors)
+    return None if factors is None else tau
+
+
+def _safe_shift(pencils: _Pencils, tau: float, tries: int) -> tuple[float, list | None]:
+    """τ proved below μ_min by the inertia of the halves, from the estimate ``tau``, and
+    their factorizations (None, with τ = 0, if the counts were not informative)."""
     points: list[tuple[float, int]] = []
-    tau = beam_mu_estimate(model)
     for _ in range(tries):
-        factor = factor_inertia(A - tau * B)
-        if factor.negatives is None:
+        factors = pencils.factor(tau)
+        negatives = pencils.negatives(factors)
+        if negatives == 0:
+            return tau, factors
+        pencils.counted = [f.negatives for f in factors]
+        pencils.release(factors)
+        if negatives is None:
             break
-        if factor.negatives == 0:
-            return tau, factor
-        points.append((tau, factor.negatives))
+        points.append((tau, negatives))
         if len(points) == 1:
             tau = tau * SLOPE_PROBE  # a second count above, for the slope
             continue
@@ -86,14 +178,15 @@ def safe_shift(model: TapeModel, *, tries: int = SHIFT_TRIES
 
 def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | None = None
                ) -> Divergence:
-    """Divergence speed and buckling mode of the discrete model, by one ``eigsh`` call.
+    """Divergence speed and buckling mode of the discrete model, by ``eigsh``.
 
     Shift-invert about a shift τ just below μ_min, through one sparse factorization of
     A − τB. The μ cluster (every wavenumber near (k/D)^¼ buckles at nearly the same μ) is
     nearly flat seen from τ = 0 but well spread seen from τ ≈ μ_min. τ is extrapolated from
     inertia counts of A − τB (see :func:`safe_shift`), starting at the beam estimate
     :func:`beam_mu_estimate`; a factorization with no negative pivot proves τ < μ_min, so
-    the eigenvalue nearest τ is μ_min.
+    the eigenvalue nearest τ is μ_min. A mirror-symmetric tape is solved on its two halves
+    (one ``eigsh`` each, the smaller μ kept; :class:`_Pencils`).
 
     Parameters
     ----------
@@ -105,13 +198,33 @@ def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | 
     tol = validation.real("tol", tol, low=0.0, high=1.0, high_open=True)
     if shift is not None:
         shift = validation.real("shift", shift, unit="N/m")
-    A, B = model.A, model.B
-    tau, factor = safe_shift(model) if shift is None else (float(shift), None)
-    if factor is None:
-        factor = factor_inertia(A - tau * B)
-    if factor.singular:
-        raise ParameterError(f"shift {tau:g} N/m is an eigenvalue of A phi = mu B phi; "
-                             "choose another")
+    pencils = _Pencils(model)
+    if shift is None:
+        tau, factors = _safe_shift(pencils, beam_mu_estimate(model), SHIFT_TRIES)
+    else:
+        tau, factors = float(shift), None
+    if factors is None:
+        factors = pencils.factor(tau)
+    try:
+        if any(f.singular for f in factors):
+            raise ParameterError(f"shift {tau:g} N/m is an eigenvalue of A phi = mu B phi; "
+                                 "choose another")
+        mu, mode = math.inf, None
+        for k in pencils.order():   # a part proved to lie above the best μ is skipped
+            if mode is not None and pencils.above(k, mu):
+                continue
+            found = _lowest(*pencils.parts[k], factors[k], tau, tol)
+            if found[0] < mu:
+                mu, mode = found
+    finally:
+        pencils.release(factors)
+    mode = mode / mode[np.argmax(np.abs(mode))]
+    p = model.params
+    return Divergence(math.sqrt((p.tension + mu) / p.density), mu, mode, model.grid)
+
+
+def _lowest(A, B, P, factor, tau: float, tol: float) -> tuple[float, np.ndarray]:
+    """The eigenvalue of A φ = μ B φ nearest τ (N/m) and its vector (embedded by P)."""
     opinv = spla.LinearOperator(A.shape, matvec=factor.solve, dtype=float)
     v0 = np.random.default_rng(START_SEED).standard_normal(A.shape[0])
     try:
@@ -120,10 +233,8 @@ def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | 
                                     OPinv=opinv, v0=v0)
     except (spla.ArpackNoConvergence, spla.ArpackError) as exc:
         raise ConvergenceError(f"divergence eigenvalue did not converge: {exc}") from None
-    mu = float(vals[0])
-    mode = vecs[:, 0] / vecs[np.argmax(np.abs(vecs[:, 0])), 0]
-    p = model.params
-    return Divergence(math.sqrt((p.tension + mu) / p.density), mu, mode, model.grid)
+    vec = vecs[:, 0]
+    return float(vals[0]), vec if P is None else P @ vec
 
 
 def divergence_speed(model: TapeModel) -> float:

@@ -26,7 +26,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..core import validation
-from ..core.errors import ParameterError
+from ..core.errors import ConvergenceError, ParameterError
 from ..linalg import cholesky
 from ..linalg.factorization import check_factorization, resolve_factorization
 from ..linalg.inertia import factor_inertia
@@ -38,9 +38,10 @@ from ..linalg.qep import (
     check_count,
     max_count,
     normalize,
+    solve_qep,
 )
 from ..linalg.qep import relative_residuals as _matrix_residuals
-from ..results.modes import Modes
+from ..results.modes import GyroscopicModes, Modes
 from ..tape.grid import Grid
 from ..tape.mirror import mirror_split
 from ..tape.model import TapeModel
@@ -129,7 +130,8 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
     with a positive-definite bending matrix (isotropic: D[[1, ν], [ν, 1]], |ν| < 1;
     :func:`gyroshell.bending_foundation`), so A >= kW > 0; otherwise a
     factorization of A decides. With ``near_divergence``, τ is the inertia-proved shift just
-    below μ_min of the divergence solver (a few factorizations, worth it for sweeps).
+    below μ_min of the divergence solver (a few half-width factorizations, worth it for
+    sweeps).
     Cached per model.
     """
     known = _FLOORS.get(model)
@@ -139,10 +141,9 @@ def stiffness_floor(model: TapeModel, *, near_divergence: bool = False) -> float
         return None
     tau = None
     if near_divergence:
-        from .divergence import safe_shift
+        from .divergence import proved_shift
 
-        tau_d, factor = safe_shift(model)
-        tau = tau_d if factor is not None else None
+        tau = proved_shift(model)
     if tau is None and model.params.k > 0:
         tau = 0.0
     if tau is None:
@@ -295,20 +296,26 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
                            options=options)
     omega_bar = float(sym.omega[-1])
     M, G, K, first = halves["antisymmetric"]
-    below, counted_by = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
-                                     options.factorization)
-    if below is None or symmetric + below < count:
-        return None
-    parts = [(sym, split.symmetric)]
-    if below:
-        anti = gyroscopic_modes(M, G, K, min(below, count), estimate=guess, definite=True,
-                                start=first, options=options)
-        if np.any(anti.omega >= omega_bar):   # the count and the solve disagree
+    factor, counted_by = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
+                                      options.factorization)
+    try:
+        below = factor.negatives
+        if below is None or symmetric + below < count:
             return None
-        parts.append((anti, split.antisymmetric))
+        parts = [(sym, split.symmetric)]
+        if below:
+            anti = _below_count_frequency(M, G, K, min(below, count), omega_bar, factor,
+                                          first, guess, options)
+            if np.any(anti.omega >= omega_bar):   # the count and the solve disagree
+                return None
+            parts.append((anti, split.antisymmetric))
+    finally:
+        if hasattr(factor, "release"):
+            factor.release()
     return _joined(model, velocity, count, parts, {
         "antisymmetric_below": below, "count_frequency": omega_bar,
-        "count_factorization": counted_by})
+        "count_factorization": counted_by,
+        "count_factor_solved": bool(below and anti.info.get("shift_factor_reused"))})
 
 
 def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: dict
@@ -330,15 +337,32 @@ def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: 
     return Modes(model.grid, velocity, lam, vecs, res, False, info, False)
 
 
-def _count_below(Q: sp.spmatrix, factorization: str) -> tuple[int | None, str]:
-    """Negative eigenvalues of the Hermitian Q and the factorization that counted them:
-    CHOLMOD's LDLᴴ count (where selected), else (or if it has no answer) SuperLU's pivot
-    count; None if neither is available."""
+def _count_below(Q: sp.spmatrix, factorization: str):
+    """The factorization of the Hermitian Q that counts its negative eigenvalues
+    (``negatives``) and solves with it, and its back-end: CHOLMOD's LDLᴴ (where selected;
+    the caller releases it), else (or if it has no answer) SuperLU's (``negatives`` None
+    where it pivoted off the diagonal)."""
     if resolve_factorization(factorization) == "cholmod":
-        count = cholesky.negative_count(Q)
-        if count is not None:
-            return count, "cholmod"
-    return factor_inertia(Q).negatives, "superlu"
+        factor = cholesky.ldl(Q)
+        if factor is not None:
+            return factor, "cholmod"
+    return factor_inertia(Q), "superlu"
+
+
+def _below_count_frequency(M, G, K, count: int, omega_bar: float, factor, start,
+                           estimate, options: SolverOptions):
+    """The ``count`` lowest modes of the antisymmetric half, all below ω̄ (rad/s), by
+    Lanczos shifted at iω̄ with the count's own factorization of Q_a(iω̄) (no second
+    factorization; the frequencies wanted are the extreme ones just below the shift).
+    Where that does not converge (Q_a(iω̄) nearly singular: an antisymmetric frequency at
+    ω̄), the automatic shift below the lowest frequency is used instead."""
+    try:
+        pairs = solve_qep(M, G, K, count, sigma=1j * omega_bar, definite=True, start=start,
+                          options=options, shift_factor=factor)
+        return GyroscopicModes(*pairs)
+    except (ConvergenceError, ParameterError):
+        return gyroscopic_modes(M, G, K, count, estimate=estimate, definite=True,
+                                start=start, options=options)
 
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options

@@ -17,6 +17,7 @@ from gyroshell.engines.critical import (
     critical_speeds,
 )
 from gyroshell.engines.divergence import beam_mu_estimate, divergence
+from gyroshell.engines.eigen import modes
 from gyroshell.studies.sweep import parse_velocities, plot_sweep, sweep
 
 # Every test here runs on each factorization back-end (CHOLMOD and SuperLU).
@@ -342,3 +343,47 @@ def test_an_exactly_singular_stiffness_is_the_root(monkeypatch):
     assert half(80.0) == 0.0
     monkeypatch.setattr(crit, "modes", singular)
     assert crit.critical_function(model, 80.0) == 0.0
+
+
+# ----- route (b) on the halves, route (a) from route (b) ----------------------------------
+def test_divergence_on_the_halves_is_the_pencils_smallest_eigenvalue():
+    """μ_min of A φ = μ B φ from the mirror halves equals the dense generalized eigenvalue
+    problem's smallest on the whole tape, and its mode is an eigenvector of the pencil."""
+    import scipy.linalg as la
+
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    A, B = model.A.toarray(), model.B.toarray()
+    exact = la.eigh(A, B, eigvals_only=True, subset_by_index=[0, 0])[0]
+    d = divergence(model)
+    assert d.mu == pytest.approx(exact, rel=1e-10)
+    r = A @ d.mode - d.mu * (B @ d.mode)
+    assert np.linalg.norm(r) < 1e-9 * np.linalg.norm(A, 1) * np.linalg.norm(d.mode)
+
+
+def test_critical_speed_from_the_divergence_route_in_three_eigen_solves():
+    """Without a guess, route (a) starts just below route (b)'s speed: three eigen-solves
+    and one inertia count of K(V) bracket a zero of ω₁² that agrees with (b)."""
+    model = TapeModel(TapeParameters(length_ratio=3.0, spacing=WIDTH / 8))
+    c = critical_speeds(model)
+    assert c.info["evaluations"] <= 4 and c.info["inertia_checks"] >= 1
+    lo, hi = c.info["bracket"]
+    assert lo <= c.critical_speed <= hi and (hi - lo) / hi < 4e-9
+    assert c.relative_difference < 1e-9
+    assert critical_function(model, lo) > 0          # below: a real lowest frequency
+
+
+def test_a_sweep_past_the_string_speed_stays_on_the_halves():
+    """One speed above √(T/ρ) is enough to prove the stiffness floor near divergence once
+    (on the mirror halves); that speed is then solved on the halves, with the frequencies
+    of an independent solve (which factors K(V) and solves the full problem)."""
+    from gyroshell.studies.sweep import solve_speeds
+
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    assert model.params.string_speed < 85.0 < divergence(model).speed
+    results = solve_speeds(model, [70.0, 85.0], 4, continuation=True, workers=1,
+                           options={}, progress=False, description="sweep")
+    assert "mirror" in results[-1].info
+    alone = TapeModel(model.params)
+    independent = modes(alone, 85.0, 4)
+    assert "mirror" not in independent.info
+    assert results[-1].omega == pytest.approx(independent.omega, rel=1e-10)

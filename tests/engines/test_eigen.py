@@ -260,3 +260,18 @@ def test_solver_options_group_the_knobs_and_keywords_still_work():
                  method="lanczos", symmetry=False).info["method"] == "lanczos"
     with pytest.raises(TypeError, match="unexpected keyword argument 'tolerance'"):
         modes(model, 20.0, 3, tolerance=1e-9)
+
+
+@pytest.mark.parametrize("velocity", [0.0, 50.0])
+def test_antisymmetric_half_is_solved_with_its_counts_factorization(velocity):
+    """The antisymmetric half's modes come from Lanczos shifted at the count frequency ω̄
+    with the count's own LDLᴴ (no second factorization): the same frequencies as the full
+    problem, every one below ω̄ as many as counted, at round-off backward error."""
+    model = _model(length_ratio=4.0, spacing=WIDTH / 12)
+    halves = modes(model, velocity, 6)
+    mirror = halves.info["mirror"]
+    assert mirror["count_factor_solved"] is True and mirror["antisymmetric"] >= 1
+    full = modes(model, velocity, 6, symmetry=False)
+    assert halves.omega == pytest.approx(full.omega, rel=1e-11)
+    assert halves.residuals.max() < 1e-14
+    assert np.count_nonzero(halves.omega < mirror["count_frequency"]) >= 6

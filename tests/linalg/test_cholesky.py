@@ -139,3 +139,36 @@ def test_negative_count_is_sylvesters_inertia(rng):
     for shift in (-1.0, 0.5, 1.0, 2.0):
         A = hermitian(20, shift, rng)
         assert cholesky.negative_count(A) == factor_inertia(A).negatives
+
+
+def test_ldl_counts_and_solves_the_indefinite_matrix_it_counted(rng):
+    """The LDLᴴ that counts (Sylvester: the Laplacian's eigenvalues 2(2 − cos(iπ/31) −
+    cos(jπ/31)) below the shift) also solves the indefinite matrix, real and Hermitian."""
+    lam = np.sort([2 * (2 - np.cos(i * np.pi / 31) - np.cos(j * np.pi / 31))
+                   for i in range(1, 31) for j in range(1, 31)])
+    L = laplacian_2d(30)
+    for shift in (0.3, 1.1, 2.5):
+        A = (L - shift * sp.identity(900)).tocsr()
+        factor = cholesky.ldl(A)
+        assert factor.negatives == np.count_nonzero(lam < shift)
+        assert factor.definite is False and factor.singular is False
+        b = rng.standard_normal(900) + 1j * rng.standard_normal(900)
+        x = factor.solve(b)
+        assert np.linalg.norm(A @ x - b) <= 1e-12 * np.linalg.norm(b) * np.abs(lam).max() \
+            / np.min(np.abs(lam - shift))
+        factor.release()
+    H = hermitian(20, 1.0, rng)
+    factor = cholesky.ldl(H)
+    assert factor.negatives == factor_inertia(H).negatives
+    b = rng.standard_normal(400) + 1j * rng.standard_normal(400)
+    assert np.linalg.norm(H @ factor.solve(b) - b) < 1e-10 * np.linalg.norm(b)
+    factor.release()
+    with pytest.raises(RuntimeError, match="released"):
+        factor.solve(b)
+
+
+def test_ldl_refuses_a_zero_pivot():
+    """A zero pivot (the diagonal solve D x = 1 is not finite) leaves the inertia unknown."""
+    A = sp.csr_matrix(np.array([[0.0, 1.0], [1.0, 0.0]]))
+    assert cholesky.ldl(A) is None
+    assert cholesky.negative_count(A) is None

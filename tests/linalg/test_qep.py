@@ -91,6 +91,36 @@ def test_certified_count_below_an_inner_shift(rng):
     assert res.omega == pytest.approx(w[:5], rel=1e-10)
 
 
+@pytest.mark.parametrize("below", [3, 5])
+def test_a_counted_factorization_serves_the_solve_below_its_shift(below, rng):
+    """solve_qep with the shift's factorization made (and counted) by the caller: the same
+    certified frequencies below the shift as the closed form, without a second
+    factorization; with count = below only those below the shift are asked for."""
+    from gyroshell.linalg import cholesky
+    from gyroshell.linalg.factorization import resolve_factorization
+    from gyroshell.linalg.inertia import factor_inertia
+    from gyroshell.linalg.qep import solve_qep
+
+    nb = 40
+    M, G, K, exact = blocks(rng.uniform(1.0, 50.0, size=(nb, 2)), rng.uniform(0.5, 3.0, nb))
+    w = np.sort(exact.imag[exact.imag > 0])
+    ws = 0.5 * (w[below - 1] + w[below])
+    Q = (K - ws**2 * M + 1j * ws * G).tocsc()
+    counted = cholesky.ldl(Q) if resolve_factorization("auto") == "cholmod" else None
+    factor = counted or factor_inertia(Q)
+    assert factor.negatives == below
+    for count in (below, 2):
+        pairs = solve_qep(M, G, K, count, sigma=1j * ws, definite=True, shift_factor=factor)
+        assert pairs.info["shift_factor_reused"] is True
+        assert pairs.info["below_shift"] == below
+        assert pairs.eigenvalues.imag == pytest.approx(w[:count], rel=1e-10)
+        assert pairs.residuals.max() < 1e-14
+    if counted is not None:
+        counted.release()
+    with pytest.raises(ParameterError, match="shift_factor needs an explicit sigma"):
+        solve_qep(M, G, K, 2, shift_factor=factor)
+
+
 def random_system(rng, n: int, *, damping: float = 0.0):
     X = rng.standard_normal((n, n))
     M = X @ X.T / n + np.eye(n)                  # SPD, full

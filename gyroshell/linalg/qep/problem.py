@@ -312,6 +312,9 @@ class Problem:
     info: dict
     factorization: str = "superlu"
     factors: list = field(default_factory=list)
+    #: A factorization of Q(σ) at the explicit shift, with its inertia count, made by the
+    #: caller (who releases it); used instead of factoring Q(σ) again.
+    shift_factor: object = None
 
     def factor(self, matrix: sp.spmatrix) -> InertiaFactor | cholesky.CholeskyFactor:
         """Factor a symmetric/Hermitian matrix: CHOLMOD's Cholesky when that back-end is

@@ -19,7 +19,7 @@ from ..factorization import check_factorization, resolve_factorization, splu
 from ..inertia import InertiaFactor
 from .arpack import solve_general, solve_pairs_real, solve_shifted_pairs
 from .dense import solve_dense
-from .lanczos import solve_hermitian
+from .lanczos import LANCZOS_RESIDUAL_LIMIT, solve_hermitian
 from .problem import (
     DENSE_LIMIT,
     METHODS,
@@ -38,6 +38,7 @@ from .spectrum import (
     RESIDUAL_LIMIT,
     norm1,
     normalize,
+    products,
     quadratic_rayleigh,
     relative_residuals,
 )
@@ -64,12 +65,17 @@ class Eigenpairs(NamedTuple):
 
 def solve_qep(M, G, K, count: int, *, sigma=None, C=None, estimate: float | None = None,
               definite: bool | None = None, start=None,
-              options: SolverOptions | None = None) -> Eigenpairs:
+              options: SolverOptions | None = None, shift_factor=None) -> Eigenpairs:
     """Eigenpairs of (λ²M + λ(G + C) + K) φ = 0 nearest a shift on the imaginary axis.
 
     The arguments and the errors are those of
     :func:`gyroshell.engines.gyroscopic.gyroscopic_modes` (see there), the tuning knobs
-    gathered in ``options`` (default :class:`SolverOptions`).
+    gathered in ``options`` (default :class:`SolverOptions`). ``shift_factor``, with an
+    explicit ``sigma`` = iω_s, undamped and K > 0: a factorization of the Hermitian
+    Q(iω_s) = K − ω_s²M + iω_sG that already counted its negative eigenvalues (an
+    :class:`~gyroshell.linalg.inertia.InertiaFactor` or a CHOLMOD
+    :class:`~gyroshell.linalg.cholesky.LDLFactor`, e.g. the one an inertia count made),
+    solved with instead of factoring Q(iω_s) again; the caller keeps (and releases) it.
     """
     options = SolverOptions() if options is None else options
     factorization = check_factorization(options.factorization)
@@ -79,8 +85,12 @@ def solve_qep(M, G, K, count: int, *, sigma=None, C=None, estimate: float | None
         prob = Problem(M, G, K, C, check_count(count, M.shape[0]), check_tol(options.tol),
                        check_optional_int("ncv", options.ncv),
                        check_optional_int("maxiter", options.maxiter),
-                       check_start(start, M.shape[0]), {"operator_applications": 0})
+                       check_start(start, M.shape[0]), {"operator_applications": 0},
+                       shift_factor=shift_factor)
         shift = check_shift(sigma)
+        if shift_factor is not None and (shift is None or shift == 0 or C is not None):
+            raise ParameterError("shift_factor needs an explicit sigma = i*omega_s > 0 and "
+                                 "no damping")
         if options.method not in METHODS:
             raise ParameterError(f"method must be 'auto', 'lanczos' or 'arpack', got "
                                  f"{options.method!r}")
@@ -111,6 +121,7 @@ def _solve_factored(prob: Problem, shift, estimate, definite, method: str,
         # eigenvalues: such a case is solved again with SuperLU throughout.
         prob.release()
         prob.factorization = "superlu"
+        prob.shift_factor = None
         prob.info.clear()
         prob.info.update(operator_applications=0, factorization="superlu",
                          cholmod_fallback=True)
@@ -132,8 +143,8 @@ def _solve_sparse(prob: Problem, shift, estimate, definite, method) -> Eigenpair
     if not _k_definite(k_factor, definite):
         lams, vecs = _supercritical(prob, k_factor, estimate)
         return _finish(prob, lams, vecs, supercritical=True, damped=False)
-    lams, vecs = _subcritical(prob, shift, estimate, k_factor, method)
-    return _finish(prob, lams, vecs, supercritical=False, damped=False)
+    lams, vecs, res = _subcritical(prob, shift, estimate, k_factor, method)
+    return _finish(prob, lams, vecs, supercritical=False, damped=False, residuals=res)
 
 
 def _hermitian_shift(prob: Problem, estimate: float | None, shift: complex | None,
@@ -157,8 +168,11 @@ def _hermitian_shift(prob: Problem, estimate: float | None, shift: complex | Non
     tries = 0
     while True:
         tries += 1
-        Q = prob.K - omega_s**2 * prob.M + 1j * omega_s * prob.G
-        factor = prob.factor(Q)
+        if shift is not None and prob.shift_factor is not None:
+            factor = prob.shift_factor   # counted by the caller at this shift
+            prob.info["shift_factor_reused"] = True
+        else:
+            factor = prob.factor(prob.K - omega_s**2 * prob.M + 1j * omega_s * prob.G)
         prob.info["shift_tries"] = tries
         if shift is not None:
             if factor.singular:
@@ -213,6 +227,11 @@ def _subcritical(prob, shift, estimate, k_factor, method):
     use_arpack = method == "arpack" or (method == "auto" and (prob.ncv is not None or
                                                               prob.maxiter is not None))
     result = None if use_arpack else solve_hermitian(prob, omega_s, factor, below)
+    if result is not None:
+        lams, vecs, res, defect = _polished_pairs(prob, *result, omega_s, estimate)
+        prob.info["lanczos_residual"] = float(res.max())
+        if res.max() > LANCZOS_RESIDUAL_LIMIT:
+            result = None
     if result is None:
         if method == "lanczos":
             raise ConvergenceError("Lanczos did not converge; try method='arpack'")
@@ -221,15 +240,25 @@ def _subcritical(prob, shift, estimate, k_factor, method):
         else:
             result = solve_shifted_pairs(prob, omega_s, factor, below,
                                           _omega_ref(prob, omega_s))
-    lams, vecs = result
-    lams = quadratic_rayleigh(prob.M, prob.G, prob.K, lams, vecs)
-    scale = np.maximum(np.abs(lams), omega_s or _omega_ref(prob, estimate))
-    prob.info["pair_defect"] = float(np.max(np.abs(lams.real) / scale))
-    if prob.info["pair_defect"] > PAIR_DEFECT_LIMIT:
+        lams, vecs, res, defect = _polished_pairs(prob, *result, omega_s, estimate)
+    prob.info["pair_defect"] = defect
+    if defect > PAIR_DEFECT_LIMIT:
         raise ConvergenceError(f"eigenvalues off the imaginary axis below critical "
-                               f"(|Re λ|/|λ| = {prob.info['pair_defect']:.1e}); "
+                               f"(|Re λ|/|λ| = {defect:.1e}); "
                                "try a larger ncv or a smaller tol")
-    return 1j * np.abs(lams.imag), vecs
+    return lams, vecs, res
+
+
+def _polished_pairs(prob: Problem, lams, vecs, omega_s: float, estimate):
+    """(iω from the quadratic Rayleigh functional, the vectors, their backward errors at
+    iω, the pair defect max |Re λ|/|λ|), from one product of each matrix with the vectors."""
+    done = products(prob.M, prob.G, prob.K, vecs)
+    lams = quadratic_rayleigh(prob.M, prob.G, prob.K, lams, vecs, products_of=done)
+    scale = np.maximum(np.abs(lams), omega_s or _omega_ref(prob, estimate))
+    defect = float(np.max(np.abs(lams.real) / scale))
+    lams = 1j * np.abs(lams.imag)
+    res = relative_residuals(prob.M, prob.G, prob.K, lams, vecs, products_of=done)
+    return lams, vecs, res, defect
 
 
 def _supercritical(prob, k_factor, estimate):
@@ -267,13 +296,16 @@ def _damped(prob, shift, estimate, k_factor):
                           symmetric_pairs=False)
 
 
-def _finish(prob: Problem, lams, vecs, *, supercritical: bool, damped: bool
-            ) -> Eigenpairs:
+def _finish(prob: Problem, lams, vecs, *, supercritical: bool, damped: bool,
+            residuals: np.ndarray | None = None) -> Eigenpairs:
+    """Normalized vectors and the backward errors checked (``residuals``: already computed
+    for exactly these eigenvalues; scaling a vector leaves its relative residual as is)."""
     with np.errstate(all="ignore"):  # overflow is reported below, not as a warning
         vecs = normalize(np.asarray(vecs, dtype=complex))
         if damped:
             lams = quadratic_rayleigh(prob.M, prob.GC, prob.K, lams, vecs)
-        res = relative_residuals(prob.M, prob.GC, prob.K, lams, vecs)
+        res = residuals if residuals is not None else relative_residuals(
+            prob.M, prob.GC, prob.K, lams, vecs)
     if not (np.all(np.isfinite(lams)) and np.all(np.isfinite(res))):
         raise ConvergenceError("eigenvalues out of floating-point range: the matrices' "
                                "scales (stiffness, damping, mass) are too far apart")

@@ -44,14 +44,24 @@ def product(A, X: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(out).view(complex).reshape(shape)
 
 
-def relative_residuals(M, GC, K, eigenvalues: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+def products(M, GC, K, vectors: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(Mφ, GC φ, Kφ) for the columns φ: what the residuals and the Rayleigh functional
+    both need, computed once where both are wanted."""
+    phi = np.asarray(vectors)
+    return product(M, phi), product(GC, phi), product(K, phi)
+
+
+def relative_residuals(M, GC, K, eigenvalues: np.ndarray, vectors: np.ndarray, *,
+                       products_of=None) -> np.ndarray:
     """‖(λ²M + λ GC + K)φ‖₂ / ((|λ|²‖M‖₁ + |λ|‖GC‖₁ + ‖K‖₁) ‖φ‖₂) per column (dimensionless).
 
-    ``GC`` is G + C (G alone undamped).
+    ``GC`` is G + C (G alone undamped); ``products_of``: :func:`products` of these vectors,
+    if already at hand.
     """
     lam = np.asarray(eigenvalues)
     phi = np.asarray(vectors)
-    r = product(M, phi) * lam**2 + product(GC, phi) * lam + product(K, phi)
+    Mphi, GCphi, Kphi = products(M, GC, K, phi) if products_of is None else products_of
+    r = Mphi * lam**2 + GCphi * lam + Kphi
     scale = np.abs(lam) ** 2 * norm1(sp.csr_matrix(M)) + np.abs(lam) * norm1(
         sp.csr_matrix(GC)) + norm1(sp.csr_matrix(K))
     denominator = scale * np.linalg.norm(phi, axis=0)
@@ -61,17 +71,19 @@ def relative_residuals(M, GC, K, eigenvalues: np.ndarray, vectors: np.ndarray) -
                      where=(denominator > 0) | (numerator > 0))
 
 
-def quadratic_rayleigh(M, GC, K, eigenvalues: np.ndarray, vectors: np.ndarray) -> np.ndarray:
+def quadratic_rayleigh(M, GC, K, eigenvalues: np.ndarray, vectors: np.ndarray, *,
+                       products_of=None) -> np.ndarray:
     """Roots of m λ² + g λ + κ = 0 (m = φᴴMφ, g = φᴴ GC φ, κ = φᴴKφ) nearest each λ, 1/s.
 
     The quadratic Rayleigh functional, column by column: second-order accurate in the error
-    of φ. ``GC`` is G + C.
+    of φ. ``GC`` is G + C; ``products_of`` as in :func:`relative_residuals`.
     """
     phi = np.asarray(vectors)
+    Mphi, GCphi, Kphi = products(M, GC, K, phi) if products_of is None else products_of
     c = phi.conj()
-    m = np.einsum("ij,ij->j", c, product(M, phi))
-    g = np.einsum("ij,ij->j", c, product(GC, phi))
-    kap = np.einsum("ij,ij->j", c, product(K, phi))
+    m = np.einsum("ij,ij->j", c, Mphi)
+    g = np.einsum("ij,ij->j", c, GCphi)
+    kap = np.einsum("ij,ij->j", c, Kphi)
     disc = np.sqrt(g * g - 4 * m * kap + 0j)
     r1, r2 = (-g + disc) / (2 * m), (-g - disc) / (2 * m)
     lam = np.asarray(eigenvalues)
