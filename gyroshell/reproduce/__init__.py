@@ -8,14 +8,15 @@ the same functions, and ``gyroshell reproduce NAME --out DIR`` runs them from th
 
 from __future__ import annotations
 
-import importlib
 import time
 from collections.abc import Iterable
 from pathlib import Path
 
 from ..core.errors import ParameterError
 from ..core.files import check_output_folder
+from ..core.parallel import check_process_count
 from ._common import Settings
+from ._runner import run_here, run_parallel, sharing, study_line
 
 #: Study names in the order ``all`` runs them.
 STUDIES: tuple[str, ...] = ("critical", "fig2", "fig3", "fig4", "fig5", "fig6", "period",
@@ -29,26 +30,48 @@ def run_study(name: str, out: str | Path, settings: Settings | None = None) -> l
         raise ParameterError(f"study must be one of {', '.join(STUDIES)}, all; got {name!r}")
     out = check_output_folder(out, option="out")
     out.mkdir(parents=True, exist_ok=True)
-    module = importlib.import_module(f"{__name__}.{name}")
-    return module.run(out, settings or Settings())
+    return run_here(name, out, settings or Settings())
 
 
 def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None = None,
-                *, log=print) -> dict[str, list[Path]]:
-    """Run several studies (``"all"`` expands to every one); logs each one's time."""
+                *, log=print, workers: int = 1) -> dict[str, list[Path]]:
+    """Run several studies (``"all"`` expands to every one); logs each one's time.
+
+    Parameters
+    ----------
+    names : iterable of str
+        Study names (:data:`STUDIES`) or ``"all"``.
+    out : str or path
+        Output folder (created if missing).
+    settings : Settings, optional
+    log : callable or None
+        Called with one line per finished study: its time and CPU time, s, and its files.
+    workers : int
+        Local processes (>= 1). With more than one, the studies' independent parts run
+        concurrently (one BLAS thread each) and the files are the same, number for number,
+        as with one; each study's time (and CPU time) is then the sum over its parts on the
+        workers.
+    """
     names = list(names)
     expanded = list(STUDIES) if "all" in names else names
     for name in expanded:
         if name not in STUDIES:
             raise ParameterError(f"study must be one of {', '.join(STUDIES)}, all; "
                                  f"got {name!r}")
+    workers = check_process_count("workers", workers)
+    settings = settings or Settings()
+    if workers > 1 and expanded:
+        out = check_output_folder(out, option="out")
+        out.mkdir(parents=True, exist_ok=True)
+        return run_parallel(expanded, out, settings, workers, log=log)
     written: dict[str, list[Path]] = {}
-    for name in expanded:
-        start = time.perf_counter()
-        written[name] = run_study(name, out, settings)
-        if log is not None:
-            files = ", ".join(p.name for p in written[name])
-            log(f"{name}: {time.perf_counter() - start:.1f} s -> {files}")
+    with sharing():
+        for name in expanded:
+            start, cpu = time.perf_counter(), time.process_time()
+            written[name] = run_study(name, out, settings)
+            if log is not None:
+                log(study_line(name, time.perf_counter() - start,
+                               time.process_time() - cpu, written[name]))
     return written
 
 

@@ -6,6 +6,7 @@ step. The paper's Table 1 tape over a head of its radius, 15° wrap, air at 20 �
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +18,7 @@ from ..bearing.steady import solve_steady
 from ..bearing.transient import march, tension_step
 from ..tape.parameters import TapeParameters
 from ._common import Settings, pyplot, save_csv, save_figure
+from ._runner import run_parts
 
 WRAP = math.radians(15.0)
 #: Blok & van Rossum's flexible-foil constant, h₀ = 0.643 R (6μV/T)^(2/3) (Eshel & Elrod
@@ -25,8 +27,13 @@ FOIL_CONSTANT = 0.643
 TENSION_STEP = (90.0, 120.0)
 
 
-def speed_sweep(settings: Settings) -> pd.DataFrame:
-    speeds = np.geomspace(0.5, 16.0, settings.pick(11, 4))
+def sweep_speeds(settings: Settings) -> list[float]:
+    """The tape speeds of the sweep, m/s."""
+    return [float(v) for v in np.geomspace(0.5, 16.0, settings.pick(11, 4))]
+
+
+def sweep_rows(settings: Settings, v: float) -> list[dict]:
+    """The sweep's rows at one speed V (m/s): one per film model."""
     tape = TapeParameters()
     flexible = tape.replace(bending_rigidity=1e-12, foundation_stiffness=0.0)
     incompressible = AirParameters(compressible=False, mean_free_path=0.0)
@@ -34,18 +41,21 @@ def speed_sweep(settings: Settings) -> pd.DataFrame:
              "incompressible, no slip": (tape, incompressible),
              "flexible (D, k -> 0), incompressible": (flexible, incompressible)}
     rows = []
-    for v in speeds:
-        for name, (params, air) in cases.items():
-            model = BearingModel(params, air, velocity=v, wrap_angle=WRAP,
-                                 infinitely_wide=True,
-                                 nx=settings.pick(1600 if params is flexible else None, 400))
-            sol = solve_steady(model)
-            rows.append(dict(velocity=v, film=name, central_spacing=sol.central_spacing,
-                             minimum_spacing=sol.minimum_spacing,
-                             foil_law=FOIL_CONSTANT * foil_length_scales(tape, air, v)[0],
-                             contact_force=sol.contact_force,
-                             newton_iterations=sol.info.iterations))
-    return pd.DataFrame(rows)
+    for name, (params, air) in cases.items():
+        model = BearingModel(params, air, velocity=v, wrap_angle=WRAP,
+                             infinitely_wide=True,
+                             nx=settings.pick(1600 if params is flexible else None, 400))
+        sol = solve_steady(model)
+        rows.append(dict(velocity=v, film=name, central_spacing=sol.central_spacing,
+                         minimum_spacing=sol.minimum_spacing,
+                         foil_law=FOIL_CONSTANT * foil_length_scales(tape, air, v)[0],
+                         contact_force=sol.contact_force,
+                         newton_iterations=sol.info.iterations))
+    return rows
+
+
+def speed_sweep(settings: Settings) -> pd.DataFrame:
+    return pd.DataFrame([row for v in sweep_speeds(settings) for row in sweep_rows(settings, v)])
 
 
 def plot_speed(table: pd.DataFrame):
@@ -111,14 +121,27 @@ def plot_transient(run, start, after):
     return fig
 
 
-def run(out: Path, settings: Settings) -> list[Path]:
+def parts(settings: Settings) -> tuple:
+    """The independent parts: ("sweep", V) per speed of the sweep, the 2-D maps, the
+    transient."""
+    return (*(("sweep", v) for v in sweep_speeds(settings)), ("maps",), ("transient",))
+
+
+def compute_part(settings: Settings, key: tuple):
+    """A speed's sweep rows, the 2-D solution, or the transient (run, start, after)."""
+    if key[0] == "sweep":
+        return sweep_rows(settings, key[1])
+    return two_dimensional(settings) if key[0] == "maps" else transient(settings)
+
+
+def write(out: Path, settings: Settings, results: list) -> list[Path]:
     from ..bearing import plots
 
+    *sweep, sol, (tr, start, after) = results
     written = []
-    table = speed_sweep(settings)
+    table = pd.DataFrame([row for rows in sweep for row in rows])
     written += [save_csv(table, out / "bearing_speed.csv"),
                 save_figure(plot_speed(table), out / "bearing_speed.png")]
-    sol = two_dimensional(settings)
     plt = pyplot()
     fig, axes = plt.subplots(2, 1, figsize=(8, 7.5))
     plots.spacing_map(sol, axes[0])
@@ -134,7 +157,6 @@ def run(out: Path, settings: Settings) -> list[Path]:
     ax = plots.cross_width(sol)
     ax.set_title("spacing across the width at the middle of the wrap", fontsize=9)
     written.append(save_figure(ax.figure, out / "bearing_cross_width.png"))
-    tr, start, after = transient(settings)
     frame = pd.DataFrame({"t": tr.t, "tension": tr.tension,
                           "central_spacing": tr.central_spacing,
                           "minimum_spacing": tr.minimum_spacing,
@@ -142,3 +164,7 @@ def run(out: Path, settings: Settings) -> list[Path]:
     written += [save_csv(frame, out / "bearing_transient.csv"),
                 save_figure(plot_transient(tr, start, after), out / "bearing_transient.png")]
     return written
+
+
+def run(out: Path, settings: Settings) -> list[Path]:
+    return run_parts(sys.modules[__name__], out, settings)

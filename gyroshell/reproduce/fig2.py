@@ -9,6 +9,7 @@ the steady states from the static solver, cross-checked by a strongly damped New
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -19,30 +20,46 @@ from ..engines.static import solve_static
 from ..plot import load_point_history
 from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._runner import run_parts
 
 VELOCITIES = (0.0, 50.0, 90.0, 100.0)
 #: Damped run to the steady state: Δt (s) and steps.
 DAMPED_DT, DAMPED_STEPS = 1.0e-2, 100
 
 
-def compute(settings: Settings) -> tuple[pd.DataFrame, pd.DataFrame]:
-    """Load-point histories (long format) and steady states for each speed."""
+def parts(settings: Settings) -> tuple[float, ...]:
+    """The independent parts: one per speed V, m/s."""
+    return VELOCITIES
+
+
+def compute_part(settings: Settings, velocity: float) -> tuple[pd.DataFrame, dict]:
+    """The load-point history (long format) and the steady states at one speed."""
     model = TapeModel(settings.params(length_ratio=19))
     scale = model.params.k / model.params.load_pressure
     steps = settings.pick(1000, 200)
-    histories, steady = [], []
-    for v in VELOCITIES:
-        res = march(model, v, dt=PAPER_DT, steps=steps, progress=settings.progress)
-        histories.append(pd.DataFrame({"velocity": v, "t": res.times, "w": res.load_point,
-                                       "w_nondim": res.load_point * scale}))
-        w_static = solve_static(model, v).load_point_deflection
-        damped = march(model, v, dt=DAMPED_DT, steps=DAMPED_STEPS, beta=1.0, gamma=1.5,
-                       progress=False)
-        steady.append(dict(velocity=v, w_static=w_static, w_damped=damped.load_point[-1],
-                           rel_difference=abs(damped.load_point[-1] / w_static - 1),
-                           w_static_nondim=w_static * scale,
-                           w_mean_transient=float(np.mean(res.load_point))))
-    return pd.concat(histories, ignore_index=True), pd.DataFrame(steady)
+    v = velocity
+    res = march(model, v, dt=PAPER_DT, steps=steps, progress=settings.progress)
+    history = pd.DataFrame({"velocity": v, "t": res.times, "w": res.load_point,
+                            "w_nondim": res.load_point * scale})
+    w_static = solve_static(model, v).load_point_deflection
+    damped = march(model, v, dt=DAMPED_DT, steps=DAMPED_STEPS, beta=1.0, gamma=1.5,
+                   progress=False)
+    steady = dict(velocity=v, w_static=w_static, w_damped=damped.load_point[-1],
+                  rel_difference=abs(damped.load_point[-1] / w_static - 1),
+                  w_static_nondim=w_static * scale,
+                  w_mean_transient=float(np.mean(res.load_point)))
+    return history, steady
+
+
+def compute(settings: Settings) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Load-point histories (long format) and steady states for each speed."""
+    return combine([compute_part(settings, v) for v in parts(settings)])
+
+
+def combine(results: list) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """The parts' results as the two tables."""
+    return (pd.concat([h for h, _ in results], ignore_index=True),
+            pd.DataFrame([s for _, s in results]))
 
 
 def plot(history: pd.DataFrame, steady: pd.DataFrame, path: Path) -> Path:
@@ -62,8 +79,12 @@ def plot(history: pd.DataFrame, steady: pd.DataFrame, path: Path) -> Path:
     return save_figure(fig, path)
 
 
-def run(out: Path, settings: Settings) -> list[Path]:
-    history, steady = compute(settings)
+def write(out: Path, settings: Settings, results: list) -> list[Path]:
+    history, steady = combine(results)
     return [save_csv(history, out / "fig2_load_point.csv"),
             save_csv(steady, out / "fig2_steady_state.csv"),
             plot(history, steady, out / "fig2_load_point.png")]
+
+
+def run(out: Path, settings: Settings) -> list[Path]:
+    return run_parts(sys.modules[__name__], out, settings)

@@ -9,6 +9,7 @@ peaks sit on them and move down as V grows (the effective tension T − ρV² fa
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +20,7 @@ from ..engines.frequency_response import frequency_response
 from ..plot import bode
 from ..tape.model import TapeModel
 from ._common import Settings, pyplot, save_csv, save_figure
+from ._runner import run_parts
 
 VELOCITIES = (0.0, 50.0, 90.0)
 #: Viscous (air) damping, N·s/m³ (damping ratio c / (2ρω) ≈ 0.9 % near √(k/ρ)).
@@ -29,21 +31,33 @@ OMEGA_MAX = 1.6e5
 MODE_COUNT = 8
 
 
-def compute(settings: Settings) -> tuple[pd.DataFrame, pd.DataFrame]:
-    """FRF rows (velocity, omega, amplitude, phase, method, error_estimate) and modes."""
+def parts(settings: Settings) -> tuple[float, ...]:
+    """The independent parts: one per speed V, m/s."""
+    return VELOCITIES
+
+
+def compute_part(settings: Settings, velocity: float) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """The FRF rows and the eigen-solver's frequencies at one speed."""
     model = TapeModel(settings.params(length_ratio=4))
     omega = np.linspace(0.0, OMEGA_MAX, settings.pick(1000, 300))
-    frames, found = [], []
-    for v in VELOCITIES:
-        res = frequency_response(model, v, omega, damping=DAMPING, progress=settings.progress)
-        frame = res.to_frame()
-        frame.insert(0, "velocity", v)
-        frame["factorizations"] = res.info["factorizations"]
-        frames.append(frame)
-        m = modes(model, v, MODE_COUNT)
-        found.append(pd.DataFrame({"velocity": v, "rank": np.arange(1, m.count + 1),
-                                   "omega": m.omega}))
-    return pd.concat(frames, ignore_index=True), pd.concat(found, ignore_index=True)
+    v = velocity
+    res = frequency_response(model, v, omega, damping=DAMPING, progress=settings.progress)
+    frame = res.to_frame()
+    frame.insert(0, "velocity", v)
+    frame["factorizations"] = res.info["factorizations"]
+    m = modes(model, v, MODE_COUNT)
+    return frame, pd.DataFrame({"velocity": v, "rank": np.arange(1, m.count + 1),
+                                "omega": m.omega})
+
+
+def compute(settings: Settings) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """FRF rows (velocity, omega, amplitude, phase, method, error_estimate) and modes."""
+    return combine([compute_part(settings, v) for v in parts(settings)])
+
+
+def combine(results: list) -> tuple[pd.DataFrame, pd.DataFrame]:
+    return (pd.concat([f for f, _ in results], ignore_index=True),
+            pd.concat([m for _, m in results], ignore_index=True))
 
 
 def plot(table: pd.DataFrame, found: pd.DataFrame, path: Path) -> Path:
@@ -61,7 +75,11 @@ def plot(table: pd.DataFrame, found: pd.DataFrame, path: Path) -> Path:
     return save_figure(fig, path)
 
 
-def run(out: Path, settings: Settings) -> list[Path]:
-    table, found = compute(settings)
+def write(out: Path, settings: Settings, results: list) -> list[Path]:
+    table, found = combine(results)
     return [save_csv(table, out / "frf.csv"), save_csv(found, out / "frf_modes.csv"),
             plot(table, found, out / "frf_bode.png")]
+
+
+def run(out: Path, settings: Settings) -> list[Path]:
+    return run_parts(sys.modules[__name__], out, settings)

@@ -24,6 +24,7 @@ grids), ``--quick`` about 15 s.
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -34,6 +35,7 @@ from ..bearing.head_config import HeadDesign, ModuleShape
 from ..bearing.steady import solve_steady
 from ..tape.parameters import TapeParameters
 from ._common import Settings, pyplot, save_csv, save_figure
+from ._runner import run_parts
 
 #: The speed of (a) and (c), m/s.
 VELOCITY = 4.0
@@ -129,25 +131,33 @@ def plot_modules(table: pd.DataFrame, sol):
     return fig
 
 
+def width_speeds(settings: Settings) -> tuple[float, ...]:
+    """The speeds of (b), m/s."""
+    return settings.pick((2.0, 4.0, 8.0), (2.0, 8.0))
+
+
+def width_rows(settings: Settings, v: float) -> list[dict]:
+    """(b) at one speed V (m/s): the read line's spacing across the 2-D tape."""
+    head = one_module().head()
+    if settings.quick:
+        nx, ny = 60, 24
+    else:
+        default = BearingModel(TapeParameters(), AirParameters(), velocity=v, head=head)
+        nx, ny = 4 * (default.nx // 8), 2 * (default.ny // 4)
+    model = BearingModel(TapeParameters(), AirParameters(), velocity=v, head=head,
+                         nx=nx, ny=ny)
+    sol = solve_steady(model)
+    line = sol.transducer_lines[0]
+    return [dict(velocity=v, y=y, spacing=h, line_minimum=line.minimum,
+                 line_mean=line.mean, newton_iterations=sol.info.iterations,
+                 nx=model.nx, ny=model.ny)
+            for y, h in zip(model.y, line.spacing, strict=True)]
+
+
 def width_sweep(settings: Settings) -> pd.DataFrame:
     """(b): the read line's spacing across the 2-D tape at a few speeds."""
-    rows = []
-    head = one_module().head()
-    for v in settings.pick((2.0, 4.0, 8.0), (2.0, 8.0)):
-        if settings.quick:
-            nx, ny = 60, 24
-        else:
-            default = BearingModel(TapeParameters(), AirParameters(), velocity=v, head=head)
-            nx, ny = 4 * (default.nx // 8), 2 * (default.ny // 4)
-        model = BearingModel(TapeParameters(), AirParameters(), velocity=v, head=head,
-                             nx=nx, ny=ny)
-        sol = solve_steady(model)
-        line = sol.transducer_lines[0]
-        rows += [dict(velocity=v, y=y, spacing=h, line_minimum=line.minimum,
-                      line_mean=line.mean, newton_iterations=sol.info.iterations,
-                      nx=model.nx, ny=model.ny)
-                 for y, h in zip(model.y, line.spacing, strict=True)]
-    return pd.DataFrame(rows)
+    return pd.DataFrame([row for v in width_speeds(settings)
+                         for row in width_rows(settings, v)])
 
 
 def plot_width(table: pd.DataFrame, grid_label: str = "default 2-D grids"):
@@ -205,13 +215,24 @@ def plot_wraps(table: pd.DataFrame, grid_label: str = "default grid"):
     return fig
 
 
-def run(out: Path, settings: Settings) -> list[Path]:
-    sol = modules_solution(settings)
+def parts(settings: Settings) -> tuple:
+    """The independent parts: (a), (b) per speed, (c)."""
+    return (("modules",), *(("width", v) for v in width_speeds(settings)), ("wraps",))
+
+
+def compute_part(settings: Settings, key: tuple):
+    """(a)'s solution, (b)'s rows at one speed, or (c)'s study."""
+    if key[0] == "width":
+        return width_rows(settings, key[1])
+    return modules_solution(settings) if key[0] == "modules" else wrap_map(settings)
+
+
+def write(out: Path, settings: Settings, results: list) -> list[Path]:
+    sol, *width_parts, study = results
     table = modules_table(sol)
     written = [save_csv(table, out / "heads_modules.csv")]
-    width = width_sweep(settings)
+    width = pd.DataFrame([row for rows in width_parts for row in rows])
     written.append(save_csv(width, out / "heads_width.csv"))
-    study = wrap_map(settings)
     wraps = study.table.drop(columns=["point"])
     written.append(save_csv(wraps, out / "heads_wraps.csv"))
     written += [save_figure(plot_modules(table, sol), out / "heads_modules.png"),
@@ -223,3 +244,7 @@ def run(out: Path, settings: Settings) -> list[Path]:
                     "default grid", "--quick: a coarse 400-interval grid")),
                     out / "heads_wraps.png")]
     return written
+
+
+def run(out: Path, settings: Settings) -> list[Path]:
+    return run_parts(sys.modules[__name__], out, settings)

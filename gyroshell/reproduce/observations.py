@@ -15,6 +15,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -26,6 +27,7 @@ from ..studies.signal import dominant_wavelength, first_departure, front_positio
 from ..tape.loads import gaussian_exponent, gaussian_load
 from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._runner import run_parts
 
 REFLECTION_DT, REFLECTION_STEPS = 0.5e-6, 140
 DEPARTURE_FRACTION = 0.01
@@ -100,10 +102,31 @@ def front_speed(frame: pd.DataFrame, column: str) -> float:
     return float(np.polyfit(late["t"], late[column], 1)[0])
 
 
+#: The speeds of the front tracking, m/s.
+FRONT_SPEEDS = (0.0, 50.0)
+
+
+def parts(settings: Settings) -> tuple:
+    """The independent parts: the edge reflection, the wavelengths, the fronts per speed."""
+    return ("reflection", "wavelengths", *(("fronts", v) for v in FRONT_SPEEDS))
+
+
+def compute_part(settings: Settings, key):
+    """One part's result: a dict (reflection, wavelengths) or a front table."""
+    if key == "reflection":
+        return edge_reflection(settings)
+    if key == "wavelengths":
+        return wavelengths(settings)
+    return fronts(settings, key[1])
+
+
 def compute(settings: Settings):
-    refl = edge_reflection(settings)
-    lam = wavelengths(settings)
-    front_tables = [fronts(settings, v) for v in (0.0, 50.0)]
+    return combine([compute_part(settings, key) for key in parts(settings)])
+
+
+def combine(results: list):
+    """The observations table, the reflection's histories and the front table."""
+    refl, lam, *front_tables = results
     rows = [
         dict(quantity="wave front reaches the free edge beside the load", value=
              refl["t_edge"] * 1e6, unit="us", paper="first reflection near 28 us",
@@ -146,8 +169,12 @@ def plot(refl: dict, front_table: pd.DataFrame, path: Path) -> Path:
     return save_figure(fig, path)
 
 
-def run(out: Path, settings: Settings) -> list[Path]:
-    table, refl, front_table = compute(settings)
+def write(out: Path, settings: Settings, results: list) -> list[Path]:
+    table, refl, front_table = combine(results)
     return [save_csv(table, out / "observations.csv"),
             save_csv(front_table, out / "wave_fronts.csv"),
             plot(refl, front_table, out / "observations.png")]
+
+
+def run(out: Path, settings: Settings) -> list[Path]:
+    return run_parts(sys.modules[__name__], out, settings)

@@ -19,6 +19,7 @@ through the minor Poisson ratio ν_yx = ν_xy E_y/E_x, and so does A11 and with 
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -30,6 +31,7 @@ from ..engines.static import solve_static
 from ..tape.model import TapeModel
 from ..tape.parameters import TapeParameters
 from ._common import Settings, pyplot, save_csv, save_figure
+from ._runner import run_parts
 
 #: E_y/E_x of the three tapes drawn side by side (soft across, isotropic, stiff across).
 PROFILE_RATIOS = (0.25, 1.0, 4.0)
@@ -57,21 +59,27 @@ def tape(settings: Settings, ratio: float) -> TapeParameters:
     return p.replace(youngs_modulus_y=ratio * p.youngs_modulus, shear_modulus=shear)
 
 
+def speed_ratios(settings: Settings) -> list[float]:
+    """The E_y/E_x of the speed table."""
+    return [float(r) for r in np.geomspace(0.25, 4.0, settings.pick(9, 3))]
+
+
+def speed_row(settings: Settings, ratio: float) -> dict:
+    """Critical speed, strip formula and lowest frequencies (V = 0, 50 m/s) at E_y/E_x."""
+    p = tape(settings, ratio)
+    model = TapeModel(p)
+    d = p.bending_matrix
+    return dict(
+        ratio=ratio, youngs_modulus_y=p.youngs_modulus_y, D11=d.D11, D22=d.D22,
+        D12=d.D12, D66=d.D66, k=p.k, critical_speed=critical_speeds(model).critical_speed,
+        strip_critical_speed=p.strip_critical_speed,
+        omega_1_at_rest=float(modes(model, 0.0, 1).omega[0]),
+        omega_1_at_speed=float(modes(model, SPEED, 1).omega[0]))
+
+
 def speeds(settings: Settings) -> pd.DataFrame:
     """Critical speed, strip formula and lowest frequencies (V = 0, 50 m/s) per E_y/E_x."""
-    ratios = np.geomspace(0.25, 4.0, settings.pick(9, 3))
-    rows = []
-    for ratio in ratios:
-        p = tape(settings, float(ratio))
-        model = TapeModel(p)
-        d = p.bending_matrix
-        rows.append(dict(
-            ratio=float(ratio), youngs_modulus_y=p.youngs_modulus_y, D11=d.D11, D22=d.D22,
-            D12=d.D12, D66=d.D66, k=p.k, critical_speed=critical_speeds(model).critical_speed,
-            strip_critical_speed=p.strip_critical_speed,
-            omega_1_at_rest=float(modes(model, 0.0, 1).omega[0]),
-            omega_1_at_speed=float(modes(model, SPEED, 1).omega[0])))
-    return pd.DataFrame(rows)
+    return pd.DataFrame([speed_row(settings, r) for r in speed_ratios(settings)])
 
 
 def _cut_mode(result) -> np.ndarray:
@@ -82,23 +90,25 @@ def _cut_mode(result) -> np.ndarray:
     return cut / np.max(np.abs(cut))
 
 
+def profile(settings: Settings, ratio: float) -> pd.DataFrame:
+    """w(y) under the load at x = x₀ (m) and the lowest mode's cut of one tape."""
+    p = tape(settings, ratio)
+    model = TapeModel(p)
+    grid = model.grid
+    static = solve_static(model, 0.0).field
+    column = int(np.argmin(np.abs(grid.x - p.load_centroid[0])))
+    return pd.DataFrame({"ratio": ratio, "y": grid.y,
+                         "static_deflection": static[column, :],
+                         "mode_shape": _cut_mode(modes(model, 0.0, 1))})
+
+
 def profiles(settings: Settings) -> pd.DataFrame:
     """w(y) under the load at x = x₀ (m) and the lowest mode's cut, per tape."""
-    frames = []
-    for ratio in PROFILE_RATIOS:
-        p = tape(settings, ratio)
-        model = TapeModel(p)
-        grid = model.grid
-        static = solve_static(model, 0.0).field
-        column = int(np.argmin(np.abs(grid.x - p.load_centroid[0])))
-        frames.append(pd.DataFrame({"ratio": ratio, "y": grid.y,
-                                    "static_deflection": static[column, :],
-                                    "mode_shape": _cut_mode(modes(model, 0.0, 1))}))
-    return pd.concat(frames, ignore_index=True)
+    return pd.concat([profile(settings, r) for r in PROFILE_RATIOS], ignore_index=True)
 
 
-def bearing(settings: Settings) -> pd.DataFrame:
-    """The bearing's cross-width spacing (m) at the middle of the wrap, per tape."""
+def bearing_cut(settings: Settings, ratio: float) -> pd.DataFrame:
+    """The bearing's cross-width spacing (m) at the middle of the wrap of one tape."""
     import warnings
 
     from ..bearing import AirParameters, BearingModel
@@ -106,19 +116,21 @@ def bearing(settings: Settings) -> pd.DataFrame:
     from ..bearing.steady import solve_steady
 
     nx, ny = settings.pick(BEARING_GRID, (60, 20))
-    frames = []
-    for ratio in PROFILE_RATIOS:
-        with warnings.catch_warnings():  # the quick grid is coarse on purpose
-            if settings.quick:
-                warnings.simplefilter("ignore", BearingGridWarning)
-            model = BearingModel(tape(Settings(), ratio), AirParameters(),
-                                 velocity=BEARING_SPEED, wrap_angle=BEARING_WRAP, nx=nx, ny=ny)
-        sol = solve_steady(model)
-        frames.append(pd.DataFrame({"ratio": ratio, "y": model.y,
-                                    "spacing": sol.cross_width_spacing,
-                                    "minimum_spacing": sol.minimum_spacing,
-                                    "central_spacing": sol.central_spacing}))
-    return pd.concat(frames, ignore_index=True)
+    with warnings.catch_warnings():  # the quick grid is coarse on purpose
+        if settings.quick:
+            warnings.simplefilter("ignore", BearingGridWarning)
+        model = BearingModel(tape(Settings(), ratio), AirParameters(),
+                             velocity=BEARING_SPEED, wrap_angle=BEARING_WRAP, nx=nx, ny=ny)
+    sol = solve_steady(model)
+    return pd.DataFrame({"ratio": ratio, "y": model.y,
+                         "spacing": sol.cross_width_spacing,
+                         "minimum_spacing": sol.minimum_spacing,
+                         "central_spacing": sol.central_spacing})
+
+
+def bearing(settings: Settings) -> pd.DataFrame:
+    """The bearing's cross-width spacing (m) at the middle of the wrap, per tape."""
+    return pd.concat([bearing_cut(settings, r) for r in PROFILE_RATIOS], ignore_index=True)
 
 
 def _label(ratio: float) -> str:
@@ -199,13 +211,35 @@ def plot_bearing(table: pd.DataFrame):
     return fig
 
 
-def run(out: Path, settings: Settings) -> list[Path]:
-    table = speeds(settings)
-    cuts = profiles(settings)
-    spacing = bearing(settings)
+def parts(settings: Settings) -> tuple:
+    """The independent parts: ("speed", E_y/E_x) per row of the speed table, then
+    ("profile", E_y/E_x) and ("bearing", E_y/E_x) per drawn tape."""
+    return (*(("speed", r) for r in speed_ratios(settings)),
+            *(("profile", r) for r in PROFILE_RATIOS),
+            *(("bearing", r) for r in PROFILE_RATIOS))
+
+
+def compute_part(settings: Settings, key: tuple[str, float]):
+    """A row of the speed table (dict), or one tape's profile or bearing cut (frame)."""
+    what, ratio = key
+    return {"speed": speed_row, "profile": profile, "bearing": bearing_cut}[what](
+        settings, ratio)
+
+
+def write(out: Path, settings: Settings, results: list) -> list[Path]:
+    keys = parts(settings)
+    table = pd.DataFrame([r for (what, _), r in zip(keys, results, strict=True)
+                          if what == "speed"])
+    cuts, spacing = (pd.concat([r for (what, _), r in zip(keys, results, strict=True)
+                                if what == kind], ignore_index=True)
+                     for kind in ("profile", "bearing"))
     written = [save_csv(table, out / "orthotropy_speeds.csv"),
                save_csv(cuts, out / "orthotropy_profiles.csv"),
                save_csv(spacing, out / "orthotropy_bearing.csv")]
     return written + [save_figure(plot_speeds(table), out / "orthotropy_speeds.png"),
                       save_figure(plot_profiles(cuts), out / "orthotropy_profiles.png"),
                       save_figure(plot_bearing(spacing), out / "orthotropy_bearing.png")]
+
+
+def run(out: Path, settings: Settings) -> list[Path]:
+    return run_parts(sys.modules[__name__], out, settings)

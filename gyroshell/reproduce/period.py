@@ -28,6 +28,7 @@ longer (near the critical speed), which resolves the dominant period (phase erro
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -40,6 +41,7 @@ from ..plot import spectra as plot_spectra
 from ..studies.signal import amplitude_spectrum, dominant_period
 from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._runner import run_parts
 
 VELOCITIES = (0.0, 25.0, 50.0, 75.0, 90.0, 95.0, 100.0)
 MIN_RECORD = 2.0e-3
@@ -48,29 +50,44 @@ STEPS_PER_PERIOD = 40
 EDGE_FRACTION = 0.25
 
 
+def parts(settings: Settings) -> tuple[float, ...]:
+    """The independent parts: one per speed V, m/s."""
+    return VELOCITIES
+
+
+def compute_part(settings: Settings, velocity: float) -> tuple[dict, pd.DataFrame]:
+    """The periods at one speed (a table row) and its load-point spectrum (ω in rad/s)."""
+    model = TapeModel(settings.params(length_ratio=19))
+    v = velocity
+    eig = modes(model, v, count=1)
+    p_eig = float(eig.period[0])
+    dt = max(PAPER_DT, p_eig / STEPS_PER_PERIOD)
+    steps = math.ceil(max(MIN_RECORD, PERIODS_PER_RECORD * p_eig) / dt)
+    steps = settings.pick(steps, min(steps, 400))
+    res = march(model, v, dt=dt, steps=steps, progress=settings.progress)
+    p_tr = dominant_period(res.times, res.load_point)
+    p_edge = dominant_period(res.times, res.load_point, lowest_fraction=EDGE_FRACTION)
+    freqs, amp = amplitude_spectrum(res.load_point, dt)
+    keep = freqs * 2 * np.pi <= 4 * eig.omega[0]
+    spectrum = pd.DataFrame({"velocity": v, "omega": 2 * np.pi * freqs[keep],
+                             "amplitude": amp[keep] / amp[keep].max()})
+    row = dict(velocity=v, period_transient=p_tr, period_transient_edge=p_edge,
+               period_eigen=p_eig,
+               omega_eigen=float(eig.omega[0]), dt=dt, steps=steps,
+               record=steps * dt, edge_vs_eigen=abs(p_edge / p_eig - 1),
+               dominant_vs_eigen=abs(p_tr / p_eig - 1))
+    return row, spectrum
+
+
 def compute(settings: Settings) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Periods against speed, and the load-point amplitude spectra (ω in rad/s)."""
-    model = TapeModel(settings.params(length_ratio=19))
-    rows, spectra = [], []
-    for v in VELOCITIES:
-        eig = modes(model, v, count=1)
-        p_eig = float(eig.period[0])
-        dt = max(PAPER_DT, p_eig / STEPS_PER_PERIOD)
-        steps = math.ceil(max(MIN_RECORD, PERIODS_PER_RECORD * p_eig) / dt)
-        steps = settings.pick(steps, min(steps, 400))
-        res = march(model, v, dt=dt, steps=steps, progress=settings.progress)
-        p_tr = dominant_period(res.times, res.load_point)
-        p_edge = dominant_period(res.times, res.load_point, lowest_fraction=EDGE_FRACTION)
-        freqs, amp = amplitude_spectrum(res.load_point, dt)
-        keep = freqs * 2 * np.pi <= 4 * eig.omega[0]
-        spectra.append(pd.DataFrame({"velocity": v, "omega": 2 * np.pi * freqs[keep],
-                                     "amplitude": amp[keep] / amp[keep].max()}))
-        rows.append(dict(velocity=v, period_transient=p_tr, period_transient_edge=p_edge,
-                         period_eigen=p_eig,
-                         omega_eigen=float(eig.omega[0]), dt=dt, steps=steps,
-                         record=steps * dt, edge_vs_eigen=abs(p_edge / p_eig - 1),
-                         dominant_vs_eigen=abs(p_tr / p_eig - 1)))
-    return pd.DataFrame(rows), pd.concat(spectra, ignore_index=True)
+    return combine([compute_part(settings, v) for v in parts(settings)])
+
+
+def combine(results: list) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """The parts' results as the two tables."""
+    return (pd.DataFrame([row for row, _ in results]),
+            pd.concat([sp for _, sp in results], ignore_index=True))
 
 
 def plot(table: pd.DataFrame, spectra: pd.DataFrame, path: Path,
@@ -91,11 +108,15 @@ def plot(table: pd.DataFrame, spectra: pd.DataFrame, path: Path,
     return save_figure(fig, path)
 
 
-def run(out: Path, settings: Settings) -> list[Path]:
+def write(out: Path, settings: Settings, results: list) -> list[Path]:
     from ..engines.divergence import divergence_speed
 
-    table, spectra = compute(settings)
+    table, spectra = combine(results)
     v_c = divergence_speed(TapeModel(settings.params(length_ratio=19)))
     return [save_csv(table, out / "period_vs_velocity.csv"),
             save_csv(spectra, out / "period_spectra.csv"),
             plot(table, spectra, out / "period_vs_velocity.png", v_c)]
+
+
+def run(out: Path, settings: Settings) -> list[Path]:
+    return run_parts(sys.modules[__name__], out, settings)

@@ -347,7 +347,8 @@ def test_reproduce_run_whose_last_study_fails_leaves_none_of_its_files(cli, tmp_
 
     monkeypatch.setattr(fig3, "run", disk_full)
     out = tmp_path / "results" / "today"
-    run = cli(["reproduce", "critical", "fig3", "--quick", "--quiet", "--out", out])
+    run = cli(["reproduce", "critical", "fig3", "--quick", "--quiet", "--workers", "1",
+               "--out", out])
     assert run.code == 2 and "No space left on device" in run.err
     assert len(run.error_lines) == 1
     assert listing(tmp_path) == []  # critical's files and the folders made for them are gone
