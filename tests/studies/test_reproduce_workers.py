@@ -8,6 +8,8 @@ file and no staging folder behind.
 
 from __future__ import annotations
 
+import pytest
+
 from gyroshell.cli import main
 from gyroshell.reproduce import STUDIES, Settings, run_studies
 from gyroshell.reproduce._runner import study_module
@@ -20,6 +22,7 @@ def listing(folder):
     return sorted(p.name for p in folder.iterdir())
 
 
+@pytest.mark.slow  # two worker pools and a serial run: 8-17 s
 def test_two_workers_write_the_same_files_as_one(tmp_path):
     one, two = tmp_path / "one", tmp_path / "two"
     assert main(["reproduce", *STUDY_SET, "--quick", "--quiet", "--workers", "1",
