@@ -303,11 +303,11 @@ class BearingModel:
         through T − ρV²).
     factorization : {"auto", "metis", "mmd", "colamd", "pardiso"}
         The sparse LU of Newton's Jacobian (:data:`gyroshell.linalg.factorization.PATTERN_LU`):
-        "auto" is SuperLU with diagonal pivots after METIS's nested dissection where
-        pymetis is installed ("metis"), else after minimum degree on Jᵀ + J ("mmd", pure
-        scipy); "colamd" is SuperLU with partial pivoting (the earlier default, 3-5x
-        slower on a 2-D grid); "pardiso" needs pypardiso. All give the same state to
-        Newton's tolerance.
+        "auto" is, in 2-D, SuperLU with diagonal pivots after METIS's nested dissection
+        where pymetis is installed ("metis"), else after minimum degree on Jᵀ + J ("mmd",
+        pure scipy), and for the infinitely wide tape "colamd": SuperLU with partial
+        pivoting (the earlier default, 3-5x slower on a 2-D grid); "pardiso" needs
+        pypardiso. All give the same state to Newton's tolerance.
 
     Raises
     ------

@@ -196,7 +196,7 @@ class _Residual:
         if fold is not None:
             P, rows = fold
             J = (J[rows, :] @ P).tocsc()
-        kind = resolve_pattern_lu(self.model.factorization)
+        kind = _jacobian_lu(self.model)
         try:
             if kind == "metis":
                 lu = DiagonalPivotLU(J, permutation=self._ordering(J))
@@ -229,6 +229,17 @@ class _Residual:
 
     def merit(self, res) -> float:
         return float(np.linalg.norm(res * self.row_scale))
+
+
+def _jacobian_lu(model: BearingModel) -> str:
+    """The factorization of ``model``'s Jacobian: its ``factorization``, where "auto" is
+    "colamd" for the infinitely wide tape (a banded matrix of a few thousand unknowns,
+    factored in milliseconds by any ordering: its Newton iterates keep the round-off of
+    the partial-pivoting LU they always had) and
+    :func:`gyroshell.linalg.factorization.resolve_pattern_lu` in 2-D."""
+    if model.factorization == "auto" and model.infinitely_wide:
+        return "colamd"
+    return resolve_pattern_lu(model.factorization)
 
 
 #: Nested-dissection orderings by pattern (a digest of its indices), the most recent

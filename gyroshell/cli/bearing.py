@@ -162,7 +162,8 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
                         "METIS nested dissection once per grid; needs pymetis), mmd (the "
                         "same with minimum degree, pure scipy), colamd (SuperLU with partial "
                         "pivoting, 3-5x slower), pardiso (needs pypardiso); default auto: "
-                        "metis where pymetis is installed, else mmd; all give the same state")
+                        "metis where pymetis is installed, else mmd (the infinitely wide tape: "
+                        "colamd); all give the same state")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -18,6 +18,45 @@ The back-ends compared (``benchmarks/bench_newmark.py`` prints the measured medi
 So "auto" is SuperLU: the fastest reliable one, shipped with scipy, always available. The
 others are opt-in by name where installed, and the tests check that all agree.
 
+The bearing's Newton Jacobian (real, nonsymmetric, pattern nearly symmetric: the plate's
+13-point bending stencil and the film's 5-point Reynolds stencil on one 2-D grid) is
+factored by :class:`DiagonalPivotLU` (``factorization=`` of the bearing, :data:`PATTERN_LU`).
+SuperLU's partial pivoting is what made it slow: it moves rows out of any symmetric
+fill-reducing order (a pivot threshold of 10⁻³ already more than doubles the fill), so
+COLAMD was the best ordering left. With diagonal pivots (symmetric mode, threshold 0) a
+symmetric ordering keeps its fill, and every solve checks its backward error (falling
+back to partial pivoting above :data:`BACKWARD_ERROR_LIMIT`; it never did on the
+bearing's Jacobians, backward errors 1e-16). Measured with ``benchmarks/bench_bearing.py
+--backends`` on the 12.65 mm tape's default grid (77,787 unknowns solved on the half
+width, 1.24 M entries), one BLAS thread, medians of 3 alternating rounds on the loaded
+2-core machine (load 3-5; on a quiet one every time is about 2.5x shorter):
+
+=========  ================================  =======  ==========  ======  ===========
+back-end   what                              fill     one LU      solve   whole solve
+=========  ================================  =======  ==========  ======  ===========
+metis      SuperLU, diagonal pivots, METIS   16.8 M   7.3 s [1]_  0.23 s  0.26x
+           nested dissection (pymetis) once
+           per grid (3.6 s)
+mmd        SuperLU, diagonal pivots, minimum 17.9 M   9.1 s       0.22 s  0.22x
+           degree on Aᵀ + A at each LU
+colamd     SuperLU, COLAMD, partial pivots   39.2 M   24.4 s      0.18 s  1 (53.5 s)
+pardiso    MKL PARDISO (pypardiso), 1        18.0 M   4.9 s       0.24 s  1.59x
+           thread, analysis at each LU
+umfpack    cvxopt's UMFPACK (not offered)    --       3.2 s [2]_  0.18 s  --
+klu        PyKLU (not offered: no symbolic   --       --          --      --
+           reuse, no supernodes)
+=========  ================================  =======  ==========  ======  ===========
+
+.. [1] One LU at the converged state in the same rounds; the whole solves' 17 LUs (all
+   grids of the coarse start) took 16.4 s (metis), 24.7 s (mmd), 61.3 s (colamd).
+.. [2] Measured apart in one earlier run (load about 4): UMFPACK 0.51 s symbolic + 3.2 s
+   numeric against SuperLU + METIS 2.5 s and PARDISO 1.6 s + 2.1 s in the same minutes.
+
+All reach the same state (relative differences 1e-11, Newton's tolerance 1e-8). "auto"
+is "metis" where pymetis is installed, else "mmd" (pure scipy, about as fast: METIS's
+ordering costs what it saves in fill on this grid); the infinitely wide tape keeps
+"colamd" (banded, milliseconds).
+
 Every sparse LU of the package goes through :func:`splu` (one place for SuperLU's options).
 The eigen-solvers' symmetric/Hermitian factorizations choose between CHOLMOD's Cholesky and
 SuperLU's LDLᴴ (:data:`gyroshell.linalg.cholesky.BACKENDS`): :func:`resolve_factorization`
