@@ -1,7 +1,7 @@
 """Benchmark the steady air-bearing solves (Table 1 tape, V = 4 m/s, 15° wrap, air at 20 °C).
 
     PYTHONPATH=. python benchmarks/bench_bearing.py [--rounds 3] [--width 12.65e-3]
-        [--uniform] [--baseline DIR]
+        [--uniform] [--baseline DIR] [--backends [auto,metis,mmd,colamd,pardiso]]
 
 Prints medians (s) over alternating rounds of:
 
@@ -16,6 +16,14 @@ coupled Jacobian (half width, as Newton factors it). ``--baseline DIR`` also tim
 same alternating rounds, the 2-D solve of another source tree (e.g. an older commit
 unpacked with ``git archive <commit> | tar -x -C DIR``) in a subprocess, and prints the
 median ratio old/new. Timings on a shared machine vary: read the medians.
+
+``--backends`` instead compares the Jacobian's factorizations (``factorization=`` of
+BearingModel; those installed), in alternating rounds on the 2-D tape: per back-end the
+whole solve (median), its Newton iterations and factorizations, one factorization and
+one substitution of the folded Jacobian at the converged state (the ordering of "metis"
+timed apart: it is computed once per grid), the fill of L + U, the relative backward
+error, and the largest state difference from SuperLU with partial pivoting ("colamd",
+the earlier default), relative to max|u| and max|p − p_a|.
 """
 
 from __future__ import annotations
@@ -33,8 +41,121 @@ import scipy.sparse.linalg as spla
 
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
-from gyroshell.bearing.steady import _Residual, solve_steady
+from gyroshell.bearing.steady import _ORDERINGS, _Residual, solve_steady
 from gyroshell.core.parallel import blas_threads
+from gyroshell.linalg.factorization import (
+    DiagonalPivotLU,
+    PardisoFactor,
+    SuperLUFactor,
+    metis_available,
+    nested_dissection,
+    resolve_pattern_lu,
+)
+
+
+def folded_jacobian(model: BearingModel, z: np.ndarray):
+    """The folded 2-D Jacobian at the state z, as Newton factors it."""
+    F = _Residual(model, None, None)
+    _, _, J = F(z, jacobian=True)
+    P, rows = model.mirror
+    return F, (J[rows, :] @ P).tocsc()
+
+
+def one_factorization(model: BearingModel, z: np.ndarray, backend: str) -> dict:
+    """Seconds of one factorization and one substitution of the folded Jacobian at z by
+    ``backend``, its fill (L + U entries, where the back-end tells) and backward error."""
+    F, J = folded_jacobian(model, z)
+    rhs = np.random.default_rng(0).standard_normal(J.shape[0])
+    out = {"ordering": 0.0}
+    kind = resolve_pattern_lu(backend)
+    if kind == "metis":
+        start = time.perf_counter()
+        perm = nested_dissection(J)
+        out["ordering"] = time.perf_counter() - start
+    start = time.perf_counter()
+    if kind in ("metis", "mmd"):
+        lu = DiagonalPivotLU(J, permutation=perm if kind == "metis" else None)
+        fill = lu._lu.nnz
+    elif kind == "pardiso":
+        lu = PardisoFactor(J)
+        fill = int(lu._solver.iparm[17])
+    else:
+        lu = SuperLUFactor(J, ordering="COLAMD")
+        fill = lu._lu.nnz
+    out["factor"] = time.perf_counter() - start
+    start = time.perf_counter()
+    x = lu.solve(rhs)
+    out["solve"] = time.perf_counter() - start
+    out["fill"] = fill
+    scale = np.max(abs(J) @ np.abs(x) + np.abs(rhs))
+    out["backward error"] = float(np.max(np.abs(J @ x - rhs)) / scale)
+    return out
+
+
+def compare_backends(args, wrap: float) -> int:
+    """The ``--backends`` comparison (module notes)."""
+    names = [b for b in args.backends.split(",") if b]
+    installed = [b for b in names if b not in ("metis", "pardiso")
+                 or (metis_available() if b == "metis" else PardisoFactor.available())]
+    for b in set(names) - set(installed):
+        print(f"{b}: not installed, skipped")
+    if "colamd" not in installed:
+        installed.append("colamd")
+    models = {b: BearingModel(TapeParameters(width=args.width), AirParameters(),
+                              velocity=4.0, wrap_angle=wrap, factorization=b)
+              for b in installed}
+    m = models["colamd"]
+    print(f"2-D: {m!r}, {m.unknowns} unknowns ({len(m.mirror[1])} solved, half width)")
+    times = {b: [] for b in installed}
+    parts = {b: [] for b in installed}
+    sols, counts = {}, {}
+    with blas_threads(1):
+        for r in range(args.rounds):
+            for b in (installed if r % 2 == 0 else installed[::-1]):
+                calls = []
+                original = _Residual.factor
+
+                def counted(self, J, _calls=calls, _original=original):
+                    start = time.perf_counter()
+                    solver = _original(self, J)
+                    _calls.append(time.perf_counter() - start)
+                    return solver
+                _Residual.factor = counted
+                _ORDERINGS.clear()          # each solve orders its grids afresh
+                try:
+                    start = time.perf_counter()
+                    sols[b] = solve_steady(models[b])
+                    times[b].append(time.perf_counter() - start)
+                finally:
+                    _Residual.factor = original
+                counts.setdefault(b, []).append((sols[b].info.iterations, len(calls),
+                                                 sum(calls)))
+            z = np.concatenate([sols["colamd"].u, sols["colamd"].p])
+            for b in installed:
+                parts[b].append(one_factorization(m, z, b))
+            print(f"round {r + 1}: " + ", ".join(f"{b} {times[b][-1]:.3f} s"
+                                                 for b in installed), flush=True)
+    ref = sols["colamd"]
+    pa = m.air.ambient_pressure
+    u_scale, p_scale = np.max(np.abs(ref.u)), np.max(np.abs(ref.p - pa))
+    base = statistics.median(times["colamd"])
+    print(f"\nmedians over {args.rounds} alternating rounds (s; 'in LUs': the solve's "
+          "factorizations together, 'order' METIS's ordering once; one LU and one "
+          "substitution of the folded Jacobian at the converged state):")
+    print(f"  {'back-end':9s} {'solve':>7s} {'x colamd':>8s} {'iters':>5s} {'LUs':>4s} "
+          f"{'in LUs':>7s} {'order':>6s} {'one LU':>7s} {'subst':>6s} {'fill':>7s} "
+          f"{'bwd err':>8s} {'du/u':>8s} {'dp/p':>8s}")
+    for b in installed:
+        med = {k: statistics.median(p[k] for p in parts[b]) for k in parts[b][0]}
+        t = statistics.median(times[b])
+        its, lus = counts[b][-1][:2]
+        in_lus = statistics.median(c[2] for c in counts[b])
+        du = np.max(np.abs(sols[b].u - ref.u)) / u_scale
+        dp = np.max(np.abs(sols[b].p - ref.p)) / p_scale
+        print(f"  {b:9s} {t:7.3f} {t / base:8.2f} {its:5d} {lus:4d} {in_lus:7.3f} "
+              f"{med['ordering']:6.3f} {med['factor']:7.3f} {med['solve']:6.3f} "
+              f"{med['fill'] / 1e6:6.1f}M {med['backward error']:8.1e} {du:8.1e} {dp:8.1e}")
+    return 0
 
 
 def one_lu(model: BearingModel) -> float:
@@ -80,8 +201,13 @@ def main(argv: list[str] | None = None) -> int:
                         help="also time the uniform grid (the earlier default)")
     parser.add_argument("--baseline", metavar="DIR",
                         help="source tree whose 2-D solve is timed alongside (subprocess)")
+    parser.add_argument("--backends", nargs="?", const="auto,metis,mmd,colamd,pardiso",
+                        default=None, metavar="LIST",
+                        help="compare the Jacobian's factorizations (comma-separated)")
     args = parser.parse_args(argv)
     wrap = math.radians(15.0)
+    if args.backends is not None:
+        return compare_backends(args, wrap)
     strip = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, wrap_angle=wrap,
                          infinitely_wide=True)
     plate = BearingModel(TapeParameters(width=args.width), AirParameters(), velocity=4.0,

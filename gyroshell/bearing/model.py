@@ -23,6 +23,7 @@ import scipy.sparse as sp
 
 from ..core import validation
 from ..core.errors import ParameterError
+from ..linalg.factorization import check_pattern_lu
 from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
 from .air import AIR_VISCOSITY, AirParameters
@@ -300,6 +301,13 @@ class BearingModel:
         No air film (p = p_a; the tape and its contact with the head only): the dry
         string and plate over the head, corner forces at rest (V may be 0; it enters only
         through T − ρV²).
+    factorization : {"auto", "metis", "mmd", "colamd", "pardiso"}
+        The sparse LU of Newton's Jacobian (:data:`gyroshell.linalg.factorization.PATTERN_LU`):
+        "auto" is, in 2-D, SuperLU with diagonal pivots after METIS's nested dissection
+        where pymetis is installed ("metis"), else after minimum degree on Jᵀ + J ("mmd",
+        pure scipy), and for the infinitely wide tape "colamd": SuperLU with partial
+        pivoting (the earlier default, 3-5x slower on a 2-D grid); "pardiso" needs
+        pypardiso. All give the same state to Newton's tolerance.
 
     Raises
     ------
@@ -315,7 +323,9 @@ class BearingModel:
                  velocity: float, wrap_angle: float | None = None, head: Head | None = None,
                  infinitely_wide: bool = False, span: float | None = None,
                  nx: int | None = None, ny: int | None = None,
-                 grading: Grading | str | None = None, dry: bool = False) -> None:
+                 grading: Grading | str | None = None, dry: bool = False,
+                 factorization: str = "auto") -> None:
+        self.factorization = check_pattern_lu(factorization)
         self.params = validation.instance("params", params, TapeParameters)
         self.air = validation.instance("air", AirParameters() if air is None else air,
                                        AirParameters)
@@ -682,10 +692,11 @@ class BearingModel:
 
     def rebuilt(self, **changes) -> BearingModel:
         """The same model with some constructor arguments changed (velocity, nx, ny,
-        infinitely_wide, head, span, grading, dry)."""
+        infinitely_wide, head, span, grading, dry, factorization)."""
         kw = dict(velocity=self.velocity, head=self.head,
                   infinitely_wide=self.infinitely_wide, span=self.span, nx=self.nx,
-                  ny=self.ny, grading=self.grading, dry=self.dry)
+                  ny=self.ny, grading=self.grading, dry=self.dry,
+                  factorization=self.factorization)
         kw.update(changes)
         return BearingModel(self.params, self.air, **kw)
 

@@ -14,6 +14,7 @@ a penalty with a step limiter does.
 
 from __future__ import annotations
 
+import hashlib
 import time
 import warnings
 
@@ -22,7 +23,13 @@ import scipy.sparse as sp
 
 from ..core import validation
 from ..core.errors import ConvergenceError, ParameterError
-from ..linalg.factorization import SuperLUFactor
+from ..linalg.factorization import (
+    DiagonalPivotLU,
+    PardisoFactor,
+    SuperLUFactor,
+    nested_dissection,
+    resolve_pattern_lu,
+)
 from ..tape.parameters import MIN_INTERVALS_ACROSS
 from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel
 from .results import BearingSolution, NewtonInfo
@@ -58,8 +65,8 @@ MIN_STEP = 1.0 / 256.0
 ARMIJO = 1e-4
 #: ... else α is cut by this factor.
 BACKTRACK = 0.5
-#: Column ordering of the Jacobian's sparse LU: COLAMD, SuperLU's ordering for general
-#: unsymmetric matrices (the Newton iterates' round-off depends on the ordering).
+#: Column ordering of the Jacobian's sparse LU with partial pivoting (factorization
+#: "colamd"): COLAMD, SuperLU's ordering for general unsymmetric matrices.
 JACOBIAN_ORDERING = "COLAMD"
 #: Newton has stagnated when, over this many iterations, the scaled residual has not halved
 #: and no line-search step reached STAGNATION_STEP (the start is outside Newton's basin:
@@ -129,6 +136,9 @@ class _Residual:
         # The tape rows [J_uu, −L] do not change within a solve: assembled once.
         self.tape_rows = sp.hstack([J_uu, -model.pressure_load], format="csr")
         self._abs_tape_rows = abs(self.tape_rows)
+        #: the nested-dissection ordering of the (folded) Jacobian, once formed, and the
+        #: film rows of the last Jacobian (:meth:`_ordering`)
+        self._perm, self._film_rows = None, None
         self._abs_loads = (np.abs(model.effective_tension(tension) * model.W
                                   * model.kappa_nodes) + np.abs(model.f_kappa))
 
@@ -174,26 +184,86 @@ class _Residual:
         if active.any():
             rows_u = (sp.diags((~active).astype(float)) @ rows_u
                       + sp.diags(active * self.c, shape=rows_u.shape))
-        J = sp.vstack([rows_u, sp.hstack([J_pu, J_pp], format="csr")], format="csc")
+        self._film_rows = sp.hstack([J_pu, J_pp], format="csr")
+        J = sp.vstack([rows_u, self._film_rows], format="csc")
         return res, active, J
 
     def factor(self, J):
-        """A solver res ↦ −J⁻¹ res. A 2-D tape, symmetric about its centre line, is solved
-        on half the width (the step stays symmetric: P δ_half, P the mirror)."""
+        """A solver res ↦ −J⁻¹ res, by the model's ``factorization``. A 2-D tape, symmetric
+        about its centre line, is solved on half the width (the step stays symmetric:
+        P δ_half, P the mirror)."""
         fold = self.model.mirror
         if fold is not None:
             P, rows = fold
             J = (J[rows, :] @ P).tocsc()
+        kind = _jacobian_lu(self.model)
         try:
-            lu = SuperLUFactor(J, ordering=JACOBIAN_ORDERING)
+            if kind == "metis":
+                lu = DiagonalPivotLU(J, permutation=self._ordering(J))
+            elif kind == "mmd":
+                lu = DiagonalPivotLU(J)
+            elif kind == "pardiso":
+                lu = PardisoFactor(J)
+            else:
+                lu = SuperLUFactor(J, ordering=JACOBIAN_ORDERING)
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
         if fold is None:
             return lambda res: -lu.solve(res)
         return lambda res: -(P @ lu.solve(res[rows]))
 
+    def _ordering(self, J) -> np.ndarray:
+        """The nested-dissection ordering of the Jacobian's pattern without contact (the
+        tape rows of K, the film rows), folded like J: valid for every contact set, since
+        a contact row (h = σ) keeps only its diagonal. Computed once per pattern
+        (:func:`_pattern_ordering`)."""
+        if self._perm is None:
+            full = sp.vstack([self.tape_rows, self._film_rows], format="csr")
+            full.data = np.ones_like(full.data)      # the pattern: no cancellation below
+            fold = self.model.mirror
+            if fold is not None:
+                P, rows = fold
+                full = full[rows, :] @ P
+            self._perm = _pattern_ordering(full)
+        return self._perm
+
     def merit(self, res) -> float:
         return float(np.linalg.norm(res * self.row_scale))
+
+
+def _jacobian_lu(model: BearingModel) -> str:
+    """The factorization of ``model``'s Jacobian: its ``factorization``, where "auto" is
+    "colamd" for the infinitely wide tape (a banded matrix of a few thousand unknowns,
+    factored in milliseconds by any ordering: its Newton iterates keep the round-off of
+    the partial-pivoting LU they always had) and
+    :func:`gyroshell.linalg.factorization.resolve_pattern_lu` in 2-D."""
+    if model.factorization == "auto" and model.infinitely_wide:
+        return "colamd"
+    return resolve_pattern_lu(model.factorization)
+
+
+#: Nested-dissection orderings by pattern (a digest of its indices), the most recent
+#: ORDERINGS_KEPT: continuation stages, pseudo-time steps and repeated solves on one grid
+#: order once.
+_ORDERINGS: dict[bytes, np.ndarray] = {}
+ORDERINGS_KEPT = 4
+
+
+def _pattern_ordering(matrix: sp.spmatrix) -> np.ndarray:
+    """:func:`gyroshell.linalg.factorization.nested_dissection` of ``matrix``'s pattern,
+    computed once per pattern."""
+    A = sp.csr_matrix(matrix)
+    A.sort_indices()
+    key = hashlib.blake2b(np.asarray(A.shape, dtype=np.int64).tobytes()
+                          + A.indptr.astype(np.int64).tobytes()
+                          + A.indices.astype(np.int64).tobytes(), digest_size=16).digest()
+    perm = _ORDERINGS.pop(key, None)
+    if perm is None:
+        perm = nested_dissection(A)
+    _ORDERINGS[key] = perm
+    while len(_ORDERINGS) > ORDERINGS_KEPT:
+        del _ORDERINGS[next(iter(_ORDERINGS))]
+    return perm
 
 
 def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):

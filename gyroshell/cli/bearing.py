@@ -117,6 +117,11 @@ def _tape_parser() -> argparse.ArgumentParser:
     return p
 
 
+#: The choices of --factorization (gyroshell.linalg.factorization.PATTERN_LU, spelled out
+#: so that the options are refused before scipy is imported).
+FACTORIZATION_CHOICES: tuple[str, ...] = ("auto", "metis", "mmd", "colamd", "pardiso")
+
+
 def _add_bearing_options(p: argparse.ArgumentParser) -> None:
     """The air, head and grid options."""
     from ..bearing import air as a
@@ -152,6 +157,13 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
                    help="2-D only: uniform grid each way instead of the grid graded towards "
                         "the free edges and the wrap corners (the counts --nx/--ny then set "
                         "uniform spacings)")
+    g.add_argument("--factorization", choices=FACTORIZATION_CHOICES, default="auto",
+                   help="sparse LU of Newton's Jacobian: metis (SuperLU, diagonal pivots, "
+                        "METIS nested dissection once per grid; needs pymetis), mmd (the "
+                        "same with minimum degree, pure scipy), colamd (SuperLU with partial "
+                        "pivoting, 3-5x slower), pardiso (needs pypardiso); default auto: "
+                        "metis where pymetis is installed, else mmd (the infinitely wide tape: "
+                        "colamd); all give the same state")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -312,7 +324,8 @@ def _model(args: argparse.Namespace, params, air, velocity: float, head, *, nx=N
                              infinitely_wide=args.infinitely_wide, span=args.span,
                              nx=args.nx if nx is None else nx,
                              ny=args.ny if ny is None else ny,
-                             grading="uniform" if args.uniform else None)
+                             grading="uniform" if args.uniform else None,
+                             factorization=getattr(args, "factorization", "auto"))
     for warning in caught:
         if issubclass(warning.category, BearingGridWarning):
             print(f"gyroshell: warning: {warning.message}", file=sys.stderr, flush=True)

@@ -18,6 +18,45 @@ The back-ends compared (``benchmarks/bench_newmark.py`` prints the measured medi
 So "auto" is SuperLU: the fastest reliable one, shipped with scipy, always available. The
 others are opt-in by name where installed, and the tests check that all agree.
 
+The bearing's Newton Jacobian (real, nonsymmetric, pattern nearly symmetric: the plate's
+13-point bending stencil and the film's 5-point Reynolds stencil on one 2-D grid) is
+factored by :class:`DiagonalPivotLU` (``factorization=`` of the bearing, :data:`PATTERN_LU`).
+SuperLU's partial pivoting is what made it slow: it moves rows out of any symmetric
+fill-reducing order (a pivot threshold of 10⁻³ already more than doubles the fill), so
+COLAMD was the best ordering left. With diagonal pivots (symmetric mode, threshold 0) a
+symmetric ordering keeps its fill, and every solve checks its backward error (falling
+back to partial pivoting above :data:`BACKWARD_ERROR_LIMIT`; it never did on the
+bearing's Jacobians, backward errors 1e-16). Measured with ``benchmarks/bench_bearing.py
+--backends`` on the 12.65 mm tape's default grid (77,787 unknowns solved on the half
+width, 1.24 M entries), one BLAS thread, medians of 3 alternating rounds on the loaded
+2-core machine (load 3-5; on a quiet one every time is about 2.5x shorter):
+
+=========  ================================  =======  ==========  ======  ===========
+back-end   what                              fill     one LU      solve   whole solve
+=========  ================================  =======  ==========  ======  ===========
+metis      SuperLU, diagonal pivots, METIS   16.8 M   7.3 s [1]_  0.23 s  0.26x
+           nested dissection (pymetis) once
+           per grid (3.6 s)
+mmd        SuperLU, diagonal pivots, minimum 17.9 M   9.1 s       0.22 s  0.22x
+           degree on Aᵀ + A at each LU
+colamd     SuperLU, COLAMD, partial pivots   39.2 M   24.4 s      0.18 s  1 (53.5 s)
+pardiso    MKL PARDISO (pypardiso), 1        18.0 M   4.9 s       0.24 s  1.59x
+           thread, analysis at each LU
+umfpack    cvxopt's UMFPACK (not offered)    --       3.2 s [2]_  0.18 s  --
+klu        PyKLU (not offered: no symbolic   --       --          --      --
+           reuse, no supernodes)
+=========  ================================  =======  ==========  ======  ===========
+
+.. [1] One LU at the converged state in the same rounds; the whole solves' 17 LUs (all
+   grids of the coarse start) took 16.4 s (metis), 24.7 s (mmd), 61.3 s (colamd).
+.. [2] Measured apart in one earlier run (load about 4): UMFPACK 0.51 s symbolic + 3.2 s
+   numeric against SuperLU + METIS 2.5 s and PARDISO 1.6 s + 2.1 s in the same minutes.
+
+All reach the same state (relative differences 1e-11, Newton's tolerance 1e-8). "auto"
+is "metis" where pymetis is installed, else "mmd" (pure scipy, about as fast: METIS's
+ordering costs what it saves in fill on this grid); the infinitely wide tape keeps
+"colamd" (banded, milliseconds).
+
 Every sparse LU of the package goes through :func:`splu` (one place for SuperLU's options).
 The eigen-solvers' symmetric/Hermitian factorizations choose between CHOLMOD's Cholesky and
 SuperLU's LDLᴴ (:data:`gyroshell.linalg.cholesky.BACKENDS`): :func:`resolve_factorization`
@@ -154,7 +193,12 @@ class SuperLUFactor:
         start = time.perf_counter()
         self._lu = splu(matrix, ordering=ordering)
         self.factor_time = time.perf_counter() - start
-        self.nnz = int(self._lu.L.nnz + self._lu.U.nnz)
+
+    @property
+    def nnz(self) -> int:
+        """Entries of L and U (formed on demand: extracting them costs a third of a
+        factorization of the bearing's Jacobian)."""
+        return int(self._lu.L.nnz + self._lu.U.nnz)
 
     @staticmethod
     def available() -> bool:
@@ -318,3 +362,155 @@ def factorize(matrix: sp.spmatrix, backend: str = "auto") -> Factorization:
     if matrix.shape[0] != matrix.shape[1]:
         raise ParameterError(f"matrix must be square, got shape {matrix.shape}")
     return BACKENDS[name](matrix)
+
+
+# ----- LU with a symmetric fill-reducing ordering and diagonal pivots (the bearing) ------
+#: SuperLU's column ordering of :class:`DiagonalPivotLU` without a given permutation:
+#: minimum degree on Aᵀ + A (pure scipy), recomputed at each factorization.
+DIAGONAL_PIVOT_ORDERING = "MMD_AT_PLUS_A"
+#: A solve whose backward error max|A x − b| / max(|A||x| + |b|) exceeds this was spoilt by
+#: a small diagonal pivot: the matrix is factored again with partial pivoting.
+BACKWARD_ERROR_LIMIT = 1e-10
+
+
+def metis_available() -> bool:
+    """Whether METIS (the optional package pymetis) is installed."""
+    try:
+        import pymetis  # noqa: F401
+    except Exception:  # ImportError, or a broken shared library
+        return False
+    return True
+
+
+def nested_dissection(matrix: sp.spmatrix) -> np.ndarray:
+    """METIS's nested-dissection ordering (pymetis) of the pattern of |A| + |A|ᵀ.
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix, shape (n, n)
+
+    Returns
+    -------
+    numpy.ndarray of int, shape (n,)
+        A permutation: row and column k of the reordered matrix A[perm][:, perm] are
+        row and column perm[k] of A.
+
+    Raises
+    ------
+    ParameterError
+        If pymetis is not installed.
+    """
+    if not metis_available():
+        raise ParameterError("the nested-dissection ordering needs pymetis "
+                             "(pip install 'gyroshell[fast]')")
+    import pymetis
+
+    n = matrix.shape[0]
+    if n < 2:
+        return np.arange(n)
+    graph = sp.csr_matrix(abs(sp.csr_matrix(matrix)) + abs(sp.csr_matrix(matrix)).T)
+    graph.setdiag(0)
+    graph.eliminate_zeros()
+    perm, _ = pymetis.nested_dissection(
+        adjacency=pymetis.CSRAdjacency(graph.indptr, graph.indices))
+    return np.asarray(perm, dtype=np.intp)
+
+
+class DiagonalPivotLU:
+    """SuperLU of P A Pᵀ with diagonal pivots: the fill of a symmetric ordering kept.
+
+    A fill-reducing ordering of a matrix with a symmetric pattern (nested dissection,
+    minimum degree on Aᵀ + A) is spoilt by SuperLU's partial pivoting: every off-diagonal
+    pivot moves a row out of the order (on the bearing's Jacobian a pivot threshold of
+    even 10⁻³ more than doubles the fill). Here SuperLU runs in its symmetric mode with
+    pivot threshold 0, so the diagonal is always the pivot and P A Pᵀ = L U. Each solve
+    checks its backward error; above :data:`BACKWARD_ERROR_LIMIT` (a small pivot) the
+    matrix is factored again with partial pivoting (COLAMD) and the solve repeated.
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix, shape (n, n)
+        Square, real.
+    permutation : numpy.ndarray of int, optional
+        The symmetric ordering P (e.g. :func:`nested_dissection`, computed once for many
+        matrices of one pattern); default minimum degree on Aᵀ + A, computed by SuperLU.
+    """
+
+    name = "superlu-diagonal"
+
+    def __init__(self, matrix: sp.spmatrix, *, permutation: np.ndarray | None = None) -> None:
+        start = time.perf_counter()
+        self._A = sp.csr_matrix(matrix)
+        self._abs = abs(self._A)
+        self._perm = permutation
+        if permutation is None:
+            self._lu = spla.splu(sp.csc_matrix(self._A), permc_spec=DIAGONAL_PIVOT_ORDERING,
+                                 diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+        else:
+            self._lu = spla.splu(sp.csc_matrix(self._A[permutation][:, permutation]),
+                                 permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                                 options={"SymmetricMode": True})
+        #: whether a small pivot made it fall back to partial pivoting
+        self.pivoted = False
+        self.factor_time = time.perf_counter() - start
+
+    @staticmethod
+    def available() -> bool:
+        return True
+
+    def _substitute(self, rhs: np.ndarray) -> np.ndarray:
+        if self.pivoted or self._perm is None:
+            return self._lu.solve(rhs)
+        x = np.empty_like(rhs)
+        x[self._perm] = self._lu.solve(rhs[self._perm])
+        return x
+
+    def backward_error(self, x: np.ndarray, rhs: np.ndarray) -> float:
+        """max|A x − b| / max(|A||x| + |b|): the relative backward error of a solve."""
+        scale = float(np.max(self._abs @ np.abs(x) + np.abs(rhs), initial=0.0))
+        return float(np.max(np.abs(self._A @ x - rhs), initial=0.0)) / scale if scale else 0.0
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        x = self._substitute(rhs)
+        if not self.pivoted and not (np.all(np.isfinite(x))
+                                     and self.backward_error(x, rhs) <= BACKWARD_ERROR_LIMIT):
+            start = time.perf_counter()
+            self._lu = splu(self._A, ordering="COLAMD")
+            self.pivoted = True
+            self.factor_time += time.perf_counter() - start
+            x = self._lu.solve(rhs)
+        return x
+
+
+#: The sparse LUs of a nonsymmetric matrix whose pattern is (nearly) symmetric, e.g. the
+#: bearing's Jacobian (``factorization=`` of :class:`gyroshell.bearing.BearingModel`):
+#: "metis" SuperLU with diagonal pivots after METIS's nested dissection (pymetis), the
+#: ordering computed once per pattern; "mmd" the same after minimum degree on Aᵀ + A (pure
+#: scipy, ordered at each factorization); "colamd" SuperLU with COLAMD and partial
+#: pivoting (the earlier default); "pardiso" MKL PARDISO (pypardiso); "auto" "metis" where
+#: pymetis is installed, else "mmd".
+PATTERN_LU = ("auto", "metis", "mmd", "colamd", "pardiso")
+_PATTERN_LU_PACKAGES = {"metis": ("pymetis", metis_available),
+                        "pardiso": ("pypardiso", PardisoFactor.available)}
+
+
+def check_pattern_lu(factorization, *, name: str = "factorization") -> str:
+    """One of :data:`PATTERN_LU`, with its optional package installed; else
+    ParameterError naming ``name`` and the choices."""
+    if not isinstance(factorization, str) or factorization not in PATTERN_LU:
+        raise ParameterError(f"{name} must be one of {', '.join(PATTERN_LU)}, "
+                             f"got {factorization!r}")
+    if factorization in _PATTERN_LU_PACKAGES:
+        package, available = _PATTERN_LU_PACKAGES[factorization]
+        if not available():
+            raise ParameterError(f"{name} {factorization!r} needs the optional package "
+                                 f"{package} (pip install 'gyroshell[fast]'); use 'auto'")
+    return factorization
+
+
+def resolve_pattern_lu(factorization: str = "auto") -> str:
+    """What ``factorization`` (:data:`PATTERN_LU`) means now: "auto" is "metis" where
+    pymetis is installed, else "mmd" (module notes: the measured back-ends)."""
+    if factorization != "auto":
+        return factorization
+    return "metis" if metis_available() else "mmd"
