@@ -122,6 +122,11 @@ DRY_START = 0.25
 START_SLOPE = 0.25
 
 
+#: The contact floor of the rounded arcs' nodes other than the contact node, m: far below
+#: any spacing (they never enter the contact set; :attr:`BearingModel.contact_floor`).
+NO_CONTACT_FLOOR = -1.0
+
+
 class BearingGridWarning(UserWarning):
     """The grid is coarse enough that the result may be off (the message says by how much)."""
 
@@ -315,7 +320,8 @@ class BearingModel:
                  velocity: float, wrap_angle: float | None = None, head: Head | None = None,
                  infinitely_wide: bool = False, span: float | None = None,
                  nx: int | None = None, ny: int | None = None,
-                 grading: Grading | str | None = None, dry: bool = False) -> None:
+                 grading: Grading | str | None = None, dry: bool = False,
+                 corner_contacts=None, adapt_contacts: bool = True) -> None:
         self.params = validation.instance("params", params, TapeParameters)
         self.air = validation.instance("air", AirParameters() if air is None else air,
                                        AirParameters)
@@ -326,7 +332,6 @@ class BearingModel:
         self.head_radius = (self.head.radius if self.cylindrical and self.head.radius
                             else params.radius)
         self.head.check(self.head_radius)
-        _check_rounded_corners_flown(self.head, self.dry)
         self.wrap_angle = self.head.wrap
         self.infinitely_wide = validation.boolean("infinitely_wide", infinitely_wide)
         _check_below_string_speed(params, self.velocity)
@@ -339,6 +344,8 @@ class BearingModel:
         self.film_length, self.bending_length = l_film, l_bend
         self.h_guess = _FOIL_GUESS * h_foil
         self.span = self._checked_span(span, l_film, l_bend)
+        self.adapt_contacts = validation.boolean("adapt_contacts", adapt_contacts)
+        self.corner_contacts = self._checked_contacts(corner_contacts)
         x_first, x_last = self.head.extent(self.head_radius)
         self.length = ((self.head_radius * self.wrap_angle if self.cylindrical
                         else x_last - x_first) + 2.0 * self.span)
@@ -371,9 +378,112 @@ class BearingModel:
         bending length; a flat or profile head also its shortest feature)."""
         length = l_bend if self.dry else resolution_length(l_film, l_bend)
         if not self.cylindrical:
-            length = min(length, FEATURE_RESOLUTION
-                         * self.head.shortest_feature(self.head_radius))
+            feature = (self.head.shortest_land(self.head_radius) if self.corner_contacts
+                       else self.head.shortest_feature(self.head_radius))
+            length = min(length, FEATURE_RESOLUTION * feature)
         return length
+
+    @property
+    def rounded_corners(self) -> tuple[int, ...]:
+        """Indices (into ``head.corners()``) of the rounded corners the tape turns over,
+        in the order of :attr:`corner_contacts` (empty but on a flat head)."""
+        return self.head.rounded_corners() if isinstance(self.head, FlatHead) else ()
+
+    def _checked_contacts(self, contacts) -> tuple[float, ...]:
+        """The x (head coordinates, m) of the tape's contact on each rounded corner: given
+        (each on its corner's arc), or the estimate :meth:`estimated_contacts`."""
+        rounded = self.rounded_corners
+        if contacts is None:
+            return self.estimated_contacts()
+        values = tuple(validation.real(f"corner_contacts[{i}]", c, unit="m")
+                       for i, c in enumerate(np.atleast_1d(np.asarray(contacts, float))))
+        if len(values) != len(rounded):
+            raise ParameterError(f"corner_contacts must hold one x (m) per rounded corner "
+                                 f"the tape turns over ({len(rounded)}), got {len(values)}")
+        for i, (k, c) in enumerate(zip(rounded, values, strict=True)):
+            lo, hi = self.head.arc_tangent_points(k)
+            if not lo <= c <= hi:
+                raise ParameterError(f"corner_contacts[{i}] must lie on the arc of corner "
+                                     f"{k}, [{lo:.9g}, {hi:.9g}] m, got {c:.9g}")
+        return values
+
+    def estimated_contacts(self) -> tuple[float, ...]:
+        """The start of the contact points on the rounded corners, m (head coordinates):
+        where the arc's slope has turned from the land's by :data:`START_SLOPE` of the
+        corner's turn at speed (the tape's slope at a touching sharp corner, measured
+        0.16 of it), half of it dry (the turn split between the two bending layers)."""
+        turns = self.head.corner_turns(self.head_radius) if self.rounded_corners else ()
+        share = 0.5 if self.dry else START_SLOPE
+        out = []
+        for k in self.rounded_corners:
+            sign = 1.0 if k % 2 == 0 else -1.0
+            out.append(self.head.arc_point(k, self.head.land_slope(k)
+                                           + sign * share * turns[k]))
+        return tuple(out)
+
+    def _centres(self) -> tuple[float, ...]:
+        """The grading's refinement centres, head coordinates, m: every corner, a rounded
+        one at its contact point (the film's constriction and the tape's point load)."""
+        centres = list(self.head.corners(self.head_radius))
+        for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
+            centres[k] = c
+        return tuple(centres)
+
+    @property
+    def contact_nodes(self) -> np.ndarray:
+        """Indices into :attr:`x` of the nodes on the rounded corners' contact points."""
+        x = self.x_head
+        return np.array([int(np.argmin(np.abs(x - c))) for c in self.corner_contacts],
+                        dtype=int)
+
+    def tape_slopes(self, u: np.ndarray, nodes: np.ndarray) -> np.ndarray:
+        """The tape's slope dw/dx (rad) at the interior ``nodes`` (indices into :attr:`x`),
+        from w = z0 + u by the three-point difference on the non-uniform grid (second
+        order where w is C2, as at a point contact, where only w''' jumps), averaged
+        across the width (shape (len(nodes),))."""
+        w = self.head.dry_tape(self.x_head, self.head_radius)[:, None] + np.vstack(
+            [np.zeros((1, self.nc)), u.reshape(self.nx - 1, self.nc),
+             np.zeros((1, self.nc))])
+        i = np.asarray(nodes, dtype=int)
+        hm, hp = (self.x[i] - self.x[i - 1])[:, None], (self.x[i + 1] - self.x[i])[:, None]
+        slope = (hm**2 * w[i + 1] - hp**2 * w[i - 1] + (hp**2 - hm**2) * w[i]) / (
+            hm * hp * (hm + hp))
+        return slope.mean(axis=1)
+
+    @cached_property
+    def contact_floor(self) -> np.ndarray:
+        """The spacing below which each tape unknown's node touches the head, m: the
+        roughness σ, except on the rounded corners' arcs, where only the contact node
+        touches (a tangent point contact: the arc's other nodes lie within Δ²/(2 r_c) of σ
+        next to it, a degenerate contact set Newton cannot settle; they are left free and
+        checked after the solve, :meth:`arc_clearance`) and the floor is
+        :data:`NO_CONTACT_FLOOR`."""
+        floor = np.full((self.nx - 1, self.nc), self.air.roughness)
+        x = self.x_head[1:-1]
+        for k, i in zip(self.rounded_corners, self.contact_nodes, strict=True):
+            lo, hi = self.head.arc_tangent_points(k)
+            on_arc = (x >= lo) & (x <= hi)
+            on_arc[i - 1] = False
+            floor[on_arc, :] = NO_CONTACT_FLOOR
+        return floor.ravel()
+
+    def arc_clearance(self, u: np.ndarray) -> float:
+        """The least h − σ (m) over the rounded corners' arc nodes left free of contact
+        (:attr:`contact_floor`; +inf if none): negative if the tape cuts into an arc, i.e.
+        does not touch it at one point."""
+        free = self.contact_floor < 0.0
+        if not free.any():
+            return math.inf
+        h = u + self.dry_field[1:-1, :].ravel()
+        return float(np.min(h[free]) - self.air.roughness)
+
+    def updated_contacts(self, u: np.ndarray) -> tuple[float, ...]:
+        """The contact points the state u moves the rounded corners' contacts to, m: on
+        each arc, the point whose slope is the tape's at the present contact node (the
+        tangency of a point contact; the nearest approach if the tape flies)."""
+        slopes = self.tape_slopes(u, self.contact_nodes)
+        return tuple(self.head.arc_point(k, float(s))
+                     for k, s in zip(self.rounded_corners, slopes, strict=True))
 
     def _zone_spacing(self, resolution: float) -> float:
         """The default x-spacing at the corners without the corner term, m: the
@@ -405,7 +515,7 @@ class BearingModel:
         """The x-nodes, m on [0, length]: a flat or profile head's with a node on every
         sharp corner (:func:`~.mesh.piecewise_line_nodes`)."""
         breaks = () if self.cylindrical else self._internal(
-            self.head.sharp_corners(self.head_radius))
+            self.head.sharp_corners(self.head_radius) + self.corner_contacts)
         try:
             return piecewise_line_nodes(self.length, self.nx, x_line, breaks,
                                         fewest=FEWEST_BETWEEN_CORNERS)
@@ -467,8 +577,7 @@ class BearingModel:
                  span_given: bool):
         """The number of x-intervals :attr:`nx` (default from the ``resolution`` length, m;
         see :meth:`_default_nx`), checked; returns the x-line's grading (None: uniform)."""
-        x_line = self.grading.x_line(self.length, self._internal(
-            self.head.corners(self.head_radius)))
+        x_line = self.grading.x_line(self.length, self._internal(self._centres()))
         if nx is None:
             nx = self._default_nx(x_line, l_film, resolution, span_given)
         self.nx = validation.integer("nx", nx, low=MIN_INTERVALS_ALONG,
@@ -592,7 +701,10 @@ class BearingModel:
         held = np.zeros(U.shape, dtype=bool)
         turns = dict(zip(self.head.corners(self.head_radius),
                          self.head.corner_turns(self.head_radius), strict=True))
-        for c in self.head.sharp_corners(self.head_radius):
+        all_turns = self.head.corner_turns(self.head_radius)
+        for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
+            turns[c] = all_turns[k]
+        for c in self.head.sharp_corners(self.head_radius) + self.corner_contacts:
             turn = turns.get(c, self.wrap_angle)
             if not dry and turn < CORNER_FRACTION * self.wrap_angle:
                 continue     # its point load is small: the film carries it (measured)
@@ -685,7 +797,11 @@ class BearingModel:
         infinitely_wide, head, span, grading, dry)."""
         kw = dict(velocity=self.velocity, head=self.head,
                   infinitely_wide=self.infinitely_wide, span=self.span, nx=self.nx,
-                  ny=self.ny, grading=self.grading, dry=self.dry)
+                  ny=self.ny, grading=self.grading, dry=self.dry,
+                  corner_contacts=self.corner_contacts or None,
+                  adapt_contacts=self.adapt_contacts)
+        if "head" in changes or "dry" in changes:
+            kw["corner_contacts"] = None        # the new head's (or regime's) own estimate
         kw.update(changes)
         return BearingModel(self.params, self.air, **kw)
 
@@ -788,6 +904,8 @@ class BearingModel:
         the wrap pressure (T − ρV²) κ + p_a. :func:`gyroshell.bearing.steady.solve_steady`
         starts a 2-D tape from a better (solved) state, :func:`~gyroshell.bearing.steady.
         initial_state`."""
+        if self.corner_contacts and not self.dry:   # the arcs spread their wrap load:
+            return self.dry_start()                 # hold the contacts (in contact at once)
         if not self.cylindrical or self.dry:     # the corners' loads are point loads
             return self.dry_start(self._corner_start())
         u = np.full(self.n_u, self.h_guess)
