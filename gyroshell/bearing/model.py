@@ -195,24 +195,30 @@ def resolution_length(l_film: float, l_bend: float) -> float:
     return min(l_film, max(l_bend, BENDING_RESOLVED * l_film))
 
 
-def _check_rounded_corners_flown(head: Head, dry: bool) -> None:
-    """Refuse rounded corners on a flat head over an air film: not solved yet.
+#: Longest wrapped arc r_c θ_c of a rounded corner, in bending lengths √(D/(T − ρV²)): the
+#: tape touches a shorter arc at one point (the point-contact model, :mod:`.corners`);
+#: measured (Table 1 tape, bending length 0.18 mm; 1 mm land at 2°/2°, 4 m/s and dry):
+#: 0.19 (r_c = 1 mm) converges (5 passes, 290 Newton iterations at speed), 0.48 (2.5 mm)
+#: does not, dry or flying (the tape begins to wrap the arc); between them untested.
+MAX_ARC_BENDING_LENGTHS = 0.3
 
-    The tape touches a rounded corner tangentially at a point that slides along the arc
-    between nodes as Newton iterates; without a grid centred on that point Newton does not
-    converge (measured: 200-300 iterations and no grid convergence for r_c = 5 um), and a
-    default grid sized from the arc r_c θ_c needs far more intervals than allowed. The dry
-    model (``dry=True``, with ``nx`` given) takes them, slowly (about 100 iterations).
-    """
-    if dry or not isinstance(head, FlatHead):
+
+def _check_point_contacts(head: Head, l_bend: float) -> None:
+    """Refuse rounded corners whose wrapped arc r_c θ_c exceeds MAX_ARC_BENDING_LENGTHS
+    bending lengths ``l_bend`` (m): the tape would wrap them, which is not solved."""
+    if not isinstance(head, FlatHead):
         return
-    radii = [r for r in head.corner_radii() if r > 0.0]
-    if radii:
-        raise ParameterError(
-            f"corner_radius must be 0 (sharp corners) for a flat head over an air film, got "
-            f"{max(radii):g} m: rounded corners are not solved with the film yet (the tape's "
-            "tangent contact slides between the grid's nodes; docs/bearing.md, Heads); the "
-            "dry model (dry=True, nx given) takes them")
+    radii, turns = head.corner_radii(), head.corner_turns()
+    for k in head.rounded_corners():
+        arc = radii[k] * turns[k]
+        if arc > MAX_ARC_BENDING_LENGTHS * l_bend:
+            raise ParameterError(
+                f"corner_radius {radii[k]:g} m is too large for a point contact: the "
+                f"tape's wrapped arc r_c theta_c = {arc:.3g} m exceeds "
+                f"{MAX_ARC_BENDING_LENGTHS:g} bending lengths sqrt(D/(T - rho V^2)) = "
+                f"{MAX_ARC_BENDING_LENGTHS * l_bend:.3g} m, where the tape begins to wrap "
+                f"the arc (not solved); use corner_radius <= "
+                f"{MAX_ARC_BENDING_LENGTHS * l_bend / turns[k]:.3g} m")
 
 
 def _check_below_string_speed(params: TapeParameters, velocity: float) -> None:
@@ -305,6 +311,14 @@ class BearingModel:
         No air film (p = p_a; the tape and its contact with the head only): the dry
         string and plate over the head, corner forces at rest (V may be 0; it enters only
         through T − ρV²).
+    corner_contacts : tuple of float, optional
+        x of the tape's contact on each rounded corner the tape turns over (head
+        coordinates, m, each on its arc, in the order of :attr:`rounded_corners`): a node
+        goes there, the centre of the corner's refinement, the only node of the arc that
+        may touch (:mod:`.corners`). Default: :meth:`estimated_contacts`.
+    adapt_contacts : bool
+        Whether :func:`~gyroshell.bearing.steady.solve_steady` moves the contacts to the
+        tangent points by solve-and-regrid passes (default) or keeps them.
 
     Raises
     ------
@@ -342,6 +356,7 @@ class BearingModel:
         if self.dry:
             h_foil, l_film = 0.0, 0.0
         self.film_length, self.bending_length = l_film, l_bend
+        _check_point_contacts(self.head, l_bend)
         self.h_guess = _FOIL_GUESS * h_foil
         self.span = self._checked_span(span, l_film, l_bend)
         self.adapt_contacts = validation.boolean("adapt_contacts", adapt_contacts)
@@ -704,6 +719,10 @@ class BearingModel:
         all_turns = self.head.corner_turns(self.head_radius)
         for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
             turns[c] = all_turns[k]
+        radii = dict(zip(self.head.corners(self.head_radius),
+                         self.head.corner_radii(self.head_radius), strict=True))
+        for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
+            radii[c] = self.head.corner_radii(self.head_radius)[k]
         for c in self.head.sharp_corners(self.head_radius) + self.corner_contacts:
             turn = turns.get(c, self.wrap_angle)
             if not dry and turn < CORNER_FRACTION * self.wrap_angle:
@@ -711,7 +730,14 @@ class BearingModel:
             i = int(np.argmin(np.abs(inner - c)))
             if not dry:   # the film's constriction: h rising from σ at the tape's slope
                 reach = max(h0 - sigma, sigma) / (START_SLOPE * turn)
-                taper = sigma + (h0 - sigma) * -np.expm1(-np.abs(inner - c) / reach)
+                s = np.abs(inner - c)
+                # on a rounded corner h rises as a parabola of curvature 1/(2 r_c) over
+                # the first s₀ (the tape less curved than the arc: it presses on its
+                # contact node at once), then at the same slope as at a sharp one
+                s0 = 2.0 * radii.get(c, 0.0) * (h0 - sigma) / reach
+                if s0 > 0.0:
+                    s = np.where(s < s0, 0.5 * s * s / s0, s - 0.5 * s0)
+                taper = sigma + (h0 - sigma) * -np.expm1(-s / reach)
                 U = np.minimum(U, taper[:, None])
             U[i, :] = sigma - self.dry_field[i + 1, :]
             held[i, :] = True
@@ -904,8 +930,6 @@ class BearingModel:
         the wrap pressure (T − ρV²) κ + p_a. :func:`gyroshell.bearing.steady.solve_steady`
         starts a 2-D tape from a better (solved) state, :func:`~gyroshell.bearing.steady.
         initial_state`."""
-        if self.corner_contacts and not self.dry:   # the arcs spread their wrap load:
-            return self.dry_start()                 # hold the contacts (in contact at once)
         if not self.cylindrical or self.dry:     # the corners' loads are point loads
             return self.dry_start(self._corner_start())
         u = np.full(self.n_u, self.h_guess)

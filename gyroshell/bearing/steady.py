@@ -547,11 +547,14 @@ def initial_state(model: BearingModel, *,
     :func:`solve_steady`."""
     if model.infinitely_wide:
         z = None
-        if not model.cylindrical and not model.dry and model.nx > COARSE_START_MIN_NX:
+        if (not model.cylindrical and not model.dry and model.nx > COARSE_START_MIN_NX
+                and not model.corner_contacts):
             z = _coarse_state(model, coarse_min_unknowns, progress, iteration_log)
         return model.initial_state() if z is None else z
+    # rounded corners: no coarse start (interpolated across their contacts' fine cells,
+    # it leads Newton astray; measured on 384 x 64); the extruded strip instead
     z = (_coarse_state(model, coarse_min_unknowns, progress, iteration_log)
-         if model.unknowns >= coarse_min_unknowns else None)
+         if model.unknowns >= coarse_min_unknowns and not model.corner_contacts else None)
     return _extruded_strip_state(model, progress, iteration_log) if z is None else z
 
 
