@@ -69,3 +69,15 @@ def classical_foil_constants(delta: float = 1e-7) -> tuple[float, float]:
     run = exit_run(phi, dense=True)
     xs = np.linspace(0.0, min(run.t[-1], 60.0), 600001)
     return float(C), float(run.sol(xs)[0].min())
+
+
+def flux_spread_1d(sol) -> tuple[float, float, float]:
+    """(max |F − F₀|, the largest pressure-driven term (p h³ + 6 λ p_a h²) p/Δx, |F₀|) of
+    a 1-D steady film's face fluxes F: one constant in = out to the round-off of those
+    terms (large where the spans' gap is wide)."""
+    m, air = sol.model, sol.model.air
+    flux = m.film.fluxes(sol.pressure, sol.spacing)[0].flux[:, 0]
+    H, P = sol.spacing[:, 0], sol.pressure[:, 0]
+    h, p = 0.5 * (H[1:] + H[:-1]), 0.5 * (P[1:] + P[:-1])
+    terms = (p * h**3 + 6 * air.mean_free_path * air.ambient_pressure * h**2) * p / np.diff(m.x)
+    return float(np.max(np.abs(flux - flux[0]))), float(terms.max()), float(abs(flux[0]))

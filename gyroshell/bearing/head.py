@@ -645,6 +645,41 @@ class FlatHead(Head):
     def corner_radii(self, radius=None):
         return tuple(r for m in self._mesas for r in (m.r_lead, m.r_trail))
 
+    def rounded_corners(self, radius=None) -> tuple[int, ...]:
+        """Indices (into :meth:`corners`) of the rounded corners the tape turns over."""
+        return tuple(k for k, (r, t) in enumerate(zip(self.corner_radii(),
+                                                     self.corner_turns(), strict=True))
+                     if r > 0.0 and t > 0.0)
+
+    def arc_point(self, k: int, slope: float) -> float:
+        """x (m) on the arc of the rounded corner ``k`` (index into :meth:`corners`) where
+        the head's slope dz_h/dx equals ``slope`` (rad, small slopes), clamped to the arc:
+        the point a tape of that slope touches it at (a tangent contact), or, if the tape
+        flies, its nearest approach. The arc z_h = land − d²/(2 r_c) at the distance d
+        past the land's tangent point has the slope tilt ∓ d/r_c (leading/trailing), so
+        d = r_c |slope − tilt|, within [0, r_c φ] (φ the flank angle)."""
+        m = self._mesas[k // 2]
+        lead = k % 2 == 0
+        r = m.r_lead if lead else m.r_trail
+        if r == 0.0:
+            raise ParameterError(f"corner {k} is sharp: it has no arc")
+        d = float(np.clip(r * ((slope - m.tilt) if lead else (m.tilt - slope)), 0.0,
+                          r * self.flank_angle))
+        return (m.a + 0.5 * r * self.flank_angle - d if lead
+                else m.b - 0.5 * r * self.flank_angle + d)
+
+    def arc_tangent_points(self, k: int) -> tuple[float, float]:
+        """(x_start, x_end), m: the ends of the rounded corner ``k``'s arc (its tangent
+        points on the land and on the flank, in increasing x)."""
+        m = self._mesas[k // 2]
+        r = m.r_lead if k % 2 == 0 else m.r_trail
+        c = m.a if k % 2 == 0 else m.b
+        return (c - 0.5 * r * self.flank_angle, c + 0.5 * r * self.flank_angle)
+
+    def land_slope(self, k: int) -> float:
+        """The slope dz_h/dx (rad) of the land whose corner is ``k``."""
+        return float(self._mesas[k // 2].tilt)
+
     def corner_turns(self, radius=None):
         """The tape's turn over each corner: the envelope's turns at the hull vertices
         within the corner's arc (a sharp corner: its one vertex), rad."""
@@ -656,6 +691,12 @@ class FlatHead(Head):
             half = 0.5 * r * self.flank_angle + tol
             out.append(float(turns[np.abs(env.vx - c) <= half].sum()))
         return tuple(out)
+
+    def shortest_land(self, radius=None):
+        """The shortest land or gap, m (the default grid resolves it when its rounded
+        corners' arcs carry a node at the tape's contact instead of being resolved)."""
+        lengths = [m.land_length for m in self.modules] + [g for g in self.gaps if g > 0]
+        return float(min(lengths))
 
     def shortest_feature(self, radius=None):
         lengths = [m.land_length for m in self.modules] + [g for g in self.gaps if g > 0]

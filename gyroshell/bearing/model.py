@@ -123,6 +123,11 @@ DRY_START = 0.25
 START_SLOPE = 0.25
 
 
+#: The contact floor of the rounded arcs' nodes other than the contact node, m: far below
+#: any spacing (they never enter the contact set; :attr:`BearingModel.contact_floor`).
+NO_CONTACT_FLOOR = -1.0
+
+
 class BearingGridWarning(UserWarning):
     """The grid is coarse enough that the result may be off (the message says by how much)."""
 
@@ -191,24 +196,30 @@ def resolution_length(l_film: float, l_bend: float) -> float:
     return min(l_film, max(l_bend, BENDING_RESOLVED * l_film))
 
 
-def _check_rounded_corners_flown(head: Head, dry: bool) -> None:
-    """Refuse rounded corners on a flat head over an air film: not solved yet.
+#: Longest wrapped arc r_c θ_c of a rounded corner, in bending lengths √(D/(T − ρV²)): the
+#: tape touches a shorter arc at one point (the point-contact model, :mod:`.corners`);
+#: measured (Table 1 tape, bending length 0.18 mm; 1 mm land at 2°/2°, 4 m/s and dry):
+#: 0.19 (r_c = 1 mm) converges (5 passes, 290 Newton iterations at speed), 0.48 (2.5 mm)
+#: does not, dry or flying (the tape begins to wrap the arc); between them untested.
+MAX_ARC_BENDING_LENGTHS = 0.3
 
-    The tape touches a rounded corner tangentially at a point that slides along the arc
-    between nodes as Newton iterates; without a grid centred on that point Newton does not
-    converge (measured: 200-300 iterations and no grid convergence for r_c = 5 um), and a
-    default grid sized from the arc r_c θ_c needs far more intervals than allowed. The dry
-    model (``dry=True``, with ``nx`` given) takes them, slowly (about 100 iterations).
-    """
-    if dry or not isinstance(head, FlatHead):
+
+def _check_point_contacts(head: Head, l_bend: float) -> None:
+    """Refuse rounded corners whose wrapped arc r_c θ_c exceeds MAX_ARC_BENDING_LENGTHS
+    bending lengths ``l_bend`` (m): the tape would wrap them, which is not solved."""
+    if not isinstance(head, FlatHead):
         return
-    radii = [r for r in head.corner_radii() if r > 0.0]
-    if radii:
-        raise ParameterError(
-            f"corner_radius must be 0 (sharp corners) for a flat head over an air film, got "
-            f"{max(radii):g} m: rounded corners are not solved with the film yet (the tape's "
-            "tangent contact slides between the grid's nodes; docs/bearing.md, Heads); the "
-            "dry model (dry=True, nx given) takes them")
+    radii, turns = head.corner_radii(), head.corner_turns()
+    for k in head.rounded_corners():
+        arc = radii[k] * turns[k]
+        if arc > MAX_ARC_BENDING_LENGTHS * l_bend:
+            raise ParameterError(
+                f"corner_radius {radii[k]:g} m is too large for a point contact: the "
+                f"tape's wrapped arc r_c theta_c = {arc:.3g} m exceeds "
+                f"{MAX_ARC_BENDING_LENGTHS:g} bending lengths sqrt(D/(T - rho V^2)) = "
+                f"{MAX_ARC_BENDING_LENGTHS * l_bend:.3g} m, where the tape begins to wrap "
+                f"the arc (not solved); use corner_radius <= "
+                f"{MAX_ARC_BENDING_LENGTHS * l_bend / turns[k]:.3g} m")
 
 
 def _check_below_string_speed(params: TapeParameters, velocity: float) -> None:
@@ -308,6 +319,14 @@ class BearingModel:
         pure scipy), and for the infinitely wide tape "colamd": SuperLU with partial
         pivoting (the earlier default, 3-5x slower on a 2-D grid); "pardiso" needs
         pypardiso. All give the same state to Newton's tolerance.
+    corner_contacts : tuple of float, optional
+        x of the tape's contact on each rounded corner the tape turns over (head
+        coordinates, m, each on its arc, in the order of :attr:`rounded_corners`): a node
+        goes there, the centre of the corner's refinement, the only node of the arc that
+        may touch (:mod:`.corners`). Default: :meth:`estimated_contacts`.
+    adapt_contacts : bool
+        Whether :func:`~gyroshell.bearing.steady.solve_steady` moves the contacts to the
+        tangent points by solve-and-regrid passes (default) or keeps them.
 
     Raises
     ------
@@ -324,7 +343,8 @@ class BearingModel:
                  infinitely_wide: bool = False, span: float | None = None,
                  nx: int | None = None, ny: int | None = None,
                  grading: Grading | str | None = None, dry: bool = False,
-                 factorization: str = "auto") -> None:
+                 factorization: str = "auto", corner_contacts=None,
+                 adapt_contacts: bool = True) -> None:
         self.factorization = check_pattern_lu(factorization)
         self.params = validation.instance("params", params, TapeParameters)
         self.air = validation.instance("air", AirParameters() if air is None else air,
@@ -336,7 +356,6 @@ class BearingModel:
         self.head_radius = (self.head.radius if self.cylindrical and self.head.radius
                             else params.radius)
         self.head.check(self.head_radius)
-        _check_rounded_corners_flown(self.head, self.dry)
         self.wrap_angle = self.head.wrap
         self.infinitely_wide = validation.boolean("infinitely_wide", infinitely_wide)
         _check_below_string_speed(params, self.velocity)
@@ -347,8 +366,11 @@ class BearingModel:
         if self.dry:
             h_foil, l_film = 0.0, 0.0
         self.film_length, self.bending_length = l_film, l_bend
+        _check_point_contacts(self.head, l_bend)
         self.h_guess = _FOIL_GUESS * h_foil
         self.span = self._checked_span(span, l_film, l_bend)
+        self.adapt_contacts = validation.boolean("adapt_contacts", adapt_contacts)
+        self.corner_contacts = self._checked_contacts(corner_contacts)
         x_first, x_last = self.head.extent(self.head_radius)
         self.length = ((self.head_radius * self.wrap_angle if self.cylindrical
                         else x_last - x_first) + 2.0 * self.span)
@@ -381,9 +403,112 @@ class BearingModel:
         bending length; a flat or profile head also its shortest feature)."""
         length = l_bend if self.dry else resolution_length(l_film, l_bend)
         if not self.cylindrical:
-            length = min(length, FEATURE_RESOLUTION
-                         * self.head.shortest_feature(self.head_radius))
+            feature = (self.head.shortest_land(self.head_radius) if self.corner_contacts
+                       else self.head.shortest_feature(self.head_radius))
+            length = min(length, FEATURE_RESOLUTION * feature)
         return length
+
+    @property
+    def rounded_corners(self) -> tuple[int, ...]:
+        """Indices (into ``head.corners()``) of the rounded corners the tape turns over,
+        in the order of :attr:`corner_contacts` (empty but on a flat head)."""
+        return self.head.rounded_corners() if isinstance(self.head, FlatHead) else ()
+
+    def _checked_contacts(self, contacts) -> tuple[float, ...]:
+        """The x (head coordinates, m) of the tape's contact on each rounded corner: given
+        (each on its corner's arc), or the estimate :meth:`estimated_contacts`."""
+        rounded = self.rounded_corners
+        if contacts is None:
+            return self.estimated_contacts()
+        values = tuple(validation.real(f"corner_contacts[{i}]", c, unit="m")
+                       for i, c in enumerate(np.atleast_1d(np.asarray(contacts, float))))
+        if len(values) != len(rounded):
+            raise ParameterError(f"corner_contacts must hold one x (m) per rounded corner "
+                                 f"the tape turns over ({len(rounded)}), got {len(values)}")
+        for i, (k, c) in enumerate(zip(rounded, values, strict=True)):
+            lo, hi = self.head.arc_tangent_points(k)
+            if not lo <= c <= hi:
+                raise ParameterError(f"corner_contacts[{i}] must lie on the arc of corner "
+                                     f"{k}, [{lo:.9g}, {hi:.9g}] m, got {c:.9g}")
+        return values
+
+    def estimated_contacts(self) -> tuple[float, ...]:
+        """The start of the contact points on the rounded corners, m (head coordinates):
+        where the arc's slope has turned from the land's by :data:`START_SLOPE` of the
+        corner's turn at speed (the tape's slope at a touching sharp corner, measured
+        0.16 of it), half of it dry (the turn split between the two bending layers)."""
+        turns = self.head.corner_turns(self.head_radius) if self.rounded_corners else ()
+        share = 0.5 if self.dry else START_SLOPE
+        out = []
+        for k in self.rounded_corners:
+            sign = 1.0 if k % 2 == 0 else -1.0
+            out.append(self.head.arc_point(k, self.head.land_slope(k)
+                                           + sign * share * turns[k]))
+        return tuple(out)
+
+    def _centres(self) -> tuple[float, ...]:
+        """The grading's refinement centres, head coordinates, m: every corner, a rounded
+        one at its contact point (the film's constriction and the tape's point load)."""
+        centres = list(self.head.corners(self.head_radius))
+        for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
+            centres[k] = c
+        return tuple(centres)
+
+    @property
+    def contact_nodes(self) -> np.ndarray:
+        """Indices into :attr:`x` of the nodes on the rounded corners' contact points."""
+        x = self.x_head
+        return np.array([int(np.argmin(np.abs(x - c))) for c in self.corner_contacts],
+                        dtype=int)
+
+    def tape_slopes(self, u: np.ndarray, nodes: np.ndarray) -> np.ndarray:
+        """The tape's slope dw/dx (rad) at the interior ``nodes`` (indices into :attr:`x`),
+        from w = z0 + u by the three-point difference on the non-uniform grid (second
+        order where w is C2, as at a point contact, where only w''' jumps), averaged
+        across the width (shape (len(nodes),))."""
+        w = self.head.dry_tape(self.x_head, self.head_radius)[:, None] + np.vstack(
+            [np.zeros((1, self.nc)), u.reshape(self.nx - 1, self.nc),
+             np.zeros((1, self.nc))])
+        i = np.asarray(nodes, dtype=int)
+        hm, hp = (self.x[i] - self.x[i - 1])[:, None], (self.x[i + 1] - self.x[i])[:, None]
+        slope = (hm**2 * w[i + 1] - hp**2 * w[i - 1] + (hp**2 - hm**2) * w[i]) / (
+            hm * hp * (hm + hp))
+        return slope.mean(axis=1)
+
+    @cached_property
+    def contact_floor(self) -> np.ndarray:
+        """The spacing below which each tape unknown's node touches the head, m: the
+        roughness σ, except on the rounded corners' arcs, where only the contact node
+        touches (a tangent point contact: the arc's other nodes lie within Δ²/(2 r_c) of σ
+        next to it, a degenerate contact set Newton cannot settle; they are left free and
+        checked after the solve, :meth:`arc_clearance`) and the floor is
+        :data:`NO_CONTACT_FLOOR`."""
+        floor = np.full((self.nx - 1, self.nc), self.air.roughness)
+        x = self.x_head[1:-1]
+        for k, i in zip(self.rounded_corners, self.contact_nodes, strict=True):
+            lo, hi = self.head.arc_tangent_points(k)
+            on_arc = (x >= lo) & (x <= hi)
+            on_arc[i - 1] = False
+            floor[on_arc, :] = NO_CONTACT_FLOOR
+        return floor.ravel()
+
+    def arc_clearance(self, u: np.ndarray) -> float:
+        """The least h − σ (m) over the rounded corners' arc nodes left free of contact
+        (:attr:`contact_floor`; +inf if none): negative if the tape cuts into an arc, i.e.
+        does not touch it at one point."""
+        free = self.contact_floor < 0.0
+        if not free.any():
+            return math.inf
+        h = u + self.dry_field[1:-1, :].ravel()
+        return float(np.min(h[free]) - self.air.roughness)
+
+    def updated_contacts(self, u: np.ndarray) -> tuple[float, ...]:
+        """The contact points the state u moves the rounded corners' contacts to, m: on
+        each arc, the point whose slope is the tape's at the present contact node (the
+        tangency of a point contact; the nearest approach if the tape flies)."""
+        slopes = self.tape_slopes(u, self.contact_nodes)
+        return tuple(self.head.arc_point(k, float(s))
+                     for k, s in zip(self.rounded_corners, slopes, strict=True))
 
     def _zone_spacing(self, resolution: float) -> float:
         """The default x-spacing at the corners without the corner term, m: the
@@ -415,7 +540,7 @@ class BearingModel:
         """The x-nodes, m on [0, length]: a flat or profile head's with a node on every
         sharp corner (:func:`~.mesh.piecewise_line_nodes`)."""
         breaks = () if self.cylindrical else self._internal(
-            self.head.sharp_corners(self.head_radius))
+            self.head.sharp_corners(self.head_radius) + self.corner_contacts)
         try:
             return piecewise_line_nodes(self.length, self.nx, x_line, breaks,
                                         fewest=FEWEST_BETWEEN_CORNERS)
@@ -477,8 +602,7 @@ class BearingModel:
                  span_given: bool):
         """The number of x-intervals :attr:`nx` (default from the ``resolution`` length, m;
         see :meth:`_default_nx`), checked; returns the x-line's grading (None: uniform)."""
-        x_line = self.grading.x_line(self.length, self._internal(
-            self.head.corners(self.head_radius)))
+        x_line = self.grading.x_line(self.length, self._internal(self._centres()))
         if nx is None:
             nx = self._default_nx(x_line, l_film, resolution, span_given)
         self.nx = validation.integer("nx", nx, low=MIN_INTERVALS_ALONG,
@@ -602,14 +726,28 @@ class BearingModel:
         held = np.zeros(U.shape, dtype=bool)
         turns = dict(zip(self.head.corners(self.head_radius),
                          self.head.corner_turns(self.head_radius), strict=True))
-        for c in self.head.sharp_corners(self.head_radius):
+        all_turns = self.head.corner_turns(self.head_radius)
+        for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
+            turns[c] = all_turns[k]
+        radii = dict(zip(self.head.corners(self.head_radius),
+                         self.head.corner_radii(self.head_radius), strict=True))
+        for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
+            radii[c] = self.head.corner_radii(self.head_radius)[k]
+        for c in self.head.sharp_corners(self.head_radius) + self.corner_contacts:
             turn = turns.get(c, self.wrap_angle)
             if not dry and turn < CORNER_FRACTION * self.wrap_angle:
                 continue     # its point load is small: the film carries it (measured)
             i = int(np.argmin(np.abs(inner - c)))
             if not dry:   # the film's constriction: h rising from σ at the tape's slope
                 reach = max(h0 - sigma, sigma) / (START_SLOPE * turn)
-                taper = sigma + (h0 - sigma) * -np.expm1(-np.abs(inner - c) / reach)
+                s = np.abs(inner - c)
+                # on a rounded corner h rises as a parabola of curvature 1/(2 r_c) over
+                # the first s₀ (the tape less curved than the arc: it presses on its
+                # contact node at once), then at the same slope as at a sharp one
+                s0 = 2.0 * radii.get(c, 0.0) * (h0 - sigma) / reach
+                if s0 > 0.0:
+                    s = np.where(s < s0, 0.5 * s * s / s0, s - 0.5 * s0)
+                taper = sigma + (h0 - sigma) * -np.expm1(-s / reach)
                 U = np.minimum(U, taper[:, None])
             U[i, :] = sigma - self.dry_field[i + 1, :]
             held[i, :] = True
@@ -692,11 +830,15 @@ class BearingModel:
 
     def rebuilt(self, **changes) -> BearingModel:
         """The same model with some constructor arguments changed (velocity, nx, ny,
-        infinitely_wide, head, span, grading, dry, factorization)."""
+        infinitely_wide, head, span, grading, dry, factorization, corner_contacts, adapt_contacts)."""
         kw = dict(velocity=self.velocity, head=self.head,
                   infinitely_wide=self.infinitely_wide, span=self.span, nx=self.nx,
                   ny=self.ny, grading=self.grading, dry=self.dry,
-                  factorization=self.factorization)
+                  factorization=self.factorization,
+                  corner_contacts=self.corner_contacts or None,
+                  adapt_contacts=self.adapt_contacts)
+        if "head" in changes or "dry" in changes:
+            kw["corner_contacts"] = None        # the new head's (or regime's) own estimate
         kw.update(changes)
         return BearingModel(self.params, self.air, **kw)
 

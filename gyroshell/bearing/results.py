@@ -515,17 +515,21 @@ def _state_from(ds, model: BearingModel, info: NewtonInfo,
 
 
 def _settings(model: BearingModel) -> dict:
-    """The keyword arguments that rebuild ``model`` with its tape and air."""
-    return {"velocity": model.velocity, "wrap_angle": model.wrap_angle,
-            "infinitely_wide": model.infinitely_wide, "span": model.span, "nx": model.nx,
-            "ny": model.ny, "grading": model.grading.as_dict(),
-            "head": model.head.as_dict(), "dry": model.dry}
+    """The keyword arguments that rebuild ``model`` with its tape and air (the rounded
+    corners' contact points, which place nodes, only when there are any)."""
+    out = {"velocity": model.velocity, "wrap_angle": model.wrap_angle,
+           "infinitely_wide": model.infinitely_wide, "span": model.span, "nx": model.nx,
+           "ny": model.ny, "grading": model.grading.as_dict(),
+           "head": model.head.as_dict(), "dry": model.dry}
+    if model.corner_contacts:
+        out["corner_contacts"] = list(model.corner_contacts)
+    return out
 
 
 #: The keys of a file's ``model`` attribute (``grading``, ``head`` and ``dry`` may be
 #: absent: older files, whose head is the cylinder of ``wrap_angle``, flying).
 _SETTINGS = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny")
-_OPTIONAL_SETTINGS = ("grading", "head", "dry")
+_OPTIONAL_SETTINGS = ("grading", "head", "dry", "corner_contacts")
 
 
 def _stored_dict(attrs, name: str, allowed, required=()) -> dict:

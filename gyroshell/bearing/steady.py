@@ -75,14 +75,17 @@ STAGNATION_WINDOW = 10
 STAGNATION_STEP = 0.5
 
 
-def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float) -> float:
+def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float,
+                floor=None) -> float:
     """Largest α <= 1 keeping every free node's spacing within [h/5, 5 h + σ] (the film
     coefficients vary like h³). Nodes whose full step would take them below σ are exempt:
     the step is projected onto h >= σ (:func:`_project`) and they enter the contact set at
-    the next iteration, all at once instead of a few per damped step."""
+    the next iteration, all at once instead of a few per damped step. ``floor``: the
+    contact floor per node (default σ; :attr:`BearingModel.contact_floor`)."""
+    floor = sigma if floor is None else floor
     alpha = 1.0
     free = ~active
-    down = free & (du < -(1 - SPACING_KEEP) * h) & (h + du > sigma)
+    down = free & (du < -(1 - SPACING_KEEP) * h) & (h + du > np.maximum(floor, sigma))
     if down.any():
         alpha = min(alpha, float(np.min(-(1 - SPACING_KEEP) * h[down] / du[down])))
     up = free & (du > SPACING_GROWTH * h + sigma)
@@ -92,9 +95,12 @@ def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float)
 
 
 def _project(z: np.ndarray, model: BearingModel, sigma: float) -> np.ndarray:
-    """z with every spacing raised to at least σ (the feasible set of the contact)."""
+    """z with every spacing raised to at least σ (the feasible set of the contact; the
+    rounded arcs' nodes off contact, :attr:`BearingModel.contact_floor`, to the film's
+    floor σ/2: exempt from the step limit, they may dip below σ during the iteration)."""
     n_u = model.n_u
-    floor = sigma - model.dry_field[1:-1, :].ravel()
+    floor = (np.where(model.contact_floor < sigma, 0.5 * sigma, sigma)   # arcs: film's floor
+             - model.dry_field[1:-1, :].ravel())
     z[:n_u] = np.maximum(z[:n_u], floor)
     return z
 
@@ -118,6 +124,8 @@ class _Residual:
         self.K = model.K(tension)
         self.c = _contact_scale(model)
         self.sigma = model.air.roughness
+        #: σ at the nodes that may touch the head (not the rounded arcs' other nodes)
+        self.floor = model.contact_floor
         self.film_kw = ({} if transient is None else
                         {"phi_old": transient.phi_old, "dt": transient.dt})
         t_wrap = max(model.effective_tension(tension) / model.scale_radius, 1.0)
@@ -170,7 +178,7 @@ class _Residual:
         u, p = z[:m.n_u], z[m.n_u:]
         r_u = self.tape(u, p)
         r_p, J_pp, J_pu = m.film_residual(u, p, jacobian=jacobian, **self.film_kw)
-        gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.sigma)
+        gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.floor)
         if active is None:
             active = r_u > gap
         if force is not None:
@@ -274,7 +282,7 @@ def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):
     Returns (α, relative step size, trial state, trial merit)."""
     n_u = model.n_u
     # dry (no film, a linear complementarity problem): no h³ coefficients to protect
-    alpha = 1.0 if model.dry else _step_limit(h, dz[:n_u], active, F.sigma)
+    alpha = 1.0 if model.dry else _step_limit(h, dz[:n_u], active, F.sigma, F.floor)
     if model.air.compressible:
         p, dp = z[n_u:], dz[n_u:]
         shrink = dp < -(1 - PRESSURE_KEEP) * p
@@ -343,7 +351,7 @@ def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
     forced step is taken."""
     model = F.model
     alpha, step, _, merit_t = found
-    entering = ~it.active & (h + dz[:model.n_u] < F.sigma)
+    entering = ~it.active & (h + dz[:model.n_u] < F.floor)
     if _decreased(merit_t, it.merit, alpha) or step < FULL_STEP or not entering.any():
         return found
     res_f, active_f, J_f = F(it.z, jacobian=True, force=entering)
@@ -381,7 +389,7 @@ def _contact_set_step(F, it: _Iterate, h, dz, found, tol):
     active, d, solver = it.active, dz, it.solver
     for _ in range(MAX_SET_UPDATES):
         lam = r_u + F.tape_rows @ d
-        nxt = lam - F.c * (h + d[:n_u] - F.sigma) > 0.0
+        nxt = lam - F.c * (h + d[:n_u] - F.floor) > 0.0
         if np.array_equal(nxt, active):
             break
         active = nxt
@@ -520,6 +528,11 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
         If neither Newton, the pseudo-time march nor the continuation reaches the state.
     """
     tension, z0 = check_steady_arguments(model, z0, tension, progress, iteration_log)
+    if model.adapt_contacts and model.corner_contacts:   # rounded corners: see .corners
+        from .corners import solve_adapting_contacts
+
+        return solve_adapting_contacts(model, solve_steady, z0=z0, tension=tension,
+                                       progress=progress, iteration_log=iteration_log)
     start = time.perf_counter()
     info = NewtonInfo()
     if z0 is None:
@@ -604,11 +617,14 @@ def initial_state(model: BearingModel, *,
     :func:`solve_steady`."""
     if model.infinitely_wide:
         z = None
-        if not model.cylindrical and not model.dry and model.nx > COARSE_START_MIN_NX:
+        if (not model.cylindrical and not model.dry and model.nx > COARSE_START_MIN_NX
+                and not model.corner_contacts):
             z = _coarse_state(model, coarse_min_unknowns, progress, iteration_log)
         return model.initial_state() if z is None else z
+    # rounded corners: no coarse start (interpolated across their contacts' fine cells,
+    # it leads Newton astray; measured on 384 x 64); the extruded strip instead
     z = (_coarse_state(model, coarse_min_unknowns, progress, iteration_log)
-         if model.unknowns >= coarse_min_unknowns else None)
+         if model.unknowns >= coarse_min_unknowns and not model.corner_contacts else None)
     return _extruded_strip_state(model, progress, iteration_log) if z is None else z
 
 

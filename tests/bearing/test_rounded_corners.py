@@ -1,0 +1,296 @@
+"""Rounded corners of a flat head: the tape touches each arc at one point, found by
+regridding (gyroshell.bearing.corners).
+
+Dry closed form (no air, V = 0, k = 0, small slopes): the tensioned plate D w'''' − T w'' = 0
+on three pieces, touching the two arcs z_h = −d²/(2 r_c) (d the distance past the land's
+tangent point) at unknown points x₁, x₂, where w = z_h + σ, w, w', w'' are continuous (a
+point force: w''' jumps) and the tape is tangent to the arc, w'(x_k) = z_h'(x_k). This
+holds while the tape is less curved than the arc, |w''| < 1/r_c (its curvature near a
+corner is about θ/(2λ), λ = √(D/T) ≈ 0.1 mm: 175 1/m at 2°, against 1/r_c = 1e4 1/m
+for r_c = 100 µm): the regime of a point contact, which these tests take.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from bearing_cases import flux_spread_1d
+from convergence import observed_order
+
+from gyroshell import ParameterError, TapeParameters
+from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.head import FlatHead, Module
+from gyroshell.bearing.steady import solve_steady
+
+DEG = math.pi / 180.0
+TAPE = TapeParameters(foundation_stiffness=0.0)
+AIR = AirParameters()
+LAND = 1e-3
+SPAN = 1e-3
+RADIUS = 100e-6
+FLANK = 20 * DEG
+
+
+def plate_over_rounded_land(L, S, t_in, t_out, lam, sigma, r, phi=FLANK):
+    """The exact tape (w, corner forces D[w'''] in N/m, contact points x₁, x₂ in m) over a
+    land [−L/2, L/2] at height 0 whose corners are arcs of radius r (parabolas, small
+    slopes) reaching r φ/2 either side of the corner points, spans pinned at
+    x = −L/2 − S and L/2 + S on the dry string (the arcs' tangent lines of slopes
+    +t_in, −t_out) with w'' = 0 there.
+
+    For given contacts the 12 constants of c₁ + c₂(x − x₀) + c₃e^{(x − x₁)/λ} + c₄e^{−(x −
+    x₀)/λ} per piece follow from a linear system; the contacts from the tangency, by the
+    fixed point x_k ← the arc's point of slope w'(x_k) (a contraction: r |w''| ≪ 1)."""
+    a, b = -L / 2, L / 2
+    lead, trail = a + 0.5 * r * phi, b - 0.5 * r * phi      # the land's tangent points
+
+    def arc(x, k):           # (z_h, z_h') on the arc of corner k (0 leading, 1 trailing)
+        d = lead - x if k == 0 else x - trail
+        return -d * d / (2 * r), (d / r if k == 0 else -d / r)
+
+    # the dry string's end heights: the tangent line of slope t at d = r t on each arc
+    z_left = -r * t_in**2 / 2 + t_in * ((a - S) - (lead - r * t_in))
+    z_right = -r * t_out**2 / 2 - t_out * ((b + S) - (trail + r * t_out))
+
+    def solve(x1, x2):
+        pieces = [(a - S, x1), (x1, x2), (x2, b + S)]
+
+        def basis(x, k, d):
+            x0, xe = pieces[k]
+            x = np.asarray(x, dtype=float)
+            one, zero = np.ones_like(x), np.zeros_like(x)
+            grow, decay = np.exp((x - xe) / lam), np.exp(-(x - x0) / lam)
+            lin = [one, x - x0] if d == 0 else ([zero, one] if d == 1 else [zero, zero])
+            return np.array(lin + [grow / lam**d, (-1) ** d * decay / lam**d])
+
+        rows, rhs = [], []
+
+        def condition(x, k, d, value, other=None):
+            row = np.zeros(12)
+            row[4 * k:4 * k + 4] = basis(x, k, d)
+            if other is not None:
+                row[4 * other:4 * other + 4] -= basis(x, other, d)
+            rows.append(row)
+            rhs.append(value)
+
+        condition(a - S, 0, 0, z_left)
+        condition(a - S, 0, 2, 0.0)
+        condition(b + S, 2, 0, z_right)
+        condition(b + S, 2, 2, 0.0)
+        for k, (x, left, right) in enumerate(((x1, 0, 1), (x2, 1, 2))):
+            condition(x, left, 0, arc(x, k)[0] + sigma)
+            condition(x, right, 0, arc(x, k)[0] + sigma)
+            condition(x, left, 1, 0.0, right)
+            condition(x, left, 2, 0.0, right)
+        c = np.linalg.solve(np.array(rows), np.array(rhs)).reshape(3, 4)
+
+        def evaluate(x, d):
+            x = np.asarray(x, dtype=float)
+            k = np.where(x < x1, 0, np.where(x <= x2, 1, 2))
+            out = np.zeros_like(x)
+            for j in range(3):
+                on = k == j
+                if on.any():
+                    out[on] = (c[j][:, None] * basis(x[on], j, d)).sum(axis=0)
+            return out
+
+        D = lam * lam * TAPE.tension
+        forces = tuple(D * float(np.sum(c[rt] * basis(x, rt, 3)) - np.sum(c[lf] * basis(x, lf, 3)))
+                       for x, lf, rt in ((x1, 0, 1), (x2, 1, 2)))
+        return evaluate, forces
+
+    x1, x2 = lead - r * t_in / 2, trail + r * t_out / 2
+    for _ in range(50):
+        evaluate, forces = solve(x1, x2)
+        s1, s2 = evaluate(np.array([x1, x2]), 1)
+        new = (lead - r * s1, trail - r * s2)       # slope s at d = r s (lead), −r s (trail)
+        moved = max(abs(new[0] - x1), abs(new[1] - x2))
+        x1, x2 = new
+        if moved < 1e-16:
+            break
+    evaluate, forces = solve(x1, x2)
+    return (lambda x: evaluate(x, 0)), forces, (x1, x2)
+
+
+def _dry(nx, t_in=2 * DEG, t_out=2 * DEG, r=RADIUS, **kw):
+    head = FlatHead((Module(LAND, corner_radius=r),), t_in, t_out, flank_angle=FLANK)
+    return BearingModel(TAPE, AIR, velocity=0.0, head=head, span=SPAN, nx=nx, dry=True,
+                        grading="uniform", infinitely_wide=True, **kw)
+
+
+def test_closed_form_touches_each_arc_tangentially_inside_its_wrapped_part():
+    """The derivation's own checks: the contacts lie on the wrapped part of each arc
+    (0 < d < r θ), the tape clears the head everywhere else, and r → 0 gives back the
+    sharp corners' contacts at the corner points."""
+    lam = math.sqrt(TAPE.D / TAPE.tension)
+    t = 2 * DEG
+    w, forces, (x1, x2) = plate_over_rounded_land(LAND, SPAN, t, t, lam, 0.0, RADIUS)
+    lead = -LAND / 2 + 0.5 * RADIUS * FLANK
+    assert 0.0 < lead - x1 < RADIUS * t
+    x = np.linspace(-LAND / 2 - 0.5 * RADIUS * FLANK, LAND / 2 + 0.5 * RADIUS * FLANK, 4001)
+    head = FlatHead((Module(LAND, corner_radius=RADIUS),), t, t, flank_angle=FLANK)
+    clearance = w(x) - head.surface(x)
+    assert clearance.min() > -1e-15
+    assert forces == pytest.approx((TAPE.tension * t,) * 2, rel=0.15)
+    _, _, tiny = plate_over_rounded_land(LAND, SPAN, t, t, lam, 0.0, 1e-12)
+    assert tiny == pytest.approx((-LAND / 2, LAND / 2), abs=1e-12)
+
+
+@pytest.mark.parametrize("t_in, t_out", [(2 * DEG, 2 * DEG), (1 * DEG, 3 * DEG)],
+                         ids=["equal", "unequal"])
+def test_dry_tape_over_rounded_corners_matches_the_plate_and_converges(t_in, t_out):
+    """Height along the tape and both corner forces against the closed form, one contact
+    node per corner (at the adapted contact point), second order."""
+    lam = math.sqrt(TAPE.D / TAPE.tension)
+    w, forces, contacts = plate_over_rounded_land(LAND, SPAN, t_in, t_out, lam,
+                                                  AIR.roughness, RADIUS)
+    steps, errs, ferrs, xerrs = [], [], [], []
+    for nx in (96, 192, 384):
+        sol = solve_steady(_dry(nx, t_in, t_out))
+        m = sol.model
+        height = sol.spacing[:, 0] + m.head.surface(m.x_head)
+        errs.append(np.max(np.abs(height - w(m.x_head))) / (max(t_in, t_out) * lam))
+        line = sol.contact
+        at = m.contact_nodes - 1
+        assert set(np.flatnonzero(line)) == set(at)
+        ferrs.append(max(abs(line[i] / f - 1.0) for i, f in zip(at, forces, strict=True)))
+        xerrs.append(max(abs(c - e) for c, e in zip(m.corner_contacts, contacts, strict=True)))
+        assert m.arc_clearance(sol.u) > 0.0
+        assert sol.info.contact_passes <= 4
+        steps.append(m.hx)
+    assert errs[-1] < 1e-3 and ferrs[-1] < 2e-3
+    assert observed_order(steps, errs) == pytest.approx(2.0, abs=0.25)
+    assert observed_order(steps, ferrs) == pytest.approx(2.0, abs=0.3)
+    assert xerrs[-1] < 0.05 * RADIUS * max(t_in, t_out)
+
+
+# ----- at speed: the air film over rounded corners ----------------------------------------
+FILM_RADIUS = 5e-6
+
+
+def _flying(r=FILM_RADIUS, velocity=4.0, **kw):
+    head = FlatHead((Module(LAND, corner_radius=r),), 2 * DEG, 2 * DEG)
+    return BearingModel(TapeParameters(), AIR, velocity=velocity, head=head,
+                        infinitely_wide=True, **kw)
+
+
+def _h0(sol) -> float:
+    """The spacing at the transducer x = 0, m (interpolated: x = 0 need not be a node)."""
+    return float(np.interp(0.0, sol.model.x_head, sol.spacing[:, 0]))
+
+
+def test_flying_over_rounded_corners_balances_mass_and_touches_each_arc_at_one_point():
+    """1-D, 4 m/s, r_c = 5 µm, default grid: the face fluxes are one constant (to the
+    round-off of the pressure-driven terms), only the two contact nodes touch, the tape
+    clears the rest of each arc, the contacts lie on the arcs' wrapped parts (within
+    r_c θ_c of the land's tangent points) and settled in at most 3 passes."""
+    sol = solve_steady(_flying())
+    m = sol.model
+    spread, terms, flux = flux_spread_1d(sol)
+    assert spread < 1e-12 * terms and spread < 1e-4 * flux
+    assert set(np.flatnonzero(sol.contact)) == set(m.contact_nodes - 1)
+    assert np.all(sol.contact[m.contact_nodes - 1] > TAPE.tension * 2 * DEG)
+    assert m.arc_clearance(sol.u) >= 0.0
+    lead = -LAND / 2 + 0.5 * FILM_RADIUS * FLANK
+    x1, x2 = m.corner_contacts
+    assert 0.0 < lead - x1 < FILM_RADIUS * 2 * DEG and 0.0 < x2 + lead < FILM_RADIUS * 2 * DEG
+    assert sol.info.contact_passes <= 3 and sol.info.iterations <= 30
+
+
+def test_small_corner_radius_tends_to_the_sharp_corners():
+    """r_c → 0: 10 nm flies within 0.1 % of the sharp corners at x = 0 on the same number
+    of intervals (measured 0.02 %), while 5 µm is clearly different (0.7 % lower)."""
+    sharp = _h0(solve_steady(_flying(0.0)))
+    nx = _flying(0.0).nx
+    tiny = _h0(solve_steady(_flying(1e-8, nx=nx)))
+    rounded = _h0(solve_steady(_flying(nx=nx)))
+    assert abs(tiny / sharp - 1.0) < 1e-3
+    assert abs(rounded / sharp - 1.0) > 3e-3
+
+
+def test_reversed_tape_over_symmetric_rounded_corners_mirrors_the_solution():
+    """A symmetric head at −V: the contacts are the mirror images of those at +V (to the
+    passes' tolerance, 1 % of a cell), as are the spacing at x = 0 and the two corner
+    forces (swapped)."""
+    a, b = (solve_steady(_flying(velocity=v)) for v in (4.0, -4.0))
+    ma, mb = a.model, b.model
+    cells = np.diff(ma.x).min()
+    assert np.allclose(np.array(mb.corner_contacts), -np.array(ma.corner_contacts)[::-1],
+                       rtol=0, atol=0.02 * cells)
+    assert _h0(b) == pytest.approx(_h0(a), rel=1e-4)
+    fa, fb = a.contact[ma.contact_nodes - 1], b.contact[mb.contact_nodes - 1]
+    assert np.allclose(fb[::-1], fa, rtol=1e-4)
+    assert abs(fa[0] / fa[1] - 1.0) > 1e-3          # the state itself is asymmetric
+
+
+@pytest.mark.slow
+def test_transducer_spacing_over_rounded_corners_converges_at_second_order():
+    """The default 1-D grid and the same mapping with 2 and 4 times the intervals: h(0)
+    converges at order about 2 (measured 2.01: 31.3129, 31.2801, 31.2720 nm), the
+    default grid within 0.5 % of the Richardson value (measured 0.14 %), the contact
+    force too (within 0.1 %)."""
+    base = _flying()
+    sols = [solve_steady(base if k == 1 else base.rebuilt(nx=k * base.nx,
+                                                            corner_contacts=None))
+            for k in (1, 2, 4)]
+    h = [_h0(s) for s in sols]
+    order = math.log((h[0] - h[1]) / (h[1] - h[2])) / math.log(2.0)
+    limit = h[2] + (h[2] - h[1]) / (2.0**order - 1.0)
+    assert order == pytest.approx(2.0, abs=0.3)
+    assert abs(h[0] / limit - 1.0) < 5e-3
+    forces = [s.contact.sum() for s in sols]
+    assert abs(forces[0] / forces[2] - 1.0) < 1e-3
+    assert all(s.info.contact_passes <= 3 for s in sols)
+
+
+def test_rounded_corners_state_saves_and_loads_with_its_contacts(tmp_path):
+    """The contacts place nodes: they are stored, and the state loads on the same grid,
+    bit for bit."""
+    from gyroshell.results.base import read
+
+    pytest.importorskip("xarray")
+    sol = solve_steady(_dry(96))
+    path = tmp_path / "rounded.nc"
+    sol.save(path)
+    back = read(path)
+    assert back.model.corner_contacts == sol.model.corner_contacts
+    assert np.array_equal(back.model.x, sol.model.x) and np.array_equal(back.u, sol.u)
+    assert np.array_equal(back.contact, sol.contact)
+
+
+def test_two_d_tape_over_rounded_corners_touches_along_the_contact_lines():
+    """A 2 mm tape (96 x 16, spans 1 mm): the contacts are lines across the width at the
+    width-averaged tangent point; only their nodes touch, the tape clears the rest of the
+    arcs, the film stays positive, and its middle flies within 1 % of the 1-D tape on the
+    same x-grid and contacts (measured 0.025 %: the free edges are 1 mm away)."""
+    import warnings
+
+    from gyroshell.bearing.model import BearingGridWarning
+
+    head = FlatHead((Module(LAND, corner_radius=FILM_RADIUS),), 2 * DEG, 2 * DEG)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", BearingGridWarning)
+        model = BearingModel(TapeParameters(width=2e-3), AIR, velocity=4.0, head=head,
+                             nx=96, ny=16, span=1e-3)
+    sol = solve_steady(model)
+    m = sol.model
+    touching = np.flatnonzero(sol.contact.reshape(m.nx - 1, m.nc).sum(axis=1))
+    assert set(touching) <= set(m.contact_nodes - 1) and len(touching) == 2
+    assert m.arc_clearance(sol.u) >= 0.0 and sol.pressure.min() > 0.0
+    assert sol.info.contact_passes <= 3
+    strip = solve_steady(m.rebuilt(infinitely_wide=True, ny=None, adapt_contacts=False))
+    middle = np.interp(0.0, m.x_head, sol.spacing[:, m.ny // 2])
+    assert middle == pytest.approx(_h0(strip), rel=0.01)
+
+
+@pytest.mark.parametrize("contacts, match", [
+    ((0.0,), r"corner_contacts must hold one x \(m\) per rounded corner .* \(2\), got 1"),
+    ((-0.0005, 0.0), r"corner_contacts\[1\] must lie on the arc of corner 1"),
+    ((-0.0005, math.nan), r"corner_contacts\[1\] must be finite"),
+])
+def test_bad_corner_contacts_are_refused_in_one_line(contacts, match):
+    with pytest.raises(ParameterError, match=match) as info:
+        _dry(96, corner_contacts=contacts)
+    assert "\n" not in str(info.value)
