@@ -830,7 +830,8 @@ class BearingModel:
 
     def rebuilt(self, **changes) -> BearingModel:
         """The same model with some constructor arguments changed (velocity, nx, ny,
-        infinitely_wide, head, span, grading, dry, factorization, corner_contacts, adapt_contacts)."""
+        infinitely_wide, head, span, grading, dry, factorization, corner_contacts,
+        adapt_contacts)."""
         kw = dict(velocity=self.velocity, head=self.head,
                   infinitely_wide=self.infinitely_wide, span=self.span, nx=self.nx,
                   ny=self.ny, grading=self.grading, dry=self.dry,
