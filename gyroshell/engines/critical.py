@@ -32,7 +32,7 @@ from ..core import validation
 from ..core.errors import ConvergenceError, SingularError
 from ..linalg import cholesky
 from ..linalg.factorization import resolve_factorization
-from ..linalg.inertia import factor_inertia
+from ..linalg.inertia import factor_inertia, proved_definite
 from ..results.critical import PAPER_SPEED, SUNDARAM_BENSON_SPEED, CriticalSpeeds
 from ..tape.mirror import mirror_split
 from ..tape.model import TapeModel
@@ -68,14 +68,8 @@ def _f_of(result) -> tuple[float, np.ndarray]:
 
 
 def _proved_definite(K, factorization: str) -> bool:
-    """True if the symmetric K is proved positive definite: CHOLMOD's Cholesky succeeds
-    (where selected), else SuperLU's inertia shows no negative or zero pivot."""
-    if resolve_factorization(factorization) == "cholmod":
-        factor = cholesky.cholesky(K)
-        if factor is not None:
-            factor.release()
-            return True
-    return factor_inertia(K).definite
+    """True if the symmetric K is proved positive definite (:func:`proved_definite`)."""
+    return proved_definite(K, factorization)
 
 
 def _proved_indefinite(K, factorization: str) -> bool:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..core import validation
@@ -70,11 +71,12 @@ class _Pencils:
 
         A, B = model.A, model.B
         split = mirror_split(model)
+        self.split = split
         if split is None:
             self.parts = [(A, B, None)]
         else:
-            self.parts = [((P.T @ A @ P).tocsr(), (P.T @ B @ P).tocsr(), P)
-                          for P in (split.symmetric, split.antisymmetric)]
+            self.parts = [(*split.stiffness(w), split.half(w))
+                          for w in ("symmetric", "antisymmetric")]
         self.cholmod = resolve_factorization(factorization) == "cholmod"
         #: Per part, the negative count at the last shift that had some (or None).
         self.counted: list | None = None
@@ -85,11 +87,17 @@ class _Pencils:
         counted = self.counted or [0] * len(self.parts)
         return sorted(range(len(self.parts)), key=lambda k: -counted[k])
 
+    def shifted(self, k: int, tau: float) -> sp.csr_matrix:
+        """A_k − τB_k (on the halves by one vector operation: A_h, B_h share a pattern)."""
+        if self.split is not None:
+            return self.split.combination(("symmetric", "antisymmetric")[k], -tau)
+        A, B, _ = self.parts[k]
+        return A - tau * B
+
     def above(self, k: int, mu: float) -> bool:
         """True if part k is proved to have no eigenvalue at or below μ (N/m): a Cholesky
         (CHOLMOD) or an inertia count of A_k − μB_k without a negative or zero pivot."""
-        A, B, _ = self.parts[k]
-        matrix = A - mu * B
+        matrix = self.shifted(k, mu)
         if self.cholmod:
             factor = cholesky.cholesky(matrix)
             if factor is not None:
@@ -101,8 +109,8 @@ class _Pencils:
     def factor(self, tau: float) -> list:
         """Factorizations of A_h − τB_h (``negatives``: their inertia, None if unknown)."""
         factors = []
-        for A, B, _ in self.parts:
-            matrix = A - tau * B
+        for k in range(len(self.parts)):
+            matrix = self.shifted(k, tau)
             factor = cholesky.ldl(matrix) if self.cholmod else None
             factors.append(factor_inertia(matrix) if factor is None else factor)
         return factors

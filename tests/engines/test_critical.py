@@ -383,7 +383,22 @@ def test_a_sweep_past_the_string_speed_stays_on_the_halves():
     results = solve_speeds(model, [70.0, 85.0], 4, continuation=True, workers=1,
                            options={}, progress=False, description="sweep")
     assert "mirror" in results[-1].info
-    alone = TapeModel(model.params)
-    independent = modes(alone, 85.0, 4)
+    independent = modes(TapeModel(model.params), 85.0, 4, symmetry=False)
     assert "mirror" not in independent.info
     assert results[-1].omega == pytest.approx(independent.omega, rel=1e-10)
+
+
+def test_a_single_call_past_the_string_speed_proves_the_halves_definite():
+    """Above √(T/ρ) a lone call (no stiffness floor proved near divergence) proves K_s(V)
+    and K_a(V) definite, solves on the halves and finds the full problem's frequencies;
+    past divergence (K(V) indefinite: a real pair ±λ, Wickert & Mote's instability) the
+    halves' proof fails and the full problem is solved."""
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    v_div = divergence(model).speed
+    halves = modes(TapeModel(model.params), 85.0, 4)
+    assert "mirror" in halves.info
+    assert halves.omega == pytest.approx(
+        modes(TapeModel(model.params), 85.0, 4, symmetry=False).omega, rel=1e-10)
+    assert halves.residuals.max() < 1e-14
+    beyond = modes(TapeModel(model.params), 1.05 * v_div, 4)
+    assert "mirror" not in beyond.info and beyond.supercritical
