@@ -36,7 +36,7 @@ from ..linalg.inertia import factor_inertia, proved_definite
 from ..results.critical import PAPER_SPEED, SUNDARAM_BENSON_SPEED, CriticalSpeeds
 from ..tape.mirror import mirror_split
 from ..tape.model import TapeModel
-from .divergence import beam_mu_estimate, divergence
+from .divergence import beam_mu_estimate, divergence, proved_above
 from .eigen import check_speed, modes
 from .gyroscopic import gyroscopic_modes
 
@@ -119,6 +119,9 @@ class _HalfCritical:
         return _f_of(result)[0]
 
     def _definite(self, which: str, velocity: float) -> bool:
+        p = self.model.params
+        if p.density * velocity**2 - p.tension <= proved_above(self.model).get(which, -math.inf):
+            return True   # route (b) proved A_h − μB_h > 0, hence K_h(V) for ρV² − T <= μ
         K = self.split.matrices(self.model, velocity, which)[2]
         return _proved_definite(K, self.options.get("factorization", "auto"))
 

@@ -404,3 +404,26 @@ def test_a_single_call_past_the_string_speed_proves_the_halves_definite():
     assert halves.residuals.max() < 1e-14
     beyond = modes(TapeModel(model.params), 1.05 * v_div, 4)
     assert "mirror" not in beyond.info and beyond.supercritical
+
+
+def test_the_half_divergence_skips_is_proved_above_the_buckling_value():
+    """divergence() skips the mirror half proved to lie above the other's μ_min; on the
+    dense matrices that half's A_h − μ_min B_h is positive definite and the other half's
+    A_h − μB_h turns indefinite just above μ_min (the buckling half), so the root search
+    may treat the skipped half's K_h(V) as definite below V_div."""
+    from gyroshell.engines.divergence import proved_above
+    from gyroshell.tape.mirror import mirror_split
+
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    d = divergence(model)
+    proved = proved_above(model)
+    assert len(proved) == 1
+    (which, mu), = proved.items()
+    assert mu == pytest.approx(d.mu, rel=1e-12)
+    split = mirror_split(model)
+    other = "antisymmetric" if which == "symmetric" else "symmetric"
+    A, B = (X.toarray() for X in split.stiffness(which))
+    assert np.linalg.eigvalsh(A - mu * B).min() > 0
+    A, B = (X.toarray() for X in split.stiffness(other))
+    assert np.linalg.eigvalsh(A - d.mu * (1 - 1e-6) * B).min() > 0
+    assert np.linalg.eigvalsh(A - d.mu * (1 + 1e-6) * B).min() < 0
