@@ -17,7 +17,10 @@ ones only as many as the inertia of their half counts below the symmetric ones
 (:func:`_mirror_modes`). The factorization that counts them (CHOLMOD's LDLᴴ of
 Q_a(iω̄), or SuperLU's) also serves their Lanczos solve, shifted at iω̄: the frequencies
 wanted are then the extreme ones just below the shift, and no second factorization is made
-(L_x/L_y = 19, V = 50 m/s: 41 half-size solves instead of 49).
+(L_x/L_y = 19, V = 50 m/s: 41 half-size solves instead of 49). Above √(T/ρ), where the
+stiffness floor does not cover the speed, the halves' K_s(V) and K_a(V) are proved
+definite by a half-width Cholesky each (:func:`_halves_definite`) instead of factoring the
+full K(V) and solving the full problem.
 """
 
 from __future__ import annotations
