@@ -32,11 +32,11 @@ from ..core import validation
 from ..core.errors import ConvergenceError, SingularError
 from ..linalg import cholesky
 from ..linalg.factorization import resolve_factorization
-from ..linalg.inertia import factor_inertia
+from ..linalg.inertia import factor_inertia, proved_definite
 from ..results.critical import PAPER_SPEED, SUNDARAM_BENSON_SPEED, CriticalSpeeds
 from ..tape.mirror import mirror_split
 from ..tape.model import TapeModel
-from .divergence import beam_mu_estimate, divergence
+from .divergence import beam_mu_estimate, divergence, proved_above
 from .eigen import check_speed, modes
 from .gyroscopic import gyroscopic_modes
 
@@ -68,14 +68,8 @@ def _f_of(result) -> tuple[float, np.ndarray]:
 
 
 def _proved_definite(K, factorization: str) -> bool:
-    """True if the symmetric K is proved positive definite: CHOLMOD's Cholesky succeeds
-    (where selected), else SuperLU's inertia shows no negative or zero pivot."""
-    if resolve_factorization(factorization) == "cholmod":
-        factor = cholesky.cholesky(K)
-        if factor is not None:
-            factor.release()
-            return True
-    return factor_inertia(K).definite
+    """True if the symmetric K is proved positive definite (:func:`proved_definite`)."""
+    return proved_definite(K, factorization)
 
 
 def _proved_indefinite(K, factorization: str) -> bool:
@@ -125,8 +119,16 @@ class _HalfCritical:
         return _f_of(result)[0]
 
     def _definite(self, which: str, velocity: float) -> bool:
+        p = self.model.params
+        if p.density * velocity**2 - p.tension <= proved_above(self.model).get(which, -math.inf):
+            return True   # route (b) proved A_h − μB_h > 0, hence K_h(V) for ρV² − T <= μ
         K = self.split.matrices(self.model, velocity, which)[2]
         return _proved_definite(K, self.options.get("factorization", "auto"))
+
+    def definite(self, velocity: float) -> bool:
+        """True if both halves' K_h(V), hence K(V), are proved positive definite."""
+        return all(self._definite(w, velocity) for w in (self.which or "symmetric",
+                   "antisymmetric" if self.which == "symmetric" else "symmetric"))
 
     def indefinite(self, velocity: float) -> bool:
         """True if K(V) is proved not positive definite (f(V) <= 0 without an eigen-solve:
@@ -197,7 +199,23 @@ class _Counted:
         self.trace: list[tuple[float, float]] = []
         self.below: list[tuple[float, float]] = []   # (s, ω₁²) with ω₁² > 0
         self.above = math.inf                         # smallest s with f <= 0
+        self.proved_below = 0.0                       # largest s with K(√s) proved > 0
         self.inertia_checks = 0
+
+    def definite(self, s: float) -> bool:
+        """True if K(√s) is proved positive definite by Cholesky or inertia (then ω₁² > 0
+        there without an eigen-solve: with K > 0 and G skew every eigenvalue is ±iω,
+        ω > 0), and s is a point below the root."""
+        velocity = check_speed(self.model, math.sqrt(s))
+        self.inertia_checks += 1
+        if self.half is not None:
+            found = self.half.definite(velocity)
+        else:
+            found = _proved_definite(self.model.K(velocity),
+                                     self.options.get("factorization", "auto"))
+        if found:
+            self.proved_below = max(self.proved_below, s)
+        return found
 
     def indefinite(self, s: float) -> bool:
         """True if K(√s) is proved not positive definite by inertia (then f <= 0 there and
@@ -231,7 +249,8 @@ class _Counted:
 
     @property
     def highest_below(self) -> float:
-        return self.below[-1][0]
+        """Largest s known below the root: an eigen-solve's ω₁² > 0 or a proof K(√s) > 0."""
+        return max(self.below[-1][0], self.proved_below)
 
 
 def _extrapolate_zero(points: list[tuple[float, float]]) -> float | None:
@@ -305,7 +324,10 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
     Each trial aims ``xtol`` below the extrapolated zero, so that it lands below the root
     and closes the bracket with the next prediction; the point just above that confirms
     the sign change is an inertia count of K(V) (f <= 0 exactly where K(V) is not positive
-    definite), not an eigen-solve.
+    definite), not an eigen-solve. Once the extrapolated zero is within
+    :data:`PROOF_RANGE` of the highest point below, the trial just below it is first tried
+    as a proof that K(V) is positive definite there (a Cholesky per half, f > 0 without an
+    eigen-solve; the eigen-solve is made only where the proof fails).
 
     Raises
     ------
@@ -329,10 +351,18 @@ def _search(f: _Counted, guess: float, xtol: float, step: float) -> tuple[float,
     (m/s), with the relative ``xtol`` and first ``step`` (both in s = V²)."""
     _first_subcritical(f, guess**2)
     s = f.highest_below * (1 + step)
+    proof_tried = False
     while True:
         if s < f.above:
             f(s)
         pred = _next_trial(f)
+        gap = pred - f.highest_below
+        if len(f.below) >= 2 and 2 * xtol * pred < gap <= PROOF_RANGE * pred and \
+                not proof_tried:
+            # close to the root: K(V) > 0 proved just below the prediction stands for the
+            # eigen-solve that would land there (one factorization per half, not a solve)
+            proof_tried = True
+            f.definite(pred * (1 - xtol))
         if abs(pred - f.highest_below) <= 2 * xtol * pred:
             cap = pred * (1 + 2 * xtol)   # confirm the sign change just above
             if cap >= f.above or f.indefinite(cap) or f(cap) <= 0:
@@ -346,12 +376,19 @@ def _search(f: _Counted, guess: float, xtol: float, step: float) -> tuple[float,
                   "trace": f.trace}
 
 
+#: Relative distance in s = V² from the highest point below to the extrapolated zero
+#: within which the point just below the zero is proved by a factorization of K(V)
+#: (:meth:`_Counted.definite`) instead of an eigen-solve, once per search: the
+#: extrapolation from two points DIVERGENCE_GAP apart is that accurate (module notes).
+PROOF_RANGE = 1e-5
 #: Without a ``guess``, route (a) starts this fraction below route (b)'s speed (in s = V²
 #: twice that), with a first step of the same size: close enough that the secant through
-#: the first two points predicts the zero of ω₁²(s) to within ``xtol`` = 1e-9 (the
-#: curvature error grows with the square of the gap: 2.4e-8 at 1e-6 on the L_x/L_y = 19
-#: tape), so three eigen-solves and one inertia count settle the root.
-DIVERGENCE_GAP = 1e-7
+#: the first two points predicts the zero of ω₁²(s) to well within ``xtol`` = 1e-9 (the
+#: curvature error grows with the square of the gap; route (a) against route (b) on the
+#: L_x/L_y = 19 tape: 2.4e-8 at 1e-6, 2.6e-10 at 1e-7, 2.6e-12 at 1e-8), so two
+#: eigen-solves, a Cholesky of K(V) just below the predicted zero and one inertia count
+#: just above settle the root.
+DIVERGENCE_GAP = 1e-8
 #: ARPACK's basis for the solves about σ = 0 that close: the pair ±iω₁ nearest zero is far
 #: from the others there, and a short basis converges in fewer solves (19 against 25).
 NEAR_ROOT_NCV = 10
@@ -392,8 +429,9 @@ def critical_speeds(model: TapeModel, **options) -> CriticalSpeeds:
     DIVERGENCE_GAP below its speed, on the mirror half that holds the buckling mode (the
     other half's K_h(V) is still proved definite at each speed): route (a)'s root is still
     the zero of its own eigen-solves' ω₁², extrapolated and bracketed by a sign change, so
-    the comparison of the two routes keeps its meaning; it needs 3-4 eigen-solves instead
-    of about 8 from :func:`default_guess`.
+    the comparison of the two routes keeps its meaning; it needs 2-3 eigen-solves instead
+    of about 8 from :func:`default_guess` (the point just below the zero is a proof that
+    K(V) > 0, :data:`PROOF_RANGE`).
     """
     p = model.params
     t0 = time.perf_counter()

@@ -12,8 +12,10 @@ lowest frequency reaches zero.
 from __future__ import annotations
 
 import math
+import weakref
 
 import numpy as np
+import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from ..core import validation
@@ -70,11 +72,11 @@ class _Pencils:
 
         A, B = model.A, model.B
         split = mirror_split(model)
+        self.split = split
         if split is None:
             self.parts = [(A, B, None)]
         else:
-            self.parts = [((P.T @ A @ P).tocsr(), (P.T @ B @ P).tocsr(), P)
-                          for P in (split.symmetric, split.antisymmetric)]
+            self.parts = [(*split.stiffness(w), split.half(w)) for w in HALVES]
         self.cholmod = resolve_factorization(factorization) == "cholmod"
         #: Per part, the negative count at the last shift that had some (or None).
         self.counted: list | None = None
@@ -85,11 +87,17 @@ class _Pencils:
         counted = self.counted or [0] * len(self.parts)
         return sorted(range(len(self.parts)), key=lambda k: -counted[k])
 
+    def shifted(self, k: int, tau: float) -> sp.csr_matrix:
+        """A_k − τB_k (on the halves by one vector operation: A_h, B_h share a pattern)."""
+        if self.split is not None:
+            return self.split.combination(HALVES[k], -tau)
+        A, B, _ = self.parts[k]
+        return A - tau * B
+
     def above(self, k: int, mu: float) -> bool:
         """True if part k is proved to have no eigenvalue at or below μ (N/m): a Cholesky
         (CHOLMOD) or an inertia count of A_k − μB_k without a negative or zero pivot."""
-        A, B, _ = self.parts[k]
-        matrix = A - mu * B
+        matrix = self.shifted(k, mu)
         if self.cholmod:
             factor = cholesky.cholesky(matrix)
             if factor is not None:
@@ -101,8 +109,8 @@ class _Pencils:
     def factor(self, tau: float) -> list:
         """Factorizations of A_h − τB_h (``negatives``: their inertia, None if unknown)."""
         factors = []
-        for A, B, _ in self.parts:
-            matrix = A - tau * B
+        for k in range(len(self.parts)):
+            matrix = self.shifted(k, tau)
             factor = cholesky.ldl(matrix) if self.cholmod else None
             factors.append(factor_inertia(matrix) if factor is None else factor)
         return factors
@@ -210,17 +218,35 @@ def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | 
             raise ParameterError(f"shift {tau:g} N/m is an eigenvalue of A phi = mu B phi; "
                                  "choose another")
         mu, mode = math.inf, None
+        proved = {}
         for k in pencils.order():   # a part proved to lie above the best μ is skipped
             if mode is not None and pencils.above(k, mu):
+                proved[k] = mu
                 continue
             found = _lowest(*pencils.parts[k], factors[k], tau, tol)
             if found[0] < mu:
                 mu, mode = found
     finally:
         pencils.release(factors)
+    if pencils.split is not None:
+        _PROVED_ABOVE[model] = {HALVES[k]: value for k, value in proved.items()}
     mode = mode / mode[np.argmax(np.abs(mode))]
     p = model.params
     return Divergence(math.sqrt((p.tension + mu) / p.density), mu, mode, model.grid)
+
+
+#: The mirror halves in the order of :class:`_Pencils`' parts.
+HALVES = ("symmetric", "antisymmetric")
+#: Per model, the halves h with A_h − μB_h proved positive definite by :func:`divergence`
+#: (the half it skipped), and that μ, N/m.
+_PROVED_ABOVE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def proved_above(model: TapeModel) -> dict[str, float]:
+    """{half: μ}: the mirror halves whose A_h − μB_h the last :func:`divergence` of
+    ``model`` proved positive definite (a Cholesky or an inertia count), so K_h(V) > 0 for
+    ρV² − T <= μ; empty if none (or not computed)."""
+    return dict(_PROVED_ABOVE.get(model, {}))
 
 
 def _lowest(A, B, P, factor, tau: float, tol: float) -> tuple[float, np.ndarray]:

@@ -17,7 +17,10 @@ ones only as many as the inertia of their half counts below the symmetric ones
 (:func:`_mirror_modes`). The factorization that counts them (CHOLMOD's LDLᴴ of
 Q_a(iω̄), or SuperLU's) also serves their Lanczos solve, shifted at iω̄: the frequencies
 wanted are then the extreme ones just below the shift, and no second factorization is made
-(L_x/L_y = 19, V = 50 m/s: 41 half-size solves instead of 49).
+(L_x/L_y = 19, V = 50 m/s: 41 half-size solves instead of 49). Above √(T/ρ), where the
+stiffness floor does not cover the speed, the halves' K_s(V) and K_a(V) are proved
+definite by a half-width Cholesky each (:func:`_halves_definite`) instead of factoring the
+full K(V) and solving the full problem.
 """
 
 from __future__ import annotations
@@ -33,7 +36,7 @@ from ..core import validation
 from ..core.errors import ConvergenceError, ParameterError
 from ..linalg import cholesky
 from ..linalg.factorization import check_factorization, resolve_factorization
-from ..linalg.inertia import factor_inertia
+from ..linalg.inertia import factor_inertia, proved_definite
 from ..linalg.qep import (
     DEFAULT_TOL,
     RESIDUAL_LIMIT,
@@ -261,10 +264,13 @@ def _try_mirror(model: TapeModel, velocity: float, count: int, start: Modes | No
     the halves do not apply: K(V) not proved definite, ARPACK asked for, no mirror symmetry,
     too many modes for a half, or the counts did not close."""
     if options.method not in ("auto", "lanczos") or options.ncv is not None or \
-            options.maxiter is not None or not _known_definite(model, velocity):
+            options.maxiter is not None:
         return None
+    known = _known_definite(model, velocity)
     split = mirror_split(model)
     if split is None or count > max_count(split.antisymmetric.shape[1]):
+        return None
+    if not known and not _halves_definite(model, split, velocity, options.factorization):
         return None
     # a previous speed's split (continuation) says how many are symmetric
     hint = (start.info.get("mirror") or {}).get("symmetric") if start else None
@@ -275,6 +281,16 @@ def _try_mirror(model: TapeModel, velocity: float, count: int, start: Modes | No
         if result is not None:
             return result
     return None
+
+
+def _halves_definite(model: TapeModel, split, velocity: float, factorization: str) -> bool:
+    """True if K_s(V) and K_a(V) are proved positive definite (one half-width Cholesky, or
+    SuperLU's inertia, each), hence K(V) = P_s K_s P_sᵀ + P_a K_a P_aᵀ: a speed above
+    √(T/ρ) that the model's stiffness floor does not cover runs on the halves without a
+    full-size factorization of K(V) (L_x/L_y = 19: two half-width Choleskys of K_h, ~15 ms
+    each, against the full K(V)'s and a full-size solve)."""
+    return all(proved_definite(split.matrices(model, velocity, w)[2], factorization,
+                               fallback=False) for w in ("symmetric", "antisymmetric"))
 
 
 def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, estimate,

@@ -92,3 +92,23 @@ def factor_inertia(matrix: sp.spmatrix) -> InertiaFactor:
     if not np.all(np.isfinite(d)) or np.any(d == 0):
         return InertiaFactor(lu, None)
     return InertiaFactor(lu, int(np.count_nonzero(np.real(d) < 0)))
+
+
+def proved_definite(matrix: sp.spmatrix, factorization: str = "auto", *,
+                    fallback: bool = True) -> bool:
+    """True if the symmetric/Hermitian ``matrix`` is proved positive definite: CHOLMOD's
+    Cholesky succeeds (where ``factorization`` selects it), else SuperLU's inertia shows no
+    negative or zero pivot (after a failed Cholesky only with ``fallback``: a failed
+    Cholesky met a pivot <= 0, the matrix is then almost surely not definite). False where
+    neither proves it (not definite, or unknown)."""
+    from . import cholesky
+    from .factorization import resolve_factorization
+
+    if resolve_factorization(factorization) == "cholmod":
+        factor = cholesky.cholesky(matrix)
+        if factor is not None:
+            factor.release()
+            return True
+        if not fallback:
+            return False
+    return factor_inertia(matrix).definite

@@ -40,21 +40,33 @@ class MirrorSplit:
 
     symmetric: sp.csr_matrix
     antisymmetric: sp.csr_matrix
-    _A: tuple
-    _B: tuple
+    _AB: tuple   # per half: (A_h, B_h) on one sparsity pattern
     _M: tuple
     _G1: tuple
 
     def half(self, which: str) -> sp.csr_matrix:
         return self.symmetric if which == "symmetric" else self.antisymmetric
 
+    def stiffness(self, which: str) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """(A_h, B_h) = (P_hᵀAP_h, P_hᵀBP_h) of one half, N/m, on one sparsity pattern
+        (shared, read only)."""
+        return self._AB[0 if which == "symmetric" else 1]
+
+    def combination(self, which: str, tau: float) -> sp.csr_matrix:
+        """A_h + τ B_h, N/m (τ in N/m), by one vector operation on the shared pattern."""
+        A, B = self.stiffness(which)
+        return sp.csr_matrix((A.data + tau * B.data, A.indices, A.indptr), shape=A.shape)
+
     def matrices(self, model, velocity: float, which: str
                  ) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
         """(M_h, G_h(V), K_h(V)) of one half: K_h = A_h + (T − ρV²) B_h as in the model,
         G_h(V) = V G_h(1 m/s) (G is linear in V), projected once per model."""
         k = 0 if which == "symmetric" else 1
-        K = (self._A[k] + model.effective_tension(velocity) * self._B[k]).tocsr()
-        return self._M[k], (model.params.check_velocity(velocity) * self._G1[k]).tocsr(), K
+        K = self.combination(which, model.effective_tension(velocity))
+        G1 = self._G1[k]
+        G = sp.csr_matrix((model.params.check_velocity(velocity) * G1.data, G1.indices,
+                           G1.indptr), shape=G1.shape)
+        return self._M[k], G, K
 
 
 def _reflection(n_lines: int, n_across: int) -> tuple[sp.csr_matrix, sp.csr_matrix,
@@ -78,11 +90,108 @@ def _reflection(n_lines: int, n_across: int) -> tuple[sp.csr_matrix, sp.csr_matr
     return R, sp.kron(eye, ps, format="csr"), sp.kron(eye, pa, format="csr")
 
 
+@dataclass(frozen=True)
+class _Numbering:
+    """The reflection j → R(j) of a grid's unknowns and the two halves' numbering.
+
+    Per full unknown (line ℓ, column c of ``n_across``): ``mirror`` = its image ℓ·n_across
+    + (n_across − 1 − c); ``sym`` its symmetric half unknown ℓ·⌈n_across/2⌉ + min(c, c̄);
+    ``anti`` its antisymmetric one ℓ·⌊n_across/2⌋ + min(c, c̄) and ``sign`` ±1 (0 on a
+    centre line, which P_a omits); ``weight_s`` the entry of P_s in its column (1/√2 on
+    pairs, 1 on a centre line).
+    """
+
+    n_lines: int
+    n_across: int
+    mirror: np.ndarray
+    sym: np.ndarray
+    anti: np.ndarray
+    sign: np.ndarray
+    weight_s: np.ndarray
+
+    @classmethod
+    def of(cls, n_lines: int, n_across: int) -> _Numbering:
+        line, c = np.divmod(np.arange(n_lines * n_across), n_across)
+        cbar = n_across - 1 - c
+        low = np.minimum(c, cbar)
+        columns, pairs = (n_across + 1) // 2, n_across // 2
+        sign = np.sign(cbar - c).astype(float)
+        weight_s = np.where(c == cbar, 1.0, 1 / math.sqrt(2))
+        anti = np.where(sign != 0, line * pairs + np.minimum(low, pairs - 1), 0)
+        return cls(n_lines, n_across, line * n_across + cbar, line * columns + low, anti,
+                   sign, weight_s)
+
+    def bases(self) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+        """(P_s, P_a) as sparse matrices (n × n_s, n × n_a)."""
+        n = self.mirror.size
+        n_s = self.n_lines * ((self.n_across + 1) // 2)
+        n_a = self.n_lines * (self.n_across // 2)
+        P_s = sp.csr_matrix((self.weight_s, self.sym, np.arange(n + 1)), shape=(n, n_s))
+        keep = self.sign != 0
+        P_a = sp.csr_matrix((self.sign[keep] / math.sqrt(2), (np.flatnonzero(keep),
+                             self.anti[keep])), shape=(n, n_a))
+        return P_s, P_a
+
+    def reflected(self, A: sp.csr_matrix) -> sp.csr_matrix:
+        """R A R (canonical CSR): A's rows permuted, its column indices mapped."""
+        out = A[self.mirror]
+        out.indices = self.mirror[out.indices]
+        out.has_sorted_indices = False
+        out.sort_indices()
+        return out
+
+    def invariant(self, A: sp.spmatrix) -> bool:
+        """R A R = A to round-off (entry-wise, :data:`SYMMETRY_RTOL`)."""
+        A = sp.csr_matrix(A)
+        if not A.nnz:
+            return True
+        A.sum_duplicates()
+        RAR = self.reflected(A)
+        if np.array_equal(RAR.indptr, A.indptr) and np.array_equal(RAR.indices, A.indices):
+            defect = np.abs(RAR.data - A.data).max()
+        else:
+            defect = abs(RAR - A).max()
+        return bool(defect <= SYMMETRY_RTOL * np.abs(A.data).max())
+
+    def fold(self, A: sp.csr_matrix, which: str, dtype=float) -> sp.csr_matrix:
+        """P_hᵀ A P_h of an R-invariant A from the rows of one side: for pairs k, l,
+        (P_sᵀAP_s)_kl = A_kl + A_k,R(l) and (P_aᵀAP_a)_kl = A_kl − A_k,R(l), with the
+        weights of a centre line (exact where RAR = A; a few vectorized passes)."""
+        if which == "symmetric":
+            rows = np.flatnonzero(self.mirror >= np.arange(self.mirror.size))
+            index, n_h = self.sym, self.n_lines * ((self.n_across + 1) // 2)
+            row_scale = 1 / self.weight_s[rows]
+            col_scale = self.weight_s
+        else:
+            rows = np.flatnonzero(self.sign > 0)
+            index, n_h = self.anti, self.n_lines * (self.n_across // 2)
+            row_scale = np.ones(rows.size)
+            col_scale = self.sign
+        sub = A[rows]
+        lengths = np.diff(sub.indptr)
+        data = sub.data * np.repeat(row_scale, lengths) * col_scale[sub.indices]
+        out = sp.csr_matrix((data.astype(dtype, copy=False), index[sub.indices], sub.indptr),
+                            shape=(n_h, n_h))
+        out.sum_duplicates()   # sorts each row's indices and merges the pairs' entries
+        if which != "symmetric":
+            out.eliminate_zeros()   # the centre line's entries (P_a has no centre column)
+        return out
+
+
 def _invariant(R: sp.csr_matrix, A: sp.spmatrix) -> bool:
     A = sp.csr_matrix(A)
     scale = abs(A).max() if A.nnz else 0.0
     defect = abs(R @ A @ R - A).max() if A.nnz else 0.0
     return bool(defect <= SYMMETRY_RTOL * scale)
+
+
+def _on_one_pattern(numbering: _Numbering, AB: sp.csr_matrix, which: str
+                    ) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """(P_hᵀAP_h, P_hᵀBP_h) sharing one sparsity pattern, folded together from AB = A + iB."""
+    both = numbering.fold(AB, which, dtype=complex)
+    pattern = (both.indices, both.indptr)
+    return (sp.csr_matrix((both.data.real.copy(), *pattern), shape=both.shape),
+            sp.csr_matrix((both.data.imag.copy(), *pattern), shape=both.shape))
 
 
 _SPLITS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -91,7 +200,13 @@ _SPLITS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 def mirror_split(model) -> MirrorSplit | None:
     """The split of a :class:`gyroshell.TapeModel`, or None if it is not mirror symmetric
     (or not a tape model: other objects duck-typing the eigen-solver's needs). Checked on
-    the assembled A, B, M and G(1 m/s) and cached per model."""
+    the assembled A, B, M and G(1 m/s) and cached per model.
+
+    The reflection is a permutation of the unknowns and the bases combine mirrored pairs,
+    so the check (R A R by permuting A's rows and relabelling its columns) and the halves
+    (:meth:`_Numbering.fold`) are a few vectorized passes over the entries, not sparse
+    triple products.
+    """
     try:
         return _SPLITS[model]
     except (KeyError, TypeError):
@@ -101,19 +216,21 @@ def mirror_split(model) -> MirrorSplit | None:
     if all(hasattr(model, a) for a in ("A", "B", "M", "G", "effective_tension")) and \
             hasattr(grid, "n_lines") and hasattr(grid, "n_across") and grid.n_across >= 2 \
             and getattr(model, "unknowns", None) == grid.n_lines * grid.n_across:
-        R, Ps, Pa = _reflection(grid.n_lines, grid.n_across)
-        M = sp.diags(model.mass_diagonal, format="csr")
-        G1 = model.G(1.0)
-        if all(_invariant(R, X) for X in (model.A, model.B, M, G1)):
-            def project(P, X):
-                return (P.T @ X @ P).tocsr()
+        numbering = _Numbering.of(grid.n_lines, grid.n_across)
+        mass = np.asarray(model.mass_diagonal, dtype=float)
+        A, B, G1 = (sp.csr_matrix(X) for X in (model.A, model.B, model.G(1.0)))
+        mass_scale = np.abs(mass).max() if mass.size else 0.0
+        if np.abs(mass[numbering.mirror] - mass).max() <= SYMMETRY_RTOL * mass_scale and \
+                all(numbering.invariant(X) for X in (A, B, G1)):
+            Ps, Pa = numbering.bases()
+            AB = sp.csr_matrix(A, dtype=complex) + 1j * B
             split = MirrorSplit(
                 Ps, Pa,
-                (project(Ps, model.A), project(Pa, model.A)),
-                (project(Ps, model.B), project(Pa, model.B)),
-                (sp.diags((Ps.T @ M @ Ps).diagonal(), format="csr"),
-                 sp.diags((Pa.T @ M @ Pa).diagonal(), format="csr")),
-                (project(Ps, G1), project(Pa, G1)))
+                tuple(_on_one_pattern(numbering, AB, w)
+                      for w in ("symmetric", "antisymmetric")),
+                (sp.diags(mass[numbering.mirror >= np.arange(mass.size)], format="csr"),
+                 sp.diags(mass[numbering.sign > 0], format="csr")),
+                tuple(numbering.fold(G1, w) for w in ("symmetric", "antisymmetric")))
     try:
         _SPLITS[model] = split
     except TypeError:  # not weak-referenceable: no cache

@@ -360,15 +360,17 @@ def test_divergence_on_the_halves_is_the_pencils_smallest_eigenvalue():
     assert np.linalg.norm(r) < 1e-9 * np.linalg.norm(A, 1) * np.linalg.norm(d.mode)
 
 
-def test_critical_speed_from_the_divergence_route_in_three_eigen_solves():
-    """Without a guess, route (a) starts just below route (b)'s speed: three eigen-solves
-    and one inertia count of K(V) bracket a zero of ω₁² that agrees with (b)."""
+def test_critical_speed_from_the_divergence_route_in_two_eigen_solves():
+    """Without a guess, route (a) starts just below route (b)'s speed: two eigen-solves
+    extrapolate the zero of ω₁²; K(V) proved definite just below it (ω₁² > 0 there) and
+    indefinite just above bracket it, and it agrees with (b) far inside the tolerance."""
     model = TapeModel(TapeParameters(length_ratio=3.0, spacing=WIDTH / 8))
     c = critical_speeds(model)
-    assert c.info["evaluations"] <= 4 and c.info["inertia_checks"] >= 1
+    assert c.info["evaluations"] <= 3 and c.info["inertia_checks"] >= 2
     lo, hi = c.info["bracket"]
     assert lo <= c.critical_speed <= hi and (hi - lo) / hi < 4e-9
-    assert c.relative_difference < 1e-9
+    assert critical_function(model, lo) > 0          # the proved point below: ω₁ real
+    assert c.relative_difference < 1e-11
     assert critical_function(model, lo) > 0          # below: a real lowest frequency
 
 
@@ -383,7 +385,45 @@ def test_a_sweep_past_the_string_speed_stays_on_the_halves():
     results = solve_speeds(model, [70.0, 85.0], 4, continuation=True, workers=1,
                            options={}, progress=False, description="sweep")
     assert "mirror" in results[-1].info
-    alone = TapeModel(model.params)
-    independent = modes(alone, 85.0, 4)
+    independent = modes(TapeModel(model.params), 85.0, 4, symmetry=False)
     assert "mirror" not in independent.info
     assert results[-1].omega == pytest.approx(independent.omega, rel=1e-10)
+
+
+def test_a_single_call_past_the_string_speed_proves_the_halves_definite():
+    """Above √(T/ρ) a lone call (no stiffness floor proved near divergence) proves K_s(V)
+    and K_a(V) definite, solves on the halves and finds the full problem's frequencies;
+    past divergence (K(V) indefinite: a real pair ±λ, Wickert & Mote's instability) the
+    halves' proof fails and the full problem is solved."""
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    v_div = divergence(model).speed
+    halves = modes(TapeModel(model.params), 85.0, 4)
+    assert "mirror" in halves.info
+    assert halves.omega == pytest.approx(
+        modes(TapeModel(model.params), 85.0, 4, symmetry=False).omega, rel=1e-10)
+    assert halves.residuals.max() < 1e-14
+    beyond = modes(TapeModel(model.params), 1.05 * v_div, 4)
+    assert "mirror" not in beyond.info and beyond.supercritical
+
+
+def test_the_half_divergence_skips_is_proved_above_the_buckling_value():
+    """divergence() skips the mirror half proved to lie above the other's μ_min; on the
+    dense matrices that half's A_h − μ_min B_h is positive definite and the other half's
+    A_h − μB_h turns indefinite just above μ_min (the buckling half), so the root search
+    may treat the skipped half's K_h(V) as definite below V_div."""
+    from gyroshell.engines.divergence import proved_above
+    from gyroshell.tape.mirror import mirror_split
+
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    d = divergence(model)
+    proved = proved_above(model)
+    assert len(proved) == 1
+    (which, mu), = proved.items()
+    assert mu == pytest.approx(d.mu, rel=1e-12)
+    split = mirror_split(model)
+    other = "antisymmetric" if which == "symmetric" else "symmetric"
+    A, B = (X.toarray() for X in split.stiffness(which))
+    assert np.linalg.eigvalsh(A - mu * B).min() > 0
+    A, B = (X.toarray() for X in split.stiffness(other))
+    assert np.linalg.eigvalsh(A - d.mu * (1 - 1e-6) * B).min() > 0
+    assert np.linalg.eigvalsh(A - d.mu * (1 + 1e-6) * B).min() < 0

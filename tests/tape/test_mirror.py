@@ -41,6 +41,39 @@ def test_reflection_commutes_and_the_halves_split_orthogonally(edges):
     assert (M_s - sp.diags(M_s.diagonal())).count_nonzero() == 0
 
 
+@pytest.mark.parametrize("divisions", [8, 9])   # an odd and an even number across
+def test_the_folded_halves_are_the_projections(divisions):
+    """The halves folded from one side's rows by the mirror permutation equal the triple
+    products P_hᵀ X P_h of the orthonormal bases (X = A, B, M, G, each half), and
+    A_h + τB_h on the shared pattern is P_hᵀ(A + τB)P_h."""
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / divisions))
+    split = mirror_split(model)
+    g = model.grid
+    _, P_s, P_a = _reflection(g.n_lines, g.n_across)
+    assert abs(split.symmetric - P_s).max() == 0 and abs(split.antisymmetric - P_a).max() == 0
+    M = sp.diags(model.mass_diagonal, format="csr")
+    tau = -0.7 * model.params.tension
+    for which, P in (("symmetric", P_s), ("antisymmetric", P_a)):
+        A_h, B_h = split.stiffness(which)
+        M_h, G_h, K_h = split.matrices(model, 30.0, which)
+        for folded, X in ((A_h, model.A), (B_h, model.B), (M_h, M), (G_h, model.G(30.0)),
+                          (K_h, model.K(30.0)), (split.combination(which, tau),
+                                                 model.A + tau * model.B)):
+            exact = (P.T @ X @ P).toarray()
+            assert np.abs(folded.toarray() - exact).max() <= 1e-13 * np.abs(exact).max()
+        assert np.array_equal(A_h.indices, B_h.indices)
+
+
+def test_an_asymmetric_model_has_no_split():
+    """One entry of A changed on one side of the centre line breaks R A R = A."""
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    A = model.A.tolil()
+    A[3, 3] *= 1 + 1e-9
+    model.__dict__["A"] = A.tocsr()
+    assert mirror_split(model) is None
+    assert "mirror" not in modes(model, 0.0, 2).info
+
+
 def test_navier_modes_split_by_the_parity_of_n():
     """All sides simply supported at V = 0: ω_mn closed form; n odd is symmetric about the
     centre line, n even antisymmetric; the half-width solves find each in its half."""
