@@ -211,3 +211,62 @@ def levy_divergence_mu(D, p: TapeParameters, alphas) -> float:
     """μ_min = min over the axial wavenumbers α of (ℓ₁(α) + k)/α², N/m: K(V) of the
     free-edged tape turns singular at ρV² − T = μ_min (the lowest Lévy branch at ω = 0)."""
     return float(min((levy_lowest(D, a, p.width) + p.k) / a**2 for a in alphas))
+
+
+def tensioned_plate_on_two_supports(ends, contacts, lam: float, end_heights, contact_heights,
+                                    tension: float):
+    """The exact tensioned plate D w'''' − T w'' = 0 (λ = √(D/T), m) on [e₀, e₁] = ``ends``,
+    pinned at its ends (w given by ``end_heights``, w'' = 0) and resting on two point
+    supports x₁ < x₂ (``contacts``) at heights ``contact_heights`` (m), w' and w''
+    continuous through them.
+
+    On each of the three pieces [x₀, xₑ], w = c₁ + c₂ (x − x₀) + c₃ e^{(x − xₑ)/λ}
+    + c₄ e^{−(x − x₀)/λ}: twelve constants from four end and eight support conditions.
+    Returns (evaluate(x, d): the d-th derivative of w at x, (F₁, F₂): the supports' point
+    forces D [w'''] in N/m)."""
+    (e0, e1), (x1, x2) = ends, contacts
+    pieces = [(e0, x1), (x1, x2), (x2, e1)]
+
+    def basis(x, k, d):
+        """d-th derivative of the four basis functions of piece k at x."""
+        x0, xe = pieces[k]
+        x = np.asarray(x, dtype=float)
+        one, zero = np.ones_like(x), np.zeros_like(x)
+        grow, decay = np.exp((x - xe) / lam), np.exp(-(x - x0) / lam)
+        lin = [one, x - x0] if d == 0 else ([zero, one] if d == 1 else [zero, zero])
+        return np.array(lin + [grow / lam**d, (-1) ** d * decay / lam**d])
+
+    rows, rhs = [], []
+
+    def condition(x, k, d, value, other=None):
+        row = np.zeros(12)
+        row[4 * k:4 * k + 4] = basis(x, k, d)
+        if other is not None:
+            row[4 * other:4 * other + 4] -= basis(x, other, d)
+        rows.append(row)
+        rhs.append(value)
+
+    for x, k, height in ((e0, 0, end_heights[0]), (e1, 2, end_heights[1])):
+        condition(x, k, 0, height)
+        condition(x, k, 2, 0.0)
+    for x, left, height in ((x1, 0, contact_heights[0]), (x2, 1, contact_heights[1])):
+        condition(x, left, 0, height)
+        condition(x, left + 1, 0, height)
+        condition(x, left, 1, 0.0, left + 1)
+        condition(x, left, 2, 0.0, left + 1)
+    c = np.linalg.solve(np.array(rows), np.array(rhs)).reshape(3, 4)
+
+    def evaluate(x, d):
+        x = np.asarray(x, dtype=float)
+        k = np.where(x < x1, 0, np.where(x <= x2, 1, 2))
+        out = np.zeros_like(x)
+        for j in range(3):
+            on = k == j
+            if on.any():
+                out[on] = (c[j][:, None] * basis(x[on], j, d)).sum(axis=0)
+        return out
+
+    D = lam * lam * tension
+    forces = tuple(D * float(np.sum(c[k + 1] * basis(x, k + 1, 3)) - np.sum(c[k] * basis(x, k, 3)))
+                   for k, x in enumerate((x1, x2)))
+    return evaluate, forces

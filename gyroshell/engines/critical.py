@@ -206,13 +206,7 @@ class _Counted:
         """True if K(√s) is proved positive definite by Cholesky or inertia (then ω₁² > 0
         there without an eigen-solve: with K > 0 and G skew every eigenvalue is ±iω,
         ω > 0), and s is a point below the root."""
-        velocity = check_speed(self.model, math.sqrt(s))
-        self.inertia_checks += 1
-        if self.half is not None:
-            found = self.half.definite(velocity)
-        else:
-            found = _proved_definite(self.model.K(velocity),
-                                     self.options.get("factorization", "auto"))
+        found = self._proof(s, "definite")
         if found:
             self.proved_below = max(self.proved_below, s)
         return found
@@ -220,16 +214,20 @@ class _Counted:
     def indefinite(self, s: float) -> bool:
         """True if K(√s) is proved not positive definite by inertia (then f <= 0 there and
         s caps the bracket); one factorization per half instead of an eigen-solve."""
-        velocity = check_speed(self.model, math.sqrt(s))
-        self.inertia_checks += 1
-        if self.half is not None:
-            found = self.half.indefinite(velocity)
-        else:
-            found = _proved_indefinite(self.model.K(velocity),
-                                       self.options.get("factorization", "auto"))
+        found = self._proof(s, "indefinite")
         if found:
             self.above = min(self.above, s)
         return found
+
+    def _proof(self, s: float, kind: str) -> bool:
+        """Whether K(√s) is proved ``kind`` ("definite" or "indefinite"): on the mirror
+        halves where the model has them, else on the whole K; counted in inertia_checks."""
+        velocity = check_speed(self.model, math.sqrt(s))
+        self.inertia_checks += 1
+        if self.half is not None:
+            return getattr(self.half, kind)(velocity)
+        prove = _proved_definite if kind == "definite" else _proved_indefinite
+        return prove(self.model.K(velocity), self.options.get("factorization", "auto"))
 
     def __call__(self, s: float) -> float:
         if len(self.trace) >= self.limit:

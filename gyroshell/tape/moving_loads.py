@@ -427,28 +427,10 @@ class PreparedLoads:
             isinstance(ay.shape, (GaussianShape, UniformShape)) for _, ay, _, _ in self._axes)
 
     def add(self, n: int, scale: float, out: np.ndarray) -> None:
-        """out += scale · F(t_n), N (only the cells under the heads are touched)."""
-        if self.half is not None:
-            self._add_half(n, scale, out)
-            return
-        grid = self.grid
-        view = out.reshape(grid.n_lines, grid.n_across)
-        for k in range(self.heads):
-            e = self.envelopes[n, k]
-            if e == 0.0:
-                continue
-            ax, ay, ix, iy = self._axes[k]
-            i0, j0 = int(ix[n]), int(iy[n])
-            fx = ax.integrals(i0, self.centres[n, k, 0])
-            fy = ay.integrals(j0, self.centres[n, k, 1])
-            fy *= scale * e * self.amplitudes[k]
-            block = view[i0:i0 + ax.width, j0:j0 + ay.width]
-            np.multiply(fx[:, None], fy[None, :], out=ax.block(ay.width))
-            block += ax.block(ay.width)
-
-    def _add_half(self, n: int, scale: float, out: np.ndarray) -> None:
-        """out += scale · P_sᵀ F(t_n) over the half's unknowns (F symmetric)."""
-        columns = self.half.columns
+        """out += scale · F(t_n), N (only the cells under the heads are touched); with
+        ``half``, scale · P_sᵀ F(t_n) over the half's unknowns (F symmetric)."""
+        half = self.half
+        columns = self.grid.n_across if half is None else half.columns
         view = out.reshape(self.grid.n_lines, columns)
         for k in range(self.heads):
             e = self.envelopes[n, k]
@@ -456,12 +438,13 @@ class PreparedLoads:
                 continue
             ax, ay, ix, iy = self._axes[k]
             i0, j0 = int(ix[n]), int(iy[n])
-            kept = min(ay.width, columns - j0)
+            kept = min(ay.width, columns - j0)     # the half keeps its own side's columns
             if kept <= 0:
                 continue
             fx = ax.integrals(i0, self.centres[n, k, 0])
             fy = ay.integrals(j0, self.centres[n, k, 1])[:kept]
-            fy *= self._force_weights[j0:j0 + kept]
+            if half is not None:
+                fy *= self._force_weights[j0:j0 + kept]
             fy *= scale * e * self.amplitudes[k]
             block = ax.block(kept)
             np.multiply(fx[:, None], fy[None, :], out=block)

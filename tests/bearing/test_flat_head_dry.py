@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from closed_forms import tensioned_plate_on_two_supports
 from convergence import observed_order
 
 from gyroshell import TapeParameters
@@ -27,55 +28,13 @@ def plate_over_land(L, S, t_in, t_out, lam, sigma):
     pinned at the string's ends (w = −θ S, w'' = 0: the model's pinned, moment-free
     ends), touching only the two corners (w = σ there).
 
-    On each of the three pieces w = c₁ + c₂ (x − x₀) + c₃ e^{(x − x₁)/λ} + c₄ e^{−(x − x₀)/λ}
-    ([x₀, x₁] the piece), λ = √(D/T): 12 constants from w and w'' at both ends and, at each
-    corner, w = σ on both sides with w' and w'' continuous. Returns (w, w', corner
-    forces D [w''']) as (callable, callable, (F_lead, F_trail) in N/m)."""
+    The plate on two point supports, the corners
+    (``closed_forms.tensioned_plate_on_two_supports``): w and w'' at both ends and, at each
+    corner, w = σ with w' and w'' continuous. Returns (w, w', corner forces D [w''']) as
+    (callable, callable, (F_lead, F_trail) in N/m)."""
     a, b = -L / 2, L / 2
-    pieces = [(a - S, a), (a, b), (b, b + S)]
-
-    def basis(x, k, d):
-        """d-th derivative of the four basis functions of piece k at x."""
-        x0, x1 = pieces[k]
-        x = np.asarray(x, dtype=float)
-        one, zero = np.ones_like(x), np.zeros_like(x)
-        grow, decay = np.exp((x - x1) / lam), np.exp(-(x - x0) / lam)
-        lin = [one, x - x0] if d == 0 else ([zero, one] if d == 1 else [zero, zero])
-        return np.array(lin + [grow / lam**d, (-1) ** d * decay / lam**d])
-
-    rows, rhs = [], []
-
-    def condition(x, k, d, value, other=None):
-        row = np.zeros(12)
-        row[4 * k:4 * k + 4] = basis(x, k, d)
-        if other is not None:
-            row[4 * other:4 * other + 4] -= basis(x, other, d)
-        rows.append(row)
-        rhs.append(value)
-
-    condition(a - S, 0, 0, -t_in * S)
-    condition(a - S, 0, 2, 0.0)
-    condition(b + S, 2, 0, -t_out * S)
-    condition(b + S, 2, 2, 0.0)
-    for x, left, right in ((a, 0, 1), (b, 1, 2)):
-        condition(x, left, 0, sigma)
-        condition(x, right, 0, sigma)
-        condition(x, left, 1, 0.0, right)
-        condition(x, left, 2, 0.0, right)
-    c = np.linalg.solve(np.array(rows), np.array(rhs)).reshape(3, 4)
-
-    def evaluate(x, d):
-        x = np.asarray(x, dtype=float)
-        k = np.where(x < a, 0, np.where(x <= b, 1, 2))
-        out = np.empty_like(x)
-        for j in range(3):
-            on = k == j
-            out[on] = (c[j][:, None] * basis(x[on], j, d)).sum(axis=0) if on.any() else 0
-        return out
-
-    D = lam * lam * TAPE.tension
-    forces = tuple(D * float(np.sum(c[r] * basis(x, r, 3)) - np.sum(c[l] * basis(x, l, 3)))
-                   for x, l, r in ((a, 0, 1), (b, 1, 2)))
+    evaluate, forces = tensioned_plate_on_two_supports(
+        (a - S, b + S), (a, b), lam, (-t_in * S, -t_out * S), (sigma, sigma), TAPE.tension)
     return (lambda x: evaluate(x, 0)), (lambda x: evaluate(x, 1)), forces
 
 

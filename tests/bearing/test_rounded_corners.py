@@ -17,6 +17,7 @@ import math
 import numpy as np
 import pytest
 from bearing_cases import flux_spread_1d
+from closed_forms import tensioned_plate_on_two_supports
 from convergence import observed_order
 
 from gyroshell import ParameterError, TapeParameters
@@ -55,51 +56,9 @@ def plate_over_rounded_land(L, S, t_in, t_out, lam, sigma, r, phi=FLANK):
     z_right = -r * t_out**2 / 2 - t_out * ((b + S) - (trail + r * t_out))
 
     def solve(x1, x2):
-        pieces = [(a - S, x1), (x1, x2), (x2, b + S)]
-
-        def basis(x, k, d):
-            x0, xe = pieces[k]
-            x = np.asarray(x, dtype=float)
-            one, zero = np.ones_like(x), np.zeros_like(x)
-            grow, decay = np.exp((x - xe) / lam), np.exp(-(x - x0) / lam)
-            lin = [one, x - x0] if d == 0 else ([zero, one] if d == 1 else [zero, zero])
-            return np.array(lin + [grow / lam**d, (-1) ** d * decay / lam**d])
-
-        rows, rhs = [], []
-
-        def condition(x, k, d, value, other=None):
-            row = np.zeros(12)
-            row[4 * k:4 * k + 4] = basis(x, k, d)
-            if other is not None:
-                row[4 * other:4 * other + 4] -= basis(x, other, d)
-            rows.append(row)
-            rhs.append(value)
-
-        condition(a - S, 0, 0, z_left)
-        condition(a - S, 0, 2, 0.0)
-        condition(b + S, 2, 0, z_right)
-        condition(b + S, 2, 2, 0.0)
-        for k, (x, left, right) in enumerate(((x1, 0, 1), (x2, 1, 2))):
-            condition(x, left, 0, arc(x, k)[0] + sigma)
-            condition(x, right, 0, arc(x, k)[0] + sigma)
-            condition(x, left, 1, 0.0, right)
-            condition(x, left, 2, 0.0, right)
-        c = np.linalg.solve(np.array(rows), np.array(rhs)).reshape(3, 4)
-
-        def evaluate(x, d):
-            x = np.asarray(x, dtype=float)
-            k = np.where(x < x1, 0, np.where(x <= x2, 1, 2))
-            out = np.zeros_like(x)
-            for j in range(3):
-                on = k == j
-                if on.any():
-                    out[on] = (c[j][:, None] * basis(x[on], j, d)).sum(axis=0)
-            return out
-
-        D = lam * lam * TAPE.tension
-        forces = tuple(D * float(np.sum(c[rt] * basis(x, rt, 3)) - np.sum(c[lf] * basis(x, lf, 3)))
-                       for x, lf, rt in ((x1, 0, 1), (x2, 1, 2)))
-        return evaluate, forces
+        return tensioned_plate_on_two_supports(
+            (a - S, b + S), (x1, x2), lam, (z_left, z_right),
+            (arc(x1, 0)[0] + sigma, arc(x2, 1)[0] + sigma), TAPE.tension)
 
     x1, x2 = lead - r * t_in / 2, trail + r * t_out / 2
     for _ in range(50):
