@@ -27,6 +27,7 @@ extensions = [
     "myst_parser",
     "sphinxarg.ext",
     "sphinx_gallery.gen_gallery",
+    "sphinx-mathjax-offline",  # MathJax served from _static: the maths renders offline (CI)
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
