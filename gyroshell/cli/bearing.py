@@ -152,7 +152,7 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
                    help="intervals across the width, even, 2-D only (default: graded, about "
                         "12 um at the free edges and 10x coarser in the middle; the edge "
                         "minimum is then within about 0.6 %% of its converged value, see "
-                        "docs/bearing.md; --uniform: about 50 um everywhere)")
+                        "docs/theory/bearing.md; --uniform: about 50 um everywhere)")
     g.add_argument("--uniform", action="store_true",
                    help="2-D only: uniform grid each way instead of the grid graded towards "
                         "the free edges and the wrap corners (the counts --nx/--ny then set "

@@ -30,7 +30,7 @@ TWO = FlatHead((Module(0.8e-3), Module(0.5e-3, height=0.3e-6)), 1.5 * DEG, 3 * D
 #: its land there, whose contact set the active-set Newton grows a node per iteration).
 UNEQUAL = FlatHead((Module(1e-3),), 1.5 * DEG, 3 * DEG)
 #: The default 1-D grid's spacing at the transducer is within this of its Richardson
-#: extrapolation (measured 0.21 %; docs/bearing.md).
+#: extrapolation (measured 0.21 %; docs/theory/bearing.md).
 DEFAULT_GRID_ERROR = 5e-3
 
 
