@@ -319,6 +319,8 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
         (:func:`critical_speeds` starts DIVERGENCE_GAP below route (b)'s speed) wants a
         step of that size.
 
+    Notes
+    -----
     Each trial aims ``xtol`` below the extrapolated zero, so that it lands below the root
     and closes the bracket with the next prediction; the point just above that confirms
     the sign change is an inertia count of K(V) (f <= 0 exactly where K(V) is not positive
