@@ -32,6 +32,9 @@ extensions = [
     "sphinx_gallery.gen_gallery",
 ]
 
+# Quotes and ellipses, but "--option" stays two hyphens (no en dash) in text and titles.
+smartquotes_action = "qe"
+
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "examples/README.txt", "**/GALLERY_HEADER.rst"]
@@ -106,6 +109,15 @@ def _absolute_values(app, what, name, obj, options, lines):
             literal_indent = indent
 
 
+def _skip_file_layouts(app, what, name, obj, skip, options):
+    """Document ``file_layout`` on the protocol (``Result``, where it is None), not each
+    kind's long value (its variables are in the kind's docstring)."""
+    if name == "file_layout" and obj is not None:
+        return True
+    return None
+
+
 def setup(app):
     # before numpydoc (priority 500) turns the sections into reStructuredText
     app.connect("autodoc-process-docstring", _absolute_values, priority=400)
+    app.connect("autodoc-skip-member", _skip_file_layouts)
