@@ -292,7 +292,7 @@ def _next_trial(f: _Counted) -> float:
 def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
                          xtol: float = 1e-9, count: int = 1, max_evaluations: int = 30,
                          step: float | None = None, **options) -> tuple[float, dict]:
-    """(a) The speed where the lowest frequency reaches zero, m/s, and diagnostics.
+    """Route (a): the speed where the lowest frequency reaches zero, m/s, and diagnostics.
 
     Below the root ω₁²(s), s = V², is smooth; above it the eigenvalue nearest zero may
     belong to any of the long tape's many nearly critical branches, so values there are
