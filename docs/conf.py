@@ -6,9 +6,12 @@ figures and printed output appear in the pages (sphinx-gallery).
 """
 
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.abspath(".."))
+# cli_reference: the CLI parser with its help texts escaped for reStructuredText (cli.rst).
+sys.path.insert(0, os.path.abspath("_ext"))
 
 import gyroshell  # noqa: E402
 
@@ -30,6 +33,9 @@ extensions = [
     "sphinx-mathjax-offline",  # MathJax served from _static: the maths renders offline (CI)
 ]
 
+# Quotes and ellipses, but "--option" stays two hyphens (no en dash) in text and titles.
+smartquotes_action = "qe"
+
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
 exclude_patterns = ["_build", "examples/README.txt", "**/GALLERY_HEADER.rst"]
@@ -42,7 +48,18 @@ myst_heading_anchors = 3
 
 # The API reference: one page per public name, generated from the numpydoc docstrings.
 autosummary_generate = True
-autodoc_default_options = {"members": True, "inherited-members": False}
+# Names that differ from another only in case get their own file names, so that the pages
+# also work on case-insensitive file systems (macOS, Windows).
+autosummary_filename_map = {
+    "gyroshell.divergence": "gyroshell.divergence-function",
+    "gyroshell.modes": "gyroshell.modes-function",
+    "gyroshell.linalg.qep.problem.max_count": "gyroshell.linalg.qep.problem.max_count-function",
+}
+# A class page documents its members, with those it inherits from gyroshell's classes (a
+# result kind shows the protocol's save, to_xarray, summary, plot), not from builtins'.
+autodoc_default_options = {"members": True,
+                           "inherited-members": "object,BaseException,tuple,dict,Protocol"}
+autodoc_member_order = "bysource"
 autodoc_typehints = "none"
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
@@ -64,3 +81,44 @@ html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
 }
+
+
+# A "|" in gyroshell's docstrings is an absolute value or a norm (|λ|, |V|, |W|), never a
+# reStructuredText substitution reference: it is shown as written. Inline literals, roles
+# (``a|b``, :math:`|x|`), literal blocks and doctests are left as they are.
+_LITERAL = re.compile(r"(``.+?``|:\w+:`[^`]*`)")
+
+
+def _escape_bars(text: str) -> str:
+    parts = _LITERAL.split(text)
+    parts[::2] = [re.sub(r"(?<!\\)\|", r"\\|", part) for part in parts[::2]]
+    return "".join(parts)
+
+
+def _absolute_values(app, what, name, obj, options, lines):
+    literal_indent = None  # the indent of the paragraph that opened a literal block
+    for i, line in enumerate(lines):
+        indent = len(line) - len(line.lstrip())
+        if literal_indent is not None:
+            if not line.strip() or indent > literal_indent:
+                continue
+            literal_indent = None
+        if line.lstrip().startswith(">>>") or line.lstrip().startswith("..."):
+            continue
+        lines[i] = _escape_bars(line)
+        if line.rstrip().endswith("::"):
+            literal_indent = indent
+
+
+def _skip_file_layouts(app, what, name, obj, skip, options):
+    """Document ``file_layout`` on the protocol (``Result``, where it is None), not each
+    kind's long value (its variables are in the kind's docstring)."""
+    if name == "file_layout" and obj is not None:
+        return True
+    return None
+
+
+def setup(app):
+    # before numpydoc (priority 500) turns the sections into reStructuredText
+    app.connect("autodoc-process-docstring", _absolute_values, priority=400)
+    app.connect("autodoc-skip-member", _skip_file_layouts)

@@ -168,8 +168,8 @@ class BearingSolution(Result, kind="bearing"):
     def tents(self) -> tuple[readings.Tent, ...]:
         """The tents next to each corner on its land and span sides: height (m) and x (m)
         of the spacing's local maximum along the middle of the width, and the largest
-        across the width; None where there is none (:func:`gyroshell.bearing.readings.
-        tents` defines them)."""
+        across the width; None where there is none
+        (:func:`gyroshell.bearing.readings.tents` defines them)."""
         lay = self._layout
         return readings.tents(self.x, self.y, self.spacing, lay["corners"], lay["lands"],
                               lay["transducers"])

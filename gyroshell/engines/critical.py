@@ -292,7 +292,7 @@ def _next_trial(f: _Counted) -> float:
 def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
                          xtol: float = 1e-9, count: int = 1, max_evaluations: int = 30,
                          step: float | None = None, **options) -> tuple[float, dict]:
-    """(a) The speed where the lowest frequency reaches zero, m/s, and diagnostics.
+    """Route (a): the speed where the lowest frequency reaches zero, m/s, and diagnostics.
 
     Below the root ω₁²(s), s = V², is smooth; above it the eigenvalue nearest zero may
     belong to any of the long tape's many nearly critical branches, so values there are
@@ -319,6 +319,8 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
         (:func:`critical_speeds` starts DIVERGENCE_GAP below route (b)'s speed) wants a
         step of that size.
 
+    Notes
+    -----
     Each trial aims ``xtol`` below the extrapolated zero, so that it lands below the root
     and closes the bracket with the next prediction; the point just above that confirms
     the sign change is an inertia count of K(V) (f <= 0 exactly where K(V) is not positive

@@ -192,6 +192,8 @@ class Modes(_EigenvalueProperties, Result, kind="modes"):
     damped : bool
         True if computed with damping (``decay_rate``, ``damping_ratio`` then mean something).
 
+    Notes
+    -----
     Derived: ``omega`` (rad/s), ``frequency`` (Hz), ``period`` (s), ``growth_rate``,
     ``decay_rate`` (1/s), ``damping_ratio``, ``stability`` ("stable", "divergence",
     "flutter").

@@ -22,6 +22,8 @@ __all__ = ["DENSE_SPECTRUM_LIMIT", "DIVERGENCE", "FLUTTER", "STABILITY_LABELS",
            "STABILITY_RTOL", "STABLE", "UNDETERMINED", "classify_stability",
            "quadratic_eigenvalues", "tape_stability"]
 
+#: The stability classes of :func:`classify_stability`: stable, divergence (a real positive
+#: eigenvalue: static buckling) and flutter (a complex eigenvalue with a positive real part).
 STABLE, DIVERGENCE, FLUTTER = "stable", "divergence", "flutter"
 #: K(V) indefinite with an even index and no growing eigenvalue among those computed.
 UNDETERMINED = "undetermined"

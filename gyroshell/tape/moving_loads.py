@@ -75,6 +75,7 @@ class GaussianShape(Shape1D):
 
     @property
     def radius(self) -> float:  # type: ignore[override]
+        """Support radius, m: 6/√α, where erfc(√α r) < 1e-17 (nothing beyond it)."""
         return GAUSSIAN_CUTOFF / math.sqrt(self.exponent)
 
     def antiderivative(self, s: np.ndarray, out: np.ndarray) -> np.ndarray:

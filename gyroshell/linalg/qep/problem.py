@@ -61,6 +61,8 @@ class SolverOptions:
         Factorization of the shift matrices (see
         :func:`gyroshell.linalg.factorization.resolve_factorization`).
 
+    Notes
+    -----
     The values are checked by the solver, in its order of checks.
     """
 
