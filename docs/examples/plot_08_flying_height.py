@@ -71,7 +71,8 @@ ax.legend(fontsize=8)
 # :meth:`gyroshell.bearing.BearingSolution.plot` draws the spacing and the film pressure
 # along the tape at the middle speed.
 middle = solutions["compressible, slip"][2]
-middle.plot()
+fig, ax = plt.subplots(figsize=(7, 3.8), constrained_layout=True)
+middle.plot(ax)
 summary = middle.summary()
 for key in ("velocity", "central_spacing", "minimum_spacing", "air_force", "drag",
             "newton_iterations"):

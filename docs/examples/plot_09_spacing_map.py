@@ -46,7 +46,8 @@ axes[0].set_title(f"V = 4 m/s, 15° wrap, {model.nx} x {model.ny} grid")
 # ----------------
 # At the middle of the wrap the spacing is flat across the middle of the width, a little
 # higher about a millimetre inside each edge, and falls steeply at the free edges.
-plots.cross_width(solution)
+fig, ax = plt.subplots(figsize=(6, 3.4), constrained_layout=True)
+plots.cross_width(solution, ax)
 
 # %%
 # The full-size case
