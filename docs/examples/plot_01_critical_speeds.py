@@ -1,4 +1,4 @@
-"""
+r"""
 Critical speeds of a few tapes
 ==============================
 
@@ -8,12 +8,12 @@ independent routes, and :func:`gyroshell.critical_speeds` returns both:
 
 * where the lowest frequency of the gyroscopic eigenproblem crosses zero (eigen-solver and
   root search, ``critical_speed``);
-* :math:`\\sqrt{(T + \\mu_{min})/\\rho}` from one symmetric eigen-solve of the stiffness
+* :math:`\sqrt{(T + \mu_{min})/\rho}` from one symmetric eigen-solve of the stiffness
   without the speed term (``divergence_speed``).
 
 They must agree. Beside them stand two closed forms: the moving string
-:math:`\\sqrt{T/\\rho}` (no bending, no foundation) and the infinitely wide strip on its
-shell foundation :math:`\\sqrt{(T + 2\\sqrt{Dk})/\\rho}`.
+:math:`\sqrt{T/\rho}` (no bending, no foundation) and the infinitely wide strip on its
+shell foundation :math:`\sqrt{(T + 2\sqrt{Dk})/\rho}`.
 
 This example builds a table over the lateral edge conditions and the tension, on a coarse
 grid so that it runs in a second.

@@ -1,19 +1,19 @@
-"""
+r"""
 The period against the tape speed
 =================================
 
 After a step load the load point of a moving tape rings at a dominant period that grows
 with the tape speed V. Two independent routes give it:
 
-* the eigen-solver: :math:`2\\pi/\\omega_1`, the lowest frequency of the gyroscopic
+* the eigen-solver: :math:`2\pi/\omega_1`, the lowest frequency of the gyroscopic
   eigenproblem (:func:`gyroshell.modes`);
 * the transient: the lowest strong peak of the load point's spectrum after a step load
   (Newmark, :func:`gyroshell.march`, then
   :func:`gyroshell.studies.signal.dominant_period`).
 
 A long tape's lowest frequency is the minimum over wavenumbers α of the moving-frame
-dispersion :math:`|V\\alpha - \\sqrt{(D\\alpha^4 + T\\alpha^2 + k)/\\rho}|`; it falls from
-:math:`\\sqrt{k/\\rho}` at rest to zero at the critical speed, so the period grows without
+dispersion :math:`|V\alpha - \sqrt{(D\alpha^4 + T\alpha^2 + k)/\rho}|`; it falls from
+:math:`\sqrt{k/\rho}` at rest to zero at the critical speed, so the period grows without
 bound as V approaches it.
 """
 
@@ -39,8 +39,8 @@ velocities = np.array([0.0, 50.0, 75.0, 90.0, 95.0])  # m/s
 # Both routes at each speed
 # -------------------------
 # The time step resolves the eigen-period with 40 steps (at least the paper's 2 µs) and
-# the record holds 20 periods (at least 1 ms); the spectral peak taken is the lowest one reaching a quarter
-# of the tallest (the band edge at ω₁).
+# the record holds 20 periods (at least 1 ms); the spectral peak taken is the lowest one
+# reaching a quarter of the tallest (the band edge at ω₁).
 eigen, transient = [], []
 for v in velocities:
     period = float(gyroshell.modes(model, v, count=1).period[0])  # s

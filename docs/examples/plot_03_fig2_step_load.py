@@ -36,7 +36,7 @@ DT, STEPS = 2e-6, 400  # s, steps
 velocities = (0.0, 50.0, 90.0, 100.0)  # m/s
 fig, axes = plt.subplots(len(velocities), 1, figsize=(8, 8), sharex=True,
                          constrained_layout=True)
-for ax, v in zip(axes, velocities):
+for ax, v in zip(axes, velocities, strict=True):
     run = gyroshell.march(model, v, dt=DT, steps=STEPS)
     static = gyroshell.solve_static(model, v).load_point_deflection  # m
     gyroshell.plot.load_point_history(run.times, run.load_point, steady=static, scale=scale,
@@ -63,7 +63,7 @@ fields = [*snaps.fields, gyroshell.solve_static(short, 50.0).field]
 labels = [f"t = {t * 1e6:.0f} µs" for t in snaps.times] + ["t = ∞ (static)"]
 top = max(abs(w).max() for w in fields)
 fig = plt.figure(figsize=(10, 5.5))
-for k, (label, w) in enumerate(zip(labels, fields), start=1):
+for k, (label, w) in enumerate(zip(labels, fields, strict=True), start=1):
     gyroshell.plot.wireframe(snaps.x, snaps.y, w, ax=fig.add_subplot(2, 2, k, projection="3d"),
                              title=f"V = 50 m/s, {label}", zmax=top)
 fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.95, wspace=0.0, hspace=0.1)

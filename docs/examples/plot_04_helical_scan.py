@@ -72,7 +72,7 @@ axes[0].figure.suptitle(f"Two-head drum at {HEAD_SPEED:g} m/s, tape at {TAPE_SPE
 snaps = run.snapshots
 top = abs(snaps.fields).max()
 fig = plt.figure(figsize=(12, 3.8))
-for i, (t, w) in enumerate(zip(snaps.times, snaps.fields)):
+for i, (t, w) in enumerate(zip(snaps.times, snaps.fields, strict=True)):
     ax = gyroshell.plot.wireframe(snaps.x, snaps.y, w, zmax=top, zmin=-top,
                                   ax=fig.add_subplot(1, 3, i + 1, projection="3d"),
                                   title=f"t = {t * 1e6:.0f} µs", zoom=1.0)

@@ -34,9 +34,9 @@ print(diagram.summary())
 # -----------
 # :meth:`gyroshell.CampbellDiagram.plot` with a roller of 10 mm circumference: the
 # crossings are circled, veerings marked with diamonds (none here); the critical speed,
-# just above 100 m/s, lies beyond the sweep (its value is in the legend). Between 80 m/s and it,
-# the five frequencies crowd together and a grid this coarse no longer tells their branches
-# apart.
+# just above 100 m/s, lies beyond the sweep (its value is in the legend). Between 80 m/s
+# and it the five frequencies crowd together, and a grid this coarse no longer tells their
+# branches apart.
 ax = diagram.plot(circumference=0.01)  # m
 
 # %%

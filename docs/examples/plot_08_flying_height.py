@@ -1,4 +1,4 @@
-"""
+r"""
 The flying height against the tape speed (air bearing, 1-D)
 ===========================================================
 
@@ -9,8 +9,8 @@ finds the flying state by Newton's method, with contact where the spacing would 
 the surface roughness.
 
 For a perfectly flexible tape the classical foil-bearing result (Blok & van Rossum; Eshel
-& Elrod) is a central spacing :math:`h_0 = 0.643\\,R\\,\\varepsilon^{2/3}` with
-:math:`\\varepsilon = 6\\mu V/(T - \\rho V^2)`: it grows as :math:`V^{2/3}`. Here the tape
+& Elrod) is a central spacing :math:`h_0 = 0.643\,R\,\varepsilon^{2/3}` with
+:math:`\varepsilon = 6\mu V/(T - \rho V^2)`: it grows as :math:`V^{2/3}`. Here the tape
 is the infinitely wide one (1-D, per unit width), Table 1's tape over a head of its radius
 R = 20 mm with a 15° wrap, in air at 20 °C.
 """

@@ -55,5 +55,6 @@ plots.cross_width(solution, ax)
 # Full-size: drop ``nx`` and ``ny`` (the default graded grid, 388 x 148 intervals with an
 # edge spacing near 12 µm, about 115,000 unknowns: some seconds per solve; its central
 # spacing is within a few tenths of a per cent of this small grid's, its minimum spacing,
-# at the edge by the exit corner, some per cent higher); from the shell, ``gyroshell bearing --velocity 4 --wrap-angle 15
-# --json`` or ``gyroshell reproduce bearing --out results``.
+# at the edge by the exit corner, some per cent higher); from the shell,
+# ``gyroshell bearing --velocity 4 --wrap-angle 15 --json`` or
+# ``gyroshell reproduce bearing --out results``.
