@@ -25,6 +25,7 @@ grid so that it runs in a second.
 # The paper's Table 1 tape (E = 4 GPa, c = 20 µm, R = 20 mm, T = 90 N/m, L_y = 6.35 mm)
 # with L_x = 4 L_y, free or simply supported lateral edges, at three tensions. The quick
 # grid has 12 intervals across the width (the default grid has 41).
+import matplotlib.pyplot as plt
 import pandas as pd
 
 import gyroshell
@@ -67,6 +68,7 @@ print("largest relative difference of the two routes:",
 # for this tape).
 ax = table_1_tape.plot()
 ax.set_title("Table 1 tape, free edges, T = 90 N/m (quick grid)")
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # The full-size case

@@ -23,6 +23,7 @@ bound as V approaches it.
 # Table 1 tape, L_x = 8 L_y, on a quick grid (12 intervals across the width).
 import math
 
+import matplotlib.pyplot as plt
 import numpy as np
 
 import gyroshell
@@ -62,6 +63,7 @@ ax = gyroshell.plot.period_vs_velocity(velocities, np.array(eigen),
                                        critical_speed=critical,
                                        title="Period of the load-point displacement, L_x/L_y = 8")
 print(f"critical speed {critical:.2f} m/s")
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # The full-size case

@@ -68,6 +68,7 @@ for k, (label, w) in enumerate(zip(labels, fields, strict=True), start=1):
                              title=f"V = 50 m/s, {label}", zmax=top)
 fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.95, wspace=0.0, hspace=0.1)
 print(f"largest |w| of the panels: {top * 1e9:.2f} nm")
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # The full-size case

@@ -81,6 +81,7 @@ for i, (t, w) in enumerate(zip(snaps.times, snaps.fields, strict=True)):
             x, y = head.centres(np.array([t]))
             ax.scatter(x * 1e3, y * 1e3, [top * 1e9], color=f"C{k}", s=25)
 fig.subplots_adjust(left=0.0, right=1.0, bottom=0.02, top=0.95, wspace=0.0)
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # The full-size case

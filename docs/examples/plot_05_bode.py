@@ -17,6 +17,7 @@ tape speed grows (the effective tension T − ρV² falls).
 # damping c = 30 N·s/m³, 1000 frequencies up to 1.6e5 rad/s: the reduced model costs a
 # few factorizations, not one per frequency. At 90 m/s the standing waves of the finite
 # tape crowd above ω₁: the response is a dense comb of resonances.
+import matplotlib.pyplot as plt
 import numpy as np
 
 import gyroshell
@@ -47,6 +48,7 @@ for i, v in enumerate((0.0, 50.0, 90.0)):  # m/s
           f"largest error estimate {np.max(response.error_estimate):.0e}")
 axes[0].legend(title="dotted: eigen-solver ω_j", fontsize=9)
 axes[0].set_title("Load-point response, L_x/L_y = 4, c = 30 N·s/m³ (quick grid)")
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # The full-size case

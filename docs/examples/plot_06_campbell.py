@@ -18,6 +18,7 @@ the roller's run-out excites that mode.
 # -----------------------
 # A short tape (L_x = 1.5 L_y) with all sides simply supported, so that its modes are well
 # separated; quick grid (12 intervals across), five modes at every 5 m/s up to 80 m/s.
+import matplotlib.pyplot as plt
 import numpy as np
 
 import gyroshell
@@ -45,6 +46,7 @@ ax = diagram.plot(circumference=0.01)  # m
 # :meth:`~gyroshell.CampbellDiagram.resonances`: the speeds (m/s) at which each branch
 # meets each excitation line.
 print(diagram.resonances(0.01).round(2).to_string(index=False))
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # The full-size case

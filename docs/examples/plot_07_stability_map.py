@@ -17,6 +17,8 @@ which grows with the tension as √((T + μ_min)/ρ).
 # ---------
 # Table 1 tape, L_x = 2 L_y, on a quick grid (8 intervals across the width), speeds from 0
 # to 140 m/s, three tensions; ``workers=1`` runs the points in this process.
+import matplotlib.pyplot as plt
+
 import gyroshell
 from gyroshell import TapeParameters
 
@@ -36,6 +38,7 @@ print(table.groupby("tension")["critical_speed"].first().round(2))
 # :meth:`gyroshell.StudyResult.plot` draws the stability classes over the two varied
 # parameters, with the critical speed as a line.
 ax = study.plot()
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # Saving and loading

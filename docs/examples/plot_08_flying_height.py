@@ -77,6 +77,7 @@ summary = middle.summary()
 for key in ("velocity", "central_spacing", "minimum_spacing", "air_force", "drag",
             "newton_iterations"):
     print(f"{key}: {summary[key]:.4g}")
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # The full-size case

@@ -48,6 +48,7 @@ axes[0].set_title(f"V = 4 m/s, 15° wrap, {model.nx} x {model.ny} grid")
 # higher about a millimetre inside each edge, and falls steeply at the free edges.
 fig, ax = plt.subplots(figsize=(6, 3.4), constrained_layout=True)
 plots.cross_width(solution, ax)
+plt.show()  # opens the figures in windows when run as a script
 
 # %%
 # The full-size case

@@ -66,6 +66,7 @@ def test_example_has_a_title_prose_cells_and_its_full_size_case(script):
     assert " ".join(lines[2:]).strip(), f"{script.name}: text under the title"
     assert source.count("\n# %%") >= 2, f"{script.name}: '# %%' cells with prose"
     assert FULL_SIZE.search(source), f"{script.name}: a '# Full-size: ...' sentence"
+    assert "\nplt.show()" in source, f"{script.name}: plt.show(), so a script shows its figures"
     assert "import gyroshell" in source or "from gyroshell" in source
 
 
