@@ -33,7 +33,7 @@ print(f"Newton iterations {solution.info.iterations}, unknowns {model.unknowns}"
 # %%
 # Spacing and pressure maps
 # -------------------------
-# :func:`gyroshell.bearing.plots.spacing_map` draws the spacing (log colour scale, the
+# ``gyroshell.bearing.plots.spacing_map`` draws the spacing (log colour scale, the
 # minimum marked) or the film pressure over the tape; the dotted lines are the wrap
 # corners.
 fig, axes = plt.subplots(2, 1, figsize=(8, 7), constrained_layout=True)
