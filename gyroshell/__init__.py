@@ -54,11 +54,18 @@ _HOMES: dict[str, tuple[str, ...]] = {
 }
 _LAZY: dict[str, str] = {name: module for module, names in _HOMES.items() for name in names}
 
+#: The subpackages, reachable as attributes after a plain ``import gyroshell`` (e.g.
+#: ``gyroshell.plot.wireframe``, ``gyroshell.bearing.solve_steady``), loaded on first use.
+_SUBPACKAGES = frozenset({"bearing", "core", "engines", "linalg", "plot", "reproduce",
+                          "results", "studies", "tape"})
+
 __all__ = sorted(["ConvergenceError", "ParameterError", "SupercriticalError",
                   "TapeParameters", "bending_rigidity", "shell_stiffness", *_LAZY])
 
 
 def __getattr__(name: str):
+    if name in _SUBPACKAGES:
+        return _import_module(f".{name}", __name__)
     module = _LAZY.get(name)
     if module is None:
         raise AttributeError(f"module 'gyroshell' has no attribute {name!r}")

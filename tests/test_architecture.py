@@ -119,3 +119,15 @@ def test_dir_lists_the_public_names_only():
     assert names == sorted(gyroshell.__all__)
     assert not {"sys", "importlib", "types", "annotations", "PackageNotFoundError"} & set(names)
     assert all(not n.startswith("_") for n in names)
+
+
+def test_subpackages_load_on_first_attribute_access():
+    # a user who wrote `import gyroshell` reaches gyroshell.plot and gyroshell.bearing
+    # without importing them by name; a fresh interpreter, so no earlier import helps
+    code = ("import sys, gyroshell; assert 'gyroshell.plot' not in sys.modules; "
+            "f = gyroshell.plot.wireframe; b = gyroshell.bearing.BearingModel; "
+            "assert 'gyroshell.plot' in sys.modules; print('ok')")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=ROOT, check=False)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "ok"
