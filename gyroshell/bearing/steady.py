@@ -31,6 +31,7 @@ from ..linalg.factorization import (
     resolve_pattern_lu,
 )
 from ..tape.parameters import MIN_INTERVALS_ACROSS
+from .jacobian import JacobianPattern
 from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel
 from .results import BearingSolution, NewtonInfo
 
@@ -143,10 +144,10 @@ class _Residual:
         J_uu = self.K if transient is None else self.K + transient.jacobian
         # The tape rows [J_uu, −L] do not change within a solve: assembled once.
         self.tape_rows = sp.hstack([J_uu, -model.pressure_load], format="csr")
+        self.tape_rows.sort_indices()
         self._abs_tape_rows = abs(self.tape_rows)
-        #: the nested-dissection ordering of the (folded) Jacobian, once formed, and the
-        #: film rows of the last Jacobian (:meth:`_ordering`)
-        self._perm, self._film_rows = None, None
+        #: the Jacobian's folded pattern (:meth:`_pattern`), once formed
+        self._jacobian_pattern = None
         self._abs_loads = (np.abs(model.effective_tension(tension) * model.W
                                   * model.kappa_nodes) + np.abs(model.f_kappa))
 
@@ -177,7 +178,7 @@ class _Residual:
         m = self.model
         u, p = z[:m.n_u], z[m.n_u:]
         r_u = self.tape(u, p)
-        r_p, J_pp, J_pu = m.film_residual(u, p, jacobian=jacobian, **self.film_kw)
+        r_p, J_pp, J_h, free = m.film_linearization(u, p, jacobian=jacobian, **self.film_kw)
         gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.floor)
         if active is None:
             active = r_u > gap
@@ -188,26 +189,31 @@ class _Residual:
             return res, active, None
         #: the round-off floor of the merit at the last state whose Jacobian was formed
         self.noise = self._noise(u, p, J_pp)
-        rows_u = self.tape_rows
-        if active.any():
-            rows_u = (sp.diags((~active).astype(float)) @ rows_u
-                      + sp.diags(active * self.c, shape=rows_u.shape))
-        self._film_rows = sp.hstack([J_pu, J_pp], format="csr")
-        J = sp.vstack([rows_u, self._film_rows], format="csc")
-        return res, active, J
+        return res, active, Linearization(self, active, J_h, J_pp, free)
 
-    def factor(self, J):
-        """A solver res ↦ −J⁻¹ res, by the model's ``factorization``. A 2-D tape, symmetric
-        about its centre line, is solved on half the width (the step stays symmetric:
-        P δ_half, P the mirror)."""
-        fold = self.model.mirror
-        if fold is not None:
-            P, rows = fold
-            J = (J[rows, :] @ P).tocsc()
+    def jacobian(self, lin: Linearization) -> sp.csr_matrix:
+        """The whole (unfolded) Jacobian of the linearization ``lin``, CSR."""
+        m = self.model
+        rows_u = self.tape_rows
+        if lin.active.any():
+            rows_u = (sp.diags((~lin.active).astype(float)) @ rows_u
+                      + sp.diags(lin.active * self.c, shape=rows_u.shape))
+        J_pu = lin.J_h[:, m.nc:m.nc + m.n_u] @ sp.diags(lin.free.astype(float))
+        return sp.vstack([rows_u, sp.hstack([J_pu, lin.J_p])], format="csr")
+
+    def factor(self, lin: Linearization):
+        """A solver res ↦ −J⁻¹ res of the linearization ``lin``, by the model's
+        ``factorization``. A 2-D tape, symmetric about its centre line, is solved on half
+        the width (the step stays symmetric: P δ_half, P the mirror). The matrix is
+        assembled into its grid's fixed pattern (:mod:`.jacobian`), in the elimination
+        order of a nested dissection ("metis")."""
         kind = _jacobian_lu(self.model)
+        pattern = self._pattern(kind, lin)
+        J = pattern.matrix(self.tape_rows.data, lin.active, self.c, lin.J_h, lin.J_p,
+                           None if lin.free.all() else lin.free)
         try:
             if kind == "metis":
-                lu = DiagonalPivotLU(J, permutation=self._ordering(J))
+                lu = DiagonalPivotLU(J, ordered=True)
             elif kind == "mmd":
                 lu = DiagonalPivotLU(J)
             elif kind == "pardiso":
@@ -216,24 +222,17 @@ class _Residual:
                 lu = SuperLUFactor(J, ordering=JACOBIAN_ORDERING)
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
-        if fold is None:
-            return lambda res: -lu.solve(res)
-        return lambda res: -(P @ lu.solve(res[rows]))
+        take, put = pattern.input, pattern.output
+        return lambda res: -lu.solve(res[take])[put]
 
-    def _ordering(self, J) -> np.ndarray:
-        """The nested-dissection ordering of the Jacobian's pattern without contact (the
-        tape rows of K, the film rows), folded like J: valid for every contact set, since
-        a contact row (h = σ) keeps only its diagonal. Computed once per pattern
-        (:func:`_pattern_ordering`)."""
-        if self._perm is None:
-            full = sp.vstack([self.tape_rows, self._film_rows], format="csr")
-            full.data = np.ones_like(full.data)      # the pattern: no cancellation below
-            fold = self.model.mirror
-            if fold is not None:
-                P, rows = fold
-                full = full[rows, :] @ P
-            self._perm = _pattern_ordering(full)
-        return self._perm
+    def _pattern(self, kind: str, lin: Linearization) -> JacobianPattern:
+        """The Jacobian's folded pattern, ordered by nested dissection for "metis" (the
+        pattern without contact: valid for every contact set, a contact row keeping its
+        entries as zeros). Formed once per grid and solver kind (:func:`_grid_pattern`)."""
+        if self._jacobian_pattern is None:
+            self._jacobian_pattern = _grid_pattern(self.tape_rows, lin.J_h, lin.J_p,
+                                                   self.model, kind == "metis")
+        return self._jacobian_pattern
 
     def merit(self, res) -> float:
         return float(np.linalg.norm(res * self.row_scale))
@@ -250,28 +249,51 @@ def _jacobian_lu(model: BearingModel) -> str:
     return resolve_pattern_lu(model.factorization)
 
 
-#: Nested-dissection orderings by pattern (a digest of its indices), the most recent
-#: ORDERINGS_KEPT: continuation stages, pseudo-time steps and repeated solves on one grid
-#: order once.
-_ORDERINGS: dict[bytes, np.ndarray] = {}
-ORDERINGS_KEPT = 4
+class Linearization:
+    """Newton's linearization at one state: the contact set and the film's Jacobian
+    blocks in their fixed patterns (∂r_p/∂h over every node, ∂r_p/∂p, and where the
+    spacing was floored); :meth:`_Residual.factor` assembles and factors it,
+    :meth:`_Residual.jacobian` gives the whole matrix."""
+
+    def __init__(self, F: _Residual, active, J_h, J_p, free) -> None:
+        self.F, self.active, self.J_h, self.J_p, self.free = F, active, J_h, J_p, free
+
+    @property
+    def matrix(self) -> sp.csr_matrix:
+        """The whole (unfolded) Jacobian, CSR."""
+        return self.F.jacobian(self)
 
 
-def _pattern_ordering(matrix: sp.spmatrix) -> np.ndarray:
-    """:func:`gyroshell.linalg.factorization.nested_dissection` of ``matrix``'s pattern,
-    computed once per pattern."""
-    A = sp.csr_matrix(matrix)
-    A.sort_indices()
-    key = hashlib.blake2b(np.asarray(A.shape, dtype=np.int64).tobytes()
-                          + A.indptr.astype(np.int64).tobytes()
-                          + A.indices.astype(np.int64).tobytes(), digest_size=16).digest()
-    perm = _ORDERINGS.pop(key, None)
-    if perm is None:
-        perm = nested_dissection(A)
-    _ORDERINGS[key] = perm
-    while len(_ORDERINGS) > ORDERINGS_KEPT:
-        del _ORDERINGS[next(iter(_ORDERINGS))]
-    return perm
+#: Folded Jacobian patterns by grid (a digest of the blocks' patterns and the fold), the
+#: most recent PATTERNS_KEPT: continuation stages, pseudo-time steps and repeated solves
+#: on one grid form the pattern and its nested-dissection ordering once.
+_PATTERNS: dict[bytes, JacobianPattern] = {}
+PATTERNS_KEPT = 4
+
+
+def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, ordered: bool) -> JacobianPattern:
+    """:class:`.jacobian.JacobianPattern` of the blocks (ordered by
+    :func:`gyroshell.linalg.factorization.nested_dissection` if ``ordered``), formed once
+    per pattern."""
+    fold = model.mirror
+    parts = [np.asarray([model.nc, ordered, *J_h.shape, *J_p.shape], dtype=np.int64)]
+    for A in (tape_rows, J_h, J_p):
+        parts += [A.indptr, A.indices]
+    if fold is not None:
+        parts += [fold[1], fold[0].indices]
+    digest = hashlib.blake2b(digest_size=16)
+    for part in parts:
+        digest.update(np.ascontiguousarray(part, dtype=np.int64).tobytes())
+    key = digest.digest()
+    pattern = _PATTERNS.pop(key, None)
+    if pattern is None:
+        pattern = JacobianPattern(tape_rows, J_h, J_p, model.nc, fold)
+        if ordered:
+            pattern.order(nested_dissection(pattern.graph()))
+    _PATTERNS[key] = pattern
+    while len(_PATTERNS) > PATTERNS_KEPT:
+        del _PATTERNS[next(iter(_PATTERNS))]
+    return pattern
 
 
 def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):
