@@ -22,8 +22,6 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from .film import scatter_map
-
 
 class JacobianPattern:
     """The folded Jacobian's CSC pattern and the maps of its blocks' values into it.
@@ -74,7 +72,7 @@ class JacobianPattern:
         #: solved unknown of full unknown i (numberings before any ordering)
         self.kept, self.to_half = kept, to_half
         self.permutation = None
-        self._compile(np.arange(self.size))
+        self._map = None           # compiled at the first assembly (after any ordering)
 
     def graph(self) -> sp.csr_matrix:
         """The folded pattern (ones) in its natural numbering, for an ordering."""
@@ -84,15 +82,19 @@ class JacobianPattern:
     def order(self, permutation: np.ndarray) -> None:
         """Assemble from now on into P A Pᵀ (row and column k are perm[k] of A)."""
         self.permutation = np.asarray(permutation)
-        self._compile(self.permutation)
+        self._map = None
 
-    def _compile(self, permutation: np.ndarray) -> None:
+    def compile(self) -> None:
+        """Form the CSC pattern (in the order set by :meth:`order`) and the scatter map;
+        :attr:`input` and :attr:`output` then take a full residual to the solved system's
+        right-hand side and its solution back to the full unknowns."""
+        permutation = np.arange(self.size) if self.permutation is None else self.permutation
         inverse = np.empty(self.size, dtype=np.intp)
         inverse[permutation] = np.arange(self.size)
-        # CSC of A is CSR of Aᵀ: columns as the rows of the map
-        pattern, self._map = scatter_map(inverse[self.cols], inverse[self.rows],
-                                         (self.size, self.size))
-        self.indptr, self.indices = pattern.indptr, pattern.indices
+        key = inverse[self.cols].astype(np.int64) * self.size + inverse[self.rows]
+        entries, self._map = np.unique(key, return_inverse=True)   # column-major: CSC
+        self.indices = entries % self.size
+        self.indptr = np.searchsorted(entries // self.size, np.arange(self.size + 1))
         self.input = self.kept[permutation]
         self.output = inverse[self.to_half]
 
@@ -114,6 +116,8 @@ class JacobianPattern:
         free : numpy.ndarray of bool, shape (n_u,), optional
             False where the film saw a spacing floored (no dependence on u there).
         """
+        if self._map is None:
+            self.compile()
         h_values = J_h.data[self.h_take]
         if free is not None:
             h_values = h_values * free[self.h_col]
