@@ -22,7 +22,7 @@ from gyroshell.linalg import factorization as fz
 def _model(factorization="auto", infinitely_wide=False):
     return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
                         wrap_angle=math.radians(15.0), nx=48, span=2e-3,
-                        ny=None if infinitely_wide else 12, factorization=factorization,
+                        ny=None if infinitely_wide else 16, factorization=factorization,
                         infinitely_wide=infinitely_wide)
 
 
