@@ -63,3 +63,5 @@ html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
 }
+# Without a default mode the theme's first visit (empty localStorage) logs a console error.
+html_context = {"default_mode": "auto"}
