@@ -98,23 +98,33 @@ def test_the_page_renders_in_chromium(role, site, open_page, screenshots):
     assert not problems, f"{path} in Chromium:\n" + "\n".join(problems)
 
 
+def _status(context, page, url: str) -> tuple[int, bool]:
+    """HTTP status of ``url`` and whether it is an HTML page, which is then open in ``page``
+    (a page's URL is opened at once; any other URL gets a HEAD request first)."""
+    if not url.endswith((".html", "/")):
+        head = context.request.fetch(url, method="HEAD")
+        if head.status != 200 or "text/html" not in head.headers.get("content-type", ""):
+            return head.status, False
+    response = page.goto(url, wait_until="domcontentloaded")
+    status = response.status if response is not None else 0
+    return status, "text/html" in (response.headers.get("content-type", "") if response else "")
+
+
 def crawl(context, root: str) -> tuple[list[str], int]:
-    """Visit every same-site URL reachable from ``root``: each answers a HEAD request with
-    HTTP 200; each HTML page is opened in the browser and yields its links, resources and
-    ids. Returns the broken references (with the page that refers to each) and the number
-    of URLs checked."""
+    """Visit every same-site URL reachable from ``root``: each answers HTTP 200; each HTML
+    page is opened in the browser and yields its links, resources and ids. Returns the
+    broken references (with the page that refers to each) and the number of URLs checked."""
     page = context.new_page()
     referrer = {root: "(start)"}
     queue, ids, fragments, broken = deque([root]), {}, [], []
     while queue:
         url = queue.popleft()
-        head = context.request.fetch(url, method="HEAD")
-        if head.status != 200:
-            broken.append(f"{url}: HTTP {head.status} (linked from {referrer[url]})")
+        status, html = _status(context, page, url)
+        if status != 200:
+            broken.append(f"{url}: HTTP {status} (linked from {referrer[url]})")
             continue
-        if "text/html" not in head.headers.get("content-type", ""):
+        if not html:
             continue
-        page.goto(url, wait_until="domcontentloaded")
         found = page.evaluate(_LINKS_AND_IDS)
         ids[url] = set(found["ids"])
         for href in found["links"] + found["resources"]:
