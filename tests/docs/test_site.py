@@ -9,6 +9,7 @@ Run with ``python -m pytest -q -m docs tests/docs`` (after ``pip install -e ".[d
 
 from __future__ import annotations
 
+import warnings
 from collections import deque
 from pathlib import Path
 from urllib.parse import unquote
@@ -96,6 +97,9 @@ def test_the_page_renders_in_chromium(role, site, open_page, screenshots):
             and not any("/_images/sphx_glr_" in img["src"] for img in images)):
         problems.append("its figure is not among the page's images")
     assert not problems, f"{path} in Chromium:\n" + "\n".join(problems)
+    if visit.external:
+        warnings.warn(f"{path}: resources outside the site, not loaded here (the browser is "
+                      f"kept offline): {visit.external}", stacklevel=1)
 
 
 def _status(context, page, url: str) -> tuple[int, bool]:
