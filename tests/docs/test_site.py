@@ -33,13 +33,18 @@ def _has_figure(html: str) -> bool:
     return "sphx-glr-single-img" in html or "sphx-glr-multi-img" in html
 
 
+def _has_image(html: str) -> bool:
+    return "<img " in html
+
+
 #: The pages opened in the browser, by role: how each is found in the built site (the
-#: user guide's first page, else the skeleton's bearing page; a gallery example with a
-#: figure; the API reference's first generated page, TapeParameters when there).
+#: user guide's first page with an image, else its first page, else the skeleton's bearing
+#: page; a gallery example with a figure; the API reference's TapeParameters, else its
+#: first generated page).
 PAGES = {
     "front-page": lambda site: "index.html",
-    "user-guide": lambda site: (page_of(site, "user_guide/index.html")
-                                or page_of(site, "user_guide/*.html")
+    "user-guide": lambda site: (page_of(site, "user_guide/**/*.html", prefer=_has_image)
+                                or page_of(site, "user-guide/**/*.html", prefer=_has_image)
                                 or page_of(site, "bearing.html")),
     "gallery-index": lambda site: page_of(site, "auto_examples/index.html"),
     "gallery-example": lambda site: page_of(site, "auto_examples/**/plot_*.html",
