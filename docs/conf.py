@@ -81,6 +81,8 @@ html_theme_options = {
     "navigation_with_keys": False,
     "show_toc_level": 2,
 }
+# Without a default mode the theme's first visit (empty localStorage) logs a console error.
+html_context = {"default_mode": "auto"}
 
 
 # A "|" in gyroshell's docstrings is an absolute value or a norm (|λ|, |V|, |W|), never a

@@ -1,5 +1,5 @@
-"""Test harness: non-interactive plots, floating-point errors raise, a `slow` marker, and
-the fixtures several test files share (a small tape model, a CLI runner)."""
+"""Test harness: non-interactive plots, floating-point errors raise, `slow` and `docs`
+markers, and the fixtures several test files share (a small tape model, a CLI runner)."""
 
 from __future__ import annotations
 
@@ -137,13 +137,18 @@ def rng() -> np.random.Generator:
 def pytest_addoption(parser):
     parser.addoption("--runslow", action="store_true",
                      help="also run tests marked slow (full-size grids and studies)")
+    parser.addoption("--rundocs", action="store_true",
+                     help="also run tests marked docs (build the documentation site and "
+                          "check it in headless Chromium)")
 
 
 def pytest_collection_modifyitems(config, items):
-    """Skip `slow` tests unless asked for with --runslow or a -m expression naming slow."""
-    if config.getoption("--runslow") or "slow" in (config.getoption("-m") or ""):
-        return
-    skip = pytest.mark.skip(reason="slow: run with --runslow or -m slow")
-    for item in items:
-        if "slow" in item.keywords:
-            item.add_marker(skip)
+    """Skip `slow` tests unless asked for with --runslow or a -m expression naming slow, and
+    `docs` tests likewise (--rundocs or -m docs)."""
+    for marker in ["slow", "docs"]:
+        if config.getoption(f"--run{marker}") or marker in (config.getoption("-m") or ""):
+            continue
+        skip = pytest.mark.skip(reason=f"{marker}: run with --run{marker} or -m {marker}")
+        for item in items:
+            if marker in item.keywords:
+                item.add_marker(skip)

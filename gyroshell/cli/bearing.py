@@ -109,7 +109,7 @@ def _tape_parser() -> argparse.ArgumentParser:
                         "load keys (spacing, length_ratio, load, load_x, load_y) do not "
                         "apply to the bearing (the file is still checked whole)")
     g.add_argument("--velocity", type=real, default=None,
-                   help="tape speed V, m/s, nonzero, |V| below the string speed "
+                   help="tape speed V, m/s, nonzero, abs(V) below the string speed "
                         "sqrt(T/rho); negative: the tape runs along -x (reversed) "
                         "(required, here or as velocity in --config)")
     add_tape_overrides(g, TAPE_OPTIONS, help_of={
