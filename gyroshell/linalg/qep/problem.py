@@ -211,6 +211,15 @@ def check_structure(M, G, K, C=None, *, count=None) -> tuple[sp.csr_matrix, ...]
     return M, G, K, C
 
 
+def check_family(M, G1, A, B) -> None:
+    """Prove the structure of every member (M, V·G1, A + τB) of a family of problems once
+    (any real V, τ): M symmetric positive definite, G1 skew-symmetric, A and B symmetric;
+    a ParameterError naming the flaw otherwise. Members built from proved parts are
+    solved with ``solve_qep(..., checked=True)``."""
+    M, G1, A, _ = check_structure(M, G1, A)
+    _check_symmetry("B", _as_sparse("B", B, M.shape[0]), 1, "symmetric")
+
+
 def is_diagonal(matrix: sp.csr_matrix) -> bool:
     coo = matrix.tocoo()
     return bool(np.all(coo.row == coo.col))
