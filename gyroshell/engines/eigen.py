@@ -275,11 +275,16 @@ def _try_mirror(model: TapeModel, velocity: float, count: int, start: Modes | No
     if not known and not _halves_definite(model, split, velocity, options.factorization):
         return None
     # a previous speed's split (continuation) says how many are symmetric
-    hint = (start.info.get("mirror") or {}).get("symmetric") if start else None
+    previous = (start.info.get("mirror") or {}) if start else {}
+    hint = previous.get("symmetric")
     guess = count if hint is None else min(count, hint + MIRROR_HINT_MARGIN)
+    # none of the previous speed's antisymmetric frequencies below its ω̄: a Cholesky of
+    # Q_a(iω̄) is tried first (it proves the count zero by succeeding, at about half the
+    # cost of the LDLᴴ that counts and solves)
+    none_below = previous.get("antisymmetric_below") == 0
     for symmetric in dict.fromkeys((guess, count)):
         result = _mirror_modes(model, split, velocity, count, first, estimate, symmetric,
-                               options)
+                               options, none_below)
         if result is not None:
             return result
     return None
@@ -296,7 +301,8 @@ def _halves_definite(model: TapeModel, split, velocity: float, factorization: st
 
 
 def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, estimate,
-                  symmetric: int, options: SolverOptions) -> Modes | None:
+                  symmetric: int, options: SolverOptions, none_below: bool = False
+                  ) -> Modes | None:
     """The lowest ``count`` modes of a mirror-symmetric tape below critical, from its halves.
 
     The symmetric half gives its ``symmetric`` lowest frequencies, up to ω̄; the inertia of
@@ -321,7 +327,7 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
     M, G, K, first = halves["antisymmetric"]
     t0 = time.perf_counter()
     factor, counted_by = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
-                                      options.factorization)
+                                      options.factorization, none_below)
     count_time = time.perf_counter() - t0
     try:
         below = factor.negatives
@@ -340,6 +346,8 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
     return _joined(model, velocity, count, parts, {
         "antisymmetric_below": below, "count_frequency": omega_bar,
         "count_factorization": counted_by,
+        "count_by_cholesky": isinstance(factor, cholesky.CholeskyFactor) and not isinstance(
+            factor, cholesky.LDLFactor),
         "count_factor_solved": bool(below and anti.info.get("shift_factor_reused")),
         "count_time": count_time})
 
@@ -415,12 +423,17 @@ def _prove_halves(model: TapeModel, split) -> None:
     _PROVED[model] = split
 
 
-def _count_below(Q: sp.spmatrix, factorization: str):
+def _count_below(Q: sp.spmatrix, factorization: str, none_expected: bool = False):
     """The factorization of the Hermitian Q that counts its negative eigenvalues
     (``negatives``) and solves with it, and its back-end: CHOLMOD's LDLᴴ (where selected;
     the caller releases it), else (or if it has no answer) SuperLU's (``negatives`` None
-    where it pivoted off the diagonal)."""
+    where it pivoted off the diagonal). With ``none_expected``, CHOLMOD's supernodal
+    Cholesky is tried first: its success proves Q > 0 (``negatives`` 0)."""
     if resolve_factorization(factorization) == "cholmod":
+        if none_expected:
+            factor = cholesky.cholesky(Q)
+            if factor is not None:
+                return factor, "cholmod"
         factor = cholesky.ldl(Q)
         if factor is not None:
             return factor, "cholmod"

@@ -335,3 +335,17 @@ def test_a_checked_solve_gives_the_same_pairs_and_the_family_proof_refuses_flaws
         check_family(-M, G, K, B)
     with pytest.raises(ParameterError, match="G must be skew-symmetric"):
         check_family(M, G + B, K, B)
+
+
+def test_a_warm_start_with_no_part_in_the_problem_starts_at_random(rng):
+    """Previous modes whose vectors vanish here (all symmetric ones projected on the
+    antisymmetric half of a tape) give a zero start vector; the solve starts from the
+    random one instead of an unset basis vector (it used to fill H with NaN): the block
+    2-DOF closed form."""
+    nb = 30
+    ks = rng.uniform(1.0, 50.0, size=(nb, 2))
+    M, G, K, exact = blocks(ks, rng.uniform(0.5, 3.0, nb))
+    w = np.sort(exact.imag[exact.imag > 0])
+    zero_start = (1j * w[:3], np.zeros((M.shape[0], 3), dtype=complex))
+    res = gyroscopic_modes(M, G, K, 3, estimate=0.9 * w[0], start=zero_start)
+    assert res.omega == pytest.approx(w[:3], rel=1e-10)

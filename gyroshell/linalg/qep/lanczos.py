@@ -17,6 +17,7 @@ import math
 import time
 
 import numpy as np
+import scipy.linalg as la
 
 from ..inertia import InertiaFactor
 from .problem import EnergyOperator, Problem, random_start
@@ -100,12 +101,12 @@ class _Basis:
             self.put(j + 1, w, _energy(w, op.weight(w)))
 
     def ritz(self, size: int, wanted, nev: int, tol: float):
-        """(θ, S, order by ``wanted``, whether the ``nev`` best have converged). NumPy's
-        eigh: on these small matrices (at most 33 x 33, tested every step) it has less
-        call overhead than SciPy's."""
+        """(θ, S, order by ``wanted``, whether the ``nev`` best have converged). SciPy's
+        eigh (LAPACK's MRRR driver): NumPy's (divide and conquer) has less call overhead
+        but failed to converge on one projected matrix of a warm-started solve."""
         H = self.H
         Hs = H[:size, :size]
-        theta, S = np.linalg.eigh(0.5 * (Hs + Hs.conj().T))
+        theta, S = la.eigh(0.5 * (Hs + Hs.conj().T))
         order = np.argsort(-wanted(theta), kind="stable")
         resid = np.abs(H[size, size - 1] * S[size - 1, :])
         best = order[:nev]
@@ -218,4 +219,8 @@ def _start_vector(prob: Problem) -> np.ndarray:
     Z = np.concatenate([phi * lam, phi])
     z = Z.sum(axis=1)
     scale = np.linalg.norm(z) / math.sqrt(2 * n)
+    if not (scale > 0 and math.isfinite(scale)):
+        # previous modes with no part here (e.g. all symmetric, projected on the
+        # antisymmetric half): a zero start would leave the first basis vector unset
+        return noise
     return z + WARM_START_NOISE * scale * noise
