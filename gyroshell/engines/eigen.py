@@ -313,7 +313,7 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
     tape are among them. None if they are fewer, or if the count is not available (SuperLU
     pivoted off the diagonal): the caller asks for more or solves the full problem.
     """
-    _prove_halves(model, split)
+    checked = _prove_halves(model, split)
     halves = {}
     for which in ("symmetric", "antisymmetric"):
         M, G, K = split.matrices(model, velocity, which)
@@ -322,7 +322,7 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
     guess = estimate if estimate > 0 else None
     M, G, K, first = halves["symmetric"]
     sym = GyroscopicModes(*solve_qep(M, G, K, symmetric, estimate=guess, definite=True,
-                                     start=first, options=options, checked=True))
+                                     start=first, options=options, checked=checked))
     omega_bar = float(sym.omega[-1])
     M, G, K, first = halves["antisymmetric"]
     t0 = time.perf_counter()
@@ -336,7 +336,7 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
         parts = [(sym, split.symmetric, halves["symmetric"][:3])]
         if below:
             anti = _below_count_frequency(M, G, K, min(below, count), omega_bar, factor,
-                                          first, guess, options)
+                                          first, guess, options, checked)
             if np.any(anti.omega >= omega_bar):   # the count and the solve disagree
                 return None
             parts.append((anti, split.antisymmetric, (M, G, K)))
@@ -400,8 +400,6 @@ def _residual_scale(model: TapeModel, velocity: float, size: np.ndarray) -> np.n
 
 #: Per model, ‖G(1 m/s)‖₁ in kg/s per m/s.
 _G1_NORMS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-#: Per model, the mirror split whose halves' structure :func:`_prove_halves` proved.
-_PROVED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
 def _g1_norm(model: TapeModel) -> float:
@@ -411,16 +409,27 @@ def _g1_norm(model: TapeModel) -> float:
     return known
 
 
-def _prove_halves(model: TapeModel, split) -> None:
-    """Prove once per model that every speed's halves (M_h, V G_h(1), A_h + τB_h) have the
+#: Per model, the mirror split whose halves' structure :func:`_prove_halves` proved (or,
+#: the first time, saw: with the flag False).
+_PROVED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _prove_halves(model: TapeModel, split) -> bool:
+    """True if every speed's halves (M_h, V G_h(1), A_h + τB_h) are proved to have the
     solver's structure (:func:`gyroshell.linalg.qep.check_family`), so that each solve on
-    them skips the checks (``checked=True``)."""
-    if _PROVED.get(model) is split:
-        return
-    for which in ("symmetric", "antisymmetric"):
-        M, G1, _ = split.matrices(model, 1.0, which)
-        check_family(M, G1, *split.stiffness(which))
-    _PROVED[model] = split
+    them may skip the checks (``checked=True``). The proof is made the second time a
+    model's halves are solved (a sweep, a critical-speed search): a single solve checks
+    its own matrices as before, at the same cost."""
+    seen = _PROVED.get(model)
+    if seen is not None and seen[0] is split:
+        if not seen[1]:
+            for which in ("symmetric", "antisymmetric"):
+                M, G1, _ = split.matrices(model, 1.0, which)
+                check_family(M, G1, *split.stiffness(which))
+            _PROVED[model] = (split, True)
+        return True
+    _PROVED[model] = (split, False)
+    return False
 
 
 def _count_below(Q: sp.spmatrix, factorization: str, none_expected: bool = False):
@@ -441,7 +450,7 @@ def _count_below(Q: sp.spmatrix, factorization: str, none_expected: bool = False
 
 
 def _below_count_frequency(M, G, K, count: int, omega_bar: float, factor, start,
-                           estimate, options: SolverOptions):
+                           estimate, options: SolverOptions, checked: bool = False):
     """The ``count`` lowest modes of the antisymmetric half, all below ω̄ (rad/s), by
     Lanczos shifted at iω̄ with the count's own factorization of Q_a(iω̄) (no second
     factorization; the frequencies wanted are the extreme ones just below the shift).
@@ -449,11 +458,12 @@ def _below_count_frequency(M, G, K, count: int, omega_bar: float, factor, start,
     ω̄), the automatic shift below the lowest frequency is used instead."""
     try:
         pairs = solve_qep(M, G, K, count, sigma=1j * omega_bar, definite=True, start=start,
-                          options=options, shift_factor=factor, checked=True)
+                          options=options, shift_factor=factor, checked=checked)
         return GyroscopicModes(*pairs)
     except (ConvergenceError, ParameterError):
         return GyroscopicModes(*solve_qep(M, G, K, count, estimate=estimate, definite=True,
-                                          start=start, options=options, checked=True))
+                                          start=start, options=options,
+                                          checked=checked))
 
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options

@@ -282,21 +282,22 @@ def test_the_joined_backward_errors_are_the_full_problems(velocity, monkeypatch)
     """The mirror path's backward errors, computed on the halves with the full matrices'
     norms, are ‖(λ²M + λG + K)φ‖₂ / ((|λ|²‖M‖₁ + |λ|‖G‖₁ + ‖K‖₁)‖φ‖₂) of the full
     problem recomputed from scratch (both round-off: they agree to its scatter), and the
-    halves' structure is proved once per model, not per speed."""
+    halves' structure is proved once per model (the first speed checks its own matrices,
+    the second proves the family), not per speed."""
     import gyroshell.engines.eigen as eigen
 
     model = _model(length_ratio=4.0, spacing=WIDTH / 12)
     proofs = []
     proved = eigen.check_family
     monkeypatch.setattr(eigen, "check_family", lambda *a: proofs.append(1) or proved(*a))
-    for speed in (velocity, velocity + 5.0):
+    for speed in (velocity, velocity + 5.0, velocity + 10.0):
         halves = modes(model, speed, 6)
         assert "mirror" in halves.info
         full = relative_residuals(model, speed, halves.eigenvalues, halves.vectors)
         assert halves.residuals.max() < 1e-14 and full.max() < 1e-14
         assert halves.residuals == pytest.approx(full, rel=0.25, abs=1e-17)
         assert halves.info["max_residual"] == halves.residuals.max()
-    assert len(proofs) == 2   # the two halves, once
+    assert len(proofs) == 2   # the two halves, once (at the second speed)
 
 
 def test_a_previous_speed_without_antisymmetric_modes_below_tries_a_cholesky_first():
