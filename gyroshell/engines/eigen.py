@@ -43,11 +43,13 @@ from ..linalg.qep import (
     SHIFT_MARGIN,
     SolverOptions,
     check_count,
+    check_family,
     max_count,
     normalize,
     solve_qep,
 )
 from ..linalg.qep import relative_residuals as _matrix_residuals
+from ..linalg.qep.spectrum import norm1, products
 from ..results.modes import GyroscopicModes, Modes
 from ..tape.grid import Grid
 from ..tape.mirror import mirror_split
@@ -273,11 +275,16 @@ def _try_mirror(model: TapeModel, velocity: float, count: int, start: Modes | No
     if not known and not _halves_definite(model, split, velocity, options.factorization):
         return None
     # a previous speed's split (continuation) says how many are symmetric
-    hint = (start.info.get("mirror") or {}).get("symmetric") if start else None
+    previous = (start.info.get("mirror") or {}) if start else {}
+    hint = previous.get("symmetric")
     guess = count if hint is None else min(count, hint + MIRROR_HINT_MARGIN)
+    # none of the previous speed's antisymmetric frequencies below its ω̄: a Cholesky of
+    # Q_a(iω̄) is tried first (it proves the count zero by succeeding, at about half the
+    # cost of the LDLᴴ that counts and solves)
+    none_below = previous.get("antisymmetric_below") == 0
     for symmetric in dict.fromkeys((guess, count)):
         result = _mirror_modes(model, split, velocity, count, first, estimate, symmetric,
-                               options)
+                               options, none_below)
         if result is not None:
             return result
     return None
@@ -294,7 +301,8 @@ def _halves_definite(model: TapeModel, split, velocity: float, factorization: st
 
 
 def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, estimate,
-                  symmetric: int, options: SolverOptions) -> Modes | None:
+                  symmetric: int, options: SolverOptions, none_below: bool = False
+                  ) -> Modes | None:
     """The lowest ``count`` modes of a mirror-symmetric tape below critical, from its halves.
 
     The symmetric half gives its ``symmetric`` lowest frequencies, up to ω̄; the inertia of
@@ -305,6 +313,7 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
     tape are among them. None if they are fewer, or if the count is not available (SuperLU
     pivoted off the diagonal): the caller asks for more or solves the full problem.
     """
+    checked = _prove_halves(model, split)
     halves = {}
     for which in ("symmetric", "antisymmetric"):
         M, G, K = split.matrices(model, velocity, which)
@@ -312,48 +321,68 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
         halves[which] = (M, G, K, first)
     guess = estimate if estimate > 0 else None
     M, G, K, first = halves["symmetric"]
-    sym = gyroscopic_modes(M, G, K, symmetric, estimate=guess, definite=True, start=first,
-                           options=options)
+    sym = GyroscopicModes(*solve_qep(M, G, K, symmetric, estimate=guess, definite=True,
+                                     start=first, options=options, checked=checked))
     omega_bar = float(sym.omega[-1])
     M, G, K, first = halves["antisymmetric"]
     t0 = time.perf_counter()
     factor, counted_by = _count_below(K - omega_bar**2 * M + 1j * omega_bar * G,
-                                      options.factorization)
+                                      options.factorization, none_below)
     count_time = time.perf_counter() - t0
     try:
         below = factor.negatives
         if below is None or symmetric + below < count:
             return None
-        parts = [(sym, split.symmetric)]
+        parts = [(sym, split.symmetric, halves["symmetric"][:3])]
         if below:
             anti = _below_count_frequency(M, G, K, min(below, count), omega_bar, factor,
-                                          first, guess, options)
+                                          first, guess, options, checked)
             if np.any(anti.omega >= omega_bar):   # the count and the solve disagree
                 return None
-            parts.append((anti, split.antisymmetric))
+            parts.append((anti, split.antisymmetric, (M, G, K)))
     finally:
         if hasattr(factor, "release"):
             factor.release()
     return _joined(model, velocity, count, parts, {
         "antisymmetric_below": below, "count_frequency": omega_bar,
         "count_factorization": counted_by,
+        "count_by_cholesky": isinstance(factor, cholesky.CholeskyFactor) and not isinstance(
+            factor, cholesky.LDLFactor),
         "count_factor_solved": bool(below and anti.info.get("shift_factor_reused")),
         "count_time": count_time})
 
 
 def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: dict
             ) -> Modes:
-    """The ``count`` lowest of the halves' modes (``parts``: (result, embedding) pairs, the
-    symmetric first), with the halves' costs summed and ``mirror`` added to the info."""
+    """The ``count`` lowest of the halves' modes (``parts``: (result, embedding, (M_h, G_h,
+    K_h)) triples, the symmetric first), with the halves' costs summed and ``mirror``
+    added to the info.
+
+    The backward errors are the full problem's, ‖Q(λ) P_hφ‖₂ / (s(λ) ‖P_hφ‖₂) with the
+    full matrices' norms in s(λ) = |λ|²‖M‖₁ + |λ|‖G‖₁ + ‖K‖₁, computed on the halves:
+    Q(λ) P_h = P_h Q_h(λ) (the split's invariance, checked when it was made) and P_h has
+    orthonormal columns, so ‖Q(λ) P_hφ‖₂ = ‖Q_h(λ) φ‖₂ and ‖P_hφ‖₂ = ‖φ‖₂: half-size
+    products of the kept vectors only, no full-size assembly or product."""
     sym = parts[0][0]
-    lam = np.concatenate([r.eigenvalues for r, _ in parts])
-    vecs = np.hstack([P @ r.vectors for r, P in parts])
+    lam = np.concatenate([r.eigenvalues for r, _, _ in parts])
+    source = np.concatenate([np.full(r.count, k) for k, (r, _, _) in enumerate(parts)])
+    column = np.concatenate([np.arange(r.count) for r, _, _ in parts])
     order = np.argsort(np.abs(lam.imag), kind="stable")[:count]
-    lam, vecs = lam[order], normalize(vecs[:, order])
-    res = relative_residuals(model, velocity, lam, vecs)
+    lam = lam[order]
+    vecs = np.empty((model.unknowns, count), dtype=complex)
+    numerators = np.empty(count)
+    for k, (r, P, (M, G, K)) in enumerate(parts):
+        mine = np.flatnonzero(source[order] == k)
+        phi = r.vectors[:, column[order[mine]]]
+        vecs[:, mine] = P @ phi
+        Mphi, Gphi, Kphi = products(M, G, K, phi)
+        numerators[mine] = (np.linalg.norm(Mphi * lam[mine]**2 + Gphi * lam[mine] + Kphi,
+                                           axis=0) / np.linalg.norm(phi, axis=0))
+    vecs = normalize(vecs)
+    res = numerators / _residual_scale(model, velocity, np.abs(lam))
     info = dict(sym.info)
     for key in ("factor_time", "solve_time", "substitution_time", "operator_applications"):
-        info[key] = sum(r.info.get(key, 0) or 0 for r, _ in parts)
+        info[key] = sum(r.info.get(key, 0) or 0 for r, _, _ in parts)
     # the count's factorization is the antisymmetric half's (its solves reuse it)
     info["factor_time"] += mirror["count_time"]
     info.update(max_residual=float(res.max()), mirror={
@@ -362,12 +391,58 @@ def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: 
     return Modes(model.grid, velocity, lam, vecs, res, False, info, False)
 
 
-def _count_below(Q: sp.spmatrix, factorization: str):
+def _residual_scale(model: TapeModel, velocity: float, size: np.ndarray) -> np.ndarray:
+    """|λ|²‖M‖₁ + |λ|‖G(V)‖₁ + ‖K(V)‖₁ of the full undamped problem for |λ| = ``size``
+    (‖G(V)‖₁ = V ‖G(1 m/s)‖₁, G being linear in V)."""
+    mass = float(np.max(np.abs(model.mass_diagonal)))
+    return size**2 * mass + size * velocity * _g1_norm(model) + norm1(model.K(velocity))
+
+
+#: Per model, ‖G(1 m/s)‖₁ in kg/s per m/s.
+_G1_NORMS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _g1_norm(model: TapeModel) -> float:
+    known = _G1_NORMS.get(model)
+    if known is None:
+        known = _G1_NORMS[model] = norm1(sp.csr_matrix(model.G(1.0)))
+    return known
+
+
+#: Per model, the mirror split whose halves' structure :func:`_prove_halves` proved (or,
+#: the first time, saw: with the flag False).
+_PROVED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _prove_halves(model: TapeModel, split) -> bool:
+    """True if every speed's halves (M_h, V G_h(1), A_h + τB_h) are proved to have the
+    solver's structure (:func:`gyroshell.linalg.qep.check_family`), so that each solve on
+    them may skip the checks (``checked=True``). The proof is made the second time a
+    model's halves are solved (a sweep, a critical-speed search): a single solve checks
+    its own matrices as before, at the same cost."""
+    seen = _PROVED.get(model)
+    if seen is not None and seen[0] is split:
+        if not seen[1]:
+            for which in ("symmetric", "antisymmetric"):
+                M, G1, _ = split.matrices(model, 1.0, which)
+                check_family(M, G1, *split.stiffness(which))
+            _PROVED[model] = (split, True)
+        return True
+    _PROVED[model] = (split, False)
+    return False
+
+
+def _count_below(Q: sp.spmatrix, factorization: str, none_expected: bool = False):
     """The factorization of the Hermitian Q that counts its negative eigenvalues
     (``negatives``) and solves with it, and its back-end: CHOLMOD's LDLᴴ (where selected;
     the caller releases it), else (or if it has no answer) SuperLU's (``negatives`` None
-    where it pivoted off the diagonal)."""
+    where it pivoted off the diagonal). With ``none_expected``, CHOLMOD's supernodal
+    Cholesky is tried first: its success proves Q > 0 (``negatives`` 0)."""
     if resolve_factorization(factorization) == "cholmod":
+        if none_expected:
+            factor = cholesky.cholesky(Q)
+            if factor is not None:
+                return factor, "cholmod"
         factor = cholesky.ldl(Q)
         if factor is not None:
             return factor, "cholmod"
@@ -375,7 +450,7 @@ def _count_below(Q: sp.spmatrix, factorization: str):
 
 
 def _below_count_frequency(M, G, K, count: int, omega_bar: float, factor, start,
-                           estimate, options: SolverOptions):
+                           estimate, options: SolverOptions, checked: bool = False):
     """The ``count`` lowest modes of the antisymmetric half, all below ω̄ (rad/s), by
     Lanczos shifted at iω̄ with the count's own factorization of Q_a(iω̄) (no second
     factorization; the frequencies wanted are the extreme ones just below the shift).
@@ -383,11 +458,12 @@ def _below_count_frequency(M, G, K, count: int, omega_bar: float, factor, start,
     ω̄), the automatic shift below the lowest frequency is used instead."""
     try:
         pairs = solve_qep(M, G, K, count, sigma=1j * omega_bar, definite=True, start=start,
-                          options=options, shift_factor=factor)
+                          options=options, shift_factor=factor, checked=checked)
         return GyroscopicModes(*pairs)
     except (ConvergenceError, ParameterError):
-        return gyroscopic_modes(M, G, K, count, estimate=estimate, definite=True,
-                                start=start, options=options)
+        return GyroscopicModes(*solve_qep(M, G, K, count, estimate=estimate, definite=True,
+                                          start=start, options=options,
+                                          checked=checked))
 
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options

@@ -109,6 +109,52 @@ def _pattern(lower: sp.csc_matrix, typecode: str, supernodal: bool = True) -> _P
         return pattern
 
 
+#: Lower-triangle maps kept (one per CSR sparsity pattern seen most recently).
+LOWER_MAPS = 8
+_lower_maps: list[tuple] = []
+
+
+def _lower(matrix: sp.spmatrix) -> sp.csc_matrix:
+    """The lower triangle of ``matrix`` in CSC with sorted indices, as CHOLMOD reads it.
+
+    For a canonical CSR matrix the positions of its entries in that triangle depend on the
+    sparsity pattern only (the same for every shift and speed): the second time a pattern
+    is seen they are found, and from then on the triangle is one gather of the values,
+    not a triangle extraction, a conversion and a sort (the tape's shift matrices: ~2 ms
+    each time; a pattern seen once, as in a single eigen-solve, costs nothing extra)."""
+    if not (sp.issparse(matrix) and matrix.format == "csr" and matrix.has_canonical_format):
+        lower = sp.tril(matrix, format="csc")
+        lower.sort_indices()
+        return lower
+    shape, nnz = matrix.shape, matrix.nnz
+    with _lock:
+        found = next((entry for entry in _lower_maps if entry[0] == shape and entry[1] == nnz
+                      and np.array_equal(entry[2], matrix.indptr)
+                      and np.array_equal(entry[3], matrix.indices)), None)
+    if found is None or found[4] is None:
+        # first sight: scipy's path, the pattern noted; second: the map, made once
+        if found is None:
+            lower = sp.tril(matrix, format="csc")
+            lower.sort_indices()
+            entry = (shape, nnz, matrix.indptr.copy(), matrix.indices.copy(), None)
+        else:
+            marks = sp.csr_matrix((np.arange(1, nnz + 1, dtype=float), matrix.indices,
+                                   matrix.indptr), shape=shape)
+            skeleton = sp.tril(marks, format="csc")
+            skeleton.sort_indices()
+            take = skeleton.data.astype(np.int64) - 1
+            lower = sp.csc_matrix((matrix.data[take], skeleton.indices, skeleton.indptr),
+                                  shape=shape)
+            entry = (*found[:4], take, skeleton.indices, skeleton.indptr)
+        with _lock:
+            _lower_maps[:] = [e for e in _lower_maps if e is not found]
+            _lower_maps.insert(0, entry)
+            del _lower_maps[LOWER_MAPS:]
+        return lower
+    take, indices, indptr = found[4:]
+    return sp.csc_matrix((matrix.data[take], indices, indptr), shape=shape)
+
+
 class CholeskyFactor:
     """A CHOLMOD factorization P A Pᵀ = L Lᴴ of a positive definite matrix.
 
@@ -169,8 +215,7 @@ def cholesky(matrix: sp.spmatrix) -> CholeskyFactor | None:
     """
     if _cholmod is None:
         raise RuntimeError("CHOLMOD needs cvxopt: pip install 'gyroshell[fast]'")
-    lower = sp.tril(matrix, format="csc")
-    lower.sort_indices()
+    lower = _lower(matrix)
     complex_ = np.iscomplexobj(lower.data)
     pattern = _pattern(lower, "z" if complex_ else "d")
     matrix, factor = pattern.take(lower.data.astype(complex if complex_ else float))
@@ -217,8 +262,7 @@ def ldl(matrix: sp.spmatrix) -> LDLFactor | None:
     """
     if _cholmod is None:
         raise RuntimeError("CHOLMOD needs cvxopt: pip install 'gyroshell[fast]'")
-    lower = sp.tril(matrix, format="csc")
-    lower.sort_indices()
+    lower = _lower(matrix)
     complex_ = np.iscomplexobj(lower.data)
     dtype = complex if complex_ else float
     pattern = _pattern(lower, "z" if complex_ else "d", supernodal=False)

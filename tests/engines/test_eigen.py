@@ -275,3 +275,46 @@ def test_antisymmetric_half_is_solved_with_its_counts_factorization(velocity):
     assert halves.omega == pytest.approx(full.omega, rel=1e-11)
     assert halves.residuals.max() < 1e-14
     assert np.count_nonzero(halves.omega < mirror["count_frequency"]) >= 6
+
+
+@pytest.mark.parametrize("velocity", [0.0, 50.0])
+def test_the_joined_backward_errors_are_the_full_problems(velocity, monkeypatch):
+    """The mirror path's backward errors, computed on the halves with the full matrices'
+    norms, are ‖(λ²M + λG + K)φ‖₂ / ((|λ|²‖M‖₁ + |λ|‖G‖₁ + ‖K‖₁)‖φ‖₂) of the full
+    problem recomputed from scratch (both round-off: they agree to its scatter), and the
+    halves' structure is proved once per model (the first speed checks its own matrices,
+    the second proves the family), not per speed."""
+    import gyroshell.engines.eigen as eigen
+
+    model = _model(length_ratio=4.0, spacing=WIDTH / 12)
+    proofs = []
+    proved = eigen.check_family
+    monkeypatch.setattr(eigen, "check_family", lambda *a: proofs.append(1) or proved(*a))
+    for speed in (velocity, velocity + 5.0, velocity + 10.0):
+        halves = modes(model, speed, 6)
+        assert "mirror" in halves.info
+        full = relative_residuals(model, speed, halves.eigenvalues, halves.vectors)
+        assert halves.residuals.max() < 1e-14 and full.max() < 1e-14
+        assert halves.residuals == pytest.approx(full, rel=0.25, abs=1e-17)
+        assert halves.info["max_residual"] == halves.residuals.max()
+    assert len(proofs) == 2   # the two halves, once (at the second speed)
+
+
+def test_a_previous_speed_without_antisymmetric_modes_below_tries_a_cholesky_first():
+    """Continued from a speed whose antisymmetric half had no frequency below ω̄, the count
+    at the next speed is first tried by a Cholesky of Q_a(iω̄) (its success proves the
+    count zero). Right guess and wrong guess both give the full problem's frequencies and
+    the true count (L_x/L_y = 8, two modes: none below ω̄ at 60 m/s, one at 40 m/s)."""
+    model = _model(length_ratio=8.0)
+    at_60 = modes(model, 60.0, 2)
+    assert at_60.info["mirror"]["antisymmetric_below"] == 0
+    for speed, below in ((62.0, 0), (40.0, 1)):
+        continued = modes(model, speed, 2, start=at_60)
+        mirror = continued.info["mirror"]
+        assert mirror["antisymmetric_below"] == below == modes(model, speed, 2).info[
+            "mirror"]["antisymmetric_below"]
+        assert continued.omega == pytest.approx(modes(model, speed, 2, symmetry=False).omega,
+                                                rel=1e-11)
+        # the Cholesky proof stands where it succeeded (CHOLMOD only; SuperLU counts)
+        assert mirror["count_by_cholesky"] == (below == 0 and mirror["count_factorization"]
+                                               == "cholmod")

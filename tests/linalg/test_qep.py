@@ -305,3 +305,47 @@ def test_one_superlu_helper_serves_lu_and_inertia(rng):
     assert factor_inertia(A).negatives in (None, negatives)
     with pytest.raises(RuntimeError):
         splu(sp.csc_matrix((3, 3)))
+
+
+def test_a_checked_solve_gives_the_same_pairs_and_the_family_proof_refuses_flaws(rng):
+    """solve_qep(checked=True) skips only the structure checks: the block 2-DOF closed form
+    and bit-identical eigenvalues to the checked call; check_family proves (M, V·G1,
+    A + τB) for every V, τ from its parts and names a non-symmetric A or B (each on its
+    own scale), a non-skew G1, an indefinite M."""
+    from gyroshell.linalg.qep import check_family, solve_qep
+
+    nb = 30
+    ks = rng.uniform(1.0, 50.0, size=(nb, 2))
+    M, G, K, exact = blocks(ks, rng.uniform(0.5, 3.0, nb))
+    w = np.sort(exact.imag[exact.imag > 0])
+    plain = solve_qep(M, G, K, 4, estimate=0.9 * w[0])
+    trusted = solve_qep(M, G, K, 4, estimate=0.9 * w[0], checked=True)
+    assert np.array_equal(plain.eigenvalues, trusted.eigenvalues)
+    assert trusted.eigenvalues.imag == pytest.approx(w[:4], rel=1e-10)
+    B = sp.identity(M.shape[0], format="csr")
+    check_family(M, G, K, B)   # no error
+    skew = sp.csr_matrix(np.triu(np.ones(M.shape), 1))
+    with pytest.raises(ParameterError, match="B must be symmetric"):
+        check_family(M, G, K, B + skew)
+    with pytest.raises(ParameterError, match="A must be symmetric"):
+        check_family(M, G, K + skew, B)
+    with pytest.raises(ParameterError, match="B must be symmetric"):
+        check_family(M, G, K, 1e-9 * (B + skew))   # a small B's flaw is not masked by A
+    with pytest.raises(ParameterError, match="M must be positive definite"):
+        check_family(-M, G, K, B)
+    with pytest.raises(ParameterError, match="G must be skew-symmetric"):
+        check_family(M, G + B, K, B)
+
+
+def test_a_warm_start_with_no_part_in_the_problem_starts_at_random(rng):
+    """Previous modes whose vectors vanish here (all symmetric ones projected on the
+    antisymmetric half of a tape) give a zero start vector; the solve starts from the
+    random one instead of an unset basis vector (it used to fill H with NaN): the block
+    2-DOF closed form."""
+    nb = 30
+    ks = rng.uniform(1.0, 50.0, size=(nb, 2))
+    M, G, K, exact = blocks(ks, rng.uniform(0.5, 3.0, nb))
+    w = np.sort(exact.imag[exact.imag > 0])
+    zero_start = (1j * w[:3], np.zeros((M.shape[0], 3), dtype=complex))
+    res = gyroscopic_modes(M, G, K, 3, estimate=0.9 * w[0], start=zero_start)
+    assert res.omega == pytest.approx(w[:3], rel=1e-10)

@@ -61,6 +61,7 @@ from .problem import (
     MAX_COUNT,
     SolverOptions,
     check_count,
+    check_family,
     check_shift,
     check_structure,
     max_count,
@@ -79,5 +80,6 @@ from .spectrum import (
 
 __all__ = ["DEFAULT_TOL", "DENSE_LIMIT", "MAX_COUNT", "PAIR_DEFECT_LIMIT", "RESIDUAL_LIMIT",
            "SHIFT_MARGIN", "STABILITY_LABELS", "STABILITY_RTOL", "Eigenpairs", "SolverOptions",
-           "check_count", "check_shift", "check_structure", "max_count", "normalize",
+           "check_count", "check_family", "check_shift", "check_structure", "max_count",
+           "normalize",
            "quadratic_rayleigh", "relative_residuals", "solve_qep", "stability_label"]

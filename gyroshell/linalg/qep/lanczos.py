@@ -101,7 +101,9 @@ class _Basis:
             self.put(j + 1, w, _energy(w, op.weight(w)))
 
     def ritz(self, size: int, wanted, nev: int, tol: float):
-        """(θ, S, order by ``wanted``, whether the ``nev`` best have converged)."""
+        """(θ, S, order by ``wanted``, whether the ``nev`` best have converged). SciPy's
+        eigh (LAPACK's MRRR driver): NumPy's (divide and conquer) has less call overhead
+        but failed to converge on one projected matrix of a warm-started solve."""
         H = self.H
         Hs = H[:size, :size]
         theta, S = la.eigh(0.5 * (Hs + Hs.conj().T))
@@ -217,4 +219,8 @@ def _start_vector(prob: Problem) -> np.ndarray:
     Z = np.concatenate([phi * lam, phi])
     z = Z.sum(axis=1)
     scale = np.linalg.norm(z) / math.sqrt(2 * n)
+    if not (scale > 0 and math.isfinite(scale)):
+        # previous modes with no part here (e.g. all symmetric, projected on the
+        # antisymmetric half): a zero start would leave the first basis vector unset
+        return noise
     return z + WARM_START_NOISE * scale * noise

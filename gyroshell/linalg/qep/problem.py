@@ -213,6 +213,33 @@ def check_structure(M, G, K, C=None, *, count=None) -> tuple[sp.csr_matrix, ...]
     return M, G, K, C
 
 
+def check_family(M, G1, A, B) -> None:
+    """Prove the structure of every member (M, V·G1, A + τB) of a family of problems once
+    (any real V, τ): M symmetric positive definite, G1 skew-symmetric, A and B symmetric;
+    a ParameterError naming the flaw otherwise. Members built from proved parts are
+    solved with ``solve_qep(..., checked=True)``.
+
+    A and B are tested together, as the complex X = A + i s B with s = ‖A‖₁/‖B‖₁: each
+    part's defect is at most |X − Xᵀ| entry by entry, so ‖X − Xᵀ‖₁ <= STRUCTURE_RTOL ‖A‖₁
+    proves both (one transpose instead of two); where it does not hold, each is tested
+    alone for the message."""
+    M = _as_sparse("M", M, None)
+    n = M.shape[0]
+    G1, A, B = (_as_sparse(name, X, n) for name, X in (("G", G1), ("A", A), ("B", B)))
+    if n < 2:
+        raise ParameterError(f"the matrices must be at least 2 x 2, got {n} x {n}")
+    if not is_diagonal(M):
+        _check_symmetry("M", M, 1, "symmetric")
+    if not _positive_definite(M):
+        raise ParameterError("M must be positive definite (a mass matrix)")
+    _check_symmetry("G", G1, -1, "skew-symmetric")
+    size_a, size_b = norm1(A), norm1(B)
+    X = A + (1j * size_a / size_b) * B if size_a and size_b else A + 1j * B
+    if norm1(X - X.T) > STRUCTURE_RTOL * (size_a or size_b):
+        _check_symmetry("A", A, 1, "symmetric")
+        _check_symmetry("B", B, 1, "symmetric")
+
+
 def is_diagonal(matrix: sp.csr_matrix) -> bool:
     coo = matrix.tocoo()
     return bool(np.all(coo.row == coo.col))

@@ -26,6 +26,7 @@ from .problem import (
     Problem,
     SolverOptions,
     check_count,
+    check_memory,
     check_optional_int,
     check_shift,
     check_start,
@@ -65,7 +66,8 @@ class Eigenpairs(NamedTuple):
 
 def solve_qep(M, G, K, count: int, *, sigma=None, C=None, estimate: float | None = None,
               definite: bool | None = None, start=None,
-              options: SolverOptions | None = None, shift_factor=None) -> Eigenpairs:
+              options: SolverOptions | None = None, shift_factor=None,
+              checked: bool = False) -> Eigenpairs:
     """Eigenpairs of (λ²M + λ(G + C) + K) φ = 0 nearest a shift on the imaginary axis.
 
     The arguments and the errors are those of
@@ -76,12 +78,18 @@ def solve_qep(M, G, K, count: int, *, sigma=None, C=None, estimate: float | None
     :class:`~gyroshell.linalg.inertia.InertiaFactor` or a CHOLMOD
     :class:`~gyroshell.linalg.cholesky.LDLFactor`, e.g. the one an inertia count made),
     solved with instead of factoring Q(iω_s) again; the caller keeps (and releases) it.
+    ``checked``: M, G, K (no C) are CSR matrices of floats whose structure the caller has
+    already proved (:func:`check_structure`, e.g. once per model for the mirror halves of
+    :mod:`gyroshell.engines.eigen`); only the memory estimate is made here.
     """
     options = SolverOptions() if options is None else options
     factorization = check_factorization(options.factorization)
     # Out-of-range scales surface as non-finite results, refused in _finish; no warnings.
     with blas_threads(1), np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-        M, G, K, C = check_structure(M, G, K, C, count=count)
+        if checked and C is None:
+            check_memory(M.shape[0], M.nnz + G.nnz + K.nnz, count)
+        else:
+            M, G, K, C = check_structure(M, G, K, C, count=count)
         prob = Problem(M, G, K, C, check_count(count, M.shape[0]), check_tol(options.tol),
                        check_optional_int("ncv", options.ncv),
                        check_optional_int("maxiter", options.maxiter),
