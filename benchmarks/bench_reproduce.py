@@ -50,6 +50,7 @@ def run_tree(tree: Path, studies: list[str], out: Path, extra: list[str]) -> dic
     if not lines:  # an older tree logs "name: 12.3 s -> files", without the CPU time
         lines = [m for m in map(OLD_LINE.match, proc.stdout.splitlines()) if m]
     times = {m.group(1): float(m.group(2)) for m in lines}
+    times.update({f"{m.group(1)} CPU": float(m.group(3)) for m in lines if m.re is LINE})
     times["total"], times["cpu"] = wall, cpu
     study_cpu = [float(m.group(3)) for m in lines if m.re is LINE]
     if study_cpu:  # the workers' CPU time, which the children's usage does not see
@@ -179,6 +180,7 @@ def main(argv: list[str] | None = None) -> int:
                       flush=True)
         names = [k for k in results["new"][0] if k not in ("total", "cpu")] + ["total",
                                                                                  "cpu"]
+        names.sort(key=lambda k: k.endswith("CPU"))  # the studies' CPU times last
         med = {case: {k: statistics.median(run.get(k, float("nan")) for run in runs)
                       for k in names} for case, runs in results.items()}
         print(f"\nmedians over {args.rounds} round(s), s (studies as logged; total: the "
