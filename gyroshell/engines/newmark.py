@@ -43,8 +43,8 @@ step is 1.1-1.6x).
 
 Ordering. SuperLU factors K_eq in its natural (grid) order when the band is narrow, as on
 the symmetric half of the paper's grid, and in minimum-degree order otherwise
-(:mod:`gyroshell.linalg.ordering`): a half-size substitution on L_x/L_y = 19 measured 0.67x
-the minimum-degree one.
+(:mod:`gyroshell.linalg.ordering`): a half-size step on L_x/L_y = 19 measured 0.85x the
+minimum-degree one on a quiet machine (a bare substitution 0.90x; 0.65x under load).
 
 Shared factorizations. Inside ``with sharing_factorizations():`` every :class:`Newmark`
 for the same tape (equal parameters and grid) at the same (V, Δt, β, γ, C, back-end) uses

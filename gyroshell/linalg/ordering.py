@@ -22,7 +22,12 @@ L_x/L_y = 19, full                84     1.53            1.68
 L_x/L_y = 4, full                 84     1.64            1.78
 ================================  =====  ==============  ==============
 
-so :func:`column_ordering` takes the natural order up to a half-bandwidth of
+On a quiet machine the gain is smaller than under load (where the natural order's
+contiguous access suffers less from the other jobs): on the L_x/L_y = 19 half at V = 90 m/s
+one substitution took 1.51 ms natural against 1.67 ms minimum degree (0.90x) and a whole
+Newmark step 2.09 against 2.47 ms (0.85x), alternating rounds, load average 1.5.
+
+So :func:`column_ordering` takes the natural order up to a half-bandwidth of
 :data:`NATURAL_HALF_BANDWIDTH` and minimum degree above it: a rule by shape, read off the
 pattern in microseconds, with no trial factorization. COLAMD tied the natural order on the
 halves and lost to minimum degree on the full grids (1.05-1.25x); LAPACK's banded LU
