@@ -19,10 +19,10 @@ On workers (:func:`run_parallel`), the parts go to a pool of local processes
 measured on the full settings); parts whose step-load runs are prefixes of one run
 (:data:`SHARED_RUNS`) go to one worker together, longest run first, so that the others are
 sliced from it (:mod:`gyroshell.reproduce._marches`). Each study's ``write`` runs on a
-worker as soon as its parts are in. Workers write into a hidden staging folder inside ``out``; the files are then
-moved into place through :func:`gyroshell.core.files.atomic_path` (inside the CLI's
-transaction: every file of the run, or none), and the staging folder is removed, whatever
-happens.
+worker as soon as its parts are in. Workers write into a hidden staging folder inside
+``out``; the files are then moved into place through
+:func:`gyroshell.core.files.atomic_path` (inside the CLI's transaction: every file of the
+run, or none), and the staging folder is removed, whatever happens.
 """
 
 from __future__ import annotations
