@@ -13,7 +13,14 @@ Cases: the paper's run (L_x/L_y = 4 on the Table 1 grid, 250 steps of 2 µs, "ab
 minutes" on its workstation) and L_x/L_y = 19, 500 steps. Every installed LU back-end is
 timed; all figures are medians of repeated runs. Usage::
 
-    PYTHONPATH=. python benchmarks/bench_newmark.py [--repeats 5] [--quick]
+    PYTHONPATH=. python benchmarks/bench_newmark.py [--repeats 5] [--quick] [--orderings]
+
+``--orderings`` prints only the table behind :mod:`gyroshell.linalg.ordering`: for K_eq
+of the symmetric halves and the full grids (Table 1 spacing, L_x/L_y = 4 and 19, free and
+simply supported edges, and two other spacings), the fill and the CPU time of one
+substitution (one BLAS thread, medians of alternating solves) for SuperLU in each ordering
+and for LAPACK's banded LU, against minimum degree; CPU time, not wall time, so that other
+jobs on a shared machine disturb it less.
 """
 
 from __future__ import annotations
@@ -134,11 +141,67 @@ def print_mirror(r: dict) -> None:
           f"(half step / bare half {r['half'] / r['bare_half']:.2f})")
 
 
+#: K_eq cases of the ordering table: (L_x/L_y, intervals across, half or full, edges).
+ORDERING_CASES = ((19, 41, "half", "free"), (4, 41, "half", "free"),
+                  (19, 41, "half", "simply-supported"), (19, 12, "full", "free"),
+                  (19, 27, "full", "free"), (19, 41, "full", "free"), (4, 41, "full", "free"))
+
+
+def keq(model: TapeModel, half: bool):
+    """K_eq = M + γΔt G + βΔt² K at VELOCITY, DT, β = 1/4, γ = 1/2, full or on the half."""
+    import scipy.sparse as sp
+
+    from gyroshell.tape.mirror import mirror_split
+
+    if half:
+        M, G, K = mirror_split(model).matrices(model, VELOCITY, "symmetric")
+        m = M.diagonal()
+    else:
+        K, G, m = model.K(VELOCITY), model.G(VELOCITY), model.mass_diagonal
+    return (sp.diags(m) + (0.5 * DT) * G + (0.25 * DT * DT) * K).tocsc()
+
+
+def bench_orderings(repeats: int) -> None:
+    """The ordering table (module notes): fill and CPU time per substitution."""
+    from gyroshell.linalg.factorization import BandedFactor, SuperLUFactor
+    from gyroshell.linalg.ordering import column_ordering, half_bandwidth
+
+    orders = ("MMD_AT_PLUS_A", "NATURAL", "COLAMD")
+    print(f"  {'K_eq':34s} {'n':>6s} {'band':>5s} {'rule':>8s} "
+          + "".join(f"{o[:8]:>18s}" for o in orders) + f"{'LAPACK band':>18s}")
+    for ratio, across, which, edges in ORDERING_CASES:
+        p = TapeParameters(length_ratio=ratio, edges=edges)
+        A = keq(TapeModel(p.replace(spacing=p.width / across)), which == "half")
+        rhs = np.random.default_rng(0).standard_normal(A.shape[0])
+        with blas_one_thread():
+            factors = [SuperLUFactor(A, ordering=o) for o in orders] + [BandedFactor(A)]
+            cpu: list[list[float]] = [[] for _ in factors]
+            for _ in range(5 * repeats):
+                for k, f in enumerate(factors):
+                    start = time.process_time()
+                    f.solve(rhs)
+                    cpu[k].append(time.process_time() - start)
+        t = [statistics.median(c) for c in cpu]
+        nnz = [f.nnz for f in factors]
+        rule = column_ordering(A)[:8]
+        name = f"L{ratio:g}, {across} across, {which}, {edges}"
+        print(f"  {name:34s} {A.shape[0]:6d} {half_bandwidth(A):5d} {rule:>8s} "
+              + "".join(f"{n / nnz[0]:5.2f} fill {t[k] / t[0]:4.2f}x"
+                        for k, n in enumerate(nnz)) + f"   (min. degree {1e3 * t[0]:.2f} ms)")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5, help="runs per figure (median)")
     parser.add_argument("--quick", action="store_true", help="fewer steps, for a smoke test")
+    parser.add_argument("--orderings", action="store_true",
+                        help="only the table of SuperLU orderings on K_eq")
     args = parser.parse_args()
+    if args.orderings:
+        print(f"load average {os.getloadavg()[0]:.2f}; V = {VELOCITY:g} m/s, dt = {DT:g} s; "
+              "fill and CPU time of one substitution against minimum degree")
+        bench_orderings(args.repeats)
+        return
     cases = [(4.0, 250), (19.0, 500)]
     if args.quick:
         cases = [(4.0, 25), (19.0, 25)]

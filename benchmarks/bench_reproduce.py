@@ -2,6 +2,7 @@
 
     PYTHONPATH=. python benchmarks/bench_reproduce.py [--rounds 1] [--quick]
         [--workers 2] [--serial] [--baseline DIR] [STUDY ...]
+    PYTHONPATH=. python benchmarks/bench_reproduce.py --compare OLD_OUT NEW_OUT
 
 Each round runs ``gyroshell reproduce STUDY ... --out TMP`` (default ``all``) in a fresh
 interpreter for this tree on ``--workers`` processes, with ``--serial`` also on one, and,
@@ -11,9 +12,11 @@ workers: the seconds its parts took on the workers), the wall time of the whole 
 CPU time of its studies (on a shared machine the better measure of the work done), and
 their medians over the rounds with the ratio baseline/new. Then it compares the files of
 the last round: byte-identical files, and for the CSV files that differ the largest
-relative difference of their numbers (the reproductions march the symmetric half of
-mirror-symmetric tapes since issue 21: equal to round-off, not bit for bit). Timings on a
-shared machine vary: read the medians, measured in the same run.
+relative difference of their numbers and how many cells differ at the precision the studies
+show (6 significant digits), for the PNG files the pixels that differ (the reproductions
+march the symmetric half of mirror-symmetric tapes since issue 21, in the natural order:
+equal to round-off, not bit for bit). ``--compare`` compares two finished runs' folders.
+Timings on a shared machine vary: read the medians, measured in the same run.
 """
 
 from __future__ import annotations
@@ -47,6 +50,7 @@ def run_tree(tree: Path, studies: list[str], out: Path, extra: list[str]) -> dic
     if not lines:  # an older tree logs "name: 12.3 s -> files", without the CPU time
         lines = [m for m in map(OLD_LINE.match, proc.stdout.splitlines()) if m]
     times = {m.group(1): float(m.group(2)) for m in lines}
+    times.update({f"{m.group(1)} CPU": float(m.group(3)) for m in lines if m.re is LINE})
     times["total"], times["cpu"] = wall, cpu
     study_cpu = [float(m.group(3)) for m in lines if m.re is LINE]
     if study_cpu:  # the workers' CPU time, which the children's usage does not see
@@ -62,9 +66,56 @@ def _children_cpu() -> float:
     return use.ru_utime + use.ru_stime
 
 
-def compare(old: Path, new: Path) -> list[str]:
-    """One line per file that is not byte-identical (CSV: the largest relative difference)."""
+#: Significant digits of the numbers the studies show (Markdown tables: ``.6g``; figure
+#: labels and docs/verification.md show fewer).
+SHOWN_DIGITS = 6
+
+
+def shown(values, digits: int = SHOWN_DIGITS) -> list[str]:
+    """The numbers as shown: rounded to ``digits`` significant digits (NaN as "nan")."""
+    return [format(float(v), f".{digits}g") for v in values]
+
+
+def compare_csv(a, b) -> tuple[float, str, int]:
+    """(largest difference relative to the column's largest value, its column, the number
+    of cells that differ at :data:`SHOWN_DIGITS` significant digits, ignoring differences
+    below 1e-9 of the column's largest value: round-off on a number near zero)."""
     import numpy as np
+
+    worst, where, cells = 0.0, "", 0
+    for col in a.columns:
+        if a[col].dtype.kind in "fi":
+            x, y = a[col].to_numpy(float), b[col].to_numpy(float)
+            scale = (np.nanmax(np.abs(x)) if np.isfinite(x).any() else 1.0) or 1.0
+            with np.errstate(invalid="ignore"):  # inf - inf, NaN
+                d = np.abs(x - y) / scale
+            d[(np.isnan(x) & np.isnan(y)) | (x == y)] = 0.0
+            if len(x) and np.nanmax(d) > worst:
+                worst, where = float(np.nanmax(d)), col
+            big = ~(d <= 1e-9)
+            cells += sum(p != q for p, q in zip(shown(x[big]), shown(y[big]), strict=True))
+        elif not a[col].equals(b[col]):
+            worst, where, cells = float("inf"), col, cells + int((a[col] != b[col]).sum())
+    return worst, where, cells
+
+
+def compare_png(a: Path, b: Path) -> str:
+    """Pixels that differ between two PNG files and by how many of 255 levels at most."""
+    import numpy as np
+    from matplotlib.image import imread
+
+    x, y = imread(a), imread(b)
+    if x.shape != y.shape:
+        return f"different sizes {x.shape[:2]} and {y.shape[:2]}"
+    diff = np.abs(x.astype(float) - y.astype(float)).max(axis=-1) * 255
+    return (f"{int((diff > 0.5).sum())} of {diff.size} pixels differ, by at most "
+            f"{diff.max():.0f} of 255 levels")
+
+
+def compare(old: Path, new: Path) -> list[str]:
+    """One line per file that is not byte-identical: for CSV files the largest relative
+    difference and the cells that differ at the shown precision; for PNG files the
+    differing pixels."""
     import pandas as pd
 
     lines, same = [], 0
@@ -76,6 +127,9 @@ def compare(old: Path, new: Path) -> list[str]:
         if path.read_bytes() == other.read_bytes():
             same += 1
             continue
+        if path.suffix == ".png":
+            lines.append(f"  {path.name}: {compare_png(path, other)}")
+            continue
         if path.suffix != ".csv":
             lines.append(f"  {path.name}: differs")
             continue
@@ -83,18 +137,10 @@ def compare(old: Path, new: Path) -> list[str]:
         if list(a.columns) != list(b.columns) or len(a) != len(b):
             lines.append(f"  {path.name}: different columns or rows")
             continue
-        worst, where = 0.0, ""
-        for col in a.columns:
-            if a[col].dtype.kind in "fi":
-                x, y = a[col].to_numpy(float), b[col].to_numpy(float)
-                scale = np.nanmax(np.abs(x)) if np.isfinite(x).any() else 1.0
-                d = np.nanmax(np.abs(x - y)) / (scale or 1.0) if len(x) else 0.0
-                if d > worst:
-                    worst, where = float(d), col
-            elif not a[col].equals(b[col]):
-                worst, where = float("inf"), col
+        worst, where, cells = compare_csv(a, b)
         lines.append(f"  {path.name}: largest difference {worst:.2e} of the column's "
-                     f"largest value ({where})")
+                     f"largest value ({where}); {cells} of {a.size} cells differ at "
+                     f"{SHOWN_DIGITS} significant digits")
     return [f"  {same} files byte-identical"] + lines
 
 
@@ -106,7 +152,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--serial", action="store_true", help="also this tree on 1 worker")
     parser.add_argument("--baseline", metavar="DIR", help="source tree timed alongside")
+    parser.add_argument("--compare", nargs=2, metavar=("OLD", "NEW"),
+                        help="only compare the files of two finished runs' folders")
     args = parser.parse_args(argv)
+    if args.compare:
+        print("\n".join(compare(Path(args.compare[0]), Path(args.compare[1]))))
+        return 0
     studies = args.studies or ["all"]
     quick = ["--quick"] if args.quick else []
     cases = {"new": (HERE, quick + ["--workers", str(args.workers)])}
@@ -129,6 +180,7 @@ def main(argv: list[str] | None = None) -> int:
                       flush=True)
         names = [k for k in results["new"][0] if k not in ("total", "cpu")] + ["total",
                                                                                  "cpu"]
+        names.sort(key=lambda k: k.endswith("CPU"))  # the studies' CPU times last
         med = {case: {k: statistics.median(run.get(k, float("nan")) for run in runs)
                       for k in names} for case, runs in results.items()}
         print(f"\nmedians over {args.rounds} round(s), s (studies as logged; total: the "

@@ -16,11 +16,13 @@ process: the numbers do not depend on the number of workers.
 
 On workers (:func:`run_parallel`), the parts go to a pool of local processes
 (:func:`gyroshell.core.parallel.process_pool`), the costliest first (:data:`COST`, seconds
-measured on the full settings), and each study's ``write`` runs on a worker as soon as its
-parts are in. Workers write into a hidden staging folder inside ``out``; the files are then
-moved into place through :func:`gyroshell.core.files.atomic_path` (inside the CLI's
-transaction: every file of the run, or none), and the staging folder is removed, whatever
-happens.
+measured on the full settings); parts whose step-load runs are prefixes of one run
+(:data:`SHARED_RUNS`) go to one worker together, longest run first, so that the others are
+sliced from it (:mod:`gyroshell.reproduce._marches`). Each study's ``write`` runs on a
+worker as soon as its parts are in. Workers write into a hidden staging folder inside
+``out``; the files are then moved into place through
+:func:`gyroshell.core.files.atomic_path` (inside the CLI's transaction: every file of the
+run, or none), and the staging folder is removed, whatever happens.
 """
 
 from __future__ import annotations
@@ -31,7 +33,8 @@ import os
 import shutil
 import tempfile
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 
 from ..core.files import atomic_path
@@ -58,6 +61,18 @@ COST: dict[tuple[str, object], float] = {
 }
 
 
+#: Parts (study, key) whose step-load run is a prefix of another's (the same tape, V and
+#: Δt: :mod:`gyroshell.reproduce._marches`), by the V (m/s) of the run they share: the
+#: parts of one V run on one worker, one after another, costliest (longest run) first, so
+#: that the shorter runs are sliced from the longest. Only the time depends on it.
+SHARED_RUNS: dict[tuple[str, object], float] = {
+    ("period", 0.0): 0.0, ("fig2", 0.0): 0.0, ("observations", ("fronts", 0.0)): 0.0,
+    ("period", 50.0): 50.0, ("fig2", 50.0): 50.0, ("fig5", None): 50.0,
+    ("observations", "wavelengths"): 50.0, ("observations", ("fronts", 50.0)): 50.0,
+    ("fig2", 100.0): 100.0, ("fig6", None): 100.0,
+}
+
+
 def study_module(name: str):
     """The module of study ``name`` (imported on first use)."""
     return importlib.import_module(f"{__package__}.{name}")
@@ -77,13 +92,18 @@ def run_here(name: str, out: Path, settings: Settings) -> list[Path]:
         return study_module(name).run(out, settings)
 
 
-def sharing():
+@contextmanager
+def sharing() -> Iterator[None]:
     """A block in which transients of the same tape and (V, Δt, β, γ, C) share one
-    factorization (:func:`gyroshell.engines.newmark.sharing_factorizations`): fig2, period,
-    fig5, fig6 and observations march the L_x/L_y = 19 tape at the paper's Δt."""
+    factorization (:func:`gyroshell.engines.newmark.sharing_factorizations`), and the
+    step-load runs of the L_x/L_y = 19 tape one march per (V, Δt), the shorter ones sliced
+    from the longest (:func:`gyroshell.reproduce._marches.sharing_marches`): fig2, period,
+    fig5, fig6 and observations march that tape at the paper's Δt."""
     from ..engines.newmark import sharing_factorizations
+    from ._marches import sharing_marches
 
-    return sharing_factorizations()
+    with sharing_factorizations(), sharing_marches():
+        yield
 
 
 #: This worker's sharing block, entered by its first task and kept open for its life, so
@@ -112,16 +132,37 @@ def study_line(name: str, seconds: float, cpu: float, files: Sequence[Path]) -> 
     return f"{name}: {seconds:.1f} s (CPU {cpu:.1f} s) -> {', '.join(p.name for p in files)}"
 
 
-def _compute_task(name: str, settings: Settings, key):
-    return _timed(study_module(name).compute_part, settings, key)
+def _parts_task(staging: Path, settings: Settings, members: list[tuple]) -> list[tuple]:
+    """Run the parts ``members`` ((study, key, whole): ``whole`` a study without parts,
+    run into ``staging``) one after another; (study, key, what, value, wall s, CPU s) each."""
+    done = []
+    for name, key, whole in members:
+        module = study_module(name)
+        if whole:
+            value = _timed(module.run, staging, settings)
+        else:
+            value = _timed(module.compute_part, settings, key)
+        done.append((name, key, "run" if whole else "compute", *value))
+    return done
 
 
-def _write_task(name: str, staging: Path, settings: Settings, results: list):
-    return _timed(study_module(name).write, staging, settings, results)
+def _write_task(name: str, staging: Path, settings: Settings, results: list) -> list[tuple]:
+    return [(name, None, "write", *_timed(study_module(name).write, staging, settings,
+                                          results))]
 
 
-def _run_task(name: str, staging: Path, settings: Settings):
-    return _timed(study_module(name).run, staging, settings)
+def _units(tasks: list[tuple], studies: dict) -> list[list[tuple]]:
+    """The tasks as the workers' units of work: those sharing a run
+    (:data:`SHARED_RUNS`) in one unit, costliest first; the units costliest first (a
+    stable sort: equal costs keep the study order)."""
+    units: dict[object, list[tuple]] = {}
+    for name, key in tasks:
+        group = SHARED_RUNS.get((name, key))
+        unit = units.setdefault(("run", group) if group is not None else (name, key), [])
+        unit.append((name, key, studies[name].keys is None))
+    for unit in units.values():
+        unit.sort(key=lambda m: -COST.get(m[:2], 1.0))
+    return sorted(units.values(), key=lambda u: -sum(COST.get(m[:2], 1.0) for m in u))
 
 
 # ----- the parent ----------------------------------------------------------------------------
@@ -147,20 +188,14 @@ def run_parallel(names: Sequence[str], out: Path, settings: Settings, workers: i
         keys = list(module.parts(settings)) if hasattr(module, "parts") else None
         studies[name] = _Study(name, keys)
     tasks = [(name, key) for name, s in studies.items() for key in (s.keys or [None])]
-    tasks.sort(key=lambda t: -COST.get(t, 1.0))  # stable: equal costs keep the study order
     _preload()
     staging = Path(tempfile.mkdtemp(prefix=".gyroshell-reproduce-", dir=out))
     try:
         with process_pool(workers) as pool, stage_progress(
                 len(tasks) + sum(s.keys is not None for s in studies.values()),
                 "reproduce", progress=settings.progress, unit="part") as bar:
-            pending = {}
-            for name, key in tasks:
-                if studies[name].keys is None:
-                    future = pool.submit(_run_task, name, staging, quiet)
-                else:
-                    future = pool.submit(_compute_task, name, quiet, key)
-                pending[future] = (name, key, "compute")
+            pending = {pool.submit(_parts_task, staging, quiet, unit): unit
+                       for unit in _units(tasks, studies)}
             _collect(pool, pending, studies, staging, quiet, bar, log)
         written = {}
         for name in names:
@@ -192,22 +227,22 @@ def _collect(pool, pending: dict, studies: dict, staging: Path, settings: Settin
     while pending:
         done, _ = wait(pending, return_when=FIRST_COMPLETED)
         for future in done:
-            name, key, what = pending.pop(future)
-            value, seconds, cpu = future.result()
-            study = studies[name]
-            study.seconds += seconds
-            study.cpu += cpu
-            bar.update(1)
-            if what == "compute" and study.keys is not None:
-                study.results[key] = value
-                if len(study.results) == len(study.keys):
-                    results = [study.results[k] for k in study.keys]
-                    pending[pool.submit(_write_task, name, staging, settings, results)] = (
-                        name, None, "write")
-                continue
-            study.files = list(value)
-            if log is not None:
-                log(study_line(name, study.seconds, study.cpu, study.files))
+            pending.pop(future)
+            for name, key, what, value, seconds, cpu in future.result():
+                study = studies[name]
+                study.seconds += seconds
+                study.cpu += cpu
+                bar.update(1)
+                if what == "compute":
+                    study.results[key] = value
+                    if len(study.results) == len(study.keys):
+                        results = [study.results[k] for k in study.keys]
+                        pending[pool.submit(_write_task, name, staging, settings,
+                                            results)] = [(name, None, False)]
+                    continue
+                study.files = list(value)
+                if log is not None:
+                    log(study_line(name, study.seconds, study.cpu, study.files))
 
 
 def _move(staged: Path, out: Path) -> Path:

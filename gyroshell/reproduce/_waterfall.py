@@ -11,10 +11,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ..engines.newmark import march
 from ..plot import waterfall
-from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._marches import step_response
 
 #: Centre-line times, s: every 32 µs up to 800 µs (the paper labels a panel 736 µs).
 TIMES = tuple(k * 32e-6 for k in range(26))
@@ -22,11 +21,9 @@ TIMES = tuple(k * 32e-6 for k in range(26))
 
 def compute(settings: Settings, velocity: float) -> pd.DataFrame:
     """Long table t (s), x (m), w (m) of the centre line."""
-    model = TapeModel(settings.params(length_ratio=19))
     steps = int(round(TIMES[-1] / PAPER_DT))
-    res = march(model, velocity, dt=PAPER_DT, steps=steps, centerline_times=TIMES,
-                progress=settings.progress)
-    s = res.snapshots
+    s = step_response(settings, velocity, PAPER_DT, steps, centerline_times=TIMES,
+                      progress=settings.progress)
     return pd.concat([pd.DataFrame({"t": t, "x": s.x, "w": line})
                       for t, line in zip(s.centerline_times, s.centerlines, strict=False)],
                      ignore_index=True)

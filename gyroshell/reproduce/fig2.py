@@ -20,6 +20,7 @@ from ..engines.static import solve_static
 from ..plot import load_point_history
 from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._marches import step_response
 from ._runner import run_parts
 
 VELOCITIES = (0.0, 50.0, 90.0, 100.0)
@@ -38,7 +39,7 @@ def compute_part(settings: Settings, velocity: float) -> tuple[pd.DataFrame, dic
     scale = model.params.k / model.params.load_pressure
     steps = settings.pick(1000, 200)
     v = velocity
-    res = march(model, v, dt=PAPER_DT, steps=steps, progress=settings.progress)
+    res = step_response(settings, v, PAPER_DT, steps, progress=settings.progress)
     history = pd.DataFrame({"velocity": v, "t": res.times, "w": res.load_point,
                             "w_nondim": res.load_point * scale})
     w_static = solve_static(model, v).load_point_deflection

@@ -27,6 +27,7 @@ from ..studies.signal import dominant_wavelength, first_departure, front_positio
 from ..tape.loads import gaussian_exponent, gaussian_load
 from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._marches import step_response
 from ._runner import run_parts
 
 REFLECTION_DT, REFLECTION_STEPS = 0.5e-6, 140
@@ -69,9 +70,8 @@ def edge_reflection(settings: Settings) -> dict:
 def wavelengths(settings: Settings, velocity: float = 50.0) -> dict:
     model = TapeModel(settings.params(length_ratio=19))
     steps = int(round(WAVELENGTH_TIME / PAPER_DT))
-    res = march(model, velocity, dt=PAPER_DT, steps=steps, centerline_times=[WAVELENGTH_TIME],
-                progress=settings.progress)
-    s = res.snapshots
+    s = step_response(settings, velocity, PAPER_DT, steps, centerline_times=[WAVELENGTH_TIME],
+                      progress=settings.progress)
     static_line = model.grid.centerline(solve_static(model, velocity).field)
     dist = s.centerlines[0] - static_line
     x, x0 = s.x, model.params.load_centroid[0]
@@ -85,10 +85,9 @@ def wavelengths(settings: Settings, velocity: float = 50.0) -> dict:
 def fronts(settings: Settings, velocity: float) -> pd.DataFrame:
     model = TapeModel(settings.params(length_ratio=19))
     steps = int(round(FRONT_TIMES[-1] / PAPER_DT))
-    res = march(model, velocity, dt=PAPER_DT, steps=steps, centerline_times=FRONT_TIMES,
-                progress=False)
+    s = step_response(settings, velocity, PAPER_DT, steps, centerline_times=FRONT_TIMES,
+                      progress=False)
     threshold = FRONT_FRACTION * abs(solve_static(model, velocity).load_point_deflection)
-    s = res.snapshots
     x0 = model.params.load_centroid[0]
     rows = [dict(velocity=velocity, t=t,
                  downstream=front_position(s.x, line, x0, threshold, +1) - x0,

@@ -35,12 +35,12 @@ import numpy as np
 import pandas as pd
 
 from ..engines.eigen import modes
-from ..engines.newmark import march
 from ..plot import period_vs_velocity
 from ..plot import spectra as plot_spectra
 from ..studies.signal import amplitude_spectrum, dominant_period
 from ..tape.model import TapeModel
 from ._common import PAPER_DT, Settings, pyplot, save_csv, save_figure
+from ._marches import step_response
 from ._runner import run_parts
 
 VELOCITIES = (0.0, 25.0, 50.0, 75.0, 90.0, 95.0, 100.0)
@@ -64,7 +64,7 @@ def compute_part(settings: Settings, velocity: float) -> tuple[dict, pd.DataFram
     dt = max(PAPER_DT, p_eig / STEPS_PER_PERIOD)
     steps = math.ceil(max(MIN_RECORD, PERIODS_PER_RECORD * p_eig) / dt)
     steps = settings.pick(steps, min(steps, 400))
-    res = march(model, v, dt=dt, steps=steps, progress=settings.progress)
+    res = step_response(settings, v, dt, steps, progress=settings.progress)
     p_tr = dominant_period(res.times, res.load_point)
     p_edge = dominant_period(res.times, res.load_point, lowest_fraction=EDGE_FRACTION)
     freqs, amp = amplitude_spectrum(res.load_point, dt)

@@ -219,15 +219,15 @@ def test_symmetric_half_restricts_and_expands_with_the_orthonormal_basis():
 # ----- shared factorizations ----------------------------------------------------------------
 @pytest.fixture
 def counted(monkeypatch):
-    """Newmark's factorize, counting its calls."""
+    """Newmark's factorization, counting its calls."""
     calls = []
 
     def counting(matrix, backend="auto"):
         calls.append(matrix.shape[0])
         return factorize(matrix, backend)
 
-    factorize = newmark.factorize
-    monkeypatch.setattr(newmark, "factorize", counting)
+    factorize = newmark.factorize_banded
+    monkeypatch.setattr(newmark, "factorize_banded", counting)
     return calls
 
 

@@ -1,0 +1,76 @@
+"""The ordering of a banded LU (gyroshell.linalg.ordering).
+
+A matrix numbered line by line on an m-wide strip with a two-line stencil has half-bandwidth
+2m: the rule keeps the natural order up to NATURAL_HALF_BANDWIDTH and takes minimum degree
+beyond. Whatever the order, A x = b with b made from a chosen x must give that x back to
+round-off (the exact solution is known because b was built from it).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from gyroshell import ParameterError, TapeModel, TapeParameters
+from gyroshell.engines.newmark import Newmark
+from gyroshell.linalg.factorization import ORDERING
+from gyroshell.linalg.ordering import (
+    NATURAL,
+    NATURAL_HALF_BANDWIDTH,
+    column_ordering,
+    factorize_banded,
+    half_bandwidth,
+)
+
+
+def strip_matrix(across: int, lines: int, rng) -> sp.csc_matrix:
+    """A nonsymmetric, diagonally dominant matrix coupling each node to the nodes up to two
+    lines on (half-bandwidth 2·across + 2), like K_eq's pattern."""
+    n = across * lines
+    offsets = [d for d in range(-2 * across - 2, 2 * across + 3)]
+    diagonals = [rng.uniform(-1, 1, n - abs(d)) for d in offsets]
+    A = sp.diags(diagonals, offsets, shape=(n, n), format="csc")
+    return (A + sp.diags(np.full(n, 4.0 * across + 8.0))).tocsc()
+
+
+def test_half_bandwidth_of_patterns():
+    assert half_bandwidth(sp.identity(5)) == 0
+    assert half_bandwidth(sp.csr_matrix((4, 4))) == 0
+    assert half_bandwidth(sp.diags([1.0, 2.0], [0, -3], shape=(6, 6))) == 3
+
+
+@pytest.mark.parametrize("across", [8, 30])
+def test_narrow_bands_keep_their_order_wide_ones_take_minimum_degree(across, rng):
+    A = strip_matrix(across, 12, rng)
+    narrow = half_bandwidth(A) <= NATURAL_HALF_BANDWIDTH
+    assert half_bandwidth(A) == 2 * across + 2
+    assert column_ordering(A) == (NATURAL if narrow else ORDERING)
+    x = rng.standard_normal(A.shape[0])
+    factor = factorize_banded(A)
+    assert factor.ordering == column_ordering(A) and factor.name == "superlu"
+    np.testing.assert_allclose(factor.solve(A @ x), x, rtol=0, atol=1e-13 * np.abs(x).max())
+
+
+def test_other_backends_keep_their_own_order(rng):
+    A = strip_matrix(6, 10, rng)
+    x = rng.standard_normal(A.shape[0])
+    factor = factorize_banded(A, "banded")
+    assert factor.name == "banded" and factor.ordering is None
+    np.testing.assert_allclose(factor.solve(A @ x), x, rtol=0, atol=1e-13 * np.abs(x).max())
+    with pytest.raises(ParameterError, match="backend must be one of auto"):
+        factorize_banded(A, "magic")
+    with pytest.raises(ParameterError, match="must be square"):
+        factorize_banded(sp.eye(3, 4).tocsc())
+
+
+def test_newmark_orders_the_papers_half_naturally_and_its_full_grid_by_minimum_degree():
+    """Table 1's grid (41 intervals across): the symmetric half's K_eq has half-bandwidth
+    42 (natural order), the full one 84 (minimum degree); both marches agree to round-off."""
+    stepper = Newmark(TapeModel(TapeParameters(length_ratio=1.5)), 50.0, dt=2e-6)
+    half = stepper.march(20, progress=False)
+    full = stepper.march(20, progress=False, symmetry=False)
+    assert (half.info["symmetry"], half.info["ordering"]) == ("half", NATURAL)
+    assert (full.info["symmetry"], full.info["ordering"]) == ("full", ORDERING)
+    np.testing.assert_allclose(half.load_point, full.load_point, rtol=0,
+                               atol=1e-12 * np.abs(full.load_point).max())
