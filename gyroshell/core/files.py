@@ -26,6 +26,7 @@ from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .context import outermost
 from .errors import InputFileError, MissingFileError, ParameterError
 
 #: Kinds of output whose format is checked from the file name's suffix.
@@ -304,19 +305,15 @@ def transaction() -> Iterator[Transaction]:
 
     Nested blocks join the outermost one.
     """
-    outer = _ACTIVE.get()
-    if outer is not None:
-        yield outer
-        return
-    current = Transaction()
-    token = _ACTIVE.set(current)
-    try:
-        yield current
-    except BaseException:
-        current.rollback()
-        raise
-    finally:
-        _ACTIVE.reset(token)
+    with outermost(_ACTIVE, Transaction) as (current, owner):
+        if not owner:
+            yield current
+            return
+        try:
+            yield current
+        except BaseException:
+            current.rollback()
+            raise
     current.commit()
 
 

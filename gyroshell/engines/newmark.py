@@ -66,6 +66,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..core import budget, validation
+from ..core.context import outermost
 from ..core.errors import ConvergenceError, ParameterError
 from ..core.parallel import blas_threads as limit_blas_threads
 from ..core.progress import LongWork
@@ -179,17 +180,12 @@ def sharing_factorizations() -> Iterator[SharedFactorizations]:
     >>> shared.factorizations, shared.reuses, b.info["factor_shared"]
     (1, 1, True)
     """
-    current = _SHARING.get()
-    if current is not None:
-        yield current
-        return
-    shared = SharedFactorizations()
-    token = _SHARING.set(shared)
-    try:
-        yield shared
-    finally:
-        _SHARING.reset(token)
-        shared.clear()
+    with outermost(_SHARING, SharedFactorizations) as (shared, owner):
+        try:
+            yield shared
+        finally:
+            if owner:
+                shared.clear()
 
 
 def _model_key(model: TapeModel) -> tuple[Hashable, object]:

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.context import outermost
 from ..engines.newmark import march
 from ..results.transient import steps_at
 from ..tape.model import TapeModel
@@ -95,16 +96,8 @@ _SHARED: contextvars.ContextVar[SharedMarches | None] = contextvars.ContextVar(
 def sharing_marches() -> Iterator[SharedMarches]:
     """A block in which :func:`step_response` keeps its runs; nested blocks are the outer
     one, and the runs are dropped when the outermost ends."""
-    current = _SHARED.get()
-    if current is not None:
-        yield current
-        return
-    shared = SharedMarches()
-    token = _SHARED.set(shared)
-    try:
+    with outermost(_SHARED, SharedMarches) as (shared, _):
         yield shared
-    finally:
-        _SHARED.reset(token)
 
 
 def _march(model: TapeModel, velocity: float, dt: float, steps: int, centerline_times,
