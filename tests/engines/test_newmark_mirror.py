@@ -29,7 +29,9 @@ SPEED = 30.0  # m/s
 DT = 2e-6  # s
 STEPS = 80
 #: Relative agreement of half and full marches: a few hundred roundings of each step.
-ROUND_OFF = 1e-11  # the half and the full grid are factored in different orderings (natural vs minimum degree): their round-off differs by up to ~1e-12 of the size over 250 steps
+# The half and the full grid are factored in different orderings (natural vs minimum
+# degree): their round-off differs by up to ~1e-12 of the size over 250 steps.
+ROUND_OFF = 1e-11
 
 
 def tape(intervals_across: int = 10, edges: str = "free", **overrides) -> TapeModel:
