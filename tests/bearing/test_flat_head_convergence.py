@@ -102,7 +102,12 @@ def test_corners_air_and_end_reactions_carry_the_wrap_load(head):
              + np.abs(t_eff * Wk) + np.abs(model.f_kappa))
     balance = sol.contact.sum() + air.sum() - t_eff * head.wrap - reaction
     assert abs(balance) < 100 * np.finfo(float).eps * terms.sum()
-    assert abs(balance) < 1e-6 * t_eff * head.wrap
+    # The round-off bound above is 1e-2 of T'θ here (the stiff rows' terms sum to 1e12-4e12
+    # N/m); the balance was measured at 0.77e-6 (one module) and 5.5e-6 (two modules) of T'θ
+    # with numpy 2.4.6 and scipy 1.17.1, so a 1e-6 bound only held by luck of round-off. The
+    # physical statement is checked at 1e-4 of the wrap load, which dropping f_κ, a corner's
+    # turn or the spans' rotation would break by O(1).
+    assert abs(balance) < 1e-4 * t_eff * head.wrap
     assert air.sum() < 0.0
     corners, turns = np.array(head.corners()), head.corner_turns()
     for i in np.flatnonzero(sol.contact):
