@@ -49,7 +49,7 @@ from ..linalg.qep import (
     solve_qep,
 )
 from ..linalg.qep import relative_residuals as _matrix_residuals
-from ..linalg.qep.spectrum import norm1, products
+from ..linalg.qep.spectrum import norm1
 from ..results.modes import GyroscopicModes, Modes
 from ..tape.grid import Grid
 from ..tape.mirror import mirror_split
@@ -359,10 +359,12 @@ def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: 
     added to the info.
 
     The backward errors are the full problem's, ‖Q(λ) P_hφ‖₂ / (s(λ) ‖P_hφ‖₂) with the
-    full matrices' norms in s(λ) = |λ|²‖M‖₁ + |λ|‖G‖₁ + ‖K‖₁, computed on the halves:
-    Q(λ) P_h = P_h Q_h(λ) (the split's invariance, checked when it was made) and P_h has
-    orthonormal columns, so ‖Q(λ) P_hφ‖₂ = ‖Q_h(λ) φ‖₂ and ‖P_hφ‖₂ = ‖φ‖₂: half-size
-    products of the kept vectors only, no full-size assembly or product."""
+    full matrices' norms in s(λ) = |λ|²‖M‖₁ + |λ|‖G‖₁ + ‖K‖₁, obtained from the halves'
+    own: Q(λ) P_h = P_h Q_h(λ) (the split's invariance, checked when it was made) and P_h
+    has orthonormal columns, so ‖Q(λ) P_hφ‖₂ = ‖Q_h(λ) φ‖₂ and ‖P_hφ‖₂ = ‖φ‖₂, and each
+    half's backward error ‖Q_h(λ)φ‖₂ / (s_h(λ) ‖φ‖₂) (computed by its solve for exactly
+    these λ and φ, up to the scaling of φ, which it does not depend on) is rescaled by
+    s_h(λ) / s(λ): no second pass of products over the vectors, no full-size assembly."""
     sym = parts[0][0]
     lam = np.concatenate([r.eigenvalues for r, _, _ in parts])
     source = np.concatenate([np.full(r.count, k) for k, (r, _, _) in enumerate(parts)])
@@ -370,16 +372,16 @@ def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: 
     order = np.argsort(np.abs(lam.imag), kind="stable")[:count]
     lam = lam[order]
     vecs = np.empty((model.unknowns, count), dtype=complex)
-    numerators = np.empty(count)
+    numerators = np.empty(count)   # ‖Q_h(λ)φ‖₂ / ‖φ‖₂ of each kept pair
+    size = np.abs(lam)
     for k, (r, P, (M, G, K)) in enumerate(parts):
         mine = np.flatnonzero(source[order] == k)
-        phi = r.vectors[:, column[order[mine]]]
-        vecs[:, mine] = P @ phi
-        Mphi, Gphi, Kphi = products(M, G, K, phi)
-        numerators[mine] = (np.linalg.norm(Mphi * lam[mine]**2 + Gphi * lam[mine] + Kphi,
-                                           axis=0) / np.linalg.norm(phi, axis=0))
+        kept = column[order[mine]]
+        vecs[:, mine] = P @ r.vectors[:, kept]
+        half_scale = size[mine]**2 * norm1(M) + size[mine] * norm1(G) + norm1(K)
+        numerators[mine] = r.residuals[kept] * half_scale
     vecs = normalize(vecs)
-    res = numerators / _residual_scale(model, velocity, np.abs(lam))
+    res = numerators / _residual_scale(model, velocity, size)
     info = dict(sym.info)
     for key in ("factor_time", "solve_time", "substitution_time", "operator_applications"):
         info[key] = sum(r.info.get(key, 0) or 0 for r, _, _ in parts)
@@ -393,9 +395,31 @@ def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: 
 
 def _residual_scale(model: TapeModel, velocity: float, size: np.ndarray) -> np.ndarray:
     """|λ|²‖M‖₁ + |λ|‖G(V)‖₁ + ‖K(V)‖₁ of the full undamped problem for |λ| = ``size``
-    (‖G(V)‖₁ = V ‖G(1 m/s)‖₁, G being linear in V)."""
+    (‖G(V)‖₁ = V ‖G(1 m/s)‖₁, G being linear in V; ‖K(V)‖₁ from :func:`_k_norm`)."""
     mass = float(np.max(np.abs(model.mass_diagonal)))
-    return size**2 * mass + size * velocity * _g1_norm(model) + norm1(model.K(velocity))
+    return size**2 * mass + size * velocity * _g1_norm(model) + _k_norm(model, velocity)
+
+
+#: Per model, A and B on the sparsity pattern of A + B: (column indices, A's values,
+#: B's values), N/m.
+_STIFFNESS_PARTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _k_norm(model: TapeModel, velocity: float) -> float:
+    """‖K(V)‖₁ = ‖A + (T − ρV²)B‖₁, N/m: the largest absolute column sum, from A and B laid
+    on one sparsity pattern once per model (one pass over the entries per speed instead
+    of assembling K(V))."""
+    parts = _STIFFNESS_PARTS.get(model)
+    if parts is None:
+        AB = sp.csr_matrix(model.A, dtype=complex) + 1j * sp.csr_matrix(model.B)
+        parts = _STIFFNESS_PARTS[model] = (AB.indices, AB.data.real.copy(),
+                                           AB.data.imag.copy(), AB.shape[1])
+    indices, a, b, columns = parts
+    if not indices.size:
+        return 0.0
+    sums = np.bincount(indices, weights=np.abs(a + model.effective_tension(velocity) * b),
+                       minlength=columns)
+    return float(sums.max())
 
 
 #: Per model, ‖G(1 m/s)‖₁ in kg/s per m/s.
