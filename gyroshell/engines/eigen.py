@@ -343,7 +343,7 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
     finally:
         if hasattr(factor, "release"):
             factor.release()
-    return _joined(model, velocity, count, parts, {
+    return _joined(model, split, velocity, count, parts, {
         "antisymmetric_below": below, "count_frequency": omega_bar,
         "count_factorization": counted_by,
         "count_by_cholesky": isinstance(factor, cholesky.CholeskyFactor) and not isinstance(
@@ -352,8 +352,8 @@ def _mirror_modes(model: TapeModel, split, velocity: float, count: int, start, e
         "count_time": count_time})
 
 
-def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: dict
-            ) -> Modes:
+def _joined(model: TapeModel, split, velocity: float, count: int, parts: list,
+            mirror: dict) -> Modes:
     """The ``count`` lowest of the halves' modes (``parts``: (result, embedding, (M_h, G_h,
     K_h)) triples, the symmetric first), with the halves' costs summed and ``mirror``
     added to the info.
@@ -381,7 +381,7 @@ def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: 
         half_scale = size[mine]**2 * norm1(M) + size[mine] * norm1(G) + norm1(K)
         numerators[mine] = r.residuals[kept] * half_scale
     vecs = normalize(vecs)
-    res = numerators / _residual_scale(model, velocity, size)
+    res = numerators / _residual_scale(model, split, velocity, size)
     info = dict(sym.info)
     for key in ("factor_time", "solve_time", "substitution_time", "operator_applications"):
         info[key] = sum(r.info.get(key, 0) or 0 for r, _, _ in parts)
@@ -393,44 +393,14 @@ def _joined(model: TapeModel, velocity: float, count: int, parts: list, mirror: 
     return Modes(model.grid, velocity, lam, vecs, res, False, info, False)
 
 
-def _residual_scale(model: TapeModel, velocity: float, size: np.ndarray) -> np.ndarray:
-    """|λ|²‖M‖₁ + |λ|‖G(V)‖₁ + ‖K(V)‖₁ of the full undamped problem for |λ| = ``size``
-    (‖G(V)‖₁ = V ‖G(1 m/s)‖₁, G being linear in V; ‖K(V)‖₁ from :func:`_k_norm`)."""
+def _residual_scale(model: TapeModel, split, velocity: float, size: np.ndarray
+                    ) -> np.ndarray:
+    """|λ|²‖M‖₁ + |λ|‖G(V)‖₁ + ‖K(V)‖₁ of the full undamped problem for |λ| = ``size``,
+    from the mirror split's norms of the full matrices (‖G(V)‖₁ = V ‖G(1 m/s)‖₁, G being
+    linear in V; ‖K(V)‖₁ without assembling K(V))."""
     mass = float(np.max(np.abs(model.mass_diagonal)))
-    return size**2 * mass + size * velocity * _g1_norm(model) + _k_norm(model, velocity)
-
-
-#: Per model, A and B on the sparsity pattern of A + B: (column indices, A's values,
-#: B's values), N/m.
-_STIFFNESS_PARTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-
-
-def _k_norm(model: TapeModel, velocity: float) -> float:
-    """‖K(V)‖₁ = ‖A + (T − ρV²)B‖₁, N/m: the largest absolute column sum, from A and B laid
-    on one sparsity pattern once per model (one pass over the entries per speed instead
-    of assembling K(V))."""
-    parts = _STIFFNESS_PARTS.get(model)
-    if parts is None:
-        AB = sp.csr_matrix(model.A, dtype=complex) + 1j * sp.csr_matrix(model.B)
-        parts = _STIFFNESS_PARTS[model] = (AB.indices, AB.data.real.copy(),
-                                           AB.data.imag.copy(), AB.shape[1])
-    indices, a, b, columns = parts
-    if not indices.size:
-        return 0.0
-    sums = np.bincount(indices, weights=np.abs(a + model.effective_tension(velocity) * b),
-                       minlength=columns)
-    return float(sums.max())
-
-
-#: Per model, ‖G(1 m/s)‖₁ in kg/s per m/s.
-_G1_NORMS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
-
-
-def _g1_norm(model: TapeModel) -> float:
-    known = _G1_NORMS.get(model)
-    if known is None:
-        known = _G1_NORMS[model] = norm1(sp.csr_matrix(model.G(1.0)))
-    return known
+    return (size**2 * mass + size * velocity * split.gyroscopic_norm
+            + split.stiffness_norm(model.effective_tension(velocity)))
 
 
 #: Per model, the mirror split whose halves' structure :func:`_prove_halves` proved (or,

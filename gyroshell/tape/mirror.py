@@ -43,6 +43,9 @@ class MirrorSplit:
     _AB: tuple   # per half: (A_h, B_h) on one sparsity pattern
     _M: tuple
     _G1: tuple
+    _full: tuple = ()   # (column indices, A's values, B's values, columns) of the full A, B
+    #: ‖G(1 m/s)‖₁ of the full problem, kg/s per m/s.
+    gyroscopic_norm: float = 0.0
 
     def half(self, which: str) -> sp.csr_matrix:
         return self.symmetric if which == "symmetric" else self.antisymmetric
@@ -56,6 +59,16 @@ class MirrorSplit:
         """A_h + τ B_h, N/m (τ in N/m), by one vector operation on the shared pattern."""
         A, B = self.stiffness(which)
         return sp.csr_matrix((A.data + tau * B.data, A.indices, A.indptr), shape=A.shape)
+
+    def stiffness_norm(self, tension: float) -> float:
+        """‖A + τB‖₁ of the full problem, N/m (τ = T − ρV² in N/m gives ‖K(V)‖₁): the
+        largest absolute column sum, one pass over the entries of A and B laid on one
+        sparsity pattern (no assembly)."""
+        indices, a, b, columns = self._full
+        if not indices.size:
+            return 0.0
+        return float(np.bincount(indices, weights=np.abs(a + tension * b),
+                                 minlength=columns).max())
 
     def matrices(self, model, velocity: float, which: str
                  ) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
@@ -230,7 +243,9 @@ def mirror_split(model) -> MirrorSplit | None:
                       for w in ("symmetric", "antisymmetric")),
                 (sp.diags(mass[numbering.mirror >= np.arange(mass.size)], format="csr"),
                  sp.diags(mass[numbering.sign > 0], format="csr")),
-                tuple(numbering.fold(G1, w) for w in ("symmetric", "antisymmetric")))
+                tuple(numbering.fold(G1, w) for w in ("symmetric", "antisymmetric")),
+                (AB.indices, AB.data.real.copy(), AB.data.imag.copy(), AB.shape[1]),
+                float(abs(G1).sum(axis=0).max()) if G1.nnz else 0.0)
     try:
         _SPLITS[model] = split
     except TypeError:  # not weak-referenceable: no cache

@@ -18,6 +18,7 @@ import time
 
 import numpy as np
 import scipy.linalg as la
+from scipy.linalg.blas import zgemv as _zgemv
 
 from ..inertia import InertiaFactor
 from .problem import EnergyOperator, Problem, random_start
@@ -49,6 +50,21 @@ def _energy(w: np.ndarray, Lw: np.ndarray) -> float:
     return math.sqrt(max(np.vdot(w, Lw).real, 0.0))
 
 
+def _coefficients(rows: np.ndarray, Lw: np.ndarray) -> np.ndarray:
+    """The energy inner products ⟨v_i, w⟩ = v_iᴴ L w of the rows v_i of ``rows``
+    (C-contiguous) with w, from L w: one BLAS product Vᴴ(Lw), the rows read as the columns
+    of a Fortran array, with no conjugated copy of Lw (BLAS conjugates)."""
+    return _zgemv(1.0, rows.T, Lw, trans=2)
+
+
+def _subtract(w: np.ndarray, rows: np.ndarray, h: np.ndarray) -> None:
+    """w −= Σ h_i v_i over the rows v_i of ``rows``, in place (one BLAS product, no
+    temporary)."""
+    out = _zgemv(-1.0, rows.T, h, beta=1.0, y=w, overwrite_y=True)
+    if out is not w:   # BLAS worked on a copy (w not contiguous complex128)
+        w[...] = out
+
+
 class _Basis:
     """The Lanczos basis V (by rows, preallocated) and its projected matrix H."""
 
@@ -77,14 +93,14 @@ class _Basis:
         beta = 0.0
         if j - 1 > kept:  # the three-term part first: the rest is then small
             local = V[j - 1: j + 1]
-            h = np.conj(local @ np.conj(Lw))
-            w -= h @ local
+            h = _coefficients(local, Lw)
+            _subtract(w, local, h)
             H[j - 1: j + 1, j] += h
             Lw = op.weight(w)
             size = _energy(w, Lw)
         for _ in range(2):  # classical Gram-Schmidt, repeated if it cancelled (DGKS)
-            h = np.conj(basis @ np.conj(Lw))
-            w -= h @ basis
+            h = _coefficients(basis, Lw)
+            _subtract(w, basis, h)
             H[: j + 1, j] += h
             left2 = size * size - float(np.vdot(h, h).real)
             if left2 > (REORTHOGONALIZE * size) ** 2:
