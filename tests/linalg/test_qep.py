@@ -349,3 +349,18 @@ def test_a_warm_start_with_no_part_in_the_problem_starts_at_random(rng):
     zero_start = (1j * w[:3], np.zeros((M.shape[0], 3), dtype=complex))
     res = gyroscopic_modes(M, G, K, 3, estimate=0.9 * w[0], start=zero_start)
     assert res.omega == pytest.approx(w[:3], rel=1e-10)
+
+
+def test_the_gram_schmidt_products_are_the_energy_inner_products(rng):
+    """The Lanczos basis's BLAS products: ⟨v_i, w⟩ = v_iᴴ(Lw) for every row v_i, and
+    w − Σ h_i v_i in place, also for a w that BLAS cannot overwrite (a strided view)."""
+    from gyroshell.linalg.qep.lanczos import _coefficients, _subtract
+
+    V = rng.standard_normal((7, 50)) + 1j * rng.standard_normal((7, 50))
+    Lw = rng.standard_normal(50) + 1j * rng.standard_normal(50)
+    h = _coefficients(V, Lw)
+    assert np.allclose(h, [np.vdot(v, Lw) for v in V], rtol=1e-14, atol=0)
+    for w in (Lw.copy(), np.repeat(Lw, 2)[::2]):
+        expected = w - sum(hi * v for hi, v in zip(h, V, strict=True))
+        _subtract(w, V, h)
+        assert np.allclose(w, expected, rtol=0, atol=1e-13 * np.abs(expected).max())

@@ -64,6 +64,19 @@ def test_the_folded_halves_are_the_projections(divisions):
         assert np.array_equal(A_h.indices, B_h.indices)
 
 
+@pytest.mark.parametrize("velocity", [0.0, 60.0, 95.0])
+def test_the_splits_full_norms_are_the_assembled_matrices(velocity):
+    """‖K(V)‖₁ and ‖G(1 m/s)‖₁ kept by the split (for the halves' backward errors) equal the
+    largest absolute column sums of the assembled full matrices, computed densely here."""
+    model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
+    split = mirror_split(model)
+    K, G1 = model.K(velocity).toarray(), model.G(1.0).toarray()
+    expected = np.abs(K).sum(axis=0).max()
+    got = split.stiffness_norm(model.effective_tension(velocity))
+    assert got == pytest.approx(expected, rel=1e-14)
+    assert split.gyroscopic_norm == pytest.approx(np.abs(G1).sum(axis=0).max(), rel=1e-14)
+
+
 def test_an_asymmetric_model_has_no_split():
     """One entry of A changed on one side of the centre line breaks R A R = A."""
     model = TapeModel(TapeParameters(length_ratio=2.0, spacing=WIDTH / 8))
