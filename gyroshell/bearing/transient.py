@@ -27,6 +27,7 @@ from ..core.errors import ParameterError
 from ..core.progress import progress_bar
 from ..engines.newmark import check_steps
 from . import budget
+from .corners import check_point_contacts
 from .model import BearingModel
 from .results import BearingSolution, BearingTransient, NewtonInfo
 from .steady import check_cavitation, newton
@@ -185,6 +186,8 @@ def march(start: BearingSolution, *, dt: float, steps: int,
                 T_now := _tension_at(T, t, floor)), transient=terms, info=NewtonInfo())
             u, p = z[:model.n_u], z[model.n_u:]
             check_cavitation(model, p, f" at t = {t:g} s")
+            if model.corner_contacts:        # the tangent points' nodes stay put
+                check_point_contacts(model, u, f" at t = {t:g} s")
             a, v = terms.kinematics(u)
             phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
             if n % record_every == 0 or n == steps:
