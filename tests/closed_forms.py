@@ -11,6 +11,9 @@
   and D22 Y‴ − (D12 + 4D66)α²Y′ = 0 at the edges: the static profile, the eigenvalues
   ℓ = D11α⁴ − λ of the free-free cross-width problem (roots of its determinant) and the
   divergence μ of the lowest branch.
+* The dry tensioned plate D w'''' − T w'' = 0 over a flat land between two corners: on two
+  point supports; touching two rounded corners' arcs at one tangent point each; lying on
+  part of each arc (a wrapped arc: the contact ends where w'' reaches the arc's −1/r_c).
 """
 
 from __future__ import annotations
