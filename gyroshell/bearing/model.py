@@ -742,6 +742,17 @@ class BearingModel:
         self.kappa_nodes = np.repeat(self.kappa, self.nc)
         self.pressure_load = self._pressure_load_matrix()
 
+    def _hold_wrapped_arcs(self, U: np.ndarray, held: np.ndarray) -> None:
+        """The dry start on the wrapped arcs (in place): the tape held at σ where it lies on
+        each (:meth:`wrapped_contact`, at least the node nearest its middle)."""
+        inner = self.x_head[1:-1]
+        for k in self.wrapped_corners:
+            lo, hi = self.wrapped_contact(k)
+            on = (inner >= lo) & (inner <= hi)
+            on[int(np.argmin(np.abs(inner - 0.5 * (lo + hi))))] = True
+            U[on, :] = self.air.roughness - self.dry_field[1:-1][on, :]
+            held[on, :] = True
+
     def _corner_start(self, dry: bool | None = None) -> np.ndarray:
         """u of Newton's start on a flat or profile head (or dry): h = :data:`FLAT_START`
         foil spacings above the dry gap, tapering to the roughness σ at the sharp corners
@@ -783,13 +794,8 @@ class BearingModel:
                 U = np.minimum(U, taper[:, None])
             U[i, :] = sigma - self.dry_field[i + 1, :]
             held[i, :] = True
-        if dry:    # a wrapped arc: the tape lies on it but for a bending length each end
-            for k in self.wrapped_corners:
-                lo, hi = self.wrapped_contact(k)
-                on = (inner >= lo) & (inner <= hi)
-                on[int(np.argmin(np.abs(inner - 0.5 * (lo + hi))))] = True
-                U[on, :] = sigma - self.dry_field[1:-1][on, :]
-                held[on, :] = True
+        if dry:
+            self._hold_wrapped_arcs(U, held)
         if not dry or not held.any():
             return U.ravel()
         # dry: the tape with its sharp corners held at σ (the exact state when only they

@@ -185,15 +185,21 @@ def march(start: BearingSolution, *, dt: float, steps: int,
             z, lam, _, info = newton(model, np.concatenate([u, p]), tension=(
                 T_now := _tension_at(T, t, floor)), transient=terms, info=NewtonInfo())
             u, p = z[:model.n_u], z[model.n_u:]
-            check_cavitation(model, p, f" at t = {t:g} s")
-            if model.corner_contacts:        # the tangent points' nodes stay put
-                check_point_contacts(model, u, f" at t = {t:g} s")
+            _check_step(model, u, p, t)
             a, v = terms.kinematics(u)
             phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
             if n % record_every == 0 or n == steps:
                 sol = record(t, u, p, lam, info.iterations, T_now)
             bar.update(1)
     return record.result(start.x, sol)
+
+
+def _check_step(model: BearingModel, u, p, t: float) -> None:
+    """A step's state at t (s): no cavitation, and the tape not cutting into a rounded
+    corner's arc off its contact node (the march keeps the tangent points' nodes)."""
+    check_cavitation(model, p, f" at t = {t:g} s")
+    if model.corner_contacts:
+        check_point_contacts(model, u, f" at t = {t:g} s")
 
 
 def _checked_march(start, dt, steps, record_every, beta, gamma, tension, moving_load):
