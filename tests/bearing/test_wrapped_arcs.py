@@ -109,7 +109,8 @@ def test_dry_tape_wrapped_over_arcs_matches_the_plate_and_converges(t_in, t_out)
     order), the contact extent within one cell of each end (the ends fall between nodes),
     the contact pressure T/r_c inside the contact exactly (the discrete plate on a
     parabola: δ⁴z = 0, δ²z = −1/r_c, so to round-off), each corner's total force within
-    1e-4 (nx/200)⁻² of the closed form's."""
+    1e-4 (nx/200)⁻² of the closed form's, all of it in the corner's reading (none on the
+    land)."""
     height, ends, forces, spread = wrapped_plate(t_in, t_out)
     exact = (forces[0] + forces[1] + spread[0], forces[2] + forces[3] + spread[1])
     steps, errs = [], []
@@ -132,6 +133,9 @@ def test_dry_tape_wrapped_over_arcs_matches_the_plate_and_converges(t_in, t_out)
             assert np.all(np.abs(cp / (TAPE.tension / RADIUS) - 1.0) < 1e-7)
             total = sol.contact[(inner < 0) == (side == 0)].sum()
             assert abs(total / exact[side] - 1.0) < 1e-4 * (200 / nx) ** 2
+            # the designer's reading: the corner's zone holds its whole contact
+            assert sol.corner_forces[side].force == pytest.approx(total, rel=1e-12)
+        assert sol.land_forces[0].force == 0.0
     assert errs[-1] < 1e-5
     assert observed_order(steps, errs) == pytest.approx(2.0, abs=0.4)
 
