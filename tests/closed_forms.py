@@ -11,6 +11,9 @@
   and D22 Y‴ − (D12 + 4D66)α²Y′ = 0 at the edges: the static profile, the eigenvalues
   ℓ = D11α⁴ − λ of the free-free cross-width problem (roots of its determinant) and the
   divergence μ of the lowest branch.
+* The dry tensioned plate D w'''' − T w'' = 0 over a flat land between two corners: on two
+  point supports; touching two rounded corners' arcs at one tangent point each; lying on
+  part of each arc (a wrapped arc: the contact ends where w'' reaches the arc's −1/r_c).
 """
 
 from __future__ import annotations
@@ -270,3 +273,137 @@ def tensioned_plate_on_two_supports(ends, contacts, lam: float, end_heights, con
     forces = tuple(D * float(np.sum(c[k + 1] * basis(x, k + 1, 3)) - np.sum(c[k] * basis(x, k, 3)))
                    for k, x in enumerate((x1, x2)))
     return evaluate, forces
+
+
+def tensioned_plate_wrapping_two_arcs(ends, end_heights, arcs, lam: float, sigma: float,
+                                      tension: float, start, *, tol: float = 1e-15):
+    """The exact tensioned plate D w'''' − T w'' = 0 (λ = √(D/T), m) on [e₀, e₁] = ``ends``,
+    pinned at its ends (w given by ``end_heights``, w'' = 0), lying σ above two convex arcs
+    over parts [a₁, b₁], [a₂, b₂] of them (a₁ < b₁ < a₂ < b₂) and free elsewhere.
+
+    ``arcs`` holds two callables ``arc(x, d)``: the d-th derivative (d = 0, 1, 2) of the
+    head's height on each arc (a parabola of curvature −1/r_c: the small-slope circle).
+    On the contacts w = z_h + σ, so w'' = −1/r_c and w'''' = 0: the contact pressure is
+    q = D w'''' − T w'' = T/r_c (Pa), uniform. On the three free pieces w = c₁ + c₂(x − x₀)
+    + c₃e^{(x − xₑ)/λ} + c₄e^{−(x − x₀)/λ}; for given contact ends the twelve constants
+    follow from the four end conditions and w, w' matching the arc at the four contact
+    ends (linear). The ends themselves make w'' continuous there as well, w''(end) =
+    z_h''(end) (four equations, solved by Newton from ``start`` = (a₁, b₁, a₂, b₂)); w'''
+    jumps at each end: a point force D[w'''] (N/m).
+
+    Returns (height(x): w at x (the arc + σ on the contacts), the contact ends (a₁, b₁,
+    a₂, b₂), the four end point forces (N/m), the uniform pressure's two integrals
+    T(b_k − a_k)/r_c (N/m) as the callable arcs' curvature times −T).
+    """
+    e0, e1 = ends
+    D = lam * lam * tension
+
+    def pieces(c):
+        return [(e0, c[0]), (c[1], c[2]), (c[3], e1)]
+
+    def basis(p, x, d):
+        x0, xe = p
+        grow, decay = np.exp((x - xe) / lam), np.exp(-(x - x0) / lam)
+        lin = [1.0, x - x0] if d == 0 else ([0.0, 1.0] if d == 1 else [0.0, 0.0])
+        return np.array(lin + [grow / lam**d, (-1) ** d * decay / lam**d])
+
+    # (piece, contact end, arc) for the four contact ends
+    touching = [(0, 0, 0), (1, 1, 0), (1, 2, 1), (2, 3, 1)]
+
+    def constants(c):
+        ps = pieces(c)
+        rows, rhs = [], []
+
+        def condition(k, x, d, value):
+            row = np.zeros(12)
+            row[4 * k:4 * k + 4] = basis(ps[k], x, d)
+            rows.append(row)
+            rhs.append(value)
+
+        for k, x, height in ((0, e0, end_heights[0]), (2, e1, end_heights[1])):
+            condition(k, x, 0, height)
+            condition(k, x, 2, 0.0)
+        for k, j, a in touching:
+            condition(k, c[j], 0, arcs[a](c[j], 0) + sigma)
+            condition(k, c[j], 1, arcs[a](c[j], 1))
+        return np.linalg.solve(np.array(rows), np.array(rhs)).reshape(3, 4)
+
+    def residual(c):
+        coef, ps = constants(c), pieces(c)
+        return np.array([coef[k] @ basis(ps[k], c[j], 2) - arcs[a](c[j], 2)
+                         for k, j, a in touching])
+
+    c = np.array(start, dtype=float)
+    scale = max(abs(e1 - e0), 1e-30)
+    for _ in range(100):
+        r = residual(c)
+        step = 1e-7 * scale
+        J = np.column_stack([(residual(c + step * e) - r) / step for e in np.eye(4)])
+        dc = np.linalg.solve(J, -r)
+        c = c + dc
+        if np.max(np.abs(dc)) < tol * scale:
+            break
+    else:
+        raise RuntimeError("the wrapped plate's contact ends did not converge")
+    if not (e0 < c[0] < c[1] < c[2] < c[3] < e1):
+        raise RuntimeError(f"the contact ends {c} are not ordered: the tape does not wrap "
+                           "both arcs")
+    coef, ps = constants(c), pieces(c)
+
+    def height(x):
+        x = np.asarray(x, dtype=float)
+        out = np.empty_like(x)
+        free = [(x <= c[0]), (x >= c[1]) & (x <= c[2]), (x >= c[3])]
+        for k, on in enumerate(free):
+            out[on] = np.array([coef[k] @ basis(ps[k], xi, 0) for xi in x[on]])
+        for j, a in ((0, 0), (2, 1)):
+            on = (x > c[j]) & (x < c[j + 1])
+            out[on] = arcs[a](x[on], 0) + sigma
+        return out
+
+    forces = tuple(D * (-(coef[k] @ basis(ps[k], c[j], 3)) if j % 2 == 0
+                        else coef[k] @ basis(ps[k], c[j], 3))
+                   for k, j, _ in touching)
+    spread = tuple(-tension * arcs[a](0.5 * (c[j] + c[j + 1]), 2) * (c[j + 1] - c[j])
+                   for j, a in ((0, 0), (2, 1)))
+    return height, tuple(c), forces, spread
+
+
+def plate_over_rounded_land(L, S, t_in, t_out, lam, sigma, r, phi, tension):
+    """The exact tape at the tension T = ``tension`` (N/m) (w, corner forces D[w'''] in
+    N/m, contact points x₁, x₂ in m) over a land [−L/2, L/2] at height 0 whose corners
+    are arcs of radius r (parabolas, small slopes) reaching r φ/2 either side of the
+    corner points, spans pinned at
+    x = −L/2 − S and L/2 + S on the dry string (the arcs' tangent lines of slopes
+    +t_in, −t_out) with w'' = 0 there.
+
+    For given contacts the 12 constants of c₁ + c₂(x − x₀) + c₃e^{(x − x₁)/λ} + c₄e^{−(x −
+    x₀)/λ} per piece follow from a linear system; the contacts from the tangency, by the
+    fixed point x_k ← the arc's point of slope w'(x_k) (a contraction: r |w''| ≪ 1)."""
+    a, b = -L / 2, L / 2
+    lead, trail = a + 0.5 * r * phi, b - 0.5 * r * phi      # the land's tangent points
+
+    def arc(x, k):           # (z_h, z_h') on the arc of corner k (0 leading, 1 trailing)
+        d = lead - x if k == 0 else x - trail
+        return -d * d / (2 * r), (d / r if k == 0 else -d / r)
+
+    # the dry string's end heights: the tangent line of slope t at d = r t on each arc
+    z_left = -r * t_in**2 / 2 + t_in * ((a - S) - (lead - r * t_in))
+    z_right = -r * t_out**2 / 2 - t_out * ((b + S) - (trail + r * t_out))
+
+    def solve(x1, x2):
+        return tensioned_plate_on_two_supports(
+            (a - S, b + S), (x1, x2), lam, (z_left, z_right),
+            (arc(x1, 0)[0] + sigma, arc(x2, 1)[0] + sigma), tension)
+
+    x1, x2 = lead - r * t_in / 2, trail + r * t_out / 2
+    for _ in range(50):
+        evaluate, forces = solve(x1, x2)
+        s1, s2 = evaluate(np.array([x1, x2]), 1)
+        new = (lead - r * s1, trail - r * s2)       # slope s at d = r s (lead), −r s (trail)
+        moved = max(abs(new[0] - x1), abs(new[1] - x2))
+        x1, x2 = new
+        if moved < 1e-16:
+            break
+    evaluate, forces = solve(x1, x2)
+    return (lambda x: evaluate(x, 0)), forces, (x1, x2)

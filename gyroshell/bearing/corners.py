@@ -13,7 +13,7 @@ state interpolated onto the moved nodes, whose 25 nm cells put a fourth differen
 on the interpolation error, led Newton astray: measured), until no contact moves by more
 than :data:`CONTACT_TOLERANCE` of the smallest cell next to it. Only a rounded arc's
 contact node may touch it (:attr:`~.model.BearingModel.contact_floor`); a state cutting
-into the rest of the arc is refused (:func:`_check_point_contact`).
+into the rest of the arc is refused (:func:`check_point_contacts`).
 The map is a strong contraction: a contact moves by r_c times the change of the tape's
 slope, and the tape's curvature w'' near a corner is far below 1/r_c (r_c w'' ~ 1e-3 for
 r_c = 5 µm), so two or three passes suffice.
@@ -42,19 +42,20 @@ def _moved(model, new: tuple[float, ...]) -> float:
     return float(np.max(np.abs(np.array(new) - np.array(model.corner_contacts)) / cell))
 
 
-def _check_point_contact(model, sol) -> None:
-    """Refuse a state whose tape cuts into an arc away from its contact node by more than
-    :data:`ARC_TOLERANCE` σ (the arc's other nodes are free of contact): the tape then
-    wraps the arc, a regime this point-contact model does not solve."""
-    clearance = model.arc_clearance(sol.u)
+def check_point_contacts(model, u, where: str = "") -> None:
+    """Refuse a state u (m) whose tape cuts into an arc away from its contact node by more
+    than :data:`ARC_TOLERANCE` σ (the arc's other nodes are free of contact): the tape then
+    wraps the arc, which this point-contact model does not solve (``arc_contact="wrapped"``
+    does). ``where`` ends the message (e.g. " at t = 1e-05 s")."""
+    clearance = model.arc_clearance(u)
     sigma = model.air.roughness
     if clearance < -ARC_TOLERANCE * sigma:
         raise ConvergenceError(
             f"the tape does not touch the rounded corners at one point: it cuts "
             f"{-clearance:.3g} m into an arc (more than {ARC_TOLERANCE:g} of the roughness "
-            f"{sigma:g} m), i.e. it wraps the arc, which is not solved (point contacts "
-            "only: corner_radius well below the bending length / the corner's turn); use "
-            "a smaller corner_radius")
+            f"{sigma:g} m){where}, i.e. it wraps the arc, which the tangent-point model "
+            "does not solve; use arc_contact='wrapped' (the arc nodes in the contact set) "
+            "or a smaller corner_radius")
 
 
 def solve_adapting_contacts(model, solve, *, z0=None, progress=None, **kw):
@@ -80,7 +81,7 @@ def solve_adapting_contacts(model, solve, *, z0=None, progress=None, **kw):
             progress(f"rounded corners, pass {passes}: {sol.info.iterations} Newton "
                      f"iterations, contacts move {moves[-1]:.3g} cells")
         if moves[-1] <= CONTACT_TOLERANCE:
-            _check_point_contact(current, sol)
+            check_point_contacts(current, sol.u)
             sol.info.iterations = iterations
             sol.info.contact_passes = passes
             sol.info.contact_move = moves[-1]

@@ -35,9 +35,16 @@ How the tape's reference follows the contour (the bearing's model, :mod:`.model`
   resists departures from its wrapped shape with the hoop stiffness k = E c/(R²(1 − ν²)):
   the cylinder keeps ``params.k`` over the whole domain, as before. A flat land has no
   wrap curvature, so a tape lying on it has no hoop stiffness; the corners' wrapped arcs
-  r_c θ_c are far shorter than the bending length √(D/T), so their hoop stiffness acts over
-  a negligible length. Flat and profile heads therefore use k = ``foundation_stiffness``
-  when the user gave one, else 0.
+  r_c θ_c are mostly far shorter than the bending length √(D/T), so their hoop stiffness
+  acts over a negligible length. Flat and profile heads therefore use k =
+  ``foundation_stiffness`` when the user gave one, else 0 (also over an arc the tape wraps,
+  whose hoop stiffness E c/(r_c²(1 − ν²)) is then neglected).
+* **Rounded corners.** An arc short against the bending length ℓ_bend = √(D/(T − ρV²))
+  (r_c θ_c <= 0.3 ℓ_bend) is touched at one tangent point (a node there, found by
+  regridding: :mod:`.corners`); a longer one is wrapped: the tape lies on it but for about
+  ℓ_bend at each end, with the contact pressure T/r_c and a point force D/(r_c ℓ_bend) at
+  each end of the contact, and its arc nodes join the bearing's general contact set
+  (:func:`.model.wrapped_corners`; ``BearingModel(arc_contact=...)`` forces either).
 """
 
 from __future__ import annotations

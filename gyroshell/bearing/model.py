@@ -196,30 +196,32 @@ def resolution_length(l_film: float, l_bend: float) -> float:
     return min(l_film, max(l_bend, BENDING_RESOLVED * l_film))
 
 
-#: Longest wrapped arc r_c θ_c of a rounded corner, in bending lengths √(D/(T − ρV²)): the
-#: tape touches a shorter arc at one point (the point-contact model, :mod:`.corners`);
-#: measured (Table 1 tape, bending length 0.18 mm; 1 mm land at 2°/2°, 4 m/s and dry):
-#: 0.19 (r_c = 1 mm) converges (5 passes, 290 Newton iterations at speed), 0.48 (2.5 mm)
-#: does not, dry or flying (the tape begins to wrap the arc); between them untested.
-MAX_ARC_BENDING_LENGTHS = 0.3
+#: A rounded corner whose wrapped arc r_c θ_c is at most this many bending lengths
+#: ℓ_bend = √(D/(T − ρV²)) is touched at one point (the tangent-point model,
+#: :mod:`.corners`); a longer one is wrapped: its arc nodes join the general contact set
+#: (any node may touch, as on the cylinder) and the tape lies on the arc over part of it.
+#: For a plate between a long land and a long span the tape touches at one point while
+#: its curvature there, about θ_c/(2ℓ_bend), is below the arc's 1/r_c, i.e. up to
+#: r_c θ_c = 2 ℓ_bend, where the wrapped contact has shrunk to that point: both models
+#: hold below 2 and agree there (tests/bearing/test_wrapped_arcs.py); the handover is
+#: made well inside that range, where the tangent point is still second order and the
+#: general contact set already resolves the arc.
+WRAPPED_ARC_BENDING_LENGTHS = 0.3
+#: The arc models :class:`BearingModel` accepts as ``arc_contact``.
+ARC_CONTACTS = ("auto", "point", "wrapped")
 
 
-def _check_point_contacts(head: Head, l_bend: float) -> None:
-    """Refuse rounded corners whose wrapped arc r_c θ_c exceeds MAX_ARC_BENDING_LENGTHS
-    bending lengths ``l_bend`` (m): the tape would wrap them, which is not solved."""
-    if not isinstance(head, FlatHead):
-        return
+def wrapped_corners(head: Head, l_bend: float, arc_contact: str = "auto") -> tuple[int, ...]:
+    """Indices (into ``head.corners()``) of the rounded corners the tape wraps: those
+    whose arc r_c θ_c exceeds :data:`WRAPPED_ARC_BENDING_LENGTHS` bending lengths
+    ``l_bend`` (m) for ``arc_contact="auto"``, every rounded corner for "wrapped", none
+    for "point" (the others are touched at one point, :mod:`.corners`)."""
+    if not isinstance(head, FlatHead) or arc_contact == "point":
+        return ()
     radii, turns = head.corner_radii(), head.corner_turns()
-    for k in head.rounded_corners():
-        arc = radii[k] * turns[k]
-        if arc > MAX_ARC_BENDING_LENGTHS * l_bend:
-            raise ParameterError(
-                f"corner_radius {radii[k]:g} m is too large for a point contact: the "
-                f"tape's wrapped arc r_c theta_c = {arc:.3g} m exceeds "
-                f"{MAX_ARC_BENDING_LENGTHS:g} bending lengths sqrt(D/(T - rho V^2)) = "
-                f"{MAX_ARC_BENDING_LENGTHS * l_bend:.3g} m, where the tape begins to wrap "
-                f"the arc (not solved); use corner_radius <= "
-                f"{MAX_ARC_BENDING_LENGTHS * l_bend / turns[k]:.3g} m")
+    return tuple(k for k in head.rounded_corners()
+                 if arc_contact == "wrapped"
+                 or radii[k] * turns[k] > WRAPPED_ARC_BENDING_LENGTHS * l_bend)
 
 
 def _check_below_string_speed(params: TapeParameters, velocity: float) -> None:
@@ -327,6 +329,13 @@ class BearingModel:
     adapt_contacts : bool
         Whether :func:`~gyroshell.bearing.steady.solve_steady` moves the contacts to the
         tangent points by solve-and-regrid passes (default) or keeps them.
+    arc_contact : {"auto", "point", "wrapped"}
+        How the tape meets a rounded corner: "point", at one tangent point (a node there,
+        the corner's other arc nodes free of contact, :mod:`.corners`), valid while the
+        tape is less curved than the arc; "wrapped", lying on part of the arc (every arc
+        node may touch: the general contact set, the arc resolved by the grid); "auto"
+        (default) per corner, wrapped when r_c θ_c exceeds
+        :data:`WRAPPED_ARC_BENDING_LENGTHS` bending lengths (:func:`wrapped_corners`).
 
     Raises
     ------
@@ -344,7 +353,7 @@ class BearingModel:
                  nx: int | None = None, ny: int | None = None,
                  grading: Grading | str | None = None, dry: bool = False,
                  factorization: str = "auto", corner_contacts=None,
-                 adapt_contacts: bool = True) -> None:
+                 adapt_contacts: bool = True, arc_contact: str = "auto") -> None:
         self.factorization = check_pattern_lu(factorization)
         self.params = validation.instance("params", params, TapeParameters)
         self.air = validation.instance("air", AirParameters() if air is None else air,
@@ -366,7 +375,8 @@ class BearingModel:
         if self.dry:
             h_foil, l_film = 0.0, 0.0
         self.film_length, self.bending_length = l_film, l_bend
-        _check_point_contacts(self.head, l_bend)
+        self.arc_contact = validation.choice("arc_contact", arc_contact, ARC_CONTACTS)
+        self.wrapped_corners = wrapped_corners(self.head, l_bend, self.arc_contact)
         self.h_guess = _FOIL_GUESS * h_foil
         self.span = self._checked_span(span, l_film, l_bend)
         self.adapt_contacts = validation.boolean("adapt_contacts", adapt_contacts)
@@ -402,17 +412,39 @@ class BearingModel:
         """The length the default x-grid resolves, m (:func:`resolution_length`; dry: the
         bending length; a flat or profile head also its shortest feature)."""
         length = l_bend if self.dry else resolution_length(l_film, l_bend)
-        if not self.cylindrical:
-            feature = (self.head.shortest_land(self.head_radius) if self.corner_contacts
-                       else self.head.shortest_feature(self.head_radius))
+        if isinstance(self.head, FlatHead):      # lands, gaps and the wrapped arcs
+            radii, turns = self.head.corner_radii(), self.head.corner_turns()
+            feature = min([self.head.shortest_land()] + [
+                radii[k] * turns[k] for k in self.wrapped_corners
+                if turns[k] >= CORNER_FRACTION * self.wrap_angle])
             length = min(length, FEATURE_RESOLUTION * feature)
+        elif not self.cylindrical:
+            length = min(length, FEATURE_RESOLUTION
+                         * self.head.shortest_feature(self.head_radius))
         return length
+
+    def wrapped_contact(self, k: int) -> tuple[float, float]:
+        """(x_start, x_end), m (head coordinates): where the dry tape lies on the wrapped
+        arc of corner ``k`` (index into ``head.corners()``) for a long land and a long
+        span, the arc less a bending length ℓ_bend at either end (each free side of the
+        contact turns by ℓ_bend/r_c: its boundary layer's curvature decays from the arc's
+        1/r_c over ℓ_bend); the arc's middle if the arc is shorter than 2 ℓ_bend."""
+        r, turn = self.head.corner_radii()[k], self.head.corner_turns()[k]
+        sign = 1.0 if k % 2 == 0 else -1.0          # the arc's slope turns from the land's
+        free = self.bending_length / r
+        ends = [self.head.arc_point(k, self.head.land_slope(k) + sign * s)
+                for s in (min(free, 0.5 * turn), max(turn - free, 0.5 * turn))]
+        return min(ends), max(ends)
 
     @property
     def rounded_corners(self) -> tuple[int, ...]:
-        """Indices (into ``head.corners()``) of the rounded corners the tape turns over,
-        in the order of :attr:`corner_contacts` (empty but on a flat head)."""
-        return self.head.rounded_corners() if isinstance(self.head, FlatHead) else ()
+        """Indices (into ``head.corners()``) of the rounded corners the tape turns over and
+        touches at one point, in the order of :attr:`corner_contacts` (empty but on a flat
+        head; the wrapped ones, :attr:`wrapped_corners`, are not among them)."""
+        if not isinstance(self.head, FlatHead):
+            return ()
+        return tuple(k for k in self.head.rounded_corners()
+                     if k not in self.wrapped_corners)
 
     def _checked_contacts(self, contacts) -> tuple[float, ...]:
         """The x (head coordinates, m) of the tape's contact on each rounded corner: given
@@ -522,7 +554,7 @@ class BearingModel:
         cylinder or dry; else :func:`corner_grading` from the spacing far from the
         corners (the zone spacing times the x-grading's ratio), so that the spacing grows
         at CORNER_GROWTH times the distance from a corner whatever the sech zones do."""
-        if self.cylindrical or self.dry:
+        if self.cylindrical or self.dry or self._all_corners_wrapped():
             return {"corner_ratio": 1.0, "corner_width": None}
         return corner_grading(self.air.roughness,
                               self._zone_spacing(resolution) * self.grading.x_ratio)
@@ -710,6 +742,17 @@ class BearingModel:
         self.kappa_nodes = np.repeat(self.kappa, self.nc)
         self.pressure_load = self._pressure_load_matrix()
 
+    def _hold_wrapped_arcs(self, U: np.ndarray, held: np.ndarray) -> None:
+        """The dry start on the wrapped arcs (in place): the tape held at σ where it lies on
+        each (:meth:`wrapped_contact`, at least the node nearest its middle)."""
+        inner = self.x_head[1:-1]
+        for k in self.wrapped_corners:
+            lo, hi = self.wrapped_contact(k)
+            on = (inner >= lo) & (inner <= hi)
+            on[int(np.argmin(np.abs(inner - 0.5 * (lo + hi))))] = True
+            U[on, :] = self.air.roughness - self.dry_field[1:-1][on, :]
+            held[on, :] = True
+
     def _corner_start(self, dry: bool | None = None) -> np.ndarray:
         """u of Newton's start on a flat or profile head (or dry): h = :data:`FLAT_START`
         foil spacings above the dry gap, tapering to the roughness σ at the sharp corners
@@ -751,6 +794,8 @@ class BearingModel:
                 U = np.minimum(U, taper[:, None])
             U[i, :] = sigma - self.dry_field[i + 1, :]
             held[i, :] = True
+        if dry:
+            self._hold_wrapped_arcs(U, held)
         if not dry or not held.any():
             return U.ravel()
         # dry: the tape with its sharp corners held at σ (the exact state when only they
@@ -831,14 +876,14 @@ class BearingModel:
     def rebuilt(self, **changes) -> BearingModel:
         """The same model with some constructor arguments changed (velocity, nx, ny,
         infinitely_wide, head, span, grading, dry, factorization, corner_contacts,
-        adapt_contacts)."""
+        adapt_contacts, arc_contact)."""
         kw = dict(velocity=self.velocity, head=self.head,
                   infinitely_wide=self.infinitely_wide, span=self.span, nx=self.nx,
                   ny=self.ny, grading=self.grading, dry=self.dry,
                   factorization=self.factorization,
                   corner_contacts=self.corner_contacts or None,
-                  adapt_contacts=self.adapt_contacts)
-        if "head" in changes or "dry" in changes:
+                  adapt_contacts=self.adapt_contacts, arc_contact=self.arc_contact)
+        if {"head", "dry", "arc_contact"} & set(changes):
             kw["corner_contacts"] = None        # the new head's (or regime's) own estimate
         kw.update(changes)
         return BearingModel(self.params, self.air, **kw)
@@ -937,13 +982,24 @@ class BearingModel:
         u = self._corner_start(dry=True) if u is None else u
         return np.concatenate([u, np.full(self.n_p, self.air.ambient_pressure)])
 
+    def _all_corners_wrapped(self) -> bool:
+        """Whether every corner turning the tape by 5 % of the wrap is a wrapped arc: the
+        tape then flies over the head as over cylinders of the arcs' radii (the foil
+        start, sized by the smallest, :attr:`scale_radius`; the flat start, 1/10 of it
+        with p = p_a, gives Newton a singular Jacobian there: measured)."""
+        if not self.wrapped_corners:
+            return False
+        turns = self.head.corner_turns(self.head_radius)
+        return all(k in self.wrapped_corners for k, t in enumerate(turns)
+                   if t >= CORNER_FRACTION * self.wrap_angle)
+
     def initial_state(self) -> np.ndarray:
         """The flexible-foil start [u (m), p (Pa)]: the foil spacing scale everywhere and
         the wrap pressure (T − ρV²) κ + p_a. :func:`gyroshell.bearing.steady.solve_steady`
         starts a 2-D tape from a better (solved) state, :func:`~gyroshell.bearing.steady.
         initial_state`."""
-        if not self.cylindrical or self.dry:     # the corners' loads are point loads
-            return self.dry_start(self._corner_start())
+        if self.dry or not (self.cylindrical or self._all_corners_wrapped()):
+            return self.dry_start(self._corner_start())   # the corners' point loads
         u = np.full(self.n_u, self.h_guess)
         kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)
         p = self.air.ambient_pressure + self.effective_tension() * kappa[

@@ -523,13 +523,15 @@ def _settings(model: BearingModel) -> dict:
            "head": model.head.as_dict(), "dry": model.dry}
     if model.corner_contacts:
         out["corner_contacts"] = list(model.corner_contacts)
+    if model.arc_contact != "auto":
+        out["arc_contact"] = model.arc_contact
     return out
 
 
 #: The keys of a file's ``model`` attribute (``grading``, ``head`` and ``dry`` may be
 #: absent: older files, whose head is the cylinder of ``wrap_angle``, flying).
 _SETTINGS = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny")
-_OPTIONAL_SETTINGS = ("grading", "head", "dry", "corner_contacts")
+_OPTIONAL_SETTINGS = ("grading", "head", "dry", "corner_contacts", "arc_contact")
 
 
 def _stored_dict(attrs, name: str, allowed, required=()) -> dict:

@@ -432,11 +432,13 @@ def _stagnated(merits: list, alphas: list) -> bool:
 def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
            transient=None, tol: float = STEP_TOLERANCE,
            max_iterations: int = MAX_ITERATIONS, info: NewtonInfo | None = None,
-           log=None):
+           log=None, active_set: bool = False):
     """Solve the coupled residual from z0 by semismooth Newton with a backtracking line
     search on the scaled residual norm.
 
-    ``log`` (optional) is called with a one-line message per iteration.
+    ``log`` (optional) is called with a one-line message per iteration. ``active_set``:
+    update the contact set by the linearized active-set rule even from a start clear of
+    the head (a march's retried sub-step, whose start is a neighbouring state).
     ``transient`` (optional) supplies the time-discrete terms of one implicit step: an
     object with ``tape_terms(u) -> (r_extra, J_extra)`` and the film's ``phi_old``, ``dt``.
 
@@ -452,7 +454,8 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     # linearized active-set rule; a start clear of the head keeps the damped steps with
     # the forced entry of the nodes a step takes below σ (far from the state, e.g. a
     # lifted tape, pseudo-time leads Newton instead).
-    contact_step = _contact_set_step if it.active.any() else _forced_contact_step
+    contact_step = (_contact_set_step if it.active.any() or active_set
+                    else _forced_contact_step)
     merits, alphas = [it.merit], []
     for _ in range(max_iterations):
         h = it.z[:n_u] + model.dry_field[1:-1, :].ravel()

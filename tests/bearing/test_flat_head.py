@@ -152,22 +152,20 @@ def test_model_refuses_bad_heads_in_one_line(kw, match):
     assert "\n" not in str(err.value)
 
 
-def test_rounded_corners_the_tape_would_wrap_are_refused_in_one_line_naming_corner_radius():
-    """Rounded corners fly (tests/bearing/test_rounded_corners.py) while the tape touches
-    each arc at one point; an arc r_c θ_c longer than 0.3 bending lengths (where the tape
-    begins to wrap it: not solved) is refused before any grid exists, flying or dry."""
+def test_rounded_corners_choose_point_contacts_or_wrapped_arcs_by_their_arc_length():
+    """A rounded corner whose arc r_c θ_c is within 0.3 bending lengths gets a tangent
+    point contact (tests/bearing/test_rounded_corners.py), a longer one is wrapped: its arc
+    nodes join the contact set (tests/bearing/test_wrapped_arcs.py), flying or dry."""
     import math
 
-    from gyroshell import ParameterError, TapeParameters
+    from gyroshell import TapeParameters
     from gyroshell.bearing import BearingModel, FlatHead, Module
 
     head = FlatHead((Module(1e-3, corner_radius=2.5e-3),), math.radians(2), math.radians(2))
     for kw in (dict(velocity=4.0), dict(velocity=0.0, dry=True, nx=400)):
-        with pytest.raises(ParameterError, match=r"^corner_radius 0.0025 m is too large for "
-                           r"a point contact.*use corner_radius <= 0.00155 m") as info:
-            BearingModel(TapeParameters(), head=head, infinitely_wide=True, **kw)
-        assert "\n" not in str(info.value)
+        wrapped = BearingModel(TapeParameters(), head=head, infinitely_wide=True, **kw)
+        assert wrapped.wrapped_corners == (0, 1) and wrapped.corner_contacts == ()
     flown = BearingModel(TapeParameters(), velocity=4.0, infinitely_wide=True,
                          head=FlatHead((Module(1e-3, corner_radius=20e-6),),
                                        math.radians(2), math.radians(2)))
-    assert len(flown.corner_contacts) == 2
+    assert len(flown.corner_contacts) == 2 and flown.wrapped_corners == ()

@@ -17,7 +17,7 @@ import math
 import numpy as np
 import pytest
 from bearing_cases import flux_spread_1d
-from closed_forms import tensioned_plate_on_two_supports
+from closed_forms import plate_over_rounded_land
 from convergence import observed_order
 
 from gyroshell import ParameterError, TapeParameters
@@ -34,45 +34,6 @@ RADIUS = 100e-6
 FLANK = 20 * DEG
 
 
-def plate_over_rounded_land(L, S, t_in, t_out, lam, sigma, r, phi=FLANK):
-    """The exact tape (w, corner forces D[w'''] in N/m, contact points x₁, x₂ in m) over a
-    land [−L/2, L/2] at height 0 whose corners are arcs of radius r (parabolas, small
-    slopes) reaching r φ/2 either side of the corner points, spans pinned at
-    x = −L/2 − S and L/2 + S on the dry string (the arcs' tangent lines of slopes
-    +t_in, −t_out) with w'' = 0 there.
-
-    For given contacts the 12 constants of c₁ + c₂(x − x₀) + c₃e^{(x − x₁)/λ} + c₄e^{−(x −
-    x₀)/λ} per piece follow from a linear system; the contacts from the tangency, by the
-    fixed point x_k ← the arc's point of slope w'(x_k) (a contraction: r |w''| ≪ 1)."""
-    a, b = -L / 2, L / 2
-    lead, trail = a + 0.5 * r * phi, b - 0.5 * r * phi      # the land's tangent points
-
-    def arc(x, k):           # (z_h, z_h') on the arc of corner k (0 leading, 1 trailing)
-        d = lead - x if k == 0 else x - trail
-        return -d * d / (2 * r), (d / r if k == 0 else -d / r)
-
-    # the dry string's end heights: the tangent line of slope t at d = r t on each arc
-    z_left = -r * t_in**2 / 2 + t_in * ((a - S) - (lead - r * t_in))
-    z_right = -r * t_out**2 / 2 - t_out * ((b + S) - (trail + r * t_out))
-
-    def solve(x1, x2):
-        return tensioned_plate_on_two_supports(
-            (a - S, b + S), (x1, x2), lam, (z_left, z_right),
-            (arc(x1, 0)[0] + sigma, arc(x2, 1)[0] + sigma), TAPE.tension)
-
-    x1, x2 = lead - r * t_in / 2, trail + r * t_out / 2
-    for _ in range(50):
-        evaluate, forces = solve(x1, x2)
-        s1, s2 = evaluate(np.array([x1, x2]), 1)
-        new = (lead - r * s1, trail - r * s2)       # slope s at d = r s (lead), −r s (trail)
-        moved = max(abs(new[0] - x1), abs(new[1] - x2))
-        x1, x2 = new
-        if moved < 1e-16:
-            break
-    evaluate, forces = solve(x1, x2)
-    return (lambda x: evaluate(x, 0)), forces, (x1, x2)
-
-
 def _dry(nx, t_in=2 * DEG, t_out=2 * DEG, r=RADIUS, **kw):
     head = FlatHead((Module(LAND, corner_radius=r),), t_in, t_out, flank_angle=FLANK)
     return BearingModel(TAPE, AIR, velocity=0.0, head=head, span=SPAN, nx=nx, dry=True,
@@ -85,7 +46,8 @@ def test_closed_form_touches_each_arc_tangentially_inside_its_wrapped_part():
     sharp corners' contacts at the corner points."""
     lam = math.sqrt(TAPE.D / TAPE.tension)
     t = 2 * DEG
-    w, forces, (x1, x2) = plate_over_rounded_land(LAND, SPAN, t, t, lam, 0.0, RADIUS)
+    w, forces, (x1, x2) = plate_over_rounded_land(LAND, SPAN, t, t, lam, 0.0, RADIUS, FLANK,
+                                                  TAPE.tension)
     lead = -LAND / 2 + 0.5 * RADIUS * FLANK
     assert 0.0 < lead - x1 < RADIUS * t
     x = np.linspace(-LAND / 2 - 0.5 * RADIUS * FLANK, LAND / 2 + 0.5 * RADIUS * FLANK, 4001)
@@ -93,7 +55,7 @@ def test_closed_form_touches_each_arc_tangentially_inside_its_wrapped_part():
     clearance = w(x) - head.surface(x)
     assert clearance.min() > -1e-15
     assert forces == pytest.approx((TAPE.tension * t,) * 2, rel=0.15)
-    _, _, tiny = plate_over_rounded_land(LAND, SPAN, t, t, lam, 0.0, 1e-12)
+    _, _, tiny = plate_over_rounded_land(LAND, SPAN, t, t, lam, 0.0, 1e-12, FLANK, TAPE.tension)
     assert tiny == pytest.approx((-LAND / 2, LAND / 2), abs=1e-12)
 
 
@@ -104,7 +66,8 @@ def test_dry_tape_over_rounded_corners_matches_the_plate_and_converges(t_in, t_o
     node per corner (at the adapted contact point), second order."""
     lam = math.sqrt(TAPE.D / TAPE.tension)
     w, forces, contacts = plate_over_rounded_land(LAND, SPAN, t_in, t_out, lam,
-                                                  AIR.roughness, RADIUS)
+                                                  AIR.roughness, RADIUS, FLANK,
+                                                  TAPE.tension)
     steps, errs, ferrs, xerrs = [], [], [], []
     for nx in (96, 192, 384):
         sol = solve_steady(_dry(nx, t_in, t_out))

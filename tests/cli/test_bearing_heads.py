@@ -116,3 +116,18 @@ def test_two_dimensional_flat_head_reads_its_line_across_the_width(cli, tmp_path
     assert line["minimum"] == across.spacing_m.min() <= line["mean"]
     # the free edges let the suction out: the line is higher at the edges than mid-width
     assert across.spacing_m.iloc[0] > line["centre"] and across.spacing_m.iloc[-1] > line["centre"]
+
+
+@pytest.mark.slow
+def test_a_wrapped_corner_radius_answers_as_the_direct_solve(cli):
+    """--corner-radius 2.5e-3 at 2° (r_c θ_c = 0.48 bending lengths: the tape wraps the
+    arcs, once refused) answers with the direct solve's numbers (2.8 s: pseudo-time)."""
+    out = _json(cli, [*FLAT_1D, "--corner-radius", "2.5e-3"])
+    head = FlatHead((Module(1e-3, corner_radius=2.5e-3),), math.radians(2), math.radians(2),
+                    transducers=(0.0,))
+    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=head,
+                         infinitely_wide=True)
+    assert model.wrapped_corners == (0, 1)
+    direct = solve_steady(model)
+    assert out["central_spacing"] == pytest.approx(direct.central_spacing, rel=1e-9)
+    assert out["contact_force"] == pytest.approx(float(direct.contact.sum()), abs=1e-12)

@@ -182,8 +182,6 @@ PROFILE_ROWS = "x_m,z_m\n" + "".join(f"{x * 1e-4:.6e},{-(x * 1e-4) ** 2 / 0.04:.
     ([*FLAT, "--transducers", "0,2e-3"], None,
      "transducers[1] must lie on the head's wrapped region [-0.0005, 0.0005] m"),
     ([*FLAT, "--corner-radius", "0.01"], None, "is shorter than its corner radii allow"),
-    ([*FLAT, "--corner-radius", "2.5e-3"], None,
-     "corner_radius 0.0025 m is too large for a point contact"),
     (["--head", "{csv}", "--wrap-in", "1"], "", "the profile file is empty"),
     (["--head", "{csv}", "--wrap-in", "1"], "x,z\n0,0\n1e-4,oops\n", "row 2 is not numbers"),
     (["--head", "{csv}", "--wrap-in", "1"], "0,0\n2e-4,0\n1e-4,0\n3e-4,0\n",
