@@ -311,13 +311,18 @@ def _decreased(merit_trial: float, merit: float, alpha: float) -> bool:
 
 class _Iterate:
     """Newton's current state: z, its residual, contact set, Jacobian and merit, the last
-    factorization (a solver) and whether the contact set has settled."""
+    factorization (a solver), whether the contact set has settled, and whether the last
+    step was full and negligible (``tied``): if the next one, with the contact set the
+    rule gave after it, is negligible too, the state solves both linearizations, so the
+    nodes the rule flips are at the tie h = σ, λ = 0 (a tape lying on a flat land with no
+    force, where the rule, decided by round-off, cycles) and Newton has converged."""
 
     def __init__(self, F: _Residual, z0: np.ndarray) -> None:
         self.z = np.array(z0, dtype=float)
         self.res, self.active, self.J = F(self.z, jacobian=True)
         self.merit = F.merit(self.res)
         self.solver, self.last_step, self.settled = None, np.inf, False
+        self.tied = False
 
 
 def _newton_direction(F: _Residual, it: _Iterate) -> np.ndarray:
@@ -457,7 +462,6 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     # lifted tape, pseudo-time leads Newton instead).
     contact_step = _contact_set_step if it.active.any() else _forced_contact_step
     merits, alphas = [it.merit], []
-    tied = False
     for _ in range(max_iterations):
         h = it.z[:n_u] + model.dry_field[1:-1, :].ravel()
         dz = _newton_direction(F, it)
@@ -478,14 +482,10 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         it.settled = np.array_equal(active_new, it.active)
         it.active = active_new
         negligible = alpha == 1.0 and step < max(tol, floor)
-        if negligible and (it.settled or tied):
+        if negligible and (it.settled or it.tied):
             lam = np.where(it.active, F.tape(it.z[:n_u], it.z[n_u:]), 0.0)
             return it.z, lam, it.active, info
-        # A full negligible step whose state the rule puts in another contact set: if
-        # the next step (with that set) is negligible too, the state solves both
-        # linearizations, so its toggling nodes are at the tie h = σ, λ = 0 (a tape
-        # lying on a flat land with no force: the rule, decided by round-off, cycles).
-        tied = negligible
+        it.tied = negligible
         merits.append(it.merit)
         alphas.append(alpha)
         if _stagnated(merits, alphas):
