@@ -630,7 +630,7 @@ def initial_state(model: BearingModel, *,
         if (not model.cylindrical and not model.dry and model.nx > COARSE_START_MIN_NX
                 and not model.corner_contacts):
             z = _coarse_state(model, coarse_min_unknowns, progress, iteration_log)
-        if z is None and _flying_start_degenerate(model):
+        if z is None and _dry_retry(model) and _flying_start_degenerate(model):
             try:
                 z = _continuation_from_dry(model, None, NewtonInfo(), progress,
                                            iteration_log)[0]
@@ -654,9 +654,11 @@ FLYING_START_MIN_ROUGHNESS = 1.5
 
 
 def _flying_start_degenerate(model: BearingModel) -> bool:
-    """Whether ``model`` (an infinitely wide tape over a flat or profile head, at speed)
-    starts from the continuation up from the dry tape rather than its flying start."""
-    return (_dry_retry(model) and model.flying_start_spacing
+    """Whether the flying start of ``model`` (a flat or profile head, at speed) lies within
+    FLYING_START_MIN_ROUGHNESS σ of the land: the infinitely wide tape then starts from
+    the continuation up from the dry tape, and a 2-D tape that Newton cannot bring to its
+    state takes that continuation before pseudo-time."""
+    return (not (model.cylindrical or model.dry) and model.flying_start_spacing
             < FLYING_START_MIN_ROUGHNESS * model.air.roughness)
 
 
@@ -789,15 +791,19 @@ class _PseudoTime:
 def _newton_or_pseudo_time(model, z0, tension, info, progress, iteration_log):
     """Newton from z0; over a flat or profile head of an infinitely wide tape, if it fails,
     Newton from the dry tape (:meth:`BearingModel.dry_start`: at low speeds the film
-    barely pulls the tape below its dry tents); if that fails, pseudo-transient
+    barely pulls the tape below its dry tents), then the continuation in V up from the
+    dry tape (:func:`_continuation_from_dry`; also for a 2-D tape whose flying start is
+    degenerate, :func:`_flying_start_degenerate`); if that fails, pseudo-transient
     continuation from z0."""
+    up = _dry_retry(model) or (not model.infinitely_wide and _flying_start_degenerate(model))
     try:
         z, lam, _, info = newton(model, z0, tension=tension, info=info, log=iteration_log)
         return z, lam, info
     except ConvergenceError as exc:
         if progress is not None:
-            progress(f"{exc}: " + ("Newton from the dry tape" if _dry_retry(model)
-                                   else "pseudo-time continuation"))
+            progress(f"{exc}: " + ("Newton from the dry tape" if _dry_retry(model) else
+                                   "continuation in V up from the dry tape" if up else
+                                   "pseudo-time continuation"))
     if _dry_retry(model):
         try:
             z, lam, _, info = newton(model, model.dry_start(), tension=tension, info=info,
@@ -806,6 +812,7 @@ def _newton_or_pseudo_time(model, z0, tension, info, progress, iteration_log):
         except ConvergenceError as exc:
             if progress is not None:
                 progress(f"{exc}: continuation in V up from the dry tape")
+    if up:
         try:
             return _continuation_from_dry(model, tension, info, progress, iteration_log)
         except ConvergenceError as exc:
@@ -849,9 +856,10 @@ def _dry_continuation_speeds(velocity: float) -> list[float]:
 def _continuation_from_dry(model: BearingModel, tension, info: NewtonInfo, progress,
                            iteration_log):
     """Continuation in V up from the dry tape to ``model``'s speed on its grid: the first
-    stage by Newton from the dry tape (:meth:`BearingModel.dry_start`), each next one from
-    the last; a stage that fails is retried halfway (geometrically) from the last speed
-    reached, at most DRY_CONTINUATION_HALVINGS times in a row. At low speeds over a long
+    stage by Newton from the dry tape (:meth:`BearingModel.dry_start`; a 2-D tape from its
+    :func:`initial_state` there, the infinitely wide tape's state extruded), each next one
+    from the last; a stage that fails is retried halfway (geometrically) from the last
+    speed reached, at most DRY_CONTINUATION_HALVINGS times in a row. At low speeds over a long
     land this reaches the state that Newton from a flying start cannot: the tape tents
     over the land much as it does dry (7.0-9.9 um at the middle of a 3 mm land at 4°/4°,
     0.3-1 m/s, against 6.6 um dry). Returns (z, λ, info); raises ConvergenceError if a
@@ -866,7 +874,10 @@ def _continuation_from_dry(model: BearingModel, tension, info: NewtonInfo, progr
             if progress is not None:
                 progress(f"continuation from the dry tape: V = {v:.4g} m/s")
             try:
-                z1, lam, _, info = newton(stage, stage.dry_start() if z is None else z,
+                start = (z if z is not None else stage.dry_start() if stage.infinitely_wide
+                         else initial_state(stage, progress=progress,
+                                            iteration_log=iteration_log))
+                z1, lam, _, info = newton(stage, start,
                                           tension=tension, info=info, log=iteration_log,
                                           max_iterations=DRY_STAGE_ITERATIONS)
             except ConvergenceError:
