@@ -1,6 +1,7 @@
 """Steady flying state: monolithic Newton over (u, p) with a primal–dual active set for
-contact; pseudo-transient continuation, then continuation in V, when Newton cannot reach
-the state directly.
+contact; over flat and profile heads a continuation in V up from the dry tape (low speeds,
+where the flying start is degenerate), then pseudo-transient continuation, then
+continuation in V down from a faster film, when Newton cannot reach the state directly.
 
 Contact keeps the spacing at or above the roughness σ. With the contact forces λ >= 0 the
 conditions are complementary: h − σ >= 0, λ >= 0, λ (h − σ) = 0, written as the
