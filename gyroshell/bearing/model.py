@@ -761,7 +761,7 @@ class BearingModel:
         above the dry gap but with the sharp corners held at σ, solved."""
         dry = self.dry if dry is None else dry
         h0 = (DRY_START * self.wrap_angle * self.bending_length if dry
-              else FLAT_START * self.h_guess / _FOIL_GUESS)
+              else self.flying_start_spacing)
         sigma = self.air.roughness
         h0 = max(h0, sigma)
         U = np.full((self.nx - 1, self.nc), h0)
@@ -813,6 +813,12 @@ class BearingModel:
         # (c ~ D/h⁴ on the corner's fine cells) is not decided by the solve's round-off
         u[held] = U.ravel()[held]
         return u
+
+    @property
+    def flying_start_spacing(self) -> float:
+        """The land spacing of Newton's flying start over a flat or profile head, m:
+        :data:`FLAT_START` foil spacing scales (before it is raised to the roughness)."""
+        return FLAT_START * self.h_guess / _FOIL_GUESS
 
     def __repr__(self) -> str:
         kind = "infinitely wide" if self.infinitely_wide else f"width {self.params.width:g} m"
