@@ -57,21 +57,36 @@ def _check_point_contact(model, sol) -> None:
             "a smaller corner_radius")
 
 
-def solve_adapting_contacts(model, solve, *, z0=None, progress=None, **kw):
+def solve_adapting_contacts(model, solve, *, z0=None, progress=None, coarse_start=None,
+                            **kw):
     """The steady state of ``model`` with its rounded corners' contacts adapted (module
     notes): ``solve(fixed_model, z0=..., progress=..., **kw)`` (``solve_steady``) on each
     pass. The solution's model is the last pass's, its contacts converged; its info counts
     every pass's Newton iterations and records ``contact_passes`` and the last
     ``contact_move`` (in cells).
 
+    ``coarse_start`` (optional, used when ``z0`` is None): a callable taking the model and
+    returning the solution on a coarser grid with its contacts adapted there, or None
+    (``steady.coarse_solution``). Its contacts start the passes and its state,
+    interpolated onto each pass's grid, starts each pass's Newton: the coarse grid's
+    contacts lie within a fraction of a fine cell of the fine grid's, and Newton from the
+    coarse state needs a few iterations where the infinitely wide tape's start (the
+    free edges still to come down) needs tens, each a full 2-D factorization.
+
     Raises
     ------
     ConvergenceError
         If the contacts still move after :data:`MAX_CONTACT_PASSES` passes.
     """
-    current = model.rebuilt(adapt_contacts=False)
+    from .steady import interpolated_state
+
+    coarse = coarse_start(model) if coarse_start is not None and z0 is None else None
+    current = model.rebuilt(adapt_contacts=False, **(
+        {} if coarse is None else {"corner_contacts": coarse.model.corner_contacts}))
     iterations, moves = 0, []
     for passes in range(1, MAX_CONTACT_PASSES + 1):
+        if coarse is not None and z0 is None:
+            z0 = interpolated_state(current, coarse)
         sol = solve(current, z0=z0, progress=progress, **kw)
         iterations += sol.info.iterations
         new = current.updated_contacts(sol.u)
@@ -86,7 +101,13 @@ def solve_adapting_contacts(model, solve, *, z0=None, progress=None, **kw):
             sol.info.contact_move = moves[-1]
             current.adapt_contacts = model.adapt_contacts
             return sol
-        current, z0 = current.rebuilt(corner_contacts=new), None
+        moved = current.rebuilt(corner_contacts=new)
+        # a coarse-started pass whose contacts stay on their nodes restarts from its own
+        # state node for node (the nodes move by a fraction of a cell; the point loads
+        # stay on their nodes); else from the coarse state again, or the default start
+        z0 = (np.concatenate([sol.u, sol.p]) if coarse is not None
+              and np.array_equal(moved.contact_nodes, current.contact_nodes) else None)
+        current = moved
     raise ConvergenceError(
         f"the tape's contact on the rounded corners did not settle in "
         f"{MAX_CONTACT_PASSES} passes (moves {', '.join(f'{m:.3g}' for m in moves)} "
