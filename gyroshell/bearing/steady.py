@@ -624,8 +624,9 @@ def initial_state(model: BearingModel, *,
                 and not model.corner_contacts):
             z = _coarse_state(model, coarse_min_unknowns, progress, iteration_log)
         return model.initial_state() if z is None else z
-    # rounded corners: no coarse start (interpolated across their contacts' fine cells,
-    # it leads Newton astray; measured on 384 x 64); the extruded strip instead
+    # rounded corners with fixed contacts (a pass of corners.solve_adapting_contacts): the
+    # extruded strip; the adaptation itself starts a large 2-D model from the coarse grid
+    # with its contacts adapted there (coarse_solution), whose contacts differ
     z = (_coarse_state(model, coarse_min_unknowns, progress, iteration_log)
          if model.unknowns >= coarse_min_unknowns and not model.corner_contacts else None)
     return _extruded_strip_state(model, progress, iteration_log) if z is None else z
