@@ -715,15 +715,20 @@ def interpolated_state(model: BearingModel, sol: BearingSolution) -> np.ndarray:
     """The state [u, p] of ``sol`` (on its own model's grid, of the same mapping)
     interpolated (bilinearly) onto ``model``'s grid.
 
-    The tape's height w = z₀ + u is interpolated, not u: w is smooth where the dry string
-    z₀ is not between nodes (it follows a rounded corner's arc, curvature 1/r_c, over a
-    cell or two), and the plate's fourth difference on the corners' fine cells turns the
-    interpolation error of u there (~Δ²/(8 r_c)) into a residual that led Newton astray
-    (measured: scaled residual 7e12, 90 iterations). Where z₀ is piecewise linear with its
-    kinks on both grids' nodes (sharp corners) the two are the same."""
+    Over rounded corners the tape's height w = z₀ + u is interpolated, not u: the dry
+    string z₀ follows each arc (curvature 1/r_c) over a cell or two between nodes, which
+    the tape does not (it touches the arc at one point), so u is curved by 1/r_c there and
+    the plate's fourth difference on the corners' fine cells turns its interpolation error
+    into a residual that led Newton astray (measured: scaled residual 7e12, 90
+    iterations), while w is smooth. Elsewhere u is interpolated: the tape follows the
+    curvature of z₀ where it has any (a cylinder's wrap, 1/R: interpolating w there costs
+    the coarse start of a 3 mm tape 24 Newton iterations instead of 11, measured), and over
+    sharp corners (z₀ piecewise linear, its kinks on both grids' nodes) the two agree."""
     coarse = sol.model
 
     def tape_height(m: BearingModel) -> np.ndarray:
+        if not m.corner_contacts:
+            return np.zeros((m.nx + 1, 1))
         return m.head.dry_tape(m.x_head, m.head_radius)[:, None]
 
     w = sol.spacing - coarse.dry_field + tape_height(coarse)
