@@ -73,9 +73,10 @@ def solve_adapting_contacts(model, solve, *, z0=None, progress=None, coarse_star
     ``contact_move`` (in cells).
 
     ``coarse_start`` (optional, used when ``z0`` is None): a callable taking the model and
-    returning the solution on a coarser grid with its contacts adapted there, or None
-    (``steady.coarse_solution``). Its contacts start the passes and its state,
-    interpolated onto each pass's grid, starts each pass's Newton: the coarse grid's
+    returning None or (contacts, start): the contacts adapted on a coarser grid and a
+    callable giving that grid's solution interpolated onto a model's grid
+    (``steady.coarse_solution``, ``steady.interpolated_state``). The contacts start the
+    passes and the interpolated state each pass's Newton: the coarse grid's
     contacts lie within a fraction of a fine cell of the fine grid's, and Newton from the
     coarse state needs a few iterations where the infinitely wide tape's start (the
     free edges still to come down) needs tens, each a full 2-D factorization.
@@ -85,15 +86,13 @@ def solve_adapting_contacts(model, solve, *, z0=None, progress=None, coarse_star
     ConvergenceError
         If the contacts still move after :data:`MAX_CONTACT_PASSES` passes.
     """
-    from .steady import interpolated_state
-
     coarse = coarse_start(model) if coarse_start is not None and z0 is None else None
     current = model.rebuilt(adapt_contacts=False, **(
-        {} if coarse is None else {"corner_contacts": coarse.model.corner_contacts}))
+        {} if coarse is None else {"corner_contacts": coarse[0]}))
     iterations, moves = 0, []
     for passes in range(1, MAX_CONTACT_PASSES + 1):
         if coarse is not None and z0 is None:
-            z0 = interpolated_state(current, coarse)
+            z0 = coarse[1](current)
         sol = solve(current, z0=z0, progress=progress, **kw)
         iterations += sol.info.iterations
         new = current.updated_contacts(sol.u)

@@ -691,12 +691,17 @@ def coarse_solution(model: BearingModel, coarse_min_unknowns: int = COARSE_START
 def _rounded_coarse_start(coarse_min_unknowns: int, progress, iteration_log):
     """The coarse start of a 2-D tape over rounded corners, for
     :func:`~.corners.solve_adapting_contacts`: a callable taking the model and returning
-    its :func:`coarse_solution` (contacts adapted there), or None when the model is
-    infinitely wide or has fewer than ``coarse_min_unknowns`` unknowns."""
-    def start(model: BearingModel) -> BearingSolution | None:
+    (the contacts of its :func:`coarse_solution`, adapted there; a callable giving that
+    solution :func:`interpolated_state` onto a model's grid), or None when the model is
+    infinitely wide, has fewer than ``coarse_min_unknowns`` unknowns or the coarse solve
+    fails."""
+    def start(model: BearingModel):
         if model.infinitely_wide or model.unknowns < coarse_min_unknowns:
             return None
-        return coarse_solution(model, coarse_min_unknowns, progress, iteration_log)
+        sol = coarse_solution(model, coarse_min_unknowns, progress, iteration_log)
+        if sol is None:
+            return None
+        return sol.model.corner_contacts, lambda fine: interpolated_state(fine, sol)
     return start
 
 
