@@ -545,8 +545,11 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     if model.adapt_contacts and model.corner_contacts:   # rounded corners: see .corners
         from .corners import solve_adapting_contacts
 
-        return solve_adapting_contacts(model, solve_steady, z0=z0, tension=tension,
-                                       progress=progress, iteration_log=iteration_log)
+        return solve_adapting_contacts(
+            model, solve_steady, z0=z0, tension=tension, progress=progress,
+            iteration_log=iteration_log,
+            coarse_start=None if tension is not None else _rounded_coarse_start(
+                COARSE_START_MIN_UNKNOWNS, progress, iteration_log))
     start = time.perf_counter()
     info = NewtonInfo()
     if z0 is None:
@@ -641,8 +644,9 @@ def initial_state(model: BearingModel, *,
             except ConvergenceError:
                 z = None
         return model.initial_state() if z is None else z
-    # rounded corners: no coarse start (interpolated across their contacts' fine cells,
-    # it leads Newton astray; measured on 384 x 64); the extruded strip instead
+    # rounded corners with fixed contacts (a pass of corners.solve_adapting_contacts): the
+    # extruded strip; the adaptation itself starts a large 2-D model from the coarse grid
+    # with its contacts adapted there (coarse_solution), whose contacts differ
     z = (_coarse_state(model, coarse_min_unknowns, progress, iteration_log)
          if model.unknowns >= coarse_min_unknowns and not model.corner_contacts else None)
     return _extruded_strip_state(model, progress, iteration_log) if z is None else z
@@ -670,10 +674,22 @@ def _coarse_state(model: BearingModel, coarse_min_unknowns: int, progress=None,
                   iteration_log=None) -> np.ndarray | None:
     """The steady state on the grid twice as coarse in x and y, interpolated
     (bilinearly) onto the model's grid; None if that grid would be too coarse or neither
-    Newton nor the pseudo-time march reaches the state there. The coarse grid starts from
-    its own :func:`initial_state` (with ``coarse_min_unknowns``). Most of Newton's
-    iterations move the free edges down from the infinitely wide start; on the coarse grid
-    they cost a fraction of a fine-grid factorization."""
+    Newton nor the pseudo-time march reaches the state there (:func:`coarse_solution`).
+    Most of Newton's iterations move the free edges down from the infinitely wide start;
+    on the coarse grid they cost a fraction of a fine-grid factorization."""
+    sol = coarse_solution(model, coarse_min_unknowns, progress, iteration_log)
+    return None if sol is None else interpolated_state(model, sol)
+
+
+def coarse_solution(model: BearingModel, coarse_min_unknowns: int = COARSE_START_MIN_UNKNOWNS,
+                    progress=None, iteration_log=None) -> BearingSolution | None:
+    """The steady state on the grid twice as coarse in x and y (the same mapping); None
+    if that grid would be too coarse or its solve fails. The coarse grid starts from its
+    own :func:`initial_state` (with ``coarse_min_unknowns``): Newton, then pseudo-time
+    (no continuation in V). With rounded corners (``model.adapt_contacts``) the coarse
+    grid adapts its own contacts (:func:`~.corners.solve_adapting_contacts`, itself
+    started from the grid twice as coarse again): the solution's model holds them, the
+    start of the fine grid's contacts."""
     nx = model.nx // 2 + (model.nx // 2) % 2
     ny = None if model.infinitely_wide else model.ny // 2 + (model.ny // 2) % 2
     if (ny is not None and ny < MIN_INTERVALS_ACROSS) or nx < MIN_INTERVALS_ALONG:
@@ -684,6 +700,19 @@ def _coarse_state(model: BearingModel, coarse_min_unknowns: int, progress=None,
         return None
     if ny is not None and coarse.y[1] - coarse.y[0] > COARSE_START_MAX_Y_SPACING:
         return None
+    if coarse.corner_contacts and model.adapt_contacts:
+        from .corners import solve_adapting_contacts
+
+        if progress is not None:
+            progress(f"start: solving the coarse grid {nx} x {ny} ({coarse.unknowns} "
+                     "unknowns), its rounded corners' contacts adapted")
+        try:
+            return solve_adapting_contacts(
+                coarse, _coarse_newton, progress=progress, iteration_log=iteration_log,
+                coarse_start=_rounded_coarse_start(coarse_min_unknowns, progress,
+                                                   iteration_log))
+        except ConvergenceError:
+            return None
     try:   # Newton, then pseudo-time (no continuation in V): cheap on a coarse grid
         start = initial_state(coarse, coarse_min_unknowns=coarse_min_unknowns,
                               progress=progress, iteration_log=iteration_log)
@@ -694,16 +723,60 @@ def _coarse_state(model: BearingModel, coarse_min_unknowns: int, progress=None,
                                               iteration_log)
     except ConvergenceError:
         return None
-    sol = BearingSolution(coarse, z[:coarse.n_u], z[coarse.n_u:], lam, info)
-    return _interpolated_state(model, coarse, sol)
+    return BearingSolution(coarse, z[:coarse.n_u], z[coarse.n_u:], lam, info)
 
 
-def _interpolated_state(model: BearingModel, coarse: BearingModel,
-                        sol: BearingSolution) -> np.ndarray:
-    """The state [u, p] of ``sol`` (on ``coarse``'s grid) interpolated bilinearly onto
-    ``model``'s grid."""
+def _rounded_coarse_start(coarse_min_unknowns: int, progress, iteration_log):
+    """The coarse start of a 2-D tape over rounded corners, for
+    :func:`~.corners.solve_adapting_contacts`: a callable taking the model and returning
+    (the contacts of its :func:`coarse_solution`, adapted there; a callable giving that
+    solution :func:`interpolated_state` onto a model's grid), or None when the model is
+    infinitely wide, has fewer than ``coarse_min_unknowns`` unknowns or the coarse solve
+    fails."""
+    def start(model: BearingModel):
+        if model.infinitely_wide or model.unknowns < coarse_min_unknowns:
+            return None
+        sol = coarse_solution(model, coarse_min_unknowns, progress, iteration_log)
+        if sol is None:
+            return None
+        return sol.model.corner_contacts, lambda fine: interpolated_state(fine, sol)
+    return start
+
+
+def _coarse_newton(model: BearingModel, *, z0=None, progress=None,
+                   iteration_log=None) -> BearingSolution:
+    """One fixed-contact pass of a coarse start (:func:`coarse_solution`): Newton, then
+    pseudo-time, from ``z0`` or the model's :func:`initial_state`; no continuation."""
+    if z0 is None:
+        z0 = initial_state(model, progress=progress, iteration_log=iteration_log)
+    z, lam, info = _newton_or_pseudo_time(model, z0, None, NewtonInfo(), progress,
+                                          iteration_log)
+    return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
+
+
+def interpolated_state(model: BearingModel, sol: BearingSolution) -> np.ndarray:
+    """The state [u, p] of ``sol`` (on its own model's grid, of the same mapping)
+    interpolated (bilinearly) onto ``model``'s grid.
+
+    Over rounded corners the tape's height w = z₀ + u is interpolated, not u: the dry
+    string z₀ follows each arc (curvature 1/r_c) over a cell or two between nodes, which
+    the tape does not (it touches the arc at one point), so u is curved by 1/r_c there and
+    the plate's fourth difference on the corners' fine cells turns its interpolation error
+    into a residual that led Newton astray (measured: scaled residual 7e12, 90
+    iterations), while w is smooth. Elsewhere u is interpolated: the tape follows the
+    curvature of z₀ where it has any (a cylinder's wrap, 1/R: interpolating w there costs
+    the coarse start of a 3 mm tape 24 Newton iterations instead of 11, measured), and over
+    sharp corners (z₀ piecewise linear, its kinks on both grids' nodes) the two agree."""
+    coarse = sol.model
+
+    def tape_height(m: BearingModel) -> np.ndarray:
+        if not m.corner_contacts:
+            return np.zeros((m.nx + 1, 1))
+        return m.head.dry_tape(m.x_head, m.head_radius)[:, None]
+
+    w = sol.spacing - coarse.dry_field + tape_height(coarse)
     if model.infinitely_wide:
-        u = np.interp(model.x, coarse.x, (sol.spacing - coarse.dry_field)[:, 0])[1:-1]
+        u = (np.interp(model.x, coarse.x, w[:, 0]) - tape_height(model)[:, 0])[1:-1]
         p = np.interp(model.x, coarse.x, sol.pressure[:, 0])[1:-1]
         return np.concatenate([u, p])
     from scipy.interpolate import RegularGridInterpolator
@@ -711,10 +784,10 @@ def _interpolated_state(model: BearingModel, coarse: BearingModel,
     X, Y = np.meshgrid(model.x, model.y, indexing="ij")
     pts = np.column_stack([X.ravel(), Y.ravel()])
     fields = []
-    for f in (sol.spacing - coarse.dry_field, sol.pressure):
+    for f in (w, sol.pressure):
         fields.append(RegularGridInterpolator((coarse.x, coarse.y), f)(pts)
                       .reshape(X.shape))
-    u = fields[0][1:-1, :].ravel()
+    u = (fields[0] - tape_height(model))[1:-1, :].ravel()
     return np.concatenate([u, fields[1][model.film.interior]])
 
 

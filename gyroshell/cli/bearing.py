@@ -407,8 +407,10 @@ def _solve(model, progress):
             log("start: a first solve on a coarser grid (or of the infinitely wide tape) "
                 "for Newton's starting state")
     try:
-        z0 = initial_state(model)
-        if log is not None and not model.infinitely_wide:
+        # rounded corners start inside their contacts' adaptation (from the coarse grid
+        # with its contacts adapted there: steady.coarse_solution)
+        z0 = None if model.adapt_contacts and model.corner_contacts else initial_state(model)
+        if log is not None and not model.infinitely_wide and z0 is not None:
             log("start: ready")
         sol = solve_steady(model, z0=z0, progress=log, iteration_log=log)
     except ConvergenceError as exc:
