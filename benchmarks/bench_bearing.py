@@ -41,7 +41,7 @@ import scipy.sparse.linalg as spla
 
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
-from gyroshell.bearing.steady import _ORDERINGS, _Residual, solve_steady
+from gyroshell.bearing.steady import _PATTERNS, _Residual, solve_steady
 from gyroshell.core.parallel import blas_threads
 from gyroshell.linalg.factorization import (
     DiagonalPivotLU,
@@ -56,7 +56,7 @@ from gyroshell.linalg.factorization import (
 def folded_jacobian(model: BearingModel, z: np.ndarray):
     """The folded 2-D Jacobian at the state z, as Newton factors it."""
     F = _Residual(model, None, None)
-    _, _, J = F(z, jacobian=True)
+    J = F(z, jacobian=True)[2].matrix
     P, rows = model.mirror
     return F, (J[rows, :] @ P).tocsc()
 
@@ -121,7 +121,7 @@ def compare_backends(args, wrap: float) -> int:
                     _calls.append(time.perf_counter() - start)
                     return solver
                 _Residual.factor = counted
-                _ORDERINGS.clear()          # each solve orders its grids afresh
+                _PATTERNS.clear()           # each solve orders its grids afresh
                 try:
                     start = time.perf_counter()
                     sols[b] = solve_steady(models[b])
@@ -161,7 +161,7 @@ def compare_backends(args, wrap: float) -> int:
 def one_lu(model: BearingModel) -> float:
     """Seconds for one factorization of the folded 2-D Jacobian at Newton's start."""
     F = _Residual(model, None, None)
-    _, _, J = F(model.initial_state(), jacobian=True)
+    J = F(model.initial_state(), jacobian=True)[2].matrix
     P, rows = model.mirror
     Jh = (J[rows, :] @ P).tocsc()
     start = time.perf_counter()

@@ -908,19 +908,29 @@ class BearingModel:
         Spacings below half the roughness (reachable only during Newton iterations, before
         the contact set catches them) are floored there so that the film stays defined.
         """
+        r, J_p, J_h, free = self.film_linearization(u, p, phi_old=phi_old, dt=dt,
+                                                    jacobian=jacobian)
+        if not jacobian:
+            return r, None, None
+        J_u = J_h[:, self.nc:self.nc + self.n_u]
+        if not free.all():
+            J_u = J_u @ sp.diags(free.astype(float))
+        return r, J_p, J_u.tocsr()
+
+    def film_linearization(self, u: np.ndarray, p: np.ndarray, *, phi_old=None, dt=None,
+                           jacobian: bool = True):
+        """(r_p, ∂r_p/∂p, ∂r_p/∂h over every node, free): :meth:`film_residual` with the
+        film's blocks in their fixed patterns (:class:`.film.Film`), for an assembly into
+        a fixed pattern (:mod:`.jacobian`); ``free`` is False at the unknowns whose
+        spacing was floored (r_p does not depend on them there). Without ``jacobian``
+        the blocks are None."""
         H = self.spacing_field(u)
         floor = 0.5 * self.air.roughness
         clipped = H < floor
         Hf = np.where(clipped, floor, H)
         r, J_p, J_h = self.film_residual_fields(self.pressure_field(p), Hf, phi_old=phi_old,
                                                 dt=dt, jacobian=jacobian)
-        if not jacobian:
-            return r, None, None
-        J_u = J_h[:, self.nc:self.nc + self.n_u]
-        free = ~clipped[1:-1, :].ravel()
-        if not free.all():
-            J_u = J_u @ sp.diags(free.astype(float))
-        return r, J_p, J_u.tocsr()
+        return r, J_p, J_h, ~clipped[1:-1, :].ravel()
 
     def film_residual_fields(self, P, H, **kw):
         return self.film.residual(P, H, **kw)

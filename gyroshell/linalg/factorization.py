@@ -434,22 +434,29 @@ class DiagonalPivotLU:
     permutation : numpy.ndarray of int, optional
         The symmetric ordering P (e.g. :func:`nested_dissection`, computed once for many
         matrices of one pattern); default minimum degree on Aᵀ + A, computed by SuperLU.
+    ordered : bool
+        The matrix is already in its elimination order (P A Pᵀ assembled as such, e.g. by
+        :class:`gyroshell.bearing.jacobian.JacobianPattern`): factored as it is, and
+        solves are in its numbering. Excludes ``permutation``.
     """
 
     name = "superlu-diagonal"
 
-    def __init__(self, matrix: sp.spmatrix, *, permutation: np.ndarray | None = None) -> None:
+    def __init__(self, matrix: sp.spmatrix, *, permutation: np.ndarray | None = None,
+                 ordered: bool = False) -> None:
         start = time.perf_counter()
-        self._A = sp.csr_matrix(matrix)
-        self._abs = abs(self._A)
+        if ordered and permutation is not None:
+            raise ParameterError("DiagonalPivotLU: give a permutation or ordered=True, "
+                                 "not both")
+        csc = sp.csc_matrix(matrix)
         self._perm = permutation
-        if permutation is None:
-            self._lu = spla.splu(sp.csc_matrix(self._A), permc_spec=DIAGONAL_PIVOT_ORDERING,
-                                 diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-        else:
-            self._lu = spla.splu(sp.csc_matrix(self._A[permutation][:, permutation]),
-                                 permc_spec="NATURAL", diag_pivot_thresh=0.0,
-                                 options={"SymmetricMode": True})
+        if permutation is not None:
+            csc = csc[permutation][:, permutation]
+        self._A = csc          # the factored matrix, in the order of its elimination
+        self._abs = abs(csc)
+        self._lu = spla.splu(csc, permc_spec="NATURAL" if ordered or permutation is not None
+                             else DIAGONAL_PIVOT_ORDERING, diag_pivot_thresh=0.0,
+                             options={"SymmetricMode": True})
         #: whether a small pivot made it fall back to partial pivoting
         self.pivoted = False
         self.factor_time = time.perf_counter() - start
@@ -458,20 +465,14 @@ class DiagonalPivotLU:
     def available() -> bool:
         return True
 
-    def _substitute(self, rhs: np.ndarray) -> np.ndarray:
-        if self.pivoted or self._perm is None:
-            return self._lu.solve(rhs)
-        x = np.empty_like(rhs)
-        x[self._perm] = self._lu.solve(rhs[self._perm])
-        return x
-
     def backward_error(self, x: np.ndarray, rhs: np.ndarray) -> float:
-        """max|A x − b| / max(|A||x| + |b|): the relative backward error of a solve."""
+        """max|A x − b| / max(|A||x| + |b|): the relative backward error of a solve (x and
+        b in the factored matrix's order)."""
         scale = float(np.max(self._abs @ np.abs(x) + np.abs(rhs), initial=0.0))
         return float(np.max(np.abs(self._A @ x - rhs), initial=0.0)) / scale if scale else 0.0
 
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        x = self._substitute(rhs)
+    def _solve_ordered(self, rhs: np.ndarray) -> np.ndarray:
+        x = self._lu.solve(rhs)
         if not self.pivoted and not (np.all(np.isfinite(x))
                                      and self.backward_error(x, rhs) <= BACKWARD_ERROR_LIMIT):
             start = time.perf_counter()
@@ -479,6 +480,13 @@ class DiagonalPivotLU:
             self.pivoted = True
             self.factor_time += time.perf_counter() - start
             x = self._lu.solve(rhs)
+        return x
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        if self._perm is None:
+            return self._solve_ordered(rhs)
+        x = np.empty_like(rhs)
+        x[self._perm] = self._solve_ordered(rhs[self._perm])
         return x
 
 
