@@ -215,6 +215,8 @@ class _Residual:
         assembled into its grid's fixed pattern (:mod:`.jacobian`), in the elimination
         order of a nested dissection ("metis")."""
         kind = _jacobian_lu(self.model)
+        if kind == "colamd":
+            return self._factor_pivoted(lin)
         pattern = self._pattern(kind, lin)
         J = pattern.matrix(self.tape_rows.data, lin.active, self.c, lin.J_h, lin.J_p,
                            None if lin.free.all() else lin.free)
@@ -223,14 +225,40 @@ class _Residual:
                 lu = DiagonalPivotLU(J, ordered=True)
             elif kind == "mmd":
                 lu = DiagonalPivotLU(J)
-            elif kind == "pardiso":
-                lu = PardisoFactor(J)
             else:
-                lu = SuperLUFactor(J, ordering=JACOBIAN_ORDERING)
+                lu = PardisoFactor(J)
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
         take, put = pattern.input, pattern.output      # compiled by the assembly
         return lambda res: -lu.solve(res[take])[put]
+
+    def _factor_pivoted(self, lin: Linearization):
+        """:meth:`factor` by SuperLU's partial pivoting after COLAMD (the infinitely wide
+        tape's banded Jacobian, or ``factorization="colamd"``), on the matrix as it
+        always was: the stacked blocks without explicit zeros (COLAMD orders the pattern
+        it is given: explicit zeros would move its order and so the iterates'
+        round-off), folded by the mirror on a symmetric 2-D tape."""
+        m = self.model
+        rows_u = self.tape_rows
+        if lin.active.any():
+            rows_u = (sp.diags((~lin.active).astype(float)) @ rows_u
+                      + sp.diags(lin.active * self.c, shape=rows_u.shape))
+        J_pu = lin.J_h[:, m.nc:m.nc + m.n_u]
+        if not lin.free.all():
+            J_pu = J_pu @ sp.diags(lin.free.astype(float))
+        film_rows = sp.hstack([J_pu.tocsr(), lin.J_p], format="csr")
+        J = sp.vstack([rows_u, film_rows], format="csc")
+        fold = m.mirror
+        if fold is not None:
+            P, rows = fold
+            J = (J[rows, :] @ P).tocsc()
+        try:
+            lu = SuperLUFactor(J, ordering=JACOBIAN_ORDERING)
+        except RuntimeError as exc:  # exactly singular
+            raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
+        if fold is None:
+            return lambda res: -lu.solve(res)
+        return lambda res: -(P @ lu.solve(res[rows]))
 
     def _pattern(self, kind: str, lin: Linearization) -> JacobianPattern:
         """The Jacobian's folded pattern, ordered by nested dissection for "metis" (the
@@ -441,9 +469,11 @@ def _noise_step(F: _Residual, it: _Iterate) -> float:
     (the rows' round-off :attr:`_Residual.noise_rows` with fixed pseudo-random signs,
     through the step's factorization): the floor below which steps cannot shrink. On a
     grid refined far below the bending length at a corner (the plate's fourth difference
-    scales like h⁻⁴) it may lie above the step tolerance. Once per factorization: chord
-    steps near convergence move the rows' round-off by a fraction of itself."""
-    if it.noise_of is not it.solver:
+    scales like h⁻⁴) it may lie above the step tolerance. On a 2-D tape once per
+    factorization (chord steps near convergence move the rows' round-off by a fraction of
+    itself); the infinitely wide tape's banded substitution costs next to nothing, so it
+    is formed at every state there."""
+    if F.model.infinitely_wide or it.noise_of is not it.solver:
         signs = np.random.default_rng(0).choice((-1.0, 1.0), size=F.noise_rows.size)
         it.noise_step = _norm(it.solver(signs * F.noise_rows), F.model.n_u, F)
         it.noise_of = it.solver
