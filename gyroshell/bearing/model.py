@@ -801,6 +801,13 @@ class BearingModel:
         return full[:, self.film._pattern["node_of_p"]].tocsr()
 
     @cached_property
+    def unknown_nodes(self) -> np.ndarray:
+        """The grid node (i nc + j) of each unknown: the tape's u (every node but the
+        pinned end lines x = 0 and x = L), then the film's p (its interior nodes)."""
+        return np.concatenate([np.arange(self.n_u) + self.nc,
+                               self.film._pattern["node_of_p"]])
+
+    @cached_property
     def mirror(self) -> tuple[sp.csr_matrix, np.ndarray] | None:
         """(P, rows) for states symmetric about the tape's centre line y = L_y/2: P maps
         the unknowns of the half 0 <= y <= L_y/2 to the whole, ``rows`` picks that half's

@@ -30,6 +30,7 @@ from ..linalg.factorization import (
     nested_dissection,
     resolve_pattern_lu,
 )
+from ..linalg.grid_ordering import grid_nested_dissection
 from ..tape.parameters import MIN_INTERVALS_ACROSS
 from .jacobian import JacobianPattern
 from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel
@@ -155,6 +156,9 @@ class _Residual:
         self._abs_tape_rows = abs(self.tape_rows)
         #: the Jacobian's folded pattern (:meth:`_pattern`), once formed
         self._jacobian_pattern = None
+        #: (z, result) of the last residual evaluated alone, and the film's ∂r_p/∂p of
+        #: the last Jacobian (:meth:`update_noise`)
+        self._last, self._film_pp = None, None
         self._abs_loads = (np.abs(model.effective_tension(tension) * model.W
                                   * model.kappa_nodes) + np.abs(model.f_kappa))
 
@@ -181,7 +185,11 @@ class _Residual:
     def __call__(self, z, *, jacobian: bool, force=None, active=None):
         """(residual, contact set, Jacobian or None). ``force``: nodes put in the contact
         set whatever their residual (the nodes a Newton step predicts below σ);
-        ``active``: the contact set itself, in place of the rule."""
+        ``active``: the contact set itself, in place of the rule. The residual alone at
+        the state last evaluated (the line search's accepted trial) is not formed again."""
+        plain = not jacobian and force is None and active is None
+        if plain and self._last is not None and self._last[0] is z:
+            return self._last[1]
         m = self.model
         u, p = z[:m.n_u], z[m.n_u:]
         r_u = self.tape(u, p)
@@ -193,10 +201,19 @@ class _Residual:
             active = active | force
         res = np.concatenate([np.where(active, gap, r_u), r_p])
         if not jacobian:
+            self._last = (z, (res, active, None)) if plain else None
             return res, active, None
         #: the round-off floor of the merit at the last state whose Jacobian was formed
         self.noise = self._noise(u, p, J_pp)
+        self._film_pp = J_pp
         return res, active, Linearization(self, active, J_h, J_pp, free)
+
+    def update_noise(self, z) -> None:
+        """:attr:`noise` (and :attr:`noise_rows`) at the state z, with the film's ∂r_p/∂p
+        of the last Jacobian formed (a round-off estimate: chord steps do not form the
+        Jacobian)."""
+        m = self.model
+        self.noise = self._noise(z[:m.n_u], z[m.n_u:], self._film_pp)
 
     def jacobian(self, lin: Linearization) -> sp.csr_matrix:
         """The whole (unfolded) Jacobian of the linearization ``lin``, CSR."""
@@ -213,7 +230,7 @@ class _Residual:
         ``factorization``. A 2-D tape, symmetric about its centre line, is solved on half
         the width (the step stays symmetric: P δ_half, P the mirror). The matrix is
         assembled into its grid's fixed pattern (:mod:`.jacobian`), in the elimination
-        order of a nested dissection ("metis")."""
+        order of a nested dissection ("grid", "metis")."""
         kind = _jacobian_lu(self.model)
         if kind == "colamd":
             return self._factor_pivoted(lin)
@@ -221,7 +238,7 @@ class _Residual:
         J = pattern.matrix(self.tape_rows.data, lin.active, self.c, lin.J_h, lin.J_p,
                            None if lin.free.all() else lin.free)
         try:
-            if kind == "metis":
+            if kind in _ORDERINGS:
                 lu = DiagonalPivotLU(J, ordered=True)
             elif kind == "mmd":
                 lu = DiagonalPivotLU(J)
@@ -261,12 +278,13 @@ class _Residual:
         return lambda res: -(P @ lu.solve(res[rows]))
 
     def _pattern(self, kind: str, lin: Linearization) -> JacobianPattern:
-        """The Jacobian's folded pattern, ordered by nested dissection for "metis" (the
+        """The Jacobian's folded pattern, ordered by nested dissection for "metis" and
+        "grid" (the
         pattern without contact: valid for every contact set, a contact row keeping its
         entries as zeros). Formed once per grid and solver kind (:func:`_grid_pattern`)."""
         if self._jacobian_pattern is None:
             self._jacobian_pattern = _grid_pattern(self.tape_rows, lin.J_h, lin.J_p,
-                                                   self.model, kind == "metis")
+                                                   self.model, kind)
         return self._jacobian_pattern
 
     def merit(self, res) -> float:
@@ -306,12 +324,19 @@ _PATTERNS: dict[bytes, JacobianPattern] = {}
 PATTERNS_KEPT = 4
 
 
-def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, ordered: bool) -> JacobianPattern:
-    """:class:`.jacobian.JacobianPattern` of the blocks (ordered by
-    :func:`gyroshell.linalg.factorization.nested_dissection` if ``ordered``), formed once
-    per pattern."""
+#: The nested-dissection orderings of the folded pattern, by factorization kind.
+_ORDERINGS = ("metis", "grid")
+
+
+def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> JacobianPattern:
+    """:class:`.jacobian.JacobianPattern` of the blocks, in the elimination order of a
+    nested dissection for ``kind`` "metis"
+    (:func:`gyroshell.linalg.factorization.nested_dissection`) and "grid"
+    (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
+    grid nodes), formed once per pattern."""
     fold = model.mirror
-    parts = [np.asarray([model.nc, ordered, *J_h.shape, *J_p.shape], dtype=np.int64)]
+    ordering = _ORDERINGS.index(kind) + 1 if kind in _ORDERINGS else 0
+    parts = [np.asarray([model.nc, ordering, *J_h.shape, *J_p.shape], dtype=np.int64)]
     for A in (tape_rows, J_h, J_p):
         parts += [A.indptr, A.indices]
     if fold is not None:
@@ -323,8 +348,13 @@ def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, ordered: bool) -> Ja
     pattern = _PATTERNS.pop(key, None)
     if pattern is None:
         pattern = JacobianPattern(tape_rows, J_h, J_p, model.nc, fold)
-        if ordered:
+        if kind == "metis":
             pattern.order(nested_dissection(pattern.graph()))
+        elif kind == "grid":
+            node = model.unknown_nodes[pattern.kept]
+            pattern.order(grid_nested_dissection(
+                pattern.graph(), np.column_stack(np.divmod(node, model.nc)),
+                (pattern.kept >= model.n_u).astype(int)))
     _PATTERNS[key] = pattern
     while len(_PATTERNS) > PATTERNS_KEPT:
         del _PATTERNS[next(iter(_PATTERNS))]
@@ -387,6 +417,8 @@ def _newton_direction(F: _Residual, it: _Iterate) -> np.ndarray:
         dz = it.solver(it.res)
         if _norm(dz, n_u, F) <= contraction * it.last_step:
             return dz
+    if it.J is None:       # a 2-D tape forms its Jacobian only to factor it
+        it.J = F(it.z, jacobian=True, active=it.active)[2]
     it.solver = F.factor(it.J)
     return it.solver(it.res)
 
@@ -521,6 +553,9 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     # lifted tape, pseudo-time leads Newton instead).
     contact_step = _contact_set_step if it.active.any() else _forced_contact_step
     merits, alphas = [it.merit], []
+    # A 2-D tape's chord steps need no Jacobian: it is formed when factored; the
+    # infinitely wide tape's (a few thousand unknowns) at every iterate, as it always was.
+    lazy = not model.infinitely_wide
     for _ in range(max_iterations):
         h = it.z[:n_u] + model.dry_field[1:-1, :].ravel()
         dz = _newton_direction(F, it)
@@ -531,7 +566,11 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol, F.noise)
         alpha, step, it.z, _ = contact_step(F, it, h, dz, found, tol)
         it.last_step = step
-        it.res, active_new, it.J = F(it.z, jacobian=True)
+        if lazy:
+            it.res, active_new, it.J = F(it.z, jacobian=False)
+            F.update_noise(it.z)
+        else:
+            it.res, active_new, it.J = F(it.z, jacobian=True)
         it.merit = F.merit(it.res)
         contacts = int(active_new.sum())
         _record(info, alpha * step, it.merit, contacts)

@@ -119,7 +119,8 @@ def _tape_parser() -> argparse.ArgumentParser:
 
 #: The choices of --factorization (gyroshell.linalg.factorization.PATTERN_LU, spelled out
 #: so that the options are refused before scipy is imported).
-FACTORIZATION_CHOICES: tuple[str, ...] = ("auto", "metis", "mmd", "colamd", "pardiso")
+FACTORIZATION_CHOICES: tuple[str, ...] = ("auto", "grid", "metis", "mmd", "colamd",
+                                           "pardiso")
 
 
 def _add_bearing_options(p: argparse.ArgumentParser) -> None:

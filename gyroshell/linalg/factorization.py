@@ -492,12 +492,13 @@ class DiagonalPivotLU:
 
 #: The sparse LUs of a nonsymmetric matrix whose pattern is (nearly) symmetric, e.g. the
 #: bearing's Jacobian (``factorization=`` of :class:`gyroshell.bearing.BearingModel`):
-#: "metis" SuperLU with diagonal pivots after METIS's nested dissection (pymetis), the
-#: ordering computed once per pattern; "mmd" the same after minimum degree on Aᵀ + A (pure
-#: scipy, ordered at each factorization); "colamd" SuperLU with COLAMD and partial
-#: pivoting (the earlier default); "pardiso" MKL PARDISO (pypardiso); "auto" "metis" where
-#: pymetis is installed, else "mmd".
-PATTERN_LU = ("auto", "metis", "mmd", "colamd", "pardiso")
+#: "grid" SuperLU with diagonal pivots after a nested dissection along the grid's node
+#: lines (:mod:`gyroshell.linalg.grid_ordering`, pure numpy, once per grid); "metis" the
+#: same after METIS's nested dissection (pymetis), once per grid; "mmd" the same after
+#: minimum degree on Aᵀ + A (pure scipy, ordered at each factorization); "colamd" SuperLU
+#: with COLAMD and partial pivoting (the earlier default); "pardiso" MKL PARDISO
+#: (pypardiso); "auto" is "grid".
+PATTERN_LU = ("auto", "grid", "metis", "mmd", "colamd", "pardiso")
 _PATTERN_LU_PACKAGES = {"metis": ("pymetis", metis_available),
                         "pardiso": ("pypardiso", PardisoFactor.available)}
 
@@ -517,8 +518,6 @@ def check_pattern_lu(factorization, *, name: str = "factorization") -> str:
 
 
 def resolve_pattern_lu(factorization: str = "auto") -> str:
-    """What ``factorization`` (:data:`PATTERN_LU`) means now: "auto" is "metis" where
-    pymetis is installed, else "mmd" (module notes: the measured back-ends)."""
-    if factorization != "auto":
-        return factorization
-    return "metis" if metis_available() else "mmd"
+    """What ``factorization`` (:data:`PATTERN_LU`) means: "auto" is "grid" (pure scipy;
+    module notes: the measured back-ends)."""
+    return "grid" if factorization == "auto" else factorization

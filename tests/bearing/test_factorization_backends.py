@@ -8,7 +8,7 @@ The LU with diagonal pivots (:class:`gyroshell.linalg.factorization.DiagonalPivo
 checked against solutions known by construction (b = A x for a chosen x), and its
 fallback to partial pivoting on a matrix whose diagonal is zero; the nested-dissection
 ordering is a permutation; the switch is validated; without pymetis "auto" is pure
-scipy."""
+scipy (the grid's nested dissection, :mod:`gyroshell.linalg.grid_ordering`)."""
 
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ AIR = AirParameters()
 TWO = FlatHead((Module(0.8e-3), Module(0.5e-3, height=0.3e-6)), math.radians(1.5),
                math.radians(3.0), gaps=(0.2e-3,))
 #: The back-ends installed here, besides the reference "colamd" and "auto" (which is
-#: "metis" or "mmd": the test without pymetis solves with it).
+#: "grid": the test without pymetis solves with it).
 BACKENDS = [b for b in fz.PATTERN_LU if b not in ("colamd", "auto")
             and {"metis": fz.metis_available,
                  "pardiso": fz.PardisoFactor.available}.get(b, lambda: True)()]
@@ -132,14 +132,15 @@ def test_a_small_diagonal_pivot_falls_back_to_partial_pivoting():
 
 @pytest.mark.parametrize("bad", ["umfpack", "METIS", 3, None])
 def test_the_switch_is_validated(bad):
-    with pytest.raises(ParameterError, match=r"factorization must be one of auto, metis"):
+    with pytest.raises(ParameterError,
+                       match=r"factorization must be one of auto, grid, metis"):
         _clear(bad)
 
 
 def test_without_pymetis_auto_is_pure_scipy(monkeypatch, references):
     monkeypatch.setitem(sys.modules, "pymetis", None)      # import pymetis fails
     assert not fz.metis_available()
-    assert fz.resolve_pattern_lu("auto") == "mmd"
+    assert fz.resolve_pattern_lu("auto") == "grid"
     with pytest.raises(ParameterError, match="factorization 'metis' needs the optional "
                                              "package pymetis"):
         _clear("metis")
