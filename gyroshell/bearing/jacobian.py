@@ -46,23 +46,31 @@ class JacobianPattern:
         n_u = tape_rows.shape[0]
         n = n_u + J_p.shape[0]
         self.n_u, self.nc = n_u, nc
-        self.tape_row = np.repeat(np.arange(n_u), np.diff(tape_rows.indptr))
+        # 32-bit indices (a grid has far fewer than 2³¹ unknowns): half the memory to
+        # allocate and touch, which is most of the cost here
+        index = np.int32
+
+        def row_of_entries(A):
+            return np.repeat(np.arange(A.shape[0], dtype=index), np.diff(A.indptr))
+
+        self.tape_row = row_of_entries(tape_rows)
         self.tape_nnz, self.h_nnz, self.p_nnz = tape_rows.nnz, J_h.nnz, J_p.nnz
-        h_row = np.repeat(np.arange(J_h.shape[0]), np.diff(J_h.indptr))
+        h_row = row_of_entries(J_h)
         #: the entries of J_h on the tape's unknowns (the end node lines carry no u)
         self.h_take = np.flatnonzero((J_h.indices >= nc) & (J_h.indices < nc + n_u))
-        self.h_col = J_h.indices[self.h_take] - nc
-        p_row = np.repeat(np.arange(J_p.shape[0]), np.diff(J_p.indptr))
-        diag = np.arange(n_u)
+        self.h_col = (J_h.indices[self.h_take] - nc).astype(index)
+        p_row = row_of_entries(J_p)
+        diag = np.arange(n_u, dtype=index)
         rows = np.concatenate([self.tape_row, diag, n_u + h_row[self.h_take], n_u + p_row])
-        cols = np.concatenate([tape_rows.indices, diag, self.h_col, n_u + J_p.indices])
+        cols = np.concatenate([tape_rows.indices.astype(index, copy=False), diag, self.h_col,
+                               n_u + J_p.indices.astype(index, copy=False)])
         if mirror is None:
-            kept, to_half = np.arange(n), np.arange(n)
+            kept, to_half = np.arange(n), np.arange(n, dtype=index)
         else:
             P, kept = mirror
-            to_half = P.tocsr().indices               # P has one entry, 1, per row
-        row_of = np.full(n, -1)
-        row_of[kept] = np.arange(len(kept))
+            to_half = P.tocsr().indices.astype(index)    # P has one entry, 1, per row
+        row_of = np.full(n, -1, dtype=index)
+        row_of[kept] = np.arange(len(kept), dtype=index)
         folded = row_of[rows]
         #: the entries (of the concatenated blocks) in the solved rows
         self.keep = np.flatnonzero(folded >= 0)

@@ -312,13 +312,15 @@ class BearingModel:
         No air film (p = p_a; the tape and its contact with the head only): the dry
         string and plate over the head, corner forces at rest (V may be 0; it enters only
         through T − ρV²).
-    factorization : {"auto", "metis", "mmd", "colamd", "pardiso"}
+    factorization : {"auto", "grid", "metis", "mmd", "colamd", "pardiso"}
         The sparse LU of Newton's Jacobian (:data:`gyroshell.linalg.factorization.PATTERN_LU`):
-        "auto" is, in 2-D, SuperLU with diagonal pivots after METIS's nested dissection
-        where pymetis is installed ("metis"), else after minimum degree on Jᵀ + J ("mmd",
-        pure scipy), and for the infinitely wide tape "colamd": SuperLU with partial
-        pivoting (the earlier default, 3-5x slower on a 2-D grid); "pardiso" needs
-        pypardiso. All give the same state to Newton's tolerance.
+        "auto" is, in 2-D, "grid": SuperLU with diagonal pivots after a nested dissection
+        along the grid's node lines (pure numpy and scipy, once per grid); "metis" the
+        same after METIS's nested dissection (pymetis); "mmd" after minimum degree on
+        Jᵀ + J (ordered at each factorization); for the
+        infinitely wide tape "colamd": SuperLU with partial pivoting (the earlier default,
+        3-5x slower on a 2-D grid); "pardiso" needs pypardiso. All give the same state to
+        Newton's tolerance.
     corner_contacts : tuple of float, optional
         x of the tape's contact on each rounded corner the tape turns over (head
         coordinates, m, each on its arc, in the order of :attr:`rounded_corners`): a node

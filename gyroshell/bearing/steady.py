@@ -62,6 +62,16 @@ CHORD_CONTRACTION = 0.1
 #: instead of 5, the chord steps contracting about 10x each).
 CHORD_SWITCH_2D = 0.5
 CHORD_CONTRACTION_2D = 0.25
+#: Whether a 2-D tape's Jacobian is factored in single precision ("grid" and "metis";
+#: the residual, and so the state Newton converges to, stays in double precision; a solve
+#: whose backward error exceeds
+#: :data:`gyroshell.linalg.factorization.SINGLE_BACKWARD_ERROR_LIMIT` factors again in
+#: double). Off: on the 12.65 mm tape's default grid it made the solve 0.81x (the LU 0.6x,
+#: the same 8 iterations and states equal to 6e-11), but on a 3 mm tape over a flat head
+#: touching at its corners (96 x 24, the plate's h⁻⁴ rows at the corners' fine cells) the
+#: single-precision steps, backward errors below 1e-5 but forward errors of order one,
+#: led Newton astray and the pseudo-time march failed (docs/performance.md).
+SINGLE_LU = False
 #: Newton steps below this relative size are taken in full (the quadratic regime: the
 #: scaled residual may already sit at its round-off floor, where a line search only stalls).
 FULL_STEP = 1e-5
@@ -238,8 +248,8 @@ class _Residual:
         J = pattern.matrix(self.tape_rows.data, lin.active, self.c, lin.J_h, lin.J_p,
                            None if lin.free.all() else lin.free)
         try:
-            if kind in _ORDERINGS:
-                lu = DiagonalPivotLU(J, ordered=True)
+            if kind in _ORDERED_KINDS:
+                lu = DiagonalPivotLU(J, ordered=True, single=SINGLE_LU)
             elif kind == "mmd":
                 lu = DiagonalPivotLU(J)
             else:
@@ -325,7 +335,7 @@ PATTERNS_KEPT = 4
 
 
 #: The nested-dissection orderings of the folded pattern, by factorization kind.
-_ORDERINGS = ("metis", "grid")
+_ORDERED_KINDS = ("metis", "grid")
 
 
 def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> JacobianPattern:
@@ -335,7 +345,7 @@ def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> Jacobi
     (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
     grid nodes), formed once per pattern."""
     fold = model.mirror
-    ordering = _ORDERINGS.index(kind) + 1 if kind in _ORDERINGS else 0
+    ordering = _ORDERED_KINDS.index(kind) + 1 if kind in _ORDERED_KINDS else 0
     parts = [np.asarray([model.nc, ordering, *J_h.shape, *J_p.shape], dtype=np.int64)]
     for A in (tape_rows, J_h, J_p):
         parts += [A.indptr, A.indices]
@@ -348,17 +358,24 @@ def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> Jacobi
     pattern = _PATTERNS.pop(key, None)
     if pattern is None:
         pattern = JacobianPattern(tape_rows, J_h, J_p, model.nc, fold)
-        if kind == "metis":
-            pattern.order(nested_dissection(pattern.graph()))
-        elif kind == "grid":
-            node = model.unknown_nodes[pattern.kept]
-            pattern.order(grid_nested_dissection(
-                pattern.graph(), np.column_stack(np.divmod(node, model.nc)),
-                (pattern.kept >= model.n_u).astype(int)))
+        if kind in _ORDERED_KINDS:
+            pattern.order(pattern_ordering(pattern, model, kind))
     _PATTERNS[key] = pattern
     while len(_PATTERNS) > PATTERNS_KEPT:
         del _PATTERNS[next(iter(_PATTERNS))]
     return pattern
+
+
+def pattern_ordering(pattern: JacobianPattern, model: BearingModel, kind: str) -> np.ndarray:
+    """The nested-dissection ordering of ``pattern`` (folded, natural numbering) for
+    ``kind`` "metis" (:func:`gyroshell.linalg.factorization.nested_dissection`) or "grid"
+    (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
+    grid nodes: u is kind 0, p kind 1)."""
+    if kind == "metis":
+        return nested_dissection(pattern.graph())
+    node = model.unknown_nodes[pattern.kept]
+    return grid_nested_dissection(pattern.graph(), np.column_stack(np.divmod(node, model.nc)),
+                                  (pattern.kept >= model.n_u).astype(int))
 
 
 def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):

@@ -159,12 +159,12 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
                         "the free edges and the wrap corners (the counts --nx/--ny then set "
                         "uniform spacings)")
     g.add_argument("--factorization", choices=FACTORIZATION_CHOICES, default="auto",
-                   help="sparse LU of Newton's Jacobian: metis (SuperLU, diagonal pivots, "
-                        "METIS nested dissection once per grid; needs pymetis), mmd (the "
-                        "same with minimum degree, pure scipy), colamd (SuperLU with partial "
-                        "pivoting, 3-5x slower), pardiso (needs pypardiso); default auto: "
-                        "metis where pymetis is installed, else mmd (the infinitely wide tape: "
-                        "colamd); all give the same state")
+                   help="sparse LU of Newton's Jacobian: grid (SuperLU, diagonal pivots, "
+                        "nested dissection along the grid's node lines once per grid, pure "
+                        "scipy), metis (the same with METIS's ordering; needs pymetis), mmd "
+                        "(minimum degree), colamd (SuperLU with partial pivoting, 3-5x "
+                        "slower), pardiso (needs pypardiso); default auto: grid (the "
+                        "infinitely wide tape: colamd); all give the same state")
 
 
 def run(args: argparse.Namespace) -> int:
