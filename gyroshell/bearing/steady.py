@@ -545,6 +545,18 @@ def _stagnated(merits: list, alphas: list) -> bool:
             and max(alphas[-STAGNATION_WINDOW:]) < STAGNATION_STEP)
 
 
+def _evaluate(F: _Residual, it: _Iterate, lazy: bool) -> np.ndarray:
+    """The residual (``it.res``) at the new iterate ``it.z`` and its contact set by the
+    rule (returned); the Jacobian (``it.J``) too unless ``lazy`` (then None: formed when
+    it is factored, the round-off estimate updated with the last one's film block)."""
+    if lazy:
+        it.res, active, it.J = F(it.z, jacobian=False)
+        F.update_noise(it.z)
+    else:
+        it.res, active, it.J = F(it.z, jacobian=True)
+    return active
+
+
 def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
            transient=None, tol: float = STEP_TOLERANCE,
            max_iterations: int = MAX_ITERATIONS, info: NewtonInfo | None = None,
@@ -583,11 +595,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol, F.noise)
         alpha, step, it.z, _ = contact_step(F, it, h, dz, found, tol)
         it.last_step = step
-        if lazy:
-            it.res, active_new, it.J = F(it.z, jacobian=False)
-            F.update_noise(it.z)
-        else:
-            it.res, active_new, it.J = F(it.z, jacobian=True)
+        active_new = _evaluate(F, it, lazy)
         it.merit = F.merit(it.res)
         contacts = int(active_new.sum())
         _record(info, alpha * step, it.merit, contacts)

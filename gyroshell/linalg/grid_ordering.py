@@ -104,8 +104,16 @@ def grid_nested_dissection(graph: sp.spmatrix, coordinates: np.ndarray,
     ij = coordinates - coordinates.min(axis=0)
     widths = separator_widths(graph, ij, kinds)
     shape = tuple(int(s) + 1 for s in ij.max(axis=0))
+    block = _blocks(shape, widths)
+    # within a block: node by node (i, then j), the kinds of one node together
+    return np.lexsort((kinds, ij[:, 1], ij[:, 0], block[kinds, ij[:, 0], ij[:, 1]]))
+
+
+def _blocks(shape: tuple, widths: np.ndarray) -> np.ndarray:
+    """The elimination block of every node of every kind (shape (kinds, *shape)): the
+    leaves and separators of the dissection numbered in post-order (first half, second
+    half, separator), so that sorting by block gives the elimination order."""
     n_kinds = widths.shape[1]
-    #: the block (leaf or separator) of each kind's nodes, numbered in elimination order
     block = np.zeros((n_kinds, *shape), dtype=np.int64)
     count = 0
     w = widths.tolist()
@@ -135,8 +143,7 @@ def grid_nested_dissection(graph: sp.spmatrix, coordinates: np.ndarray,
             for part, new in zip(parts, (first, second, separator), strict=True):
                 new.append([part, ranges[1]] if axis == 0 else [ranges[0], part])
         stack += [(separator, True), (second, False), (first, False)]
-    # within a block: node by node (i, then j), the kinds of one node together
-    return np.lexsort((kinds, ij[:, 1], ij[:, 0], block[kinds, ij[:, 0], ij[:, 1]]))
+    return block
 
 
 def _is_leaf(extent: list, widths: list) -> bool:
