@@ -82,9 +82,10 @@ class JacobianPattern:
         self.permutation = None
         self._map = None           # compiled at the first assembly (after any ordering)
 
-    def graph(self) -> sp.csr_matrix:
-        """The folded pattern (ones) in its natural numbering, for an ordering."""
-        return sp.csr_matrix((np.ones(len(self.rows)), (self.rows, self.cols)),
+    def graph(self) -> sp.coo_matrix:
+        """The folded pattern (ones; an entry summed by the fold appears more than once)
+        in its natural numbering, for an ordering."""
+        return sp.coo_matrix((np.ones(len(self.rows)), (self.rows, self.cols)),
                              shape=(self.size, self.size))
 
     def order(self, permutation: np.ndarray) -> None:

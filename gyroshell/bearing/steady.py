@@ -353,7 +353,9 @@ def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> Jacobi
         parts += [fold[1], fold[0].indices]
     digest = hashlib.blake2b(digest_size=16)
     for part in parts:
-        digest.update(np.ascontiguousarray(part, dtype=np.int64).tobytes())
+        part = np.ascontiguousarray(part)
+        digest.update(f"{part.dtype.str}{part.size};".encode())
+        digest.update(part.data)
     key = digest.digest()
     pattern = _PATTERNS.pop(key, None)
     if pattern is None:
