@@ -1,7 +1,7 @@
 """Benchmark the steady air-bearing solves (Table 1 tape, V = 4 m/s, 15° wrap, air at 20 °C).
 
     PYTHONPATH=. python benchmarks/bench_bearing.py [--rounds 3] [--width 12.65e-3]
-        [--uniform] [--baseline DIR] [--backends [auto,metis,mmd,colamd,pardiso]]
+        [--uniform] [--baseline DIR] [--backends [grid,metis,mmd,colamd,pardiso]]
 
 Prints medians (s) over alternating rounds of:
 
@@ -20,8 +20,9 @@ median ratio old/new. Timings on a shared machine vary: read the medians.
 ``--backends`` instead compares the Jacobian's factorizations (``factorization=`` of
 BearingModel; those installed), in alternating rounds on the 2-D tape: per back-end the
 whole solve (median), its Newton iterations and factorizations, one factorization and
-one substitution of the folded Jacobian at the converged state (the ordering of "metis"
-timed apart: it is computed once per grid), the fill of L + U, the relative backward
+one substitution of the folded Jacobian at the converged state (the nested dissection of
+"grid" and "metis" timed apart: it is computed once per grid; their LU in the precision
+Newton uses and in double), the fill of L + U, the relative backward
 error, and the largest state difference from SuperLU with partial pivoting ("colamd",
 the earlier default), relative to max|u| and max|p − p_a|.
 """
@@ -40,15 +41,15 @@ import numpy as np
 import scipy.sparse.linalg as spla
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
-from gyroshell.bearing.steady import _ORDERINGS, _Residual, solve_steady
+from gyroshell.bearing import AirParameters, BearingModel, steady
+from gyroshell.bearing.jacobian import JacobianPattern
+from gyroshell.bearing.steady import _PATTERNS, _Residual, pattern_ordering, solve_steady
 from gyroshell.core.parallel import blas_threads
 from gyroshell.linalg.factorization import (
     DiagonalPivotLU,
     PardisoFactor,
     SuperLUFactor,
     metis_available,
-    nested_dissection,
     resolve_pattern_lu,
 )
 
@@ -56,25 +57,36 @@ from gyroshell.linalg.factorization import (
 def folded_jacobian(model: BearingModel, z: np.ndarray):
     """The folded 2-D Jacobian at the state z, as Newton factors it."""
     F = _Residual(model, None, None)
-    _, _, J = F(z, jacobian=True)
+    J = F(z, jacobian=True)[2].matrix
     P, rows = model.mirror
     return F, (J[rows, :] @ P).tocsc()
 
 
 def one_factorization(model: BearingModel, z: np.ndarray, backend: str) -> dict:
     """Seconds of one factorization and one substitution of the folded Jacobian at z by
-    ``backend``, its fill (L + U entries, where the back-end tells) and backward error."""
+    ``backend``, its fill (L + U entries, where the back-end tells) and backward error.
+    "grid" and "metis": the ordering timed apart (computed once per grid), the LU in the
+    precision Newton uses (``steady.SINGLE_LU``) and, for comparison, in double."""
     F, J = folded_jacobian(model, z)
     rhs = np.random.default_rng(0).standard_normal(J.shape[0])
-    out = {"ordering": 0.0}
+    out = {"ordering": 0.0, "double": float("nan")}
     kind = resolve_pattern_lu(backend)
-    if kind == "metis":
+    if kind in ("grid", "metis"):
+        _, active, lin = F(z, jacobian=True)
+        pattern = JacobianPattern(F.tape_rows, lin.J_h, lin.J_p, model.nc, model.mirror)
         start = time.perf_counter()
-        perm = nested_dissection(J)
+        pattern.order(pattern_ordering(pattern, model, kind))
         out["ordering"] = time.perf_counter() - start
+        J = pattern.matrix(F.tape_rows.data, active, F.c, lin.J_h, lin.J_p)
+        start = time.perf_counter()
+        DiagonalPivotLU(J, ordered=True)
+        out["double"] = time.perf_counter() - start
     start = time.perf_counter()
-    if kind in ("metis", "mmd"):
-        lu = DiagonalPivotLU(J, permutation=perm if kind == "metis" else None)
+    if kind in ("grid", "metis"):
+        lu = DiagonalPivotLU(J, ordered=True, single=steady.SINGLE_LU)
+        fill = lu._lu.nnz
+    elif kind == "mmd":
+        lu = DiagonalPivotLU(J)
         fill = lu._lu.nnz
     elif kind == "pardiso":
         lu = PardisoFactor(J)
@@ -121,7 +133,7 @@ def compare_backends(args, wrap: float) -> int:
                     _calls.append(time.perf_counter() - start)
                     return solver
                 _Residual.factor = counted
-                _ORDERINGS.clear()          # each solve orders its grids afresh
+                _PATTERNS.clear()           # each solve orders its grids afresh
                 try:
                     start = time.perf_counter()
                     sols[b] = solve_steady(models[b])
@@ -140,10 +152,12 @@ def compare_backends(args, wrap: float) -> int:
     u_scale, p_scale = np.max(np.abs(ref.u)), np.max(np.abs(ref.p - pa))
     base = statistics.median(times["colamd"])
     print(f"\nmedians over {args.rounds} alternating rounds (s; 'in LUs': the solve's "
-          "factorizations together, 'order' METIS's ordering once; one LU and one "
+          "factorizations together, 'order' the nested dissection once (grid, metis); "
+          "one LU (grid and metis: single precision if steady.SINGLE_LU, 'f64' the same "
+          "LU in double) and one "
           "substitution of the folded Jacobian at the converged state):")
     print(f"  {'back-end':9s} {'solve':>7s} {'x colamd':>8s} {'iters':>5s} {'LUs':>4s} "
-          f"{'in LUs':>7s} {'order':>6s} {'one LU':>7s} {'subst':>6s} {'fill':>7s} "
+          f"{'in LUs':>7s} {'order':>6s} {'one LU':>7s} {'f64':>6s} {'subst':>6s} {'fill':>7s} "
           f"{'bwd err':>8s} {'du/u':>8s} {'dp/p':>8s}")
     for b in installed:
         med = {k: statistics.median(p[k] for p in parts[b]) for k in parts[b][0]}
@@ -153,7 +167,8 @@ def compare_backends(args, wrap: float) -> int:
         du = np.max(np.abs(sols[b].u - ref.u)) / u_scale
         dp = np.max(np.abs(sols[b].p - ref.p)) / p_scale
         print(f"  {b:9s} {t:7.3f} {t / base:8.2f} {its:5d} {lus:4d} {in_lus:7.3f} "
-              f"{med['ordering']:6.3f} {med['factor']:7.3f} {med['solve']:6.3f} "
+              f"{med['ordering']:6.3f} {med['factor']:7.3f} {med['double']:6.3f} "
+              f"{med['solve']:6.3f} "
               f"{med['fill'] / 1e6:6.1f}M {med['backward error']:8.1e} {du:8.1e} {dp:8.1e}")
     return 0
 
@@ -161,7 +176,7 @@ def compare_backends(args, wrap: float) -> int:
 def one_lu(model: BearingModel) -> float:
     """Seconds for one factorization of the folded 2-D Jacobian at Newton's start."""
     F = _Residual(model, None, None)
-    _, _, J = F(model.initial_state(), jacobian=True)
+    J = F(model.initial_state(), jacobian=True)[2].matrix
     P, rows = model.mirror
     Jh = (J[rows, :] @ P).tocsc()
     start = time.perf_counter()
@@ -201,7 +216,7 @@ def main(argv: list[str] | None = None) -> int:
                         help="also time the uniform grid (the earlier default)")
     parser.add_argument("--baseline", metavar="DIR",
                         help="source tree whose 2-D solve is timed alongside (subprocess)")
-    parser.add_argument("--backends", nargs="?", const="auto,metis,mmd,colamd,pardiso",
+    parser.add_argument("--backends", nargs="?", const="grid,metis,mmd,colamd,pardiso",
                         default=None, metavar="LIST",
                         help="compare the Jacobian's factorizations (comma-separated)")
     args = parser.parse_args(argv)

@@ -1,6 +1,7 @@
 """`gyroshell bearing`: its time estimate against measured solves, and its refusals' times.
 
     PYTHONPATH=. python benchmarks/bench_bearing_cli.py [--rounds 5] [--large]
+    PYTHONPATH=. python benchmarks/bench_bearing_cli.py --baseline DIR [--rounds 5]
 
 1. For bearings of growing size (1-D and 2-D, the Table 1 tape at 4 m/s over 15°) prints
    the unknowns, the estimated seconds of one Newton iteration that factors afresh
@@ -12,12 +13,18 @@
 2. Times the bearing's refusals (issue 18, causes 8, 9, 11) in fresh processes: median and
    largest wall time of ``--rounds`` rounds, beside ``gyroshell --help`` as the baseline.
 
+``--baseline DIR`` instead times ``gyroshell bearing --width 12.65e-3 --velocity 4 --json``
+(issue 21) here and on the source tree DIR (e.g. ``git archive main | tar -x -C DIR``) in
+fresh processes, alternating, one BLAS thread: medians of wall and CPU seconds (the
+child's user + system time), their ratios, and the readings to the digits compared.
+
 Timings on a shared machine vary by factors of two or more: read the ratios, not digits.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import os
 import statistics
@@ -122,12 +129,65 @@ def refusal_table(rounds: int) -> None:
         print(f"| {name} | {statistics.median(walls):.3f} | {max(walls):.3f} |")
 
 
+#: The command timed against a baseline tree (``--baseline``): the 12.65 mm tape's default
+#: 2-D grid (issue 21).
+WIDE_COMMAND = ["bearing", "--width", "12.65e-3", "--velocity", "4", "--json"]
+
+
+def timed_command(argv: list[str], source: str) -> dict:
+    """Wall and CPU seconds (user + system of the child) of one ``python -m gyroshell
+    argv`` run on the code under ``source``, and its JSON summary."""
+    env = {**os.environ, "PYTHONPATH": source, "OMP_NUM_THREADS": "1"}
+    before = os.times()
+    start = time.perf_counter()
+    proc = subprocess.run([sys.executable, "-m", "gyroshell", *argv], cwd=source, env=env,
+                          capture_output=True, text=True, check=True)
+    wall = time.perf_counter() - start
+    after = os.times()
+    cpu = (after.children_user - before.children_user
+           + after.children_system - before.children_system)
+    return {"wall": wall, "cpu": cpu, "summary": json.loads(proc.stdout)}
+
+
+def baseline_table(baseline: str, rounds: int) -> None:
+    """``WIDE_COMMAND`` on this tree and on ``baseline`` in alternating rounds: medians of
+    wall and CPU seconds, their ratios, Newton's iterations and the readings' digits."""
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    trees = {"before": baseline, "after": here}
+    runs: dict[str, list[dict]] = {k: [] for k in trees}
+    print(f"gyroshell {' '.join(WIDE_COMMAND)}: {rounds} alternating rounds, load "
+          f"{os.getloadavg()[0]:.2f} at the start", flush=True)
+    for r in range(rounds):
+        for name in (("before", "after") if r % 2 == 0 else ("after", "before")):
+            runs[name].append(timed_command(WIDE_COMMAND, trees[name]))
+        print(f"round {r + 1}: " + ", ".join(
+            f"{k} wall {v[-1]['wall']:.2f} s cpu {v[-1]['cpu']:.2f} s"
+            for k, v in runs.items()) + f" (load {os.getloadavg()[0]:.2f})", flush=True)
+    med = {k: {q: statistics.median(run[q] for run in v) for q in ("wall", "cpu")}
+           for k, v in runs.items()}
+    print("\n| tree | wall, s | CPU, s | Newton | h_c, m | h_min, m | air force, N |")
+    print("|---|---|---|---|---|---|---|")
+    for k, v in runs.items():
+        s = v[-1]["summary"]
+        print(f"| {k} | {med[k]['wall']:.2f} | {med[k]['cpu']:.2f} | "
+              f"{s['newton_iterations']} | {s['central_spacing']:.10g} | "
+              f"{s['minimum_spacing']:.10g} | {s['air_force']:.11g} |")
+    print(f"| after/before | {med['after']['wall'] / med['before']['wall']:.2f} | "
+          f"{med['after']['cpu'] / med['before']['cpu']:.2f} | | | | |")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--large", action="store_true",
                         help="also the 0.01 m/s 2-D solve of issue 18")
+    parser.add_argument("--baseline", metavar="DIR",
+                        help="only time the 12.65 mm tape's default 2-D command here and "
+                             "on the source tree DIR, in alternating rounds")
     args = parser.parse_args(argv)
+    if args.baseline:
+        baseline_table(args.baseline, args.rounds)
+        return 0
     estimate_table(SOLVES + (LARGE if args.large else []))
     refusal_table(args.rounds)
     return 0

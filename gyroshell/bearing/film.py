@@ -105,6 +105,20 @@ def face_fluxes(pl, pr, hl, hr, spacing: float, velocity: float, air: AirParamet
     return FaceFluxes(flux, d_pl, d_pr, d_h)
 
 
+def scatter_map(rows: np.ndarray, cols: np.ndarray, shape: tuple[int, int]
+                ) -> tuple[sp.csr_matrix, np.ndarray]:
+    """The CSR pattern of entries (rows, cols) (duplicates summed, indices sorted) and
+    where each entry lands in its data array: ``np.bincount(map, weights=values,
+    minlength=nnz)`` assembles values given per entry."""
+    m = sp.coo_matrix((np.ones(len(rows)), (rows, cols)), shape=shape).tocsr()
+    m.sum_duplicates()
+    m.sort_indices()
+    lin = rows.astype(np.int64) * shape[1] + cols
+    key = np.repeat(np.arange(shape[0]), np.diff(m.indptr)).astype(np.int64) \
+        * shape[1] + m.indices
+    return m, np.searchsorted(key, lin)
+
+
 def _dual(h: np.ndarray) -> np.ndarray:
     """Control widths of the nodes between intervals h (half intervals at the ends)."""
     w = np.empty(len(h) + 1)
@@ -195,20 +209,11 @@ class Film:
         diag = np.arange(self.size)
         node_of_p = nid[self.interior]
 
-        def csr_map(rows, cols, ncols):
-            m = sp.coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(self.size, ncols))
-            m = m.tocsr()
-            m.sum_duplicates()
-            m.sort_indices()
-            lin = rows.astype(np.int64) * ncols + cols
-            key = np.repeat(np.arange(self.size), np.diff(m.indptr)).astype(np.int64) \
-                * ncols + m.indices
-            return m, np.searchsorted(key, lin)
-
-        jp, map_p = csr_map(np.concatenate([rows_p[keep_p], diag]),
-                            np.concatenate([cols_p[keep_p], diag]), self.size)
-        jh, map_h = csr_map(np.concatenate([rows_h[keep_h], diag]),
-                            np.concatenate([cols_h[keep_h], node_of_p]), n_nodes)
+        jp, map_p = scatter_map(np.concatenate([rows_p[keep_p], diag]),
+                                np.concatenate([cols_p[keep_p], diag]), (self.size, self.size))
+        jh, map_h = scatter_map(np.concatenate([rows_h[keep_h], diag]),
+                                np.concatenate([cols_h[keep_h], node_of_p]),
+                                (self.size, n_nodes))
         return dict(keep_p=keep_p, keep_h=keep_h, jp=jp, jh=jh, map_p=map_p, map_h=map_h,
                     node_of_p=node_of_p)
 

@@ -314,13 +314,15 @@ class BearingModel:
         No air film (p = p_a; the tape and its contact with the head only): the dry
         string and plate over the head, corner forces at rest (V may be 0; it enters only
         through T − ρV²).
-    factorization : {"auto", "metis", "mmd", "colamd", "pardiso"}
+    factorization : {"auto", "grid", "metis", "mmd", "colamd", "pardiso"}
         The sparse LU of Newton's Jacobian (:data:`gyroshell.linalg.factorization.PATTERN_LU`):
-        "auto" is, in 2-D, SuperLU with diagonal pivots after METIS's nested dissection
-        where pymetis is installed ("metis"), else after minimum degree on Jᵀ + J ("mmd",
-        pure scipy), and for the infinitely wide tape "colamd": SuperLU with partial
-        pivoting (the earlier default, 3-5x slower on a 2-D grid); "pardiso" needs
-        pypardiso. All give the same state to Newton's tolerance.
+        "auto" is, in 2-D, "grid": SuperLU with diagonal pivots after a nested dissection
+        along the grid's node lines (pure numpy and scipy, once per grid); "metis" the
+        same after METIS's nested dissection (pymetis); "mmd" after minimum degree on
+        Jᵀ + J (ordered at each factorization); for the
+        infinitely wide tape "colamd": SuperLU with partial pivoting (the earlier default,
+        3-5x slower on a 2-D grid); "pardiso" needs pypardiso. All give the same state to
+        Newton's tolerance.
     corner_contacts : tuple of float, optional
         x of the tape's contact on each rounded corner the tape turns over (head
         coordinates, m, each on its arc, in the order of :attr:`rounded_corners`): a node
@@ -852,6 +854,13 @@ class BearingModel:
         return full[:, self.film._pattern["node_of_p"]].tocsr()
 
     @cached_property
+    def unknown_nodes(self) -> np.ndarray:
+        """The grid node (i nc + j) of each unknown: the tape's u (every node but the
+        pinned end lines x = 0 and x = L), then the film's p (its interior nodes)."""
+        return np.concatenate([np.arange(self.n_u) + self.nc,
+                               self.film._pattern["node_of_p"]])
+
+    @cached_property
     def mirror(self) -> tuple[sp.csr_matrix, np.ndarray] | None:
         """(P, rows) for states symmetric about the tape's centre line y = L_y/2: P maps
         the unknowns of the half 0 <= y <= L_y/2 to the whole, ``rows`` picks that half's
@@ -959,19 +968,29 @@ class BearingModel:
         Spacings below half the roughness (reachable only during Newton iterations, before
         the contact set catches them) are floored there so that the film stays defined.
         """
+        r, J_p, J_h, free = self.film_linearization(u, p, phi_old=phi_old, dt=dt,
+                                                    jacobian=jacobian)
+        if not jacobian:
+            return r, None, None
+        J_u = J_h[:, self.nc:self.nc + self.n_u]
+        if not free.all():
+            J_u = J_u @ sp.diags(free.astype(float))
+        return r, J_p, J_u.tocsr()
+
+    def film_linearization(self, u: np.ndarray, p: np.ndarray, *, phi_old=None, dt=None,
+                           jacobian: bool = True):
+        """(r_p, ∂r_p/∂p, ∂r_p/∂h over every node, free): :meth:`film_residual` with the
+        film's blocks in their fixed patterns (:class:`.film.Film`), for an assembly into
+        a fixed pattern (:mod:`.jacobian`); ``free`` is False at the unknowns whose
+        spacing was floored (r_p does not depend on them there). Without ``jacobian``
+        the blocks are None."""
         H = self.spacing_field(u)
         floor = 0.5 * self.air.roughness
         clipped = H < floor
         Hf = np.where(clipped, floor, H)
         r, J_p, J_h = self.film_residual_fields(self.pressure_field(p), Hf, phi_old=phi_old,
                                                 dt=dt, jacobian=jacobian)
-        if not jacobian:
-            return r, None, None
-        J_u = J_h[:, self.nc:self.nc + self.n_u]
-        free = ~clipped[1:-1, :].ravel()
-        if not free.all():
-            J_u = J_u @ sp.diags(free.astype(float))
-        return r, J_p, J_u.tocsr()
+        return r, J_p, J_h, ~clipped[1:-1, :].ravel()
 
     def film_residual_fields(self, P, H, **kw):
         return self.film.residual(P, H, **kw)

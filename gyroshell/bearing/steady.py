@@ -32,7 +32,9 @@ from ..linalg.factorization import (
     nested_dissection,
     resolve_pattern_lu,
 )
+from ..linalg.grid_ordering import grid_nested_dissection
 from ..tape.parameters import MIN_INTERVALS_ACROSS
+from .jacobian import JacobianPattern
 from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel
 from .results import BearingSolution, NewtonInfo
 
@@ -53,8 +55,25 @@ SPACING_KEEP = 0.2
 SPACING_GROWTH = 4.0
 #: Below this relative step a factorization is reused (chord steps) ...
 CHORD_SWITCH = 5e-2
-#: ... while each step shrinks at least by this factor.
+#: ... while each step shrinks at least by this factor (the infinitely wide tape, whose
+#: banded LU costs less than a residual).
 CHORD_CONTRACTION = 0.1
+#: The same for a 2-D tape, whose LU costs many residuals and substitutions: chord steps
+#: from a relative step of 0.5 while each shrinks the step 4x (on the 12.65 mm tape's
+#: default grid the fine-grid Newton then factors once instead of twice: 8 iterations
+#: instead of 5, the chord steps contracting about 10x each).
+CHORD_SWITCH_2D = 0.5
+CHORD_CONTRACTION_2D = 0.25
+#: Whether a 2-D tape's Jacobian is factored in single precision ("grid" and "metis";
+#: the residual, and so the state Newton converges to, stays in double precision; a solve
+#: whose backward error exceeds
+#: :data:`gyroshell.linalg.factorization.SINGLE_BACKWARD_ERROR_LIMIT` factors again in
+#: double). Off: on the 12.65 mm tape's default grid it made the solve 0.81x (the LU 0.6x,
+#: the same 8 iterations and states equal to 6e-11), but on a 3 mm tape over a flat head
+#: touching at its corners (96 x 24, the plate's h⁻⁴ rows at the corners' fine cells) the
+#: single-precision steps, backward errors below 1e-5 but forward errors of order one,
+#: led Newton astray and the pseudo-time march failed (docs/performance.md).
+SINGLE_LU = False
 #: Newton steps below this relative size are taken in full (the quadratic regime: the
 #: scaled residual may already sit at its round-off floor, where a line search only stalls).
 FULL_STEP = 1e-5
@@ -145,10 +164,13 @@ class _Residual:
         J_uu = self.K if transient is None else self.K + transient.jacobian
         # The tape rows [J_uu, −L] do not change within a solve: assembled once.
         self.tape_rows = sp.hstack([J_uu, -model.pressure_load], format="csr")
+        self.tape_rows.sort_indices()
         self._abs_tape_rows = abs(self.tape_rows)
-        #: the nested-dissection ordering of the (folded) Jacobian, once formed, and the
-        #: film rows of the last Jacobian (:meth:`_ordering`)
-        self._perm, self._film_rows = None, None
+        #: the Jacobian's folded pattern (:meth:`_pattern`), once formed
+        self._jacobian_pattern = None
+        #: (z, result) of the last residual evaluated alone, and the film's ∂r_p/∂p of
+        #: the last Jacobian (:meth:`update_noise`)
+        self._last, self._film_pp = None, None
         self._abs_loads = (np.abs(model.effective_tension(tension) * model.W
                                   * model.kappa_nodes) + np.abs(model.f_kappa))
 
@@ -175,11 +197,15 @@ class _Residual:
     def __call__(self, z, *, jacobian: bool, force=None, active=None):
         """(residual, contact set, Jacobian or None). ``force``: nodes put in the contact
         set whatever their residual (the nodes a Newton step predicts below σ);
-        ``active``: the contact set itself, in place of the rule."""
+        ``active``: the contact set itself, in place of the rule. The residual alone at
+        the state last evaluated (the line search's accepted trial) is not formed again."""
+        plain = not jacobian and force is None and active is None
+        if plain and self._last is not None and self._last[0] is z:
+            return self._last[1]
         m = self.model
         u, p = z[:m.n_u], z[m.n_u:]
         r_u = self.tape(u, p)
-        r_p, J_pp, J_pu = m.film_residual(u, p, jacobian=jacobian, **self.film_kw)
+        r_p, J_pp, J_h, free = m.film_linearization(u, p, jacobian=jacobian, **self.film_kw)
         gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.floor)
         if active is None:
             active = r_u > gap
@@ -187,55 +213,91 @@ class _Residual:
             active = active | force
         res = np.concatenate([np.where(active, gap, r_u), r_p])
         if not jacobian:
+            self._last = (z, (res, active, None)) if plain else None
             return res, active, None
         #: the round-off floor of the merit at the last state whose Jacobian was formed
         self.noise = self._noise(u, p, J_pp)
-        rows_u = self.tape_rows
-        if active.any():
-            rows_u = (sp.diags((~active).astype(float)) @ rows_u
-                      + sp.diags(active * self.c, shape=rows_u.shape))
-        self._film_rows = sp.hstack([J_pu, J_pp], format="csr")
-        J = sp.vstack([rows_u, self._film_rows], format="csc")
-        return res, active, J
+        self._film_pp = J_pp
+        return res, active, Linearization(self, active, J_h, J_pp, free)
 
-    def factor(self, J):
-        """A solver res ↦ −J⁻¹ res, by the model's ``factorization``. A 2-D tape, symmetric
-        about its centre line, is solved on half the width (the step stays symmetric:
-        P δ_half, P the mirror)."""
-        fold = self.model.mirror
+    def update_noise(self, z) -> None:
+        """:attr:`noise` (and :attr:`noise_rows`) at the state z, with the film's ∂r_p/∂p
+        of the last Jacobian formed (a round-off estimate: chord steps do not form the
+        Jacobian)."""
+        m = self.model
+        self.noise = self._noise(z[:m.n_u], z[m.n_u:], self._film_pp)
+
+    def jacobian(self, lin: Linearization) -> sp.csr_matrix:
+        """The whole (unfolded) Jacobian of the linearization ``lin``, CSR."""
+        m = self.model
+        rows_u = self.tape_rows
+        if lin.active.any():
+            rows_u = (sp.diags((~lin.active).astype(float)) @ rows_u
+                      + sp.diags(lin.active * self.c, shape=rows_u.shape))
+        J_pu = lin.J_h[:, m.nc:m.nc + m.n_u] @ sp.diags(lin.free.astype(float))
+        return sp.vstack([rows_u, sp.hstack([J_pu, lin.J_p])], format="csr")
+
+    def factor(self, lin: Linearization):
+        """A solver res ↦ −J⁻¹ res of the linearization ``lin``, by the model's
+        ``factorization``. A 2-D tape, symmetric about its centre line, is solved on half
+        the width (the step stays symmetric: P δ_half, P the mirror). The matrix is
+        assembled into its grid's fixed pattern (:mod:`.jacobian`), in the elimination
+        order of a nested dissection ("grid", "metis")."""
+        kind = _jacobian_lu(self.model)
+        if kind == "colamd":
+            return self._factor_pivoted(lin)
+        pattern = self._pattern(kind, lin)
+        J = pattern.matrix(self.tape_rows.data, lin.active, self.c, lin.J_h, lin.J_p,
+                           None if lin.free.all() else lin.free)
+        try:
+            if kind in _ORDERED_KINDS:
+                lu = DiagonalPivotLU(J, ordered=True, single=SINGLE_LU)
+            elif kind == "mmd":
+                lu = DiagonalPivotLU(J)
+            else:
+                lu = PardisoFactor(J)
+        except RuntimeError as exc:  # exactly singular
+            raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
+        take, put = pattern.input, pattern.output      # compiled by the assembly
+        return lambda res: -lu.solve(res[take])[put]
+
+    def _factor_pivoted(self, lin: Linearization):
+        """:meth:`factor` by SuperLU's partial pivoting after COLAMD (the infinitely wide
+        tape's banded Jacobian, or ``factorization="colamd"``), on the matrix as it
+        always was: the stacked blocks without explicit zeros (COLAMD orders the pattern
+        it is given: explicit zeros would move its order and so the iterates'
+        round-off), folded by the mirror on a symmetric 2-D tape."""
+        m = self.model
+        rows_u = self.tape_rows
+        if lin.active.any():
+            rows_u = (sp.diags((~lin.active).astype(float)) @ rows_u
+                      + sp.diags(lin.active * self.c, shape=rows_u.shape))
+        J_pu = lin.J_h[:, m.nc:m.nc + m.n_u]
+        if not lin.free.all():
+            J_pu = J_pu @ sp.diags(lin.free.astype(float))
+        film_rows = sp.hstack([J_pu.tocsr(), lin.J_p], format="csr")
+        J = sp.vstack([rows_u, film_rows], format="csc")
+        fold = m.mirror
         if fold is not None:
             P, rows = fold
             J = (J[rows, :] @ P).tocsc()
-        kind = _jacobian_lu(self.model)
         try:
-            if kind == "metis":
-                lu = DiagonalPivotLU(J, permutation=self._ordering(J))
-            elif kind == "mmd":
-                lu = DiagonalPivotLU(J)
-            elif kind == "pardiso":
-                lu = PardisoFactor(J)
-            else:
-                lu = SuperLUFactor(J, ordering=JACOBIAN_ORDERING)
+            lu = SuperLUFactor(J, ordering=JACOBIAN_ORDERING)
         except RuntimeError as exc:  # exactly singular
             raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
         if fold is None:
             return lambda res: -lu.solve(res)
         return lambda res: -(P @ lu.solve(res[rows]))
 
-    def _ordering(self, J) -> np.ndarray:
-        """The nested-dissection ordering of the Jacobian's pattern without contact (the
-        tape rows of K, the film rows), folded like J: valid for every contact set, since
-        a contact row (h = σ) keeps only its diagonal. Computed once per pattern
-        (:func:`_pattern_ordering`)."""
-        if self._perm is None:
-            full = sp.vstack([self.tape_rows, self._film_rows], format="csr")
-            full.data = np.ones_like(full.data)      # the pattern: no cancellation below
-            fold = self.model.mirror
-            if fold is not None:
-                P, rows = fold
-                full = full[rows, :] @ P
-            self._perm = _pattern_ordering(full)
-        return self._perm
+    def _pattern(self, kind: str, lin: Linearization) -> JacobianPattern:
+        """The Jacobian's folded pattern, ordered by nested dissection for "metis" and
+        "grid" (the
+        pattern without contact: valid for every contact set, a contact row keeping its
+        entries as zeros). Formed once per grid and solver kind (:func:`_grid_pattern`)."""
+        if self._jacobian_pattern is None:
+            self._jacobian_pattern = _grid_pattern(self.tape_rows, lin.J_h, lin.J_p,
+                                                   self.model, kind)
+        return self._jacobian_pattern
 
     def merit(self, res) -> float:
         return float(np.linalg.norm(res * self.row_scale))
@@ -252,28 +314,72 @@ def _jacobian_lu(model: BearingModel) -> str:
     return resolve_pattern_lu(model.factorization)
 
 
-#: Nested-dissection orderings by pattern (a digest of its indices), the most recent
-#: ORDERINGS_KEPT: continuation stages, pseudo-time steps and repeated solves on one grid
-#: order once.
-_ORDERINGS: dict[bytes, np.ndarray] = {}
-ORDERINGS_KEPT = 4
+class Linearization:
+    """Newton's linearization at one state: the contact set and the film's Jacobian
+    blocks in their fixed patterns (∂r_p/∂h over every node, ∂r_p/∂p, and where the
+    spacing was floored); :meth:`_Residual.factor` assembles and factors it,
+    :meth:`_Residual.jacobian` gives the whole matrix."""
+
+    def __init__(self, F: _Residual, active, J_h, J_p, free) -> None:
+        self.F, self.active, self.J_h, self.J_p, self.free = F, active, J_h, J_p, free
+
+    @property
+    def matrix(self) -> sp.csr_matrix:
+        """The whole (unfolded) Jacobian, CSR."""
+        return self.F.jacobian(self)
 
 
-def _pattern_ordering(matrix: sp.spmatrix) -> np.ndarray:
-    """:func:`gyroshell.linalg.factorization.nested_dissection` of ``matrix``'s pattern,
-    computed once per pattern."""
-    A = sp.csr_matrix(matrix)
-    A.sort_indices()
-    key = hashlib.blake2b(np.asarray(A.shape, dtype=np.int64).tobytes()
-                          + A.indptr.astype(np.int64).tobytes()
-                          + A.indices.astype(np.int64).tobytes(), digest_size=16).digest()
-    perm = _ORDERINGS.pop(key, None)
-    if perm is None:
-        perm = nested_dissection(A)
-    _ORDERINGS[key] = perm
-    while len(_ORDERINGS) > ORDERINGS_KEPT:
-        del _ORDERINGS[next(iter(_ORDERINGS))]
-    return perm
+#: Folded Jacobian patterns by grid (a digest of the blocks' patterns and the fold), the
+#: most recent PATTERNS_KEPT: continuation stages, pseudo-time steps and repeated solves
+#: on one grid form the pattern and its nested-dissection ordering once.
+_PATTERNS: dict[bytes, JacobianPattern] = {}
+PATTERNS_KEPT = 4
+
+
+#: The nested-dissection orderings of the folded pattern, by factorization kind.
+_ORDERED_KINDS = ("metis", "grid")
+
+
+def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> JacobianPattern:
+    """:class:`.jacobian.JacobianPattern` of the blocks, in the elimination order of a
+    nested dissection for ``kind`` "metis"
+    (:func:`gyroshell.linalg.factorization.nested_dissection`) and "grid"
+    (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
+    grid nodes), formed once per pattern."""
+    fold = model.mirror
+    ordering = _ORDERED_KINDS.index(kind) + 1 if kind in _ORDERED_KINDS else 0
+    parts = [np.asarray([model.nc, ordering, *J_h.shape, *J_p.shape], dtype=np.int64)]
+    for A in (tape_rows, J_h, J_p):
+        parts += [A.indptr, A.indices]
+    if fold is not None:
+        parts += [fold[1], fold[0].indices]
+    digest = hashlib.blake2b(digest_size=16)
+    for part in parts:
+        part = np.ascontiguousarray(part)
+        digest.update(f"{part.dtype.str}{part.size};".encode())
+        digest.update(part.data)
+    key = digest.digest()
+    pattern = _PATTERNS.pop(key, None)
+    if pattern is None:
+        pattern = JacobianPattern(tape_rows, J_h, J_p, model.nc, fold)
+        if kind in _ORDERED_KINDS:
+            pattern.order(pattern_ordering(pattern, model, kind))
+    _PATTERNS[key] = pattern
+    while len(_PATTERNS) > PATTERNS_KEPT:
+        del _PATTERNS[next(iter(_PATTERNS))]
+    return pattern
+
+
+def pattern_ordering(pattern: JacobianPattern, model: BearingModel, kind: str) -> np.ndarray:
+    """The nested-dissection ordering of ``pattern`` (folded, natural numbering) for
+    ``kind`` "metis" (:func:`gyroshell.linalg.factorization.nested_dissection`) or "grid"
+    (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
+    grid nodes: u is kind 0, p kind 1)."""
+    if kind == "metis":
+        return nested_dissection(pattern.graph())
+    node = model.unknown_nodes[pattern.kept]
+    return grid_nested_dissection(pattern.graph(), np.column_stack(np.divmod(node, model.nc)),
+                                  (pattern.kept >= model.n_u).astype(int))
 
 
 def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):
@@ -324,6 +430,8 @@ class _Iterate:
         self.merit = F.merit(self.res)
         self.solver, self.last_step, self.settled = None, np.inf, False
         self.tied = False
+        #: the round-off step (:func:`_noise_step`) and the factorization it was formed by
+        self.noise_step, self.noise_of = 0.0, None
 
 
 def _newton_direction(F: _Residual, it: _Iterate) -> np.ndarray:
@@ -331,10 +439,14 @@ def _newton_direction(F: _Residual, it: _Iterate) -> np.ndarray:
     factorization is reused (a chord step) as long as it still contracts fast; else J is
     factored afresh."""
     n_u = F.model.n_u
-    if it.solver is not None and it.settled and it.last_step < CHORD_SWITCH:
+    switch, contraction = ((CHORD_SWITCH, CHORD_CONTRACTION) if F.model.infinitely_wide
+                           else (CHORD_SWITCH_2D, CHORD_CONTRACTION_2D))
+    if it.solver is not None and it.settled and it.last_step < switch:
         dz = it.solver(it.res)
-        if _norm(dz, n_u, F) <= CHORD_CONTRACTION * it.last_step:
+        if _norm(dz, n_u, F) <= contraction * it.last_step:
             return dz
+    if it.J is None:       # a 2-D tape forms its Jacobian only to factor it
+        it.J = F(it.z, jacobian=True, active=it.active)[2]
     it.solver = F.factor(it.J)
     return it.solver(it.res)
 
@@ -412,14 +524,20 @@ def _contact_set_step(F, it: _Iterate, h, dz, found, tol):
     return _kept_if_better(F, model, it, d, h, active, solver, found, merit_t, tol)
 
 
-def _noise_step(F: _Residual, solver) -> float:
+def _noise_step(F: _Residual, it: _Iterate) -> float:
     """The relative size of the Newton step that the residual's round-off alone produces
     (the rows' round-off :attr:`_Residual.noise_rows` with fixed pseudo-random signs,
     through the step's factorization): the floor below which steps cannot shrink. On a
     grid refined far below the bending length at a corner (the plate's fourth difference
-    scales like h⁻⁴) it may lie above the step tolerance."""
-    signs = np.random.default_rng(0).choice((-1.0, 1.0), size=F.noise_rows.size)
-    return _norm(solver(signs * F.noise_rows), F.model.n_u, F)
+    scales like h⁻⁴) it may lie above the step tolerance. On a 2-D tape once per
+    factorization (chord steps near convergence move the rows' round-off by a fraction of
+    itself); the infinitely wide tape's banded substitution costs next to nothing, so it
+    is formed at every state there."""
+    if F.model.infinitely_wide or it.noise_of is not it.solver:
+        signs = np.random.default_rng(0).choice((-1.0, 1.0), size=F.noise_rows.size)
+        it.noise_step = _norm(it.solver(signs * F.noise_rows), F.model.n_u, F)
+        it.noise_of = it.solver
+    return it.noise_step
 
 
 def _record(info: NewtonInfo, step: float, merit: float, contacts: int) -> None:
@@ -436,6 +554,18 @@ def _stagnated(merits: list, alphas: list) -> bool:
     return (len(alphas) >= STAGNATION_WINDOW
             and merits[-1] > 0.5 * merits[-1 - STAGNATION_WINDOW]
             and max(alphas[-STAGNATION_WINDOW:]) < STAGNATION_STEP)
+
+
+def _evaluate(F: _Residual, it: _Iterate, lazy: bool) -> np.ndarray:
+    """The residual (``it.res``) at the new iterate ``it.z`` and its contact set by the
+    rule (returned); the Jacobian (``it.J``) too unless ``lazy`` (then None: formed when
+    it is factored, the round-off estimate updated with the last one's film block)."""
+    if lazy:
+        it.res, active, it.J = F(it.z, jacobian=False)
+        F.update_noise(it.z)
+    else:
+        it.res, active, it.J = F(it.z, jacobian=True)
+    return active
 
 
 def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
@@ -466,17 +596,20 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     contact_step = (_contact_set_step if it.active.any() or active_set
                     else _forced_contact_step)
     merits, alphas = [it.merit], []
+    # A 2-D tape's chord steps need no Jacobian: it is formed when factored; the
+    # infinitely wide tape's (a few thousand unknowns) at every iterate, as it always was.
+    lazy = not model.infinitely_wide
     for _ in range(max_iterations):
         h = it.z[:n_u] + model.dry_field[1:-1, :].ravel()
         dz = _newton_direction(F, it)
         if not np.all(np.isfinite(dz)):
             raise ConvergenceError("Newton: non-finite step")
-        floor = (ROUND_OFF_MULTIPLE * _noise_step(F, it.solver)
+        floor = (ROUND_OFF_MULTIPLE * _noise_step(F, it)
                  if _norm(dz, n_u, F) < ROUND_OFF_STEP else 0.0)
         found = _line_search(F, model, it.z, dz, h, it.active, it.merit, tol, F.noise)
         alpha, step, it.z, _ = contact_step(F, it, h, dz, found, tol)
         it.last_step = step
-        it.res, active_new, it.J = F(it.z, jacobian=True)
+        active_new = _evaluate(F, it, lazy)
         it.merit = F.merit(it.res)
         contacts = int(active_new.sum())
         _record(info, alpha * step, it.merit, contacts)
@@ -779,16 +912,22 @@ def interpolated_state(model: BearingModel, sol: BearingSolution) -> np.ndarray:
         u = (np.interp(model.x, coarse.x, w[:, 0]) - tape_height(model)[:, 0])[1:-1]
         p = np.interp(model.x, coarse.x, sol.pressure[:, 0])[1:-1]
         return np.concatenate([u, p])
-    from scipy.interpolate import RegularGridInterpolator
-
-    X, Y = np.meshgrid(model.x, model.y, indexing="ij")
-    pts = np.column_stack([X.ravel(), Y.ravel()])
-    fields = []
-    for f in (w, sol.pressure):
-        fields.append(RegularGridInterpolator((coarse.x, coarse.y), f)(pts)
-                      .reshape(X.shape))
+    along, across = _linear_weights(coarse.x, model.x), _linear_weights(coarse.y, model.y)
+    fields = [along @ (across @ f.T).T for f in (w, sol.pressure)]
     u = (fields[0] - tape_height(model))[1:-1, :].ravel()
     return np.concatenate([u, fields[1][model.film.interior]])
+
+
+def _linear_weights(nodes: np.ndarray, points: np.ndarray) -> sp.csr_matrix:
+    """The matrix of piecewise-linear interpolation from ``nodes`` (increasing) to
+    ``points`` (within their range): a tensor product of two gives the bilinear
+    interpolant on a grid."""
+    k = np.clip(np.searchsorted(nodes, points, side="right") - 1, 0, len(nodes) - 2)
+    t = np.clip((points - nodes[k]) / (nodes[k + 1] - nodes[k]), 0.0, 1.0)
+    rows = np.arange(len(points))
+    return sp.csr_matrix((np.concatenate([1.0 - t, t]),
+                          (np.concatenate([rows, rows]), np.concatenate([k, k + 1]))),
+                         shape=(len(points), len(nodes)))
 
 
 def _quiet_model(model: BearingModel, nx: int, ny: int) -> BearingModel:

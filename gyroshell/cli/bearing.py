@@ -47,11 +47,14 @@ PLATE_ONLY_FIELDS = ("length_ratio", "spacing", "load", "load_x", "load_y")
 #: bearing can fly.
 PLATE_INTERVALS = 41
 #: Seconds of one Newton iteration that factors the Jacobian afresh, measured by
-#: benchmarks/bearing_progress.py (2-core machine, shared): 1-D, a constant plus this much
+#: benchmarks/bench_bearing_cli.py (2-core machine, shared): 1-D, a constant plus this much
 #: per unknown; 2-D, per unknown this much plus that much per interval across (the
-#: factor's fill grows with the width of the half-width grid Newton solves on).
+#: factor's fill grows with the width of the half-width grid Newton solves on). The 2-D
+#: figures since the grid's nested dissection (issue 21): on 7,960 to 114,552 unknowns
+#: the first iteration measured 0.46-0.50x these estimates in a quiet minute and
+#: 0.98-1.09x in a loaded one (two runs of the benchmark at load 4).
 SECONDS_1D = (5e-3, 6e-6)
-SECONDS_2D = (2.5e-5, 2.5e-7)
+SECONDS_2D = (6e-6, 6e-8)
 #: A usual solve costs between this few and this many such iterations (chord steps near
 #: the solution are cheaper; the 2-D starting state costs a few; a contact set that keeps
 #: changing costs one each, 22 at 0.01 m/s); more when pseudo-time or the continuation in
@@ -119,7 +122,8 @@ def _tape_parser() -> argparse.ArgumentParser:
 
 #: The choices of --factorization (gyroshell.linalg.factorization.PATTERN_LU, spelled out
 #: so that the options are refused before scipy is imported).
-FACTORIZATION_CHOICES: tuple[str, ...] = ("auto", "metis", "mmd", "colamd", "pardiso")
+FACTORIZATION_CHOICES: tuple[str, ...] = ("auto", "grid", "metis", "mmd", "colamd",
+                                           "pardiso")
 
 
 def _add_bearing_options(p: argparse.ArgumentParser) -> None:
@@ -158,12 +162,12 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
                         "the free edges and the wrap corners (the counts --nx/--ny then set "
                         "uniform spacings)")
     g.add_argument("--factorization", choices=FACTORIZATION_CHOICES, default="auto",
-                   help="sparse LU of Newton's Jacobian: metis (SuperLU, diagonal pivots, "
-                        "METIS nested dissection once per grid; needs pymetis), mmd (the "
-                        "same with minimum degree, pure scipy), colamd (SuperLU with partial "
-                        "pivoting, 3-5x slower), pardiso (needs pypardiso); default auto: "
-                        "metis where pymetis is installed, else mmd (the infinitely wide tape: "
-                        "colamd); all give the same state")
+                   help="sparse LU of Newton's Jacobian: grid (SuperLU, diagonal pivots, "
+                        "nested dissection along the grid's node lines once per grid, pure "
+                        "scipy), metis (the same with METIS's ordering; needs pymetis), mmd "
+                        "(minimum degree), colamd (SuperLU with partial pivoting, 3-5x "
+                        "slower), pardiso (needs pypardiso); default auto: grid (the "
+                        "infinitely wide tape: colamd); all give the same state")
 
 
 def run(args: argparse.Namespace) -> int:

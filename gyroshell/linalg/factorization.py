@@ -52,10 +52,16 @@ klu        PyKLU (not offered: no symbolic   --       --          --      --
 .. [2] Measured apart in one earlier run (load about 4): UMFPACK 0.51 s symbolic + 3.2 s
    numeric against SuperLU + METIS 2.5 s and PARDISO 1.6 s + 2.1 s in the same minutes.
 
-All reach the same state (relative differences 1e-11, Newton's tolerance 1e-8). "auto"
-is "metis" where pymetis is installed, else "mmd" (pure scipy, about as fast: METIS's
-ordering costs what it saves in fill on this grid); the infinitely wide tape keeps
-"colamd" (banded, milliseconds).
+All reach the same state (relative differences 1e-11, Newton's tolerance 1e-8). Since
+then "grid" (:mod:`gyroshell.linalg.grid_ordering`: nested dissection along the grid's
+node lines, computed in numpy from the unknowns' node indices) orders the fine grid in
+0.07 s against METIS's 0.66 s, fills 19.0 M against 16.8 M and factors in the same time
+within the machine's noise (docs/performance.md); "auto" is "grid" (pure scipy, no
+optional package); the infinitely wide tape keeps "colamd" (banded, milliseconds).
+``single=True`` of :class:`DiagonalPivotLU` factors in single precision (0.6x the LU
+time); the bearing does not use it by default: on ill-conditioned Jacobians its steps
+mislead Newton although their backward errors are small
+(:data:`gyroshell.bearing.steady.SINGLE_LU`).
 
 Every sparse LU of the package goes through :func:`splu` (one place for SuperLU's options).
 The eigen-solvers' symmetric/Hermitian factorizations choose between CHOLMOD's Cholesky and
@@ -371,6 +377,9 @@ DIAGONAL_PIVOT_ORDERING = "MMD_AT_PLUS_A"
 #: A solve whose backward error max|A x − b| / max(|A||x| + |b|) exceeds this was spoilt by
 #: a small diagonal pivot: the matrix is factored again with partial pivoting.
 BACKWARD_ERROR_LIMIT = 1e-10
+#: The same for factors in single precision (``single=True`` of :class:`DiagonalPivotLU`):
+#: a solve above it factors the matrix again in double precision.
+SINGLE_BACKWARD_ERROR_LIMIT = 1e-5
 
 
 def metis_available() -> bool:
@@ -434,44 +443,63 @@ class DiagonalPivotLU:
     permutation : numpy.ndarray of int, optional
         The symmetric ordering P (e.g. :func:`nested_dissection`, computed once for many
         matrices of one pattern); default minimum degree on Aᵀ + A, computed by SuperLU.
+    ordered : bool
+        The matrix is already in its elimination order (P A Pᵀ assembled as such, e.g. by
+        :class:`gyroshell.bearing.jacobian.JacobianPattern`): factored as it is, and
+        solves are in its numbering. Excludes ``permutation``.
+    single : bool
+        Factor in single precision (half the memory, about 0.6x the time); a solve whose
+        backward error against the double-precision matrix exceeds
+        :data:`SINGLE_BACKWARD_ERROR_LIMIT` factors the matrix again in double.
     """
 
     name = "superlu-diagonal"
 
-    def __init__(self, matrix: sp.spmatrix, *, permutation: np.ndarray | None = None) -> None:
+    def __init__(self, matrix: sp.spmatrix, *, permutation: np.ndarray | None = None,
+                 ordered: bool = False, single: bool = False) -> None:
         start = time.perf_counter()
-        self._A = sp.csr_matrix(matrix)
-        self._abs = abs(self._A)
+        if ordered and permutation is not None:
+            raise ParameterError("DiagonalPivotLU: give a permutation or ordered=True, "
+                                 "not both")
+        csc = sp.csc_matrix(matrix)
         self._perm = permutation
-        if permutation is None:
-            self._lu = spla.splu(sp.csc_matrix(self._A), permc_spec=DIAGONAL_PIVOT_ORDERING,
-                                 diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-        else:
-            self._lu = spla.splu(sp.csc_matrix(self._A[permutation][:, permutation]),
-                                 permc_spec="NATURAL", diag_pivot_thresh=0.0,
-                                 options={"SymmetricMode": True})
+        if permutation is not None:
+            csc = csc[permutation][:, permutation]
+        self._A = csc          # the factored matrix, in the order of its elimination
+        self._abs = abs(csc)
+        self._permc = ("NATURAL" if ordered or permutation is not None
+                       else DIAGONAL_PIVOT_ORDERING)
+        #: whether the factors are in single precision (:data:`SINGLE_BACKWARD_ERROR_LIMIT`)
+        self.single = single
+        self._lu = self._factor(csc.astype(np.float32) if single else csc)
         #: whether a small pivot made it fall back to partial pivoting
         self.pivoted = False
         self.factor_time = time.perf_counter() - start
+
+    def _factor(self, csc):
+        return spla.splu(csc, permc_spec=self._permc, diag_pivot_thresh=0.0,
+                         options={"SymmetricMode": True})
 
     @staticmethod
     def available() -> bool:
         return True
 
-    def _substitute(self, rhs: np.ndarray) -> np.ndarray:
-        if self.pivoted or self._perm is None:
-            return self._lu.solve(rhs)
-        x = np.empty_like(rhs)
-        x[self._perm] = self._lu.solve(rhs[self._perm])
-        return x
-
     def backward_error(self, x: np.ndarray, rhs: np.ndarray) -> float:
-        """max|A x − b| / max(|A||x| + |b|): the relative backward error of a solve."""
+        """max|A x − b| / max(|A||x| + |b|): the relative backward error of a solve (x and
+        b in the factored matrix's order)."""
         scale = float(np.max(self._abs @ np.abs(x) + np.abs(rhs), initial=0.0))
         return float(np.max(np.abs(self._A @ x - rhs), initial=0.0)) / scale if scale else 0.0
 
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        x = self._substitute(rhs)
+    def _solve_ordered(self, rhs: np.ndarray) -> np.ndarray:
+        if self.single:
+            x = self._lu.solve(rhs.astype(np.float32)).astype(float)
+            if np.all(np.isfinite(x)) and (self.backward_error(x, rhs)
+                                           <= SINGLE_BACKWARD_ERROR_LIMIT):
+                return x
+            start = time.perf_counter()          # factored again in double precision
+            self._lu, self.single = self._factor(self._A), False
+            self.factor_time += time.perf_counter() - start
+        x = self._lu.solve(rhs)
         if not self.pivoted and not (np.all(np.isfinite(x))
                                      and self.backward_error(x, rhs) <= BACKWARD_ERROR_LIMIT):
             start = time.perf_counter()
@@ -481,15 +509,23 @@ class DiagonalPivotLU:
             x = self._lu.solve(rhs)
         return x
 
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        if self._perm is None:
+            return self._solve_ordered(rhs)
+        x = np.empty_like(rhs)
+        x[self._perm] = self._solve_ordered(rhs[self._perm])
+        return x
+
 
 #: The sparse LUs of a nonsymmetric matrix whose pattern is (nearly) symmetric, e.g. the
 #: bearing's Jacobian (``factorization=`` of :class:`gyroshell.bearing.BearingModel`):
-#: "metis" SuperLU with diagonal pivots after METIS's nested dissection (pymetis), the
-#: ordering computed once per pattern; "mmd" the same after minimum degree on Aᵀ + A (pure
-#: scipy, ordered at each factorization); "colamd" SuperLU with COLAMD and partial
-#: pivoting (the earlier default); "pardiso" MKL PARDISO (pypardiso); "auto" "metis" where
-#: pymetis is installed, else "mmd".
-PATTERN_LU = ("auto", "metis", "mmd", "colamd", "pardiso")
+#: "grid" SuperLU with diagonal pivots after a nested dissection along the grid's node
+#: lines (:mod:`gyroshell.linalg.grid_ordering`, pure numpy, once per grid); "metis" the
+#: same after METIS's nested dissection (pymetis), once per grid; "mmd" the same after
+#: minimum degree on Aᵀ + A (pure scipy, ordered at each factorization); "colamd" SuperLU
+#: with COLAMD and partial pivoting (the earlier default); "pardiso" MKL PARDISO
+#: (pypardiso); "auto" is "grid".
+PATTERN_LU = ("auto", "grid", "metis", "mmd", "colamd", "pardiso")
 _PATTERN_LU_PACKAGES = {"metis": ("pymetis", metis_available),
                         "pardiso": ("pypardiso", PardisoFactor.available)}
 
@@ -509,8 +545,6 @@ def check_pattern_lu(factorization, *, name: str = "factorization") -> str:
 
 
 def resolve_pattern_lu(factorization: str = "auto") -> str:
-    """What ``factorization`` (:data:`PATTERN_LU`) means now: "auto" is "metis" where
-    pymetis is installed, else "mmd" (module notes: the measured back-ends)."""
-    if factorization != "auto":
-        return factorization
-    return "metis" if metis_available() else "mmd"
+    """What ``factorization`` (:data:`PATTERN_LU`) means: "auto" is "grid" (pure scipy;
+    module notes: the measured back-ends)."""
+    return "grid" if factorization == "auto" else factorization

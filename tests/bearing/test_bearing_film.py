@@ -68,7 +68,7 @@ def test_jacobian_matches_finite_differences(air, wide, grading, rng):
     eps = 1e-6
     fd = (F(z + eps * direction, jacobian=False)[0]
           - F(z - eps * direction, jacobian=False)[0]) / (2 * eps)
-    assert np.allclose(J @ direction, fd, rtol=1e-6, atol=1e-7 * np.abs(fd).max())
+    assert np.allclose(J.matrix @ direction, fd, rtol=1e-6, atol=1e-7 * np.abs(fd).max())
 
 
 @pytest.mark.parametrize("air", AIRS.values(), ids=AIRS.keys())

@@ -8,7 +8,7 @@ The LU with diagonal pivots (:class:`gyroshell.linalg.factorization.DiagonalPivo
 checked against solutions known by construction (b = A x for a chosen x), and its
 fallback to partial pivoting on a matrix whose diagonal is zero; the nested-dissection
 ordering is a permutation; the switch is validated; without pymetis "auto" is pure
-scipy."""
+scipy (the grid's nested dissection, :mod:`gyroshell.linalg.grid_ordering`)."""
 
 from __future__ import annotations
 
@@ -31,7 +31,7 @@ AIR = AirParameters()
 TWO = FlatHead((Module(0.8e-3), Module(0.5e-3, height=0.3e-6)), math.radians(1.5),
                math.radians(3.0), gaps=(0.2e-3,))
 #: The back-ends installed here, besides the reference "colamd" and "auto" (which is
-#: "metis" or "mmd": the test without pymetis solves with it).
+#: "grid": the test without pymetis solves with it).
 BACKENDS = [b for b in fz.PATTERN_LU if b not in ("colamd", "auto")
             and {"metis": fz.metis_available,
                  "pardiso": fz.PardisoFactor.available}.get(b, lambda: True)()]
@@ -130,16 +130,43 @@ def test_a_small_diagonal_pivot_falls_back_to_partial_pivoting():
     assert np.max(np.abs(got - x)) < 1e-14
 
 
+def test_single_precision_factors_solve_to_their_backward_error_limit():
+    """Factors in single precision (ε = 1.2e-7): a solve's backward error is a small multiple
+    of ε, below SINGLE_BACKWARD_ERROR_LIMIT, and the error of x within cond(A) times it;
+    the factors stay single."""
+    A = _grid_matrix()
+    x = np.cos(np.arange(A.shape[0]))
+    lu = fz.DiagonalPivotLU(A, permutation=np.arange(A.shape[0]), single=True)
+    got = lu.solve(A @ x)
+    eps = np.finfo(np.float32).eps
+    assert lu.single and not lu.pivoted
+    assert lu.backward_error(got, A @ x) < 10 * eps < fz.SINGLE_BACKWARD_ERROR_LIMIT
+    assert np.max(np.abs(got - x)) < 10 * eps * np.linalg.cond(A.toarray())
+
+
+def test_single_precision_falls_back_to_double_then_to_partial_pivoting():
+    """The [[d, 1], [1, 1]] blocks of the test below in single precision: the pivot
+    d = 1e-15 spoils the single factors too (backward error about 1), so the matrix is
+    factored again in double, and then with partial pivoting: x to round-off."""
+    A = sp.kron(sp.identity(5), sp.csr_matrix([[1e-15, 1.0], [1.0, 1.0]])).tocsc()
+    x = np.cos(np.arange(10.0))
+    lu = fz.DiagonalPivotLU(A, permutation=np.arange(10), single=True)
+    got = lu.solve(A @ x)
+    assert not lu.single and lu.pivoted
+    assert np.max(np.abs(got - x)) < 1e-14
+
+
 @pytest.mark.parametrize("bad", ["umfpack", "METIS", 3, None])
 def test_the_switch_is_validated(bad):
-    with pytest.raises(ParameterError, match=r"factorization must be one of auto, metis"):
+    with pytest.raises(ParameterError,
+                       match=r"factorization must be one of auto, grid, metis"):
         _clear(bad)
 
 
 def test_without_pymetis_auto_is_pure_scipy(monkeypatch, references):
     monkeypatch.setitem(sys.modules, "pymetis", None)      # import pymetis fails
     assert not fz.metis_available()
-    assert fz.resolve_pattern_lu("auto") == "mmd"
+    assert fz.resolve_pattern_lu("auto") == "grid"
     with pytest.raises(ParameterError, match="factorization 'metis' needs the optional "
                                              "package pymetis"):
         _clear("metis")
