@@ -433,6 +433,15 @@ class _Iterate:
         #: the round-off step (:func:`_noise_step`) and the factorization it was formed by
         self.noise_step, self.noise_of = 0.0, None
 
+    def converged(self, active: np.ndarray, negligible: bool) -> bool:
+        """Take the new contact set ``active``; whether Newton has converged: a negligible
+        full step with the set settled, or after a negligible full step (``tied``)."""
+        self.settled = np.array_equal(active, self.active)
+        self.active = active
+        done = negligible and (self.settled or self.tied)
+        self.tied = negligible
+        return done
+
 
 def _newton_direction(F: _Residual, it: _Iterate) -> np.ndarray:
     """The Newton step. Near the solution with a settled contact set, the last
@@ -616,13 +625,9 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
         if log is not None:
             log(f"Newton {info.iterations}: step {alpha * step:.2e} (alpha {alpha:.3g}), "
                 f"residual {it.merit:.2e}, {contacts} nodes in contact")
-        it.settled = np.array_equal(active_new, it.active)
-        it.active = active_new
-        negligible = alpha == 1.0 and step < max(tol, floor)
-        if negligible and (it.settled or it.tied):
+        if it.converged(active_new, alpha == 1.0 and step < max(tol, floor)):
             lam = np.where(it.active, F.tape(it.z[:n_u], it.z[n_u:]), 0.0)
             return it.z, lam, it.active, info
-        it.tied = negligible
         merits.append(it.merit)
         alphas.append(alpha)
         if _stagnated(merits, alphas):
