@@ -105,7 +105,9 @@ def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float,
     contact floor per node (default σ; :attr:`BearingModel.contact_floor`)."""
     floor = sigma if floor is None else floor
     alpha = 1.0
-    free = ~active
+    # a node below the head (a rounded arc's node off contact may dip there during the
+    # iteration) has no spacing to keep a fraction of: the projection raises it
+    free = ~active & (h > 0.0)
     down = free & (du < -(1 - SPACING_KEEP) * h) & (h + du > np.maximum(floor, sigma))
     if down.any():
         alpha = min(alpha, float(np.min(-(1 - SPACING_KEEP) * h[down] / du[down])))
@@ -394,7 +396,7 @@ def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):
     alpha_p = 1.0
     if model.air.compressible:
         p, dp = z[n_u:], dz[n_u:]
-        shrink = dp < -(1 - PRESSURE_KEEP) * p
+        shrink = (dp < -(1 - PRESSURE_KEEP) * p) & (p > 0.0)
         if shrink.any():
             alpha_p = float(np.min(-(1 - PRESSURE_KEEP) * p[shrink] / dp[shrink]))
     alpha = min(alpha, alpha_p)
