@@ -279,9 +279,12 @@ class Newmark:
     damping : Damping, float or None
         Damping C (:class:`gyroshell.tape.damping.Damping`; a number is viscous c, N·s/m³).
     backend : str
-        Sparse LU back-end (see :func:`gyroshell.linalg.factorization.factorize`); SuperLU
-        orders K_eq by :func:`gyroshell.linalg.ordering.column_ordering` (the natural order
-        on a narrow band such as the symmetric half's, ``info["ordering"]``).
+        Sparse LU back-end (see :func:`gyroshell.linalg.factorization.factorize`).
+        "auto" (:func:`gyroshell.linalg.ordering.factorize_banded`): on a narrow band such
+        as the symmetric half's, LAPACK's banded LU with two BLAS band substitutions per
+        step; otherwise SuperLU, which orders K_eq by
+        :func:`gyroshell.linalg.ordering.column_ordering` (``info["backend"]``,
+        ``info["ordering"]``).
     blas_threads : int or None
         BLAS threads while factoring and marching (needs the optional threadpoolctl; None
         leaves them alone). One is fastest here: the substitutions call BLAS on small
@@ -320,11 +323,12 @@ class Newmark:
         self.damped_gyroscopic.sort_indices()
         self.m = np.ascontiguousarray(model.mass_diagonal, dtype=float)
         self.blas_threads = blas_threads
-        #: The LU back-end's name (refused here if unknown or not installed).
-        self.backend = resolve_backend(backend)
+        #: The LU back-end asked for: "auto" or a name (refused here if unknown or not
+        #: installed); ``info["backend"]`` is the one that factored the last run's K_eq.
+        self.backend = "auto" if backend == "auto" else resolve_backend(backend)
         self._operators: dict[str, _Operators] = {}
         self._half_allowed: bool | None = None
-        self.info = {"backend": self.backend, "factor_time": 0.0,
+        self.info = {"backend": resolve_backend(self.backend), "factor_time": 0.0,
                      "unknowns": model.unknowns, "factorizations": 0,
                      "blas_threads": blas_threads}
 
@@ -604,6 +608,7 @@ class Newmark:
         info = dict(self.info, steps=steps, solve_time=solve_time, loop_time=loop_time,
                     step_time=loop_time / steps, damping=asdict(self.damping),
                     moving_load=load is not None, factor_time=system.factor.factor_time,
+                    backend=system.factor.name,
                     factor_shared=system.shared, marched_unknowns=system.unknowns,
                     ordering=getattr(system.factor, "ordering", None),
                     symmetry="full" if system.half is None else "half")

@@ -42,7 +42,14 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from .factorization import ORDERING, Factorization, SuperLUFactor, factorize, resolve_backend
+from .factorization import (
+    ORDERING,
+    BandedFactor,
+    Factorization,
+    SuperLUFactor,
+    factorize,
+    resolve_backend,
+)
 
 #: Largest half-bandwidth (in unknowns) at which SuperLU keeps the natural order: between
 #: the symmetric halves of the paper's grid (42, faster natural) and the full grids (56 and
@@ -68,8 +75,14 @@ def column_ordering(matrix: sp.spmatrix) -> str:
 
 
 def factorize_banded(matrix: sp.spmatrix, backend: str = "auto") -> Factorization:
-    """:func:`gyroshell.linalg.factorization.factorize` for a banded matrix: SuperLU in the
-    ordering of :func:`column_ordering` (its name in the factor's ``ordering``); any other
+    """:func:`gyroshell.linalg.factorization.factorize` for a banded matrix.
+
+    ``"auto"``: up to a half-bandwidth of :data:`NATURAL_HALF_BANDWIDTH`, LAPACK's banded
+    LU (:class:`gyroshell.linalg.factorization.BandedFactor`) when it interchanged no rows,
+    whose solves are then two BLAS band substitutions (module notes: a third of SuperLU's
+    substitution), else SuperLU in the natural order; above it SuperLU in minimum-degree
+    order. ``"superlu"``: SuperLU in the ordering of :func:`column_ordering`. Either way
+    the factor's ``ordering`` names the order (:data:`NATURAL` for the band). Any other
     back-end as ``factorize`` makes it (``ordering`` None).
 
     Parameters
@@ -92,6 +105,11 @@ def factorize_banded(matrix: sp.spmatrix, backend: str = "auto") -> Factorizatio
     if matrix.shape[0] != matrix.shape[1]:
         return factorize(matrix, name)  # refused there, in its words
     order = column_ordering(matrix)
+    if backend == "auto" and order == NATURAL:
+        band = BandedFactor(matrix)
+        if band.unpivoted:
+            band.ordering = NATURAL
+            return band
     factor = SuperLUFactor(matrix, ordering=order)
     factor.ordering = order
     return factor
