@@ -663,10 +663,9 @@ class Newmark:
         on the marched unknowns (the half's z if ``system.half``)."""
         solve, wanted, half = system.factor.solve, recorder.wanted, system.half
         w_t, v_t, rhs, tmp, tmp2 = (np.empty_like(w) for _ in range(5))
-        field = None if half is None else np.empty(self.model.unknowns)
 
         def record(n, w):
-            recorder.record(n, w if half is None else half.expand(w, field))
+            recorder.record(n, w, half)
 
         forcing.displacement(0, w, history[0])
         if energy is not None:
