@@ -67,6 +67,7 @@ that for a block of code (every engine below it, inertia counts included, follow
 from __future__ import annotations
 
 import contextvars
+import math
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -209,17 +210,10 @@ class SuperLUFactor:
 
 
 class BandedFactor:
-    """LAPACK banded LU with partial pivoting (dgbtrf through scipy).
+    """LAPACK banded LU with partial pivoting (dgbtrf/dgbtrs through scipy).
 
     Stores (2 k_l + k_u + 1) × n numbers: fine for the tape's narrow band, wasteful for
-    matrices with a few far-off entries. When the factorization interchanged no rows (as on
-    Newmark's K_eq, whose diagonal M dominates), L is unit lower triangular with k_l
-    sub-diagonals and U upper triangular with k_u super-diagonals, and a solve is two BLAS
-    band substitutions (dtbsv) on them: about a third of SuperLU's substitution in the
-    natural order on the symmetric half of the L_x/L_y = 19 tape
-    (:mod:`gyroshell.linalg.ordering`), and the same numbers as LAPACK's dgbtrs (which,
-    column by column with row swaps, takes about twice as long). Otherwise solves go
-    through dgbtrs.
+    matrices with a few far-off entries.
     """
 
     name = "banded"
@@ -237,16 +231,6 @@ class BandedFactor:
         if info > 0:
             raise np.linalg.LinAlgError(f"banded LU: exactly singular pivot {info}")
         self._lub, self._piv, self._kl, self._ku = lub, piv, kl, ku
-        #: Whether the LU interchanged no rows (the solves are then two band substitutions).
-        self.unpivoted = bool(np.array_equal(piv, np.arange(n))) and not lub[:kl].any()
-        self._lower = self._upper = None
-        if self.unpivoted:
-            lower = np.empty((kl + 1, n), order="F")
-            lower[0] = 1.0  # L's unit diagonal (not referenced by dtbsv with diag=1)
-            lower[1:] = lub[kl + ku + 1:]
-            self._lower = lower
-            self._upper = np.asfortranarray(lub[kl:kl + ku + 1])  # the rows above: zero
-            self._lub = None
         self.factor_time = time.perf_counter() - start
         self.nnz = int(lub.size)
 
@@ -255,14 +239,6 @@ class BandedFactor:
         return True
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
-        if self.unpivoted and np.ndim(rhs) == 1:
-            y = blas.dtbsv(self._kl, self._lower, rhs, lower=1, diag=1)
-            return blas.dtbsv(self._ku, self._upper, y, lower=0, overwrite_x=1)
-        if self._lub is None:  # unpivoted factors kept as L and U only: rebuild dgbtrs' form
-            self._lub = np.zeros((2 * self._kl + self._ku + 1, self._upper.shape[1]),
-                                 order="F")
-            self._lub[self._kl:self._kl + self._ku + 1] = self._upper
-            self._lub[self._kl + self._ku + 1:] = self._lower[1:]
         x, info = lapack.dgbtrs(self._lub, self._kl, self._ku, rhs, self._piv)
         if info != 0:
             raise np.linalg.LinAlgError(f"dgbtrs failed (info = {info})")
@@ -505,6 +481,84 @@ class DiagonalPivotLU:
             self.factor_time += time.perf_counter() - start
             x = self._lu.solve(rhs)
         return x
+
+
+
+#: :class:`BandLU` keeps its unpivoted factors while ‖ |L||U| ‖∞ stays below this many
+#: times ‖A‖∞ (then every solve is backward stable: |ΔA| ≤ γ |L||U|); above it, partial
+#: pivoting.
+BAND_GROWTH_LIMIT = 10.0
+
+
+class BandLU:
+    """LU of a banded matrix in its own order with diagonal pivots, solved by two BLAS band
+    substitutions.
+
+    SuperLU factors A in the natural order with diagonal pivots (symmetric mode, pivot
+    threshold 0, as in :class:`DiagonalPivotLU`), so L and U stay inside A's band; they are
+    copied into LAPACK band storage and each solve is two ``dtbsv`` calls (unit lower, then
+    upper triangular band), with no index arrays and no supernode bookkeeping: on
+    Newmark's K_eq of the symmetric half of the L_x/L_y = 19 tape (16,338 unknowns,
+    half-bandwidth 42) a third of SuperLU's natural-order substitution
+    (:mod:`gyroshell.linalg.ordering`). Without pivoting the factors are kept only if
+    ‖ |L||U| ‖∞ ≤ :data:`BAND_GROWTH_LIMIT` ‖A‖∞, which bounds the backward error of every
+    solve (Higham, *Accuracy and Stability of Numerical Algorithms*, Thm. 9.4); K_eq's
+    dominant mass diagonal gives about 1. Otherwise (or if SuperLU moved a row or column)
+    the matrix is factored again by SuperLU with partial pivoting in the natural order
+    (``pivoted`` True) and solved by it.
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix, shape (n, n)
+        Square, real.
+    """
+
+    name = "band"
+
+    def __init__(self, matrix: sp.spmatrix) -> None:
+        start = time.perf_counter()
+        A = sp.csc_matrix(matrix, dtype=float)
+        n = A.shape[0]
+        try:
+            lu = spla.splu(A, permc_spec="NATURAL", diag_pivot_thresh=0.0,
+                           options={"SymmetricMode": True})
+        except RuntimeError:  # a zero pivot on the diagonal
+            lu = None
+        identity = np.arange(n)
+        #: whether the unpivoted factors were refused (solves then go through SuperLU)
+        self.pivoted = lu is None or not (np.array_equal(lu.perm_r, identity)
+                                          and np.array_equal(lu.perm_c, identity))
+        self._lu = None
+        #: ‖ |L||U| ‖∞ / ‖A‖∞ of the unpivoted factors (inf if there are none)
+        self.growth = math.inf
+        if not self.pivoted:
+            L, U = lu.L.tocoo(), lu.U.tocoo()
+            self._kl = int(np.max(L.row - L.col, initial=0))
+            self._ku = int(np.max(U.col - U.row, initial=0))
+            self._lower = np.zeros((self._kl + 1, n), order="F")
+            self._lower[L.row - L.col, L.col] = L.data
+            self._upper = np.zeros((self._ku + 1, n), order="F")
+            self._upper[self._ku + U.row - U.col, U.col] = U.data
+            ones = np.ones(n)
+            growth = np.max(abs(L.tocsr()) @ (abs(U.tocsr()) @ ones))
+            self.growth = float(growth / np.max(abs(A) @ ones))
+            self.pivoted = not self.growth <= BAND_GROWTH_LIMIT
+        if self.pivoted:
+            self._lu = spla.splu(A, permc_spec="NATURAL")
+        self.factor_time = time.perf_counter() - start
+
+    @staticmethod
+    def available() -> bool:
+        return True
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        if self._lu is not None:
+            return self._lu.solve(rhs)
+        rhs = np.asarray(rhs, dtype=float)
+        if rhs.ndim != 1:
+            return np.column_stack([self.solve(b) for b in rhs.T])
+        y = blas.dtbsv(self._kl, self._lower, rhs, lower=1, diag=1)
+        return blas.dtbsv(self._ku, self._upper, y, lower=0, overwrite_x=1)
 
 
 #: The sparse LUs of a nonsymmetric matrix whose pattern is (nearly) symmetric, e.g. the

@@ -44,7 +44,7 @@ import scipy.sparse as sp
 
 from .factorization import (
     ORDERING,
-    BandedFactor,
+    BandLU,
     Factorization,
     SuperLUFactor,
     factorize,
@@ -77,11 +77,11 @@ def column_ordering(matrix: sp.spmatrix) -> str:
 def factorize_banded(matrix: sp.spmatrix, backend: str = "auto") -> Factorization:
     """:func:`gyroshell.linalg.factorization.factorize` for a banded matrix.
 
-    ``"auto"``: up to a half-bandwidth of :data:`NATURAL_HALF_BANDWIDTH`, LAPACK's banded
-    LU (:class:`gyroshell.linalg.factorization.BandedFactor`) when it interchanged no rows,
-    whose solves are then two BLAS band substitutions (module notes: a third of SuperLU's
-    substitution), else SuperLU in the natural order; above it SuperLU in minimum-degree
-    order. ``"superlu"``: SuperLU in the ordering of :func:`column_ordering`. Either way
+    ``"auto"``: up to a half-bandwidth of :data:`NATURAL_HALF_BANDWIDTH`,
+    :class:`gyroshell.linalg.factorization.BandLU` (the natural order, diagonal pivots
+    while they are stable, two BLAS band substitutions per solve: module notes, a third of
+    SuperLU's substitution); above it SuperLU in minimum-degree order. ``"superlu"``:
+    SuperLU in the ordering of :func:`column_ordering`. Either way
     the factor's ``ordering`` names the order (:data:`NATURAL` for the band). Any other
     back-end as ``factorize`` makes it (``ordering`` None).
 
@@ -106,10 +106,9 @@ def factorize_banded(matrix: sp.spmatrix, backend: str = "auto") -> Factorizatio
         return factorize(matrix, name)  # refused there, in its words
     order = column_ordering(matrix)
     if backend == "auto" and order == NATURAL:
-        band = BandedFactor(matrix)
-        if band.unpivoted:
-            band.ordering = NATURAL
-            return band
+        band = BandLU(matrix)
+        band.ordering = NATURAL
+        return band
     factor = SuperLUFactor(matrix, ordering=order)
     factor.ordering = order
     return factor
