@@ -182,13 +182,13 @@ def run_parallel(names: Sequence[str], out: Path, settings: Settings, workers: i
     study's time (the seconds its parts and its writing took on the workers) as it
     finishes. Returns the written files per study, in the order of ``names``."""
     quiet = dataclasses.replace(settings, progress=False)  # no bars from the workers
+    _start_fork_server(names)  # its imports overlap this process's imports of the studies
     studies = {}
     for name in names:
         module = study_module(name)
         keys = list(module.parts(settings)) if hasattr(module, "parts") else None
         studies[name] = _Study(name, keys)
     tasks = [(name, key) for name, s in studies.items() for key in (s.keys or [None])]
-    _preload()
     staging = Path(tempfile.mkdtemp(prefix=".gyroshell-reproduce-", dir=out))
     try:
         with process_pool(workers) as pool, stage_progress(
@@ -206,17 +206,27 @@ def run_parallel(names: Sequence[str], out: Path, settings: Settings, workers: i
 
 
 #: Modules the fork server imports before it starts the workers, so that each worker
-#: starts with them instead of importing them again (a few seconds per worker).
+#: starts with them instead of importing them again (a few seconds per worker); the
+#: studies' own modules are added, and ``_headless`` (matplotlib's Agg and pyplot).
 PRELOAD = ("numpy", "scipy.sparse.linalg", "scipy.signal", "pandas", "matplotlib",
-           "gyroshell.reproduce._common", "gyroshell.engines.newmark", "gyroshell.engines.eigen")
+           "gyroshell.reproduce._common", "gyroshell.engines.newmark", "gyroshell.engines.eigen",
+           "gyroshell.reproduce._headless")
 
 
-def _preload() -> None:
-    """Ask the fork server (where it is used and not started yet) to import PRELOAD."""
+def _start_fork_server(names: Sequence[str]) -> None:
+    """Where workers start from a fork server: start it now, importing PRELOAD and the
+    modules of the studies ``names``, while this process imports them too (two cores
+    instead of one after the other). Nothing to do if it runs already or there is none
+    (spawn)."""
     import multiprocessing
 
-    if "forkserver" in multiprocessing.get_all_start_methods():
-        multiprocessing.get_context("forkserver").set_forkserver_preload(list(PRELOAD))
+    if "forkserver" not in multiprocessing.get_all_start_methods():
+        return
+    from multiprocessing import forkserver
+
+    context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload([*PRELOAD, *(f"{__package__}.{n}" for n in names)])
+    forkserver.ensure_running()
 
 
 def _collect(pool, pending: dict, studies: dict, staging: Path, settings: Settings, bar,
