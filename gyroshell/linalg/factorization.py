@@ -16,7 +16,11 @@ The back-ends compared (``benchmarks/bench_newmark.py`` prints the measured medi
   and substitutes more slowly.
 
 So "auto" is SuperLU: the fastest reliable one, shipped with scipy, always available. The
-others are opt-in by name where installed, and the tests check that all agree.
+others are opt-in by name where installed, and the tests check that all agree. Newmark's
+narrow bands (the symmetric halves) go further
+(:func:`gyroshell.linalg.ordering.factorize_banded`): :class:`BandLU`, SuperLU's
+diagonal-pivot LU in the natural order copied into band storage and solved by two BLAS
+band substitutions, a third of SuperLU's own substitution there.
 
 The bearing's Newton Jacobian (real, nonsymmetric, pattern nearly symmetric: the plate's
 13-point bending stencil and the film's 5-point Reynolds stencil on one 2-D grid) is
