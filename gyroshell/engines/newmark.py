@@ -41,10 +41,13 @@ so a half-size step measured 0.38x a bare full-size substitution there and 0.49x
 Table 1 grid (``benchmarks/bench_newmark.py``, alternating rounds in one run; a full-size
 step is 1.1-1.6x).
 
-Ordering. SuperLU factors K_eq in its natural (grid) order when the band is narrow, as on
-the symmetric half of the paper's grid, and in minimum-degree order otherwise
-(:mod:`gyroshell.linalg.ordering`): a half-size step on L_x/L_y = 19 measured 0.85x the
-minimum-degree one on a quiet machine (a bare substitution 0.90x; 0.65x under load).
+Ordering. K_eq is factored in its natural (grid) order when the band is narrow, as on the
+symmetric half of the paper's grid, and by SuperLU in minimum-degree order otherwise
+(:mod:`gyroshell.linalg.ordering`). With ``backend="auto"`` the narrow band's LU (diagonal
+pivots while they are stable) is solved by two BLAS band substitutions
+(:class:`gyroshell.linalg.factorization.BandLU`): a third of SuperLU's natural-order
+substitution on the L_x/L_y = 19 half; a half-size step there measured 0.12x a bare
+full-size substitution (``benchmarks/bench_newmark.py``, load 3-5).
 
 Shared factorizations. Inside ``with sharing_factorizations():`` every :class:`Newmark`
 for the same tape (equal parameters and grid) at the same (V, Δt, β, γ, C, back-end) uses
