@@ -41,10 +41,13 @@ so a half-size step measured 0.38x a bare full-size substitution there and 0.49x
 Table 1 grid (``benchmarks/bench_newmark.py``, alternating rounds in one run; a full-size
 step is 1.1-1.6x).
 
-Ordering. SuperLU factors K_eq in its natural (grid) order when the band is narrow, as on
-the symmetric half of the paper's grid, and in minimum-degree order otherwise
-(:mod:`gyroshell.linalg.ordering`): a half-size step on L_x/L_y = 19 measured 0.85x the
-minimum-degree one on a quiet machine (a bare substitution 0.90x; 0.65x under load).
+Ordering. K_eq is factored in its natural (grid) order when the band is narrow, as on the
+symmetric half of the paper's grid, and by SuperLU in minimum-degree order otherwise
+(:mod:`gyroshell.linalg.ordering`). With ``backend="auto"`` the narrow band's LU (diagonal
+pivots while they are stable) is solved by two BLAS band substitutions
+(:class:`gyroshell.linalg.factorization.BandLU`): a third of SuperLU's natural-order
+substitution on the L_x/L_y = 19 half; a half-size step there measured 0.12x a bare
+full-size substitution (``benchmarks/bench_newmark.py``, load 3-5).
 
 Shared factorizations. Inside ``with sharing_factorizations():`` every :class:`Newmark`
 for the same tape (equal parameters and grid) at the same (V, Δt, β, γ, C, back-end) uses
@@ -279,9 +282,12 @@ class Newmark:
     damping : Damping, float or None
         Damping C (:class:`gyroshell.tape.damping.Damping`; a number is viscous c, N·s/m³).
     backend : str
-        Sparse LU back-end (see :func:`gyroshell.linalg.factorization.factorize`); SuperLU
-        orders K_eq by :func:`gyroshell.linalg.ordering.column_ordering` (the natural order
-        on a narrow band such as the symmetric half's, ``info["ordering"]``).
+        Sparse LU back-end (see :func:`gyroshell.linalg.factorization.factorize`).
+        "auto" (:func:`gyroshell.linalg.ordering.factorize_banded`): on a narrow band such
+        as the symmetric half's, LAPACK's banded LU with two BLAS band substitutions per
+        step; otherwise SuperLU, which orders K_eq by
+        :func:`gyroshell.linalg.ordering.column_ordering` (``info["backend"]``,
+        ``info["ordering"]``).
     blas_threads : int or None
         BLAS threads while factoring and marching (needs the optional threadpoolctl; None
         leaves them alone). One is fastest here: the substitutions call BLAS on small
@@ -320,11 +326,12 @@ class Newmark:
         self.damped_gyroscopic.sort_indices()
         self.m = np.ascontiguousarray(model.mass_diagonal, dtype=float)
         self.blas_threads = blas_threads
-        #: The LU back-end's name (refused here if unknown or not installed).
-        self.backend = resolve_backend(backend)
+        #: The LU back-end asked for: "auto" or a name (refused here if unknown or not
+        #: installed); ``info["backend"]`` is the one that factored the last run's K_eq.
+        self.backend = "auto" if backend == "auto" else resolve_backend(backend)
         self._operators: dict[str, _Operators] = {}
         self._half_allowed: bool | None = None
-        self.info = {"backend": self.backend, "factor_time": 0.0,
+        self.info = {"backend": resolve_backend(self.backend), "factor_time": 0.0,
                      "unknowns": model.unknowns, "factorizations": 0,
                      "blas_threads": blas_threads}
 
@@ -604,6 +611,7 @@ class Newmark:
         info = dict(self.info, steps=steps, solve_time=solve_time, loop_time=loop_time,
                     step_time=loop_time / steps, damping=asdict(self.damping),
                     moving_load=load is not None, factor_time=system.factor.factor_time,
+                    backend=system.factor.name,
                     factor_shared=system.shared, marched_unknowns=system.unknowns,
                     ordering=getattr(system.factor, "ordering", None),
                     symmetry="full" if system.half is None else "half")
@@ -658,10 +666,9 @@ class Newmark:
         on the marched unknowns (the half's z if ``system.half``)."""
         solve, wanted, half = system.factor.solve, recorder.wanted, system.half
         w_t, v_t, rhs, tmp, tmp2 = (np.empty_like(w) for _ in range(5))
-        field = None if half is None else np.empty(self.model.unknowns)
 
         def record(n, w):
-            recorder.record(n, w if half is None else half.expand(w, field))
+            recorder.record(n, w, half)
 
         forcing.displacement(0, w, history[0])
         if energy is not None:

@@ -42,23 +42,29 @@ from ..core.parallel import blas_threads, process_pool
 from ..core.progress import stage_progress
 from ._common import Settings
 
-#: Rough CPU seconds of the costliest parts (or studies without parts, key None) on the full
-#: settings: only the order of the work depends on them (costliest first, so that the
-#: workers finish together; the rest keep the study order). Unlisted work counts 1 s.
+#: CPU seconds of the parts (or studies without parts, key None) on the full settings,
+#: measured one after another in one process (``reproduce all``'s order, so that fig2 at
+#: V = 0 and 50, fig5, fig6 and the observations' runs are sliced from longer runs) at a
+#: load average of about 8: only their ratios matter. Only the order of the work depends
+#: on them (costliest first, so that the workers finish together; the rest keep the study
+#: order). Unlisted work counts :data:`UNLISTED_COST`.
 COST: dict[tuple[str, object], float] = {
-    **{("period", v): c for v, c in ((0.0, 8), (25.0, 8), (50.0, 9), (75.0, 11), (90.0, 12),
-                                      (95.0, 12), (100.0, 16))},
-    **{("fig2", v): 5.0 for v in (0.0, 50.0, 90.0, 100.0)},
-    ("critical", ("free", 19.0)): 6.0, ("critical", ("simply-supported", 19.0)): 6.0,
-    ("critical", ("free", 4.0)): 2.0, ("critical", ("simply-supported", 4.0)): 2.0,
-    ("bearing", ("maps",)): 6.0, ("bearing", ("transient",)): 4.0,
-    **{("heads", ("width", v)): 4.0 for v in (2.0, 4.0, 8.0)},
-    ("heads", ("wraps",)): 3.0, ("heads", ("modules",)): 2.0,
-    **{("orthotropy", ("bearing", r)): 3.0 for r in (0.25, 1.0, 4.0)},
-    ("helical", None): 6.0, ("observations", "reflection"): 3.0,
-    ("observations", "wavelengths"): 2.0, ("fig3", None): 2.0, ("fig4", None): 2.0,
-    ("fig5", None): 2.0, ("fig6", None): 2.0,
+    **{("period", v): c for v, c in ((0.0, 1.5), (25.0, 1.5), (50.0, 2.0), (75.0, 2.3),
+                                      (90.0, 2.4), (95.0, 2.3), (100.0, 3.2))},
+    ("fig2", 0.0): 0.5, ("fig2", 50.0): 0.5, ("fig2", 90.0): 1.6, ("fig2", 100.0): 1.5,
+    ("frf", 0.0): 0.65, ("frf", 50.0): 1.3, ("frf", 90.0): 3.6,
+    ("critical", ("free", 19.0)): 0.4, ("critical", ("simply-supported", 19.0)): 0.4,
+    ("bearing", ("maps",)): 3.4, ("bearing", ("transient",)): 2.3,
+    ("heads", ("width", 2.0)): 2.5, ("heads", ("width", 4.0)): 1.35,
+    ("heads", ("width", 8.0)): 1.0, ("heads", ("wraps",)): 1.7,
+    ("orthotropy", ("bearing", 0.25)): 1.2, ("orthotropy", ("bearing", 1.0)): 1.0,
+    ("orthotropy", ("bearing", 4.0)): 0.9,
+    ("helical", None): 2.2, ("observations", "reflection"): 0.7,
+    ("observations", "wavelengths"): 0.2, ("fig3", None): 1.4, ("fig4", None): 1.4,
+    ("fig5", None): 0.3, ("fig6", None): 0.6,
 }
+#: The cost of unlisted work (each part below about 0.2 s), CPU seconds as in COST.
+UNLISTED_COST = 0.1
 
 
 #: Parts (study, key) whose step-load run is a prefix of another's (the same tape, V and
@@ -161,8 +167,8 @@ def _units(tasks: list[tuple], studies: dict) -> list[list[tuple]]:
         unit = units.setdefault(("run", group) if group is not None else (name, key), [])
         unit.append((name, key, studies[name].keys is None))
     for unit in units.values():
-        unit.sort(key=lambda m: -COST.get(m[:2], 1.0))
-    return sorted(units.values(), key=lambda u: -sum(COST.get(m[:2], 1.0) for m in u))
+        unit.sort(key=lambda m: -COST.get(m[:2], UNLISTED_COST))
+    return sorted(units.values(), key=lambda u: -sum(COST.get(m[:2], UNLISTED_COST) for m in u))
 
 
 # ----- the parent ----------------------------------------------------------------------------
@@ -182,13 +188,13 @@ def run_parallel(names: Sequence[str], out: Path, settings: Settings, workers: i
     study's time (the seconds its parts and its writing took on the workers) as it
     finishes. Returns the written files per study, in the order of ``names``."""
     quiet = dataclasses.replace(settings, progress=False)  # no bars from the workers
+    _start_fork_server(names)  # its imports overlap this process's imports of the studies
     studies = {}
     for name in names:
         module = study_module(name)
         keys = list(module.parts(settings)) if hasattr(module, "parts") else None
         studies[name] = _Study(name, keys)
     tasks = [(name, key) for name, s in studies.items() for key in (s.keys or [None])]
-    _preload()
     staging = Path(tempfile.mkdtemp(prefix=".gyroshell-reproduce-", dir=out))
     try:
         with process_pool(workers) as pool, stage_progress(
@@ -206,17 +212,27 @@ def run_parallel(names: Sequence[str], out: Path, settings: Settings, workers: i
 
 
 #: Modules the fork server imports before it starts the workers, so that each worker
-#: starts with them instead of importing them again (a few seconds per worker).
+#: starts with them instead of importing them again (a few seconds per worker); the
+#: studies' own modules are added, and ``_headless`` (matplotlib's Agg and pyplot).
 PRELOAD = ("numpy", "scipy.sparse.linalg", "scipy.signal", "pandas", "matplotlib",
-           "gyroshell.reproduce._common", "gyroshell.engines.newmark", "gyroshell.engines.eigen")
+           "gyroshell.reproduce._common", "gyroshell.engines.newmark", "gyroshell.engines.eigen",
+           "gyroshell.reproduce._headless")
 
 
-def _preload() -> None:
-    """Ask the fork server (where it is used and not started yet) to import PRELOAD."""
+def _start_fork_server(names: Sequence[str]) -> None:
+    """Where workers start from a fork server: start it now, importing PRELOAD and the
+    modules of the studies ``names``, while this process imports them too (two cores
+    instead of one after the other). Nothing to do if it runs already or there is none
+    (spawn)."""
     import multiprocessing
 
-    if "forkserver" in multiprocessing.get_all_start_methods():
-        multiprocessing.get_context("forkserver").set_forkserver_preload(list(PRELOAD))
+    if "forkserver" not in multiprocessing.get_all_start_methods():
+        return
+    from multiprocessing import forkserver
+
+    context = multiprocessing.get_context("forkserver")
+    context.set_forkserver_preload([*PRELOAD, *(f"{__package__}.{n}" for n in names)])
+    forkserver.ensure_running()
 
 
 def _collect(pool, pending: dict, studies: dict, staging: Path, settings: Settings, bar,

@@ -101,23 +101,67 @@ class Recorder:
         self._fields = np.empty((len(snap), *grid.shape))
         self._lines = np.empty((len(line), grid.nx + 1))
         self._k_snap = self._k_line = 0
+        self._plans: dict[int, tuple] = {}  # centre-line plans by id of the half (or None)
         #: wanted[n] is non-zero at the steps where something is kept.
         self.wanted = np.zeros(steps + 1, dtype=np.int8)
         self.wanted[snap] |= 1
         self.wanted[line] |= 2
 
-    def record(self, n: int, w: np.ndarray) -> None:
-        """Keep what step n asks for, from the unknown vector w (m)."""
+    def record(self, n: int, w: np.ndarray, half=None) -> None:
+        """Keep what step n asks for, from the unknown vector w (m), or from the half's
+        unknowns z of a mirror-symmetric field w = P_s z if ``half`` (a
+        :class:`gyroshell.tape.mirror.SymmetricHalf`) is given.
+
+        A centre line is read off the two columns of unknowns next to y = L_y/2 (those of
+        the half for z), without forming the field: the same numbers as
+        :meth:`Grid.centerline` of the field, which a march recording its centre line at
+        every step would otherwise build at every step."""
         flags = self.wanted[n]
         if not flags:
             return
-        field_n = self.grid.to_field(w)
         if flags & 1:
-            self._fields[self._k_snap] = field_n
+            self._fields[self._k_snap] = self.grid.to_field(
+                w if half is None else half.expand(w))
             self._k_snap += 1
         if flags & 2:
-            self._lines[self._k_line] = self.grid.centerline(field_n)
+            self._centerline(w, half, self._lines[self._k_line])
             self._k_line += 1
+
+    def _centerline(self, w: np.ndarray, half, out: np.ndarray) -> None:
+        """w(x, L_y/2) into ``out`` (shape (nx + 1,)) from the unknowns w, or z on ``half``:
+        (1 − f) w[:, j] + f w[:, j + 1] (:meth:`Grid.centerline_weights`), zero on
+        supported lines; w = z times the half's value weight on the column's pair."""
+        plan = self._plans.get(id(half))
+        if plan is None:
+            plan = self._plans[id(half)] = self._centerline_plan(half)
+        across, (a, wa), (b, wb), f = plan
+        values = w.reshape(-1, across)
+        out[:] = 0.0
+        xs = self.grid.x_unknowns
+        if a is None:
+            out[xs] = (1.0 - f) * 0.0 + f * (values[:, b] * wb)
+        elif b is None:
+            out[xs] = (1.0 - f) * (values[:, a] * wa) + f * 0.0
+        else:
+            out[xs] = (1.0 - f) * (values[:, a] * wa) + f * (values[:, b] * wb)
+
+    def _centerline_plan(self, half) -> tuple:
+        """(unknowns per line of w, (column, weight) of the two columns beside the centre
+        line, None for a supported edge, and the fraction f)."""
+        g = self.grid
+        j, f = g.centerline_weights()
+        first = g.y_unknowns.start  # the field column of unknown column 0
+
+        def column(k: int) -> tuple:
+            k -= first
+            if not 0 <= k < g.n_across:
+                return None, 0.0
+            if half is None:
+                return k, 1.0
+            k = min(k, g.n_across - 1 - k)
+            return k, float(half.value_weights[k])
+
+        return (g.n_across if half is None else half.columns), column(j), column(j + 1), f
 
     def snapshots(self, times: np.ndarray) -> Snapshots:
         """The kept fields and lines, given the run's instants ``times`` (s)."""

@@ -14,7 +14,7 @@ import scipy.sparse as sp
 
 from gyroshell import ParameterError, TapeModel, TapeParameters
 from gyroshell.engines.newmark import Newmark
-from gyroshell.linalg.factorization import ORDERING
+from gyroshell.linalg.factorization import BAND_GROWTH_LIMIT, ORDERING, BandLU
 from gyroshell.linalg.ordering import (
     NATURAL,
     NATURAL_HALF_BANDWIDTH,
@@ -48,8 +48,38 @@ def test_narrow_bands_keep_their_order_wide_ones_take_minimum_degree(across, rng
     assert column_ordering(A) == (NATURAL if narrow else ORDERING)
     x = rng.standard_normal(A.shape[0])
     factor = factorize_banded(A)
-    assert factor.ordering == column_ordering(A) and factor.name == "superlu"
+    # "auto": the narrow band in its own order with diagonal pivots (a dominant diagonal)
+    assert factor.ordering == column_ordering(A)
+    assert factor.name == ("band" if narrow else "superlu")
+    assert not narrow or (not factor.pivoted and factor.growth <= BAND_GROWTH_LIMIT)
     np.testing.assert_allclose(factor.solve(A @ x), x, rtol=0, atol=1e-13 * np.abs(x).max())
+    superlu = factorize_banded(A, "superlu")
+    assert (superlu.name, superlu.ordering) == ("superlu", column_ordering(A))
+    np.testing.assert_allclose(superlu.solve(A @ x), x, rtol=0, atol=1e-13 * np.abs(x).max())
+
+
+@pytest.mark.parametrize("diagonal", [0.0, 1e-6])
+def test_a_band_whose_diagonal_pivots_are_unstable_is_factored_with_partial_pivoting(
+        diagonal, rng):
+    """A zero diagonal has no LU without pivoting; a tiny one has one of growth ~1e6 (its
+    first multipliers are ~1/diagonal): both are refused and factored by SuperLU with
+    partial pivoting, and A x = b still gives the chosen x back."""
+    A = strip_matrix(4, 10, rng).tolil()
+    A.setdiag(diagonal)
+    A = A.tocsc()
+    x = rng.standard_normal(A.shape[0])
+    band = BandLU(A)
+    assert band.pivoted and not band.growth <= BAND_GROWTH_LIMIT
+    scale = np.abs(x).max() * np.linalg.cond(A.toarray())
+    np.testing.assert_allclose(band.solve(A @ x), x, rtol=0, atol=1e-14 * scale)
+
+
+def test_the_band_solves_a_block_of_right_hand_sides_column_by_column(rng):
+    A = strip_matrix(5, 9, rng)
+    X = rng.standard_normal((A.shape[0], 3))
+    band = BandLU(A)
+    assert not band.pivoted
+    np.testing.assert_allclose(band.solve(A @ X), X, rtol=0, atol=1e-13 * np.abs(X).max())
 
 
 def test_other_backends_keep_their_own_order(rng):
