@@ -67,6 +67,9 @@ MAX_CYLINDER_WRAP = math.radians(90.0)
 MAX_MODULES = 8
 #: Largest tilt of a land, rad (small slopes).
 MAX_TILT = math.radians(10.0)
+#: How the tape may meet a rounded corner (``BearingModel(arc_contact=...)``, the CLI's
+#: ``--arc-contact``): per corner by its arc's length, at one tangent point, or wrapped.
+ARC_CONTACTS = ("auto", "point", "wrapped")
 #: Beyond a measured profile the head falls away at this angle, rad.
 PROFILE_FALLOFF = math.radians(20.0)
 #: Samples along each rounded corner's arc for the dry envelope (its chords lie within

@@ -21,6 +21,7 @@ A ``[head]`` table, beside the ``[tape]`` table of the ``--config`` file::
     transducers = ["-1.3 mm", "0 mm", "1.3 mm"]   # element lines, m from the head's middle
     friction = 0.2                # Coulomb coefficient between tape and head
     # flank_angle = "20 deg"      # the fall-away beyond each corner (default 20 deg)
+    # arc_contact = "auto"        # rounded corners: "auto", "point" or "wrapped"
 
     [[head.module]]               # optional, one table per module, in the tape's order:
     height = "0 um"               # the land's middle above the head datum
@@ -31,6 +32,14 @@ A cylinder takes ``wrap_angle`` (default 15 deg) and ``radius`` (default: the ta
 measured contour ``profile = "head.csv"`` (a path relative to the TOML file's folder, columns
 (x, z) or (x, y, z) in m) with ``wrap_in`` and ``wrap_out``. Numbers without a unit are SI
 (angles in rad), as everywhere in a TOML file; the command line takes degrees.
+
+Rounded corners' contact (``arc_contact``, ``--arc-contact``; the model's option
+``BearingModel(arc_contact=...)``): ``"point"``, the tape touches each rounded corner at
+one tangent point (found by regridding; valid while the tape is less curved than the arc);
+``"wrapped"``, the tape may lie on part of each arc (every arc node in the general contact
+set); ``"auto"`` (the default), per corner: wrapped when its arc r_c θ_c (m) exceeds 0.3
+bending lengths √(D/(T − ρV²)) (:data:`~gyroshell.bearing.model.WRAPPED_ARC_BENDING_LENGTHS`),
+else a point.
 
 Multi-module heads. ``modules = N`` makes N equal modules separated by ``module_gap``, all
 coplanar (height 0, tilt 0) unless ``[[head.module]]`` tables set their heights and tilts:
@@ -52,7 +61,7 @@ from pathlib import Path
 
 from ..core import validation
 from ..core.errors import ParameterError
-from .head import MAX_MODULES, MAX_SIDE_WRAP, MAX_TILT
+from .head import ARC_CONTACTS, MAX_MODULES, MAX_SIDE_WRAP, MAX_TILT
 
 __all__ = ["DEFAULT_WRAP_ANGLE", "HEAD_KINDS", "MAX_MODULES", "HeadDesign", "ModuleShape",
            "check_design", "design_from_table", "in_file", "kind_fields", "table_labels"]
@@ -67,7 +76,7 @@ MAX_CORNER_WRAP = MAX_SIDE_WRAP
 _KIND_FIELDS: dict[str, tuple[str, ...]] = {
     "cylinder": ("wrap_angle", "radius"),
     "flat": ("wrap_in", "wrap_out", "land_length", "corner_radius", "modules", "module_gap",
-             "module_shapes", "flank_angle"),
+             "module_shapes", "flank_angle", "arc_contact"),
     "profile": ("wrap_in", "wrap_out", "profile"),
 }
 #: How each field is named in a ``[head]`` table (and, with ``-`` for ``_``, on the CLI).
@@ -135,6 +144,10 @@ class HeadDesign:
     flank_angle : float or None
         Flat: the angle of the flanks below the land beyond each corner, rad (None: the
         head's default, 20°).
+    arc_contact : str or None
+        Flat: how the tape meets the rounded corners, one of :data:`ARC_CONTACTS`
+        (``"auto"``, ``"point"``, ``"wrapped"``: the module notes; None: ``"auto"``); an
+        option of the bearing model (:meth:`model_options`), not of the contour.
     profile : str or None
         Measured head: the CSV file of its contour (x, z) or (x, y, z), m.
     transducers : tuple of float
@@ -154,6 +167,7 @@ class HeadDesign:
     module_gap: float | tuple[float, ...] | None = None
     module_shapes: tuple[ModuleShape, ...] = ()
     flank_angle: float | None = None
+    arc_contact: str | None = None
     profile: str | None = None
     transducers: tuple[float, ...] = ()
     friction: float = 0.0
@@ -176,6 +190,11 @@ class HeadDesign:
         if self.modules is not None:
             return self.modules
         return max(1, len(self.module_shapes))
+
+    def model_options(self) -> dict:
+        """The keyword arguments of :class:`~gyroshell.bearing.model.BearingModel` this
+        design sets beside its head (``arc_contact``, if given)."""
+        return {} if self.arc_contact is None else {"arc_contact": self.arc_contact}
 
     def head(self):
         """The :class:`~gyroshell.bearing.head.Head` of this design (a cylinder of
@@ -323,6 +342,9 @@ def _checked_flat(design: HeadDesign, name) -> dict:
     if design.flank_angle is not None:
         changes["flank_angle"] = name.angle(name("flank_angle"), design.flank_angle,
                                             low_open=True, high=math.pi / 2)
+    if design.arc_contact is not None:
+        changes["arc_contact"] = validation.choice(name("arc_contact"), design.arc_contact,
+                                                   ARC_CONTACTS)
     corner = _checked_corner(name("corner_radius"), design.corner_radius)
     changes["corner_radius"] = corner
     shapes = design.module_shapes or (ModuleShape(),)
@@ -401,7 +423,8 @@ def _checked_shape(shape: ModuleShape, land: float | None, where: str, name) -> 
 _TABLE_KEYS: dict[str, str] = {
     "kind": "", "wrap_angle": "rad", "radius": "m", "wrap_in": "rad", "wrap_out": "rad",
     "land_length": "m", "corner_radius": "m", "modules": "", "module_gap": "m",
-    "flank_angle": "rad", "profile": "", "transducers": "m", "friction": "1", "module": ""}
+    "flank_angle": "rad", "arc_contact": "", "profile": "", "transducers": "m",
+    "friction": "1", "module": ""}
 _MODULE_KEYS: dict[str, str] = {"land_length": "m", "corner_radius": "m", "height": "m",
                                 "tilt": "rad"}
 
@@ -459,7 +482,7 @@ def _table_fields(table: dict, prefix: str) -> dict:
     fields: dict = {}
     for key, value in table.items():
         unit = _TABLE_KEYS[key]
-        if key in ("kind", "profile"):
+        if key in ("kind", "profile", "arc_contact"):
             if not isinstance(value, str):
                 raise ParameterError(f"{prefix}{key} must be text, got {value!r}")
             fields[key] = value

@@ -28,7 +28,7 @@ from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
 from .air import AIR_VISCOSITY, AirParameters
 from .film import DryFilm, Film
-from .head import CORNER_FRACTION, Cylinder, FlatHead, Head
+from .head import ARC_CONTACTS, CORNER_FRACTION, Cylinder, FlatHead, Head
 from .mesh import (
     UNIFORM,
     Grading,
@@ -207,8 +207,6 @@ def resolution_length(l_film: float, l_bend: float) -> float:
 #: made well inside that range, where the tangent point is still second order and the
 #: general contact set already resolves the arc.
 WRAPPED_ARC_BENDING_LENGTHS = 0.3
-#: The arc models :class:`BearingModel` accepts as ``arc_contact``.
-ARC_CONTACTS = ("auto", "point", "wrapped")
 
 
 def wrapped_corners(head: Head, l_bend: float, arc_contact: str = "auto") -> tuple[int, ...]:

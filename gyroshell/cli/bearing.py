@@ -182,11 +182,16 @@ def run(args: argparse.Namespace) -> int:
     head = design.head()   # the contour's checks: transducers on it, a profile file's
     air = _air(args)
     out = _check_outputs(args)
-    model = _model(args, params, air, velocity, head)
+    options = design.model_options()
+    model = _model(args, params, air, velocity, head, options)
     sol = _solve(model, None if args.quiet else _progress)
     summary = sol.summary()
+    if design.kind == "flat":
+        summary["arc_contact"] = sol.model.arc_contact
+        summary["corner_arc_models"] = corner_arc_models(sol.model)
     if args.error_estimate:
-        summary["grid_error"] = _grid_error(args, sol, (params, air, velocity, head))
+        summary["grid_error"] = _grid_error(args, sol,
+                                            (params, air, velocity, head, options))
     if design.kind == "cylinder":
         # the angle as typed: degrees -> radians -> degrees need not give it back exactly
         summary["wrap_angle_degrees"] = (15.0 if design.wrap_angle is None else
@@ -311,11 +316,12 @@ def _check_outputs(args: argparse.Namespace) -> Path | None:
     return check_output_folder_with_files(args.out, OUT_FILES, option="--out")
 
 
-def _model(args: argparse.Namespace, params, air, velocity: float, head, *, nx=None,
-           ny=None):
-    """The BearingModel of the arguments (speed, head, grid) on the tape and the air; a
-    grid coarse enough to be off (BearingGridWarning) is one ``gyroshell: warning:`` line.
-    ``nx``, ``ny``: other intervals than the arguments'."""
+def _model(args: argparse.Namespace, params, air, velocity: float, head, options=None, *,
+           nx=None, ny=None):
+    """The BearingModel of the arguments (speed, head, grid) on the tape and the air, with
+    the head design's model ``options`` (``arc_contact``); a grid coarse enough to be off
+    (BearingGridWarning) is one ``gyroshell: warning:`` line. ``nx``, ``ny``: other
+    intervals than the arguments'."""
     import warnings
 
     from ..bearing import BearingModel
@@ -329,7 +335,8 @@ def _model(args: argparse.Namespace, params, air, velocity: float, head, *, nx=N
                              nx=args.nx if nx is None else nx,
                              ny=args.ny if ny is None else ny,
                              grading="uniform" if args.uniform else None,
-                             factorization=getattr(args, "factorization", "auto"))
+                             factorization=getattr(args, "factorization", "auto"),
+                             **(options or {}))
     for warning in caught:
         if issubclass(warning.category, BearingGridWarning):
             print(f"gyroshell: warning: {warning.message}", file=sys.stderr, flush=True)
@@ -337,6 +344,19 @@ def _model(args: argparse.Namespace, params, air, velocity: float, head, *, nx=N
             warnings.warn_explicit(warning.message, warning.category, warning.filename,
                                    warning.lineno)
     return model
+
+
+def corner_arc_models(model) -> list[str | None]:
+    """How the model meets each corner of a flat head (in the order of ``head.corners()``,
+    the summary's ``corner_forces``): "sharp" (r_c = 0), "point" (one tangent point
+    contact), "wrapped" (the arc nodes in the general contact set), or None for a rounded
+    corner the dry tape runs straight over (no turn: no arc model applies)."""
+    radii = model.head.corner_radii()
+    out: list[str | None] = []
+    for k, radius in enumerate(radii):
+        out.append("sharp" if radius == 0.0 else "wrapped" if k in model.wrapped_corners
+                   else "point" if k in model.rounded_corners else None)
+    return out
 
 
 def _grid_error(args: argparse.Namespace, sol, inputs) -> dict:
@@ -418,11 +438,24 @@ def _solve(model, progress):
             log("start: ready")
         sol = solve_steady(model, z0=z0, progress=log, iteration_log=log)
     except ConvergenceError as exc:
-        raise UserError(f"no steady flying state reached for this input: {exc}") from None
+        raise UserError(f"no steady flying state reached for this input: {exc}"
+                        f"{_arc_hint(model)}") from None
     sol.info.seconds = time.perf_counter() - start     # the starting state included
     if log is not None:
         log(f"done: {sol.info.iterations} Newton iterations")
     return sol
+
+
+def _arc_hint(model) -> str:
+    """A hint to end a failed solve's message: forced point contacts on rounded corners
+    whose arcs ``arc_contact="auto"`` would have wrapped ("" otherwise)."""
+    from ..bearing.model import WRAPPED_ARC_BENDING_LENGTHS, wrapped_corners
+
+    if model.arc_contact != "point" or not wrapped_corners(model.head, model.bending_length):
+        return ""
+    return (f" (--arc-contact point on a rounded corner whose arc r_c theta_c exceeds "
+            f"{WRAPPED_ARC_BENDING_LENGTHS:g} bending lengths: the tape may wrap it; try "
+            "--arc-contact wrapped or auto)")
 
 
 def _print_text(sol, grid_error: dict | None = None) -> None:

@@ -25,7 +25,7 @@ HEAD_FLAGS: dict[str, str] = {
     "wrap_angle": "--wrap-angle", "wrap_in": "--wrap-in", "wrap_out": "--wrap-out",
     "land_length": "--land-length", "corner_radius": "--corner-radius",
     "modules": "--modules", "module_gap": "--module-gap", "transducers": "--transducers",
-    "friction": "--friction"}
+    "friction": "--friction", "arc_contact": "--arc-contact"}
 #: The options given in degrees.
 DEGREE_FIELDS = ("wrap_angle", "wrap_in", "wrap_out")
 #: The kinds ``--head`` names; anything else is a profile file.
@@ -68,6 +68,13 @@ def add_head_options(p: argparse.ArgumentParser, *, title: str = "head") -> None
     g.add_argument("--friction", type=real, default=None,
                    help="Coulomb friction coefficient between tape and head, >= 0 (default "
                         "0): friction drag = friction x contact force")
+    g.add_argument("--arc-contact", default=None, metavar="auto|point|wrapped",
+                   help="flat head, rounded corners: how the tape meets each arc: point, at "
+                        "one tangent point (found by regridding; valid while the tape is "
+                        "less curved than the arc); wrapped, lying on part of the arc (every "
+                        "arc node may touch); auto (default), per corner: wrapped when the "
+                        "arc r_c theta_c, m, exceeds 0.3 bending lengths sqrt(D/(T - rho "
+                        "V^2)), else point")
 
 
 def typed_head_options(args: argparse.Namespace) -> list[str]:

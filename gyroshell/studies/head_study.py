@@ -140,9 +140,10 @@ def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -
 
     tape = {k: v for k, v in point.items() if k not in HEAD_VARIABLES}
     params, v = parameters_of(TapeParameters(**base), velocity, tape)
-    model = BearingModel(params, setup.air, velocity=v,
-                         head=head_of_point(setup, point).head(),
-                         infinitely_wide=setup.infinitely_wide, nx=setup.nx, ny=setup.ny)
+    design = head_of_point(setup, point)
+    model = BearingModel(params, setup.air, velocity=v, head=design.head(),
+                         infinitely_wide=setup.infinitely_wide, nx=setup.nx, ny=setup.ny,
+                         **design.model_options())
     return readings_row(solve_steady(model), list(setup.columns))
 
 

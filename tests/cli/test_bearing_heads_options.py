@@ -75,6 +75,19 @@ def test_the_toml_table_states_the_same_head_as_the_options(tmp_path):
     assert _design(["--wrap-in", "1"], table, path).wrap_in == math.radians(1)
 
 
+def test_the_arc_contact_key_and_option_state_the_models_option(tmp_path):
+    from gyroshell.bearing.head_config import design_from_table
+
+    table = {"kind": "flat", "land_length": "1 mm", "corner_radius": "1 mm",
+             "wrap_in": "2 deg", "arc_contact": "point"}
+    design = design_from_table(table, where="head.toml: ")
+    assert design.arc_contact == "point" and design.model_options() == {"arc_contact": "point"}
+    assert _design([*FLAT, "--arc-contact", "wrapped"]).arc_contact == "wrapped"
+    assert _design(["--arc-contact", "wrapped"], table, tmp_path / "head.toml"
+                   ).model_options() == {"arc_contact": "wrapped"}
+    assert _design(FLAT).model_options() == {}
+
+
 def test_per_module_tables_and_a_profile_relative_to_the_file(tmp_path):
     from gyroshell.bearing.head_config import design_from_table
     from gyroshell.tape.config import _tomllib
@@ -159,6 +172,12 @@ def test_bad_head_options_one_line_exit_2(cli, argv, message):
                                             "[head] profile"),
     ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\ntransducers = ["0 m", true]',
      "[head] transducers[1] must be a number or '<number> <unit>', got True"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\narc_contact = "tangent"',
+     "[head] arc_contact must be one of auto, point, wrapped, got 'tangent'"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\narc_contact = 1',
+     "[head] arc_contact must be text, got 1"),
+    ('arc_contact = "wrapped"',
+     "[head] arc_contact is an option of a flat head, and this head is a cylinder"),
 ])
 def test_bad_head_tables_name_the_file_and_key(cli, tmp_path, table, message):
     path = tmp_path / "bad.toml"
