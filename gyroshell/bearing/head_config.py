@@ -145,7 +145,8 @@ class HeadDesign:
         Flat: the angle of the flanks below the land beyond each corner, rad (None: the
         head's default, 20°).
     arc_contact : str or None
-        Flat: how the tape meets the rounded corners, one of :data:`ARC_CONTACTS`
+        Flat: how the tape meets the rounded corners, one of
+        :data:`~gyroshell.bearing.head.ARC_CONTACTS`
         (``"auto"``, ``"point"``, ``"wrapped"``: the module notes; None: ``"auto"``); an
         option of the bearing model (:meth:`model_options`), not of the contour.
     profile : str or None
