@@ -896,10 +896,23 @@ class BearingModel:
                   factorization=self.factorization,
                   corner_contacts=self.corner_contacts or None,
                   adapt_contacts=self.adapt_contacts, arc_contact=self.arc_contact)
-        if {"head", "dry", "arc_contact"} & set(changes):
+        if {"head", "dry", "arc_contact"} & set(changes) or self._regime_changes(changes):
             kw["corner_contacts"] = None        # the new head's (or regime's) own estimate
         kw.update(changes)
         return BearingModel(self.params, self.air, **kw)
+
+    def _regime_changes(self, changes: dict) -> bool:
+        """Whether a new speed in ``changes`` moves a rounded corner across the handover
+        (:func:`wrapped_corners`: the bending length changes with V), so that the point
+        contacts carried over would belong to another set of corners."""
+        v = changes.get("velocity")
+        if v is None or not self.corner_contacts or self.arc_contact != "auto":
+            return False
+        t_eff = self.params.tension - self.params.density * float(v) ** 2
+        if not t_eff > 0.0:
+            return False                        # the constructor refuses the speed
+        l_bend = math.sqrt(self.params.D / t_eff)
+        return wrapped_corners(self.head, l_bend, "auto") != self.wrapped_corners
 
     # ----- state <-> fields ----------------------------------------------------------------
     @property

@@ -258,3 +258,31 @@ def test_unknown_arc_model_is_refused_in_one_line():
     with pytest.raises(ParameterError, match=r"arc_contact must be one of") as info:
         _dry(200, arc_contact="tangent")
     assert "\n" not in str(info.value)
+
+
+def test_a_speed_change_across_the_handover_drops_the_carried_point_contacts():
+    """The handover r_c θ_c = 0.3 ℓ_bend moves with V (ℓ_bend = √(D/(T − ρV²))): a corner
+    just below it at 4 m/s (a point contact) is wrapped at 0.4 m/s, where ℓ_bend is 0.12 %
+    shorter. A continuation in V (``at_velocity``) must then start the new model from its
+    own contacts instead of the 4 m/s model's (one per point-contact corner: a count that
+    no longer fits, which once raised ParameterError inside the continuation up from the
+    dry tape)."""
+    from gyroshell.bearing.model import WRAPPED_ARC_BENDING_LENGTHS
+
+    tape = TapeParameters()
+    turn = math.radians(2.0)
+
+    def l_bend(v):
+        return math.sqrt(tape.D / (tape.tension - tape.density * v**2))
+
+    radius = WRAPPED_ARC_BENDING_LENGTHS * l_bend(4.0) * (1 - 5e-4) / turn
+    assert radius * turn > WRAPPED_ARC_BENDING_LENGTHS * l_bend(0.4)   # wrapped at 0.4
+    head = FlatHead((Module(1e-3, corner_radius=radius),), turn, turn)
+    fast = BearingModel(tape, AirParameters(), velocity=4.0, head=head,
+                        infinitely_wide=True)
+    assert fast.wrapped_corners == () and len(fast.corner_contacts) == 2
+    slow = fast.at_velocity(0.4)
+    assert slow.wrapped_corners == (0, 1)
+    assert not slow.corner_contacts
+    again = fast.at_velocity(3.9)                   # no crossing: the contacts carry over
+    assert again.corner_contacts == fast.corner_contacts
