@@ -101,7 +101,7 @@ class Recorder:
         self._fields = np.empty((len(snap), *grid.shape))
         self._lines = np.empty((len(line), grid.nx + 1))
         self._k_snap = self._k_line = 0
-        self._plans: dict[int, tuple] = {}  # centre-line plans by id of the half (or None)
+        self._plan = None  # (the half it is for, or None; its centre-line plan)
         #: wanted[n] is non-zero at the steps where something is kept.
         self.wanted = np.zeros(steps + 1, dtype=np.int8)
         self.wanted[snap] |= 1
@@ -131,23 +131,16 @@ class Recorder:
         """w(x, L_y/2) into ``out`` (shape (nx + 1,)) from the unknowns w, or z on ``half``:
         (1 − f) w[:, j] + f w[:, j + 1] (:meth:`Grid.centerline_weights`), zero on
         supported lines; w = z times the half's value weight on the column's pair."""
-        plan = self._plans.get(id(half))
-        if plan is None:
-            plan = self._plans[id(half)] = self._centerline_plan(half)
-        across, (a, wa), (b, wb), f = plan
+        if self._plan is None or self._plan[0] is not half:
+            self._plan = (half, self._centerline_plan(half))
+        across, (a, wa), (b, wb), f = self._plan[1]
         values = w.reshape(-1, across)
         out[:] = 0.0
-        xs = self.grid.x_unknowns
-        if a is None:
-            out[xs] = (1.0 - f) * 0.0 + f * (values[:, b] * wb)
-        elif b is None:
-            out[xs] = (1.0 - f) * (values[:, a] * wa) + f * 0.0
-        else:
-            out[xs] = (1.0 - f) * (values[:, a] * wa) + f * (values[:, b] * wb)
+        out[self.grid.x_unknowns] = (1.0 - f) * (values[:, a] * wa) + f * (values[:, b] * wb)
 
     def _centerline_plan(self, half) -> tuple:
         """(unknowns per line of w, (column, weight) of the two columns beside the centre
-        line, None for a supported edge, and the fraction f)."""
+        line, weight 0 on a supported edge's, and the fraction f)."""
         g = self.grid
         j, f = g.centerline_weights()
         first = g.y_unknowns.start  # the field column of unknown column 0
@@ -155,7 +148,7 @@ class Recorder:
         def column(k: int) -> tuple:
             k -= first
             if not 0 <= k < g.n_across:
-                return None, 0.0
+                return 0, 0.0               # a supported line: w = 0 there
             if half is None:
                 return k, 1.0
             k = min(k, g.n_across - 1 - k)
