@@ -45,7 +45,6 @@ class JacobianPattern:
                  nc: int, mirror) -> None:
         n_u = tape_rows.shape[0]
         n = n_u + J_p.shape[0]
-        self.n_u, self.nc = n_u, nc
         # 32-bit indices (a grid has far fewer than 2³¹ unknowns): half the memory to
         # allocate and touch, which is most of the cost here
         index = np.int32
@@ -54,7 +53,6 @@ class JacobianPattern:
             return np.repeat(np.arange(A.shape[0], dtype=index), np.diff(A.indptr))
 
         self.tape_row = row_of_entries(tape_rows)
-        self.tape_nnz, self.h_nnz, self.p_nnz = tape_rows.nnz, J_h.nnz, J_p.nnz
         h_row = row_of_entries(J_h)
         #: the entries of J_h on the tape's unknowns (the end node lines carry no u)
         self.h_take = np.flatnonzero((J_h.indices >= nc) & (J_h.indices < nc + n_u))
