@@ -214,6 +214,7 @@ def wrapped_corners(head: Head, l_bend: float, arc_contact: str = "auto") -> tup
     whose arc r_c θ_c exceeds :data:`WRAPPED_ARC_BENDING_LENGTHS` bending lengths
     ``l_bend`` (m) for ``arc_contact="auto"``, every rounded corner for "wrapped", none
     for "point" (the others are touched at one point, :mod:`.corners`)."""
+    arc_contact = validation.choice("arc_contact", arc_contact, ARC_CONTACTS)
     if not isinstance(head, FlatHead) or arc_contact == "point":
         return ()
     radii, turns = head.corner_radii(), head.corner_turns()

@@ -556,6 +556,9 @@ class BandLU:
 
     def __init__(self, matrix: sp.spmatrix) -> None:
         start = time.perf_counter()
+        if np.iscomplexobj(matrix.data if sp.issparse(matrix) else matrix):
+            raise ParameterError("BandLU: matrix must be real (its band substitutions are "
+                                 "dtbsv's), got a complex one")
         A = sp.csc_matrix(matrix, dtype=float)
         n = A.shape[0]
         try:
@@ -591,6 +594,8 @@ class BandLU:
         return True
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
+        if np.iscomplexobj(rhs):
+            raise ParameterError("BandLU.solve: rhs must be real, got a complex array")
         if self._lu is not None:
             return self._lu.solve(rhs)
         rhs = np.asarray(rhs, dtype=float)

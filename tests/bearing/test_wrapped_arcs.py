@@ -286,3 +286,11 @@ def test_a_speed_change_across_the_handover_drops_the_carried_point_contacts():
     assert not slow.corner_contacts
     again = fast.at_velocity(3.9)                   # no crossing: the contacts carry over
     assert again.corner_contacts == fast.corner_contacts
+
+
+def test_wrapped_corners_names_arc_contact_when_its_value_is_unknown():
+    head = FlatHead((Module(1e-3, corner_radius=1e-3),), math.radians(2), math.radians(2))
+    from gyroshell.bearing.model import wrapped_corners
+
+    with pytest.raises(ParameterError, match="arc_contact must be one of auto, point, wrapped"):
+        wrapped_corners(head, 1.8e-4, "wrap")

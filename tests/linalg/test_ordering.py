@@ -82,6 +82,15 @@ def test_the_band_solves_a_block_of_right_hand_sides_column_by_column(rng):
     np.testing.assert_allclose(band.solve(A @ X), X, rtol=0, atol=1e-13 * np.abs(X).max())
 
 
+def test_the_band_refuses_complex_input_instead_of_dropping_its_imaginary_part(rng):
+    A = strip_matrix(4, 8, rng)
+    with pytest.raises(ParameterError, match="BandLU: matrix must be real"):
+        BandLU(A * (1 + 1j))
+    band = BandLU(A)
+    with pytest.raises(ParameterError, match="rhs must be real"):
+        band.solve(np.ones(A.shape[0]) * 1j)
+
+
 def test_other_backends_keep_their_own_order(rng):
     A = strip_matrix(6, 10, rng)
     x = rng.standard_normal(A.shape[0])
