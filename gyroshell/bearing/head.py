@@ -70,6 +70,17 @@ MAX_TILT = math.radians(10.0)
 #: How the tape may meet a rounded corner (``BearingModel(arc_contact=...)``, the CLI's
 #: ``--arc-contact``): per corner by its arc's length, at one tangent point, or wrapped.
 ARC_CONTACTS = ("auto", "point", "wrapped")
+#: A rounded corner whose wrapped arc r_c θ_c is at most this many bending lengths
+#: ℓ_bend = √(D/(T − ρV²)) is touched at one point (the tangent-point model,
+#: :mod:`.corners`); a longer one is wrapped: its arc nodes join the general contact set
+#: (any node may touch, as on the cylinder) and the tape lies on the arc over part of it.
+#: For a plate between a long land and a long span the tape touches at one point while
+#: its curvature there, about θ_c/(2ℓ_bend), is below the arc's 1/r_c, i.e. up to
+#: r_c θ_c = 2 ℓ_bend, where the wrapped contact has shrunk to that point: both models
+#: hold below 2 and agree there (tests/bearing/test_wrapped_arcs.py); the handover is
+#: made well inside that range, where the tangent point is still second order and the
+#: general contact set already resolves the arc.
+WRAPPED_ARC_BENDING_LENGTHS = 0.3
 #: Beyond a measured profile the head falls away at this angle, rad.
 PROFILE_FALLOFF = math.radians(20.0)
 #: Samples along each rounded corner's arc for the dry envelope (its chords lie within

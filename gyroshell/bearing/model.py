@@ -28,7 +28,14 @@ from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
 from .air import AIR_VISCOSITY, AirParameters
 from .film import DryFilm, Film
-from .head import ARC_CONTACTS, CORNER_FRACTION, Cylinder, FlatHead, Head
+from .head import (
+    ARC_CONTACTS,
+    CORNER_FRACTION,
+    WRAPPED_ARC_BENDING_LENGTHS,
+    Cylinder,
+    FlatHead,
+    Head,
+)
 from .mesh import (
     UNIFORM,
     Grading,
@@ -196,17 +203,6 @@ def resolution_length(l_film: float, l_bend: float) -> float:
     return min(l_film, max(l_bend, BENDING_RESOLVED * l_film))
 
 
-#: A rounded corner whose wrapped arc r_c θ_c is at most this many bending lengths
-#: ℓ_bend = √(D/(T − ρV²)) is touched at one point (the tangent-point model,
-#: :mod:`.corners`); a longer one is wrapped: its arc nodes join the general contact set
-#: (any node may touch, as on the cylinder) and the tape lies on the arc over part of it.
-#: For a plate between a long land and a long span the tape touches at one point while
-#: its curvature there, about θ_c/(2ℓ_bend), is below the arc's 1/r_c, i.e. up to
-#: r_c θ_c = 2 ℓ_bend, where the wrapped contact has shrunk to that point: both models
-#: hold below 2 and agree there (tests/bearing/test_wrapped_arcs.py); the handover is
-#: made well inside that range, where the tangent point is still second order and the
-#: general contact set already resolves the arc.
-WRAPPED_ARC_BENDING_LENGTHS = 0.3
 
 
 def wrapped_corners(head: Head, l_bend: float, arc_contact: str = "auto") -> tuple[int, ...]:

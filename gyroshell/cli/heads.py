@@ -16,6 +16,7 @@ import math
 import os
 from pathlib import Path
 
+from ..bearing.head import WRAPPED_ARC_BENDING_LENGTHS
 from .common import UserError, real
 
 __all__ = ["HEAD_FLAGS", "add_head_options", "head_design", "typed_head_options"]
@@ -73,8 +74,8 @@ def add_head_options(p: argparse.ArgumentParser, *, title: str = "head") -> None
                         "one tangent point (found by regridding; valid while the tape is "
                         "less curved than the arc); wrapped, lying on part of the arc (every "
                         "arc node may touch); auto (default), per corner: wrapped when the "
-                        "arc r_c theta_c, m, exceeds 0.3 bending lengths sqrt(D/(T - rho "
-                        "V^2)), else point")
+                        f"arc r_c theta_c, m, exceeds {WRAPPED_ARC_BENDING_LENGTHS:g} bending "
+                        "lengths sqrt(D/(T - rho V^2)), else point")
 
 
 def typed_head_options(args: argparse.Namespace) -> list[str]:
