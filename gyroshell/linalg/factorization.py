@@ -482,8 +482,7 @@ class DiagonalPivotLU:
         self.factor_time = time.perf_counter() - start
 
     def _factor(self, csc):
-        return spla.splu(csc, permc_spec=self._permc, diag_pivot_thresh=0.0,
-                         options={"SymmetricMode": True})
+        return splu(csc, symmetric_mode=True, ordering=self._permc)
 
     @staticmethod
     def available() -> bool:
@@ -562,8 +561,7 @@ class BandLU:
         A = sp.csc_matrix(matrix, dtype=float)
         n = A.shape[0]
         try:
-            lu = spla.splu(A, permc_spec="NATURAL", diag_pivot_thresh=0.0,
-                           options={"SymmetricMode": True})
+            lu = splu(A, symmetric_mode=True, ordering="NATURAL")
         except RuntimeError:  # a zero pivot on the diagonal
             lu = None
         identity = np.arange(n)
@@ -586,7 +584,7 @@ class BandLU:
             self.growth = float(growth / np.max(abs(A) @ ones))
             self.pivoted = not self.growth <= BAND_GROWTH_LIMIT
         if self.pivoted:
-            self._lu = spla.splu(A, permc_spec="NATURAL")
+            self._lu = splu(A, ordering="NATURAL")
         self.factor_time = time.perf_counter() - start
 
     @staticmethod
