@@ -24,7 +24,7 @@ from ..core.errors import ParameterError
 from ..results.base import Result, dataset, from_json, params_from
 from . import readings
 from .air import AirParameters
-from .head import head_from_dict
+from .head import FlatHead, head_from_dict
 from .mesh import Grading
 from .model import BearingGridWarning, BearingModel
 
@@ -182,10 +182,12 @@ class BearingSolution(Result, kind="bearing"):
 
     @property
     def corner_forces(self) -> tuple[readings.ContactShare, ...]:
-        """The contact of each corner: the nodes within its zone (the corner's wrapped arc
-        plus :data:`~gyroshell.bearing.readings.CORNER_ZONE_BENDING_LENGTHS` bending
-        lengths √(D/(T − ρV²))), their force (N; N/m if infinitely wide), peak contact
-        pressure (Pa), force centroid (m) and node count."""
+        """The contact of each corner: the nodes within its zone, their force (N; N/m if
+        infinitely wide), peak contact pressure (Pa), force centroid (m) and node count.
+        The zone reaches from the corner's x the longer of its wrapped arc r_c θ_c and, on
+        a flat head, half its arc r_c φ / 2 (land to flank), plus
+        :data:`~gyroshell.bearing.readings.CORNER_ZONE_BENDING_LENGTHS` bending lengths
+        √(D/(T − ρV²))."""
         return self._contact_shares[0]
 
     @property
@@ -451,7 +453,8 @@ _FILM_FLOOR = 0.5
 
 def _head_layout(model: BearingModel) -> dict:
     """The head's corners, lands, transducers (m, head coordinates), friction coefficient
-    and each corner's contact zone half-width (m: its wrapped arc r_c θ_c plus
+    and each corner's contact zone half-width (m: its wrapped arc r_c θ_c, or on a flat
+    head half its arc r_c φ / 2 if longer, plus
     :data:`~gyroshell.bearing.readings.CORNER_ZONE_BENDING_LENGTHS` bending lengths
     √(D/(T − ρV²)); a cylinder's corners, its tangent points, get the bending lengths
     only: its wrapped arc is its land)."""
@@ -461,6 +464,11 @@ def _head_layout(model: BearingModel) -> dict:
                                        strict=True))
     if model.cylindrical:                             # its wrapped arc is its land
         arcs = (0.0,) * len(corners)
+    elif isinstance(head, FlatHead):   # a rounded corner's x is its arc's middle, and the
+        # tape touches it anywhere on the arc (near its land end at speed): half the arc
+        # from the land to the flank, r_c φ / 2, is in the zone
+        arcs = tuple(max(a, 0.5 * r * head.flank_angle)
+                     for a, r in zip(arcs, head.corner_radii(radius), strict=True))
     bending = model.bending_length
     zones = tuple(readings.CORNER_ZONE_BENDING_LENGTHS * bending + a for a in arcs)
     return {"corners": corners, "lands": lands, "transducers": tuple(head.transducers),

@@ -346,3 +346,24 @@ def test_a_large_point_contact_corner_at_speed_converges_with_floating_point_err
     assert np.all(sol.pressure > 0.0)
     spread, terms, _ = flux_spread_1d(sol)
     assert spread < 1e-9 * terms
+
+
+@pytest.mark.slow
+def test_the_contact_on_a_large_rounded_corner_is_read_as_that_corners():
+    """In the tangent-point model only each arc's contact node may touch the head, so the
+    whole contact force belongs to the corners and none to the land (an exact
+    consequence). At 4 m/s a 1.4 mm corner (r_c θ_c = 0.27 ℓ_bend) is touched near its
+    arc's land end, 0.22 mm from the corner's x (its arc's middle, r_c φ/2 = 0.244 mm
+    from either end): the readings' zones once reached only r_c θ_c + ℓ_bend = 0.23 mm and
+    gave the whole 7.3 N/m to the land."""
+    head = FlatHead((Module(1e-3, corner_radius=1.4e-3),), 2 * DEG, 2 * DEG,
+                    transducers=(0.0,))
+    model = BearingModel(TapeParameters(), AIR, velocity=4.0, head=head,
+                         infinitely_wide=True)
+    assert model.wrapped_corners == ()
+    sol = solve_steady(model)
+    corners = [c.force for c in sol.corner_forces]
+    assert sol.contact_force > 1.0                                  # it touches (N/m)
+    assert sum(corners) == pytest.approx(sol.contact_force, rel=1e-12)
+    assert all(f > 0.0 for f in corners)
+    assert sum(land.force for land in sol.land_forces) == 0.0
