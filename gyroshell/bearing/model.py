@@ -498,6 +498,8 @@ class BearingModel:
         """The wrapped arcs (:attr:`wrapped_corners`) the tape touches at about one point:
         r_c θ_c at most :data:`POINT_LIKE_ARC_BENDING_LENGTHS` bending lengths (a longer
         arc the dry tape lies on, and at speed flies over as over a cylinder)."""
+        if not self.wrapped_corners:
+            return ()
         radii, turns = self.head.corner_radii(), self.head.corner_turns()
         return tuple(k for k in self.wrapped_corners
                      if radii[k] * turns[k] <= POINT_LIKE_ARC_BENDING_LENGTHS
