@@ -172,6 +172,45 @@ def test_point_and_wrapped_models_agree_across_the_handover(radius):
         assert left == pytest.approx(forces[0], rel=3e-4), mode
 
 
+# ----- the handover at speed ------------------------------------------------------------
+def _handover_head(radius):
+    return FlatHead((Module(SHORT_LAND, corner_radius=radius),), 2 * DEG, 2 * DEG,
+                    transducers=(0.0,))
+
+
+def _corner_forces(sol):
+    """The contact force on each half of the head, N/m (each corner's: the tape touches
+    each arc at one point near its land-side end)."""
+    inner = sol.model.x_head[1:-1]
+    return np.array([sol.contact[inner < 0].sum(), sol.contact[inner > 0].sum()])
+
+
+@pytest.mark.slow
+def test_wrapped_arcs_at_speed_match_point_contacts_at_the_handover():
+    """1 mm land, 2°/2°, the default tape at 4 m/s, r_c = 1.4 mm (r_c θ_c = 0.27 ℓ_bend,
+    below the handover; the tape touches each arc at one point near its land-side end).
+    Both models then solve the same continuum problem, so on a grid refined 4x each way
+    they agree on the corner forces (within 0.3 %, measured 0.09 %, 0.002 %) and h(0);
+    and the wrapped model on its default grid, refined about where the point contact
+    starts (:meth:`~gyroshell.bearing.model.BearingModel.wrapped_centres`), is within
+    0.6 % of the refined point model's forces (measured 0.16 %, 0.35 %; refined about the
+    arcs' geometric corner points, as before, 1.9 %, 2.2 %) and its h(0) within 0.1 %."""
+    head = _handover_head(1.4e-3)
+    point, wrapped = (BearingModel(TapeParameters(), AIR, velocity=4.0, head=head,
+                                   infinitely_wide=True, arc_contact=mode)
+                      for mode in ("point", "wrapped"))     # each on its own default grid
+    assert wrapped.wrapped_corners == (0, 1) and point.corner_contacts
+    ref = solve_steady(point.rebuilt(nx=4 * point.nx))
+    fine = solve_steady(wrapped.rebuilt(nx=4 * wrapped.nx))
+    default = solve_steady(wrapped)
+    f_ref = _corner_forces(ref)
+    assert np.all(f_ref > 0.0)
+    assert _corner_forces(fine) == pytest.approx(f_ref, rel=3e-3)
+    assert fine.central_spacing == pytest.approx(ref.central_spacing, rel=1e-3)
+    assert _corner_forces(default) == pytest.approx(f_ref, rel=6e-3)
+    assert default.central_spacing == pytest.approx(ref.central_spacing, rel=1e-3)
+
+
 # ----- at speed -----------------------------------------------------------------------
 def _flying(velocity=4.0, **kw):
     return BearingModel(TapeParameters(), AIR, velocity=velocity, head=_head(

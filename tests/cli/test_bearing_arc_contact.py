@@ -66,10 +66,11 @@ def test_wrapped_on_the_cli_is_the_python_solve_with_wrapped_arcs(cli):
 
 def test_the_option_reaches_the_model_within_the_handover(cli):
     """1 mm corners at 2° (0.19 bending lengths): auto touches each at a point, wrapped
-    puts the arcs in the contact set; both hold there, so on 400 intervals their central
-    spacings agree within 3 % (measured 1.3 %) but are not the same numbers."""
-    auto = _json(cli, _argv(radius=1e-3, nx=400))
-    wrapped = _json(cli, [*_argv(radius=1e-3, nx=400), "--arc-contact", "wrapped"])
+    puts the arcs in the contact set; both hold there, so on 800 intervals their central
+    spacings agree within 3 % (measured 1.4 %; on 400, 5.6 %: the wrapped arcs' corner
+    refinement takes most of so few nodes) but are not the same numbers."""
+    auto = _json(cli, _argv(radius=1e-3, nx=800))
+    wrapped = _json(cli, [*_argv(radius=1e-3, nx=800), "--arc-contact", "wrapped"])
     assert auto["arc_contact"] == "auto" and auto["corner_arc_models"] == ["point", "point"]
     assert wrapped["corner_arc_models"] == ["wrapped", "wrapped"]
     assert wrapped["central_spacing"] != auto["central_spacing"]
