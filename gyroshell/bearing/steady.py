@@ -322,8 +322,7 @@ class _Residual:
         pattern without contact: valid for every contact set, a contact row keeping its
         entries as zeros). Formed once per grid and solver kind (:func:`_grid_pattern`)."""
         if self._jacobian_pattern is None:
-            self._jacobian_pattern = _grid_pattern(self.tape_rows, lin.J_h, lin.J_p,
-                                                   self.model, kind)
+            self._jacobian_pattern = _model_pattern(self.tape_rows, lin, self.model, kind)
         return self._jacobian_pattern
 
     def merit(self, res) -> float:
@@ -365,6 +364,24 @@ PATTERNS_KEPT = 4
 
 #: The nested-dissection orderings of the folded pattern, by factorization kind.
 _ORDERED_KINDS = ("metis", "grid")
+
+
+def _model_pattern(tape_rows, lin: Linearization, model: BearingModel,
+                   kind: str) -> JacobianPattern:
+    """The folded pattern (:func:`_grid_pattern`) kept on ``model``
+    (:attr:`BearingModel.jacobian_patterns`, by ``kind``): the film's blocks have their
+    grid's fixed patterns and the fold is the model's, so only the tape rows' pattern
+    (K, or K plus a time step's terms) is compared; the digest of every block is formed
+    only when the model has no pattern of that kind yet (a new grid, or another model on
+    the same grid: continuation stages)."""
+    kept = model.jacobian_patterns.get(kind)
+    if (kept is not None and np.array_equal(kept[0], tape_rows.indptr)
+            and np.array_equal(kept[1], tape_rows.indices)):
+        return kept[2]
+    pattern = _grid_pattern(tape_rows, lin.J_h, lin.J_p, model, kind)
+    model.jacobian_patterns[kind] = (tape_rows.indptr.copy(), tape_rows.indices.copy(),
+                                     pattern)
+    return pattern
 
 
 def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> JacobianPattern:
