@@ -407,9 +407,10 @@ class BearingModel:
             self._build_y_line(ny, y_line)
             self.tape = PlateOperators(tape_params, self.x, self.y)
         self._couple_film_and_loads()
-        #: Newton's folded Jacobian patterns on this grid, by factorization kind
-        #: (:func:`gyroshell.bearing.steady._model_pattern`: formed once per model, not
-        #: looked up by a digest of the blocks at every solve)
+        #: The digests of Newton's folded Jacobian patterns on this grid, by
+        #: factorization kind, with the tape rows' pattern they were formed from
+        #: (:func:`gyroshell.bearing.steady._model_pattern`: a digest of the blocks once
+        #: per model, not at every solve)
         self.jacobian_patterns: dict = {}
 
     def _resolution(self, l_film: float, l_bend: float) -> float:

@@ -368,28 +368,26 @@ _ORDERED_KINDS = ("metis", "grid")
 
 def _model_pattern(tape_rows, lin: Linearization, model: BearingModel,
                    kind: str) -> JacobianPattern:
-    """The folded pattern (:func:`_grid_pattern`) kept on ``model``
-    (:attr:`BearingModel.jacobian_patterns`, by ``kind``): the film's blocks have their
-    grid's fixed patterns and the fold is the model's, so only the tape rows' pattern
-    (K, or K plus a time step's terms) is compared; the digest of every block is formed
-    only when the model has no pattern of that kind yet (a new grid, or another model on
-    the same grid: continuation stages)."""
+    """The folded pattern (:func:`_grid_pattern`) of ``model``'s Jacobian for ``kind``,
+    found by the digest kept on the model (:attr:`BearingModel.jacobian_patterns`): the
+    film's blocks have their grid's fixed patterns and the fold is the model's, so only
+    the tape rows' pattern (K, or K plus a time step's terms) is compared; the digest of
+    every block is formed only on the model's first solve of that kind, or when the tape
+    rows' pattern changes."""
     kept = model.jacobian_patterns.get(kind)
     if (kept is not None and np.array_equal(kept[0], tape_rows.indptr)
             and np.array_equal(kept[1], tape_rows.indices)):
-        return kept[2]
-    pattern = _grid_pattern(tape_rows, lin.J_h, lin.J_p, model, kind)
-    model.jacobian_patterns[kind] = (tape_rows.indptr.copy(), tape_rows.indices.copy(),
-                                     pattern)
-    return pattern
+        key = kept[2]
+    else:
+        key = _pattern_digest(tape_rows, lin.J_h, lin.J_p, model, kind)
+        model.jacobian_patterns[kind] = (tape_rows.indptr.copy(), tape_rows.indices.copy(),
+                                         key)
+    return _grid_pattern(tape_rows, lin.J_h, lin.J_p, model, kind, key)
 
 
-def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> JacobianPattern:
-    """:class:`.jacobian.JacobianPattern` of the blocks, in the elimination order of a
-    nested dissection for ``kind`` "metis"
-    (:func:`gyroshell.linalg.factorization.nested_dissection`) and "grid"
-    (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
-    grid nodes), formed once per pattern."""
+def _pattern_digest(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> bytes:
+    """A digest of the blocks' patterns, the fold and ``kind``'s ordering: the key of
+    :data:`_PATTERNS`."""
     fold = model.mirror
     ordering = _ORDERED_KINDS.index(kind) + 1 if kind in _ORDERED_KINDS else 0
     parts = [np.asarray([model.nc, ordering, *J_h.shape, *J_p.shape], dtype=np.int64)]
@@ -402,10 +400,21 @@ def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> Jacobi
         part = np.ascontiguousarray(part)
         digest.update(f"{part.dtype.str}{part.size};".encode())
         digest.update(part.data)
-    key = digest.digest()
+    return digest.digest()
+
+
+def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str,
+                  key: bytes | None = None) -> JacobianPattern:
+    """:class:`.jacobian.JacobianPattern` of the blocks, in the elimination order of a
+    nested dissection for ``kind`` "metis"
+    (:func:`gyroshell.linalg.factorization.nested_dissection`) and "grid"
+    (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
+    grid nodes), formed once per pattern (``key``: its :func:`_pattern_digest`, if known)."""
+    if key is None:
+        key = _pattern_digest(tape_rows, J_h, J_p, model, kind)
     pattern = _PATTERNS.pop(key, None)
     if pattern is None:
-        pattern = JacobianPattern(tape_rows, J_h, J_p, model.nc, fold)
+        pattern = JacobianPattern(tape_rows, J_h, J_p, model.nc, model.mirror)
         if kind in _ORDERED_KINDS:
             pattern.order(pattern_ordering(pattern, model, kind))
     _PATTERNS[key] = pattern
