@@ -134,6 +134,7 @@ def compare_backends(args, wrap: float) -> int:
                     return solver
                 _Residual.factor = counted
                 _PATTERNS.clear()           # each solve orders its grids afresh
+                models[b].jacobian_patterns.clear()
                 try:
                     start = time.perf_counter()
                     sols[b] = solve_steady(models[b])

@@ -409,6 +409,11 @@ class BearingModel:
             self._build_y_line(ny, y_line)
             self.tape = PlateOperators(tape_params, self.x, self.y)
         self._couple_film_and_loads()
+        #: The digests of Newton's folded Jacobian patterns on this grid, by
+        #: factorization kind, with the tape rows' pattern they were formed from
+        #: (:func:`gyroshell.bearing.steady._model_pattern`: a digest of the blocks once
+        #: per model, not at every solve)
+        self.jacobian_patterns: dict = {}
 
     def _resolution(self, l_film: float, l_bend: float) -> float:
         """The length the default x-grid resolves, m (:func:`resolution_length`; dry: the

@@ -170,13 +170,13 @@ class _Residual:
         self._abs_tape_rows = abs(self.tape_rows)
         #: the Jacobian's folded pattern (:meth:`_pattern`), once formed
         self._jacobian_pattern = None
-        #: (z, result) of the last residual evaluated alone, and the film's ∂r_p/∂p of
-        #: the last Jacobian (:meth:`update_noise`)
-        self._last, self._film_pp = None, None
+        #: (z, result) of the last residual evaluated alone, and |∂r_p/∂p| (the film's, of
+        #: the last Jacobian: :meth:`update_noise`)
+        self._last, self._abs_film_pp = None, None
         self._abs_loads = (np.abs(model.effective_tension(tension) * model.W
                                   * model.kappa_nodes) + np.abs(model.f_kappa))
 
-    def _noise(self, u, p, J_pp) -> float:
+    def _noise(self, u, p, abs_J_pp) -> float:
         """The scaled residual's round-off floor (the merit's): machine ε times the
         magnitudes of the terms each row sums, |K||u| + |L||p − p_a| + the wrap loads on
         the tape rows, |∂r_p/∂p||p| on the film rows. On a grid refined far below the
@@ -185,7 +185,7 @@ class _Residual:
         pa = self.model.air.ambient_pressure
         tape = self._abs_tape_rows @ np.concatenate([np.abs(u), np.abs(p - pa)]) \
             + self._abs_loads
-        film = abs(J_pp) @ np.abs(p)
+        film = abs_J_pp @ np.abs(p)
         #: the round-off of each row (its units), for the step's floor (:func:`_noise_step`)
         self.noise_rows = np.finfo(float).eps * np.concatenate([tape, film])
         return float(np.linalg.norm(self.noise_rows * self.row_scale))
@@ -208,26 +208,51 @@ class _Residual:
         u, p = z[:m.n_u], z[m.n_u:]
         r_u = self.tape(u, p)
         r_p, J_pp, J_h, free = m.film_linearization(u, p, jacobian=jacobian, **self.film_kw)
-        gap = self.c * (u + m.dry_field[1:-1, :].ravel() - self.floor)
+        res, active = self.contact_rows(u, r_u, r_p, active, force)
+        if not jacobian:
+            self._last = (z, (res, active, None)) if plain else None
+            return res, active, None
+        self._film_jacobian_formed(u, p, J_pp)
+        return res, active, Linearization(self, active, J_h, J_pp, free)
+
+    def contact_rows(self, u, r_u, r_p, active=None, force=None):
+        """(residual, contact set) from the tape's residual ``r_u`` at the tape state
+        ``u`` and the film's ``r_p``: the contact set by the rule r_u > c (h − σ) unless
+        ``active`` is given, with the nodes ``force`` added; its rows c (h − σ)."""
+        gap = self.c * (u + self.model.dry_field[1:-1, :].ravel() - self.floor)
         if active is None:
             active = r_u > gap
         if force is not None:
             active = active | force
-        res = np.concatenate([np.where(active, gap, r_u), r_p])
-        if not jacobian:
-            self._last = (z, (res, active, None)) if plain else None
-            return res, active, None
+        return np.concatenate([np.where(active, gap, r_u), r_p]), active
+
+    def linearize(self, z, active) -> Linearization:
+        """The linearization at z with the contact set ``active``, without the residual
+        (the film's blocks only: a 2-D tape's Jacobian formed when it is factored)."""
+        m = self.model
+        u, p = z[:m.n_u], z[m.n_u:]
+        _, J_pp, J_h, free = m.film_linearization(u, p, jacobian=True, **self.film_kw)
+        self._film_jacobian_formed(u, p, J_pp)
+        return Linearization(self, active, J_h, J_pp, free)
+
+    def with_contact(self, lin: Linearization, active) -> Linearization:
+        """``lin`` with the contact set ``active`` (the film's blocks do not depend on
+        it: they are reused)."""
+        return Linearization(self, active, lin.J_h, lin.J_p, lin.free)
+
+    def _film_jacobian_formed(self, u, p, J_pp) -> None:
+        """Keep |∂r_p/∂p| of the film's new Jacobian at (u, p) and the merit's round-off
+        floor there."""
+        self._abs_film_pp = abs(J_pp)
         #: the round-off floor of the merit at the last state whose Jacobian was formed
-        self.noise = self._noise(u, p, J_pp)
-        self._film_pp = J_pp
-        return res, active, Linearization(self, active, J_h, J_pp, free)
+        self.noise = self._noise(u, p, self._abs_film_pp)
 
     def update_noise(self, z) -> None:
         """:attr:`noise` (and :attr:`noise_rows`) at the state z, with the film's ∂r_p/∂p
         of the last Jacobian formed (a round-off estimate: chord steps do not form the
         Jacobian)."""
         m = self.model
-        self.noise = self._noise(z[:m.n_u], z[m.n_u:], self._film_pp)
+        self.noise = self._noise(z[:m.n_u], z[m.n_u:], self._abs_film_pp)
 
     def jacobian(self, lin: Linearization) -> sp.csr_matrix:
         """The whole (unfolded) Jacobian of the linearization ``lin``, CSR."""
@@ -297,8 +322,7 @@ class _Residual:
         pattern without contact: valid for every contact set, a contact row keeping its
         entries as zeros). Formed once per grid and solver kind (:func:`_grid_pattern`)."""
         if self._jacobian_pattern is None:
-            self._jacobian_pattern = _grid_pattern(self.tape_rows, lin.J_h, lin.J_p,
-                                                   self.model, kind)
+            self._jacobian_pattern = _model_pattern(self.tape_rows, lin, self.model, kind)
         return self._jacobian_pattern
 
     def merit(self, res) -> float:
@@ -342,12 +366,28 @@ PATTERNS_KEPT = 4
 _ORDERED_KINDS = ("metis", "grid")
 
 
-def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> JacobianPattern:
-    """:class:`.jacobian.JacobianPattern` of the blocks, in the elimination order of a
-    nested dissection for ``kind`` "metis"
-    (:func:`gyroshell.linalg.factorization.nested_dissection`) and "grid"
-    (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
-    grid nodes), formed once per pattern."""
+def _model_pattern(tape_rows, lin: Linearization, model: BearingModel,
+                   kind: str) -> JacobianPattern:
+    """The folded pattern (:func:`_grid_pattern`) of ``model``'s Jacobian for ``kind``,
+    found by the digest kept on the model (:attr:`BearingModel.jacobian_patterns`): the
+    film's blocks have their grid's fixed patterns and the fold is the model's, so only
+    the tape rows' pattern (K, or K plus a time step's terms) is compared; the digest of
+    every block is formed only on the model's first solve of that kind, or when the tape
+    rows' pattern changes."""
+    kept = model.jacobian_patterns.get(kind)
+    if (kept is not None and np.array_equal(kept[0], tape_rows.indptr)
+            and np.array_equal(kept[1], tape_rows.indices)):
+        key = kept[2]
+    else:
+        key = _pattern_digest(tape_rows, lin.J_h, lin.J_p, model, kind)
+        model.jacobian_patterns[kind] = (tape_rows.indptr.copy(), tape_rows.indices.copy(),
+                                         key)
+    return _grid_pattern(tape_rows, lin.J_h, lin.J_p, model, kind, key)
+
+
+def _pattern_digest(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> bytes:
+    """A digest of the blocks' patterns, the fold and ``kind``'s ordering: the key of
+    :data:`_PATTERNS`."""
     fold = model.mirror
     ordering = _ORDERED_KINDS.index(kind) + 1 if kind in _ORDERED_KINDS else 0
     parts = [np.asarray([model.nc, ordering, *J_h.shape, *J_p.shape], dtype=np.int64)]
@@ -360,10 +400,21 @@ def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str) -> Jacobi
         part = np.ascontiguousarray(part)
         digest.update(f"{part.dtype.str}{part.size};".encode())
         digest.update(part.data)
-    key = digest.digest()
+    return digest.digest()
+
+
+def _grid_pattern(tape_rows, J_h, J_p, model: BearingModel, kind: str,
+                  key: bytes | None = None) -> JacobianPattern:
+    """:class:`.jacobian.JacobianPattern` of the blocks, in the elimination order of a
+    nested dissection for ``kind`` "metis"
+    (:func:`gyroshell.linalg.factorization.nested_dissection`) and "grid"
+    (:func:`gyroshell.linalg.grid_ordering.grid_nested_dissection` from the unknowns'
+    grid nodes), formed once per pattern (``key``: its :func:`_pattern_digest`, if known)."""
+    if key is None:
+        key = _pattern_digest(tape_rows, J_h, J_p, model, kind)
     pattern = _PATTERNS.pop(key, None)
     if pattern is None:
-        pattern = JacobianPattern(tape_rows, J_h, J_p, model.nc, fold)
+        pattern = JacobianPattern(tape_rows, J_h, J_p, model.nc, model.mirror)
         if kind in _ORDERED_KINDS:
             pattern.order(pattern_ordering(pattern, model, kind))
     _PATTERNS[key] = pattern
@@ -457,9 +508,17 @@ def _newton_direction(F: _Residual, it: _Iterate) -> np.ndarray:
         if _norm(dz, n_u, F) <= contraction * it.last_step:
             return dz
     if it.J is None:       # a 2-D tape forms its Jacobian only to factor it
-        it.J = F(it.z, jacobian=True, active=it.active)[2]
+        it.J = F.linearize(it.z, it.active)
     it.solver = F.factor(it.J)
     return it.solver(it.res)
+
+
+def _film_blocks(F: _Residual, it: _Iterate) -> Linearization:
+    """A linearization at the iterate (its film blocks, whatever its contact set): the
+    iterate's, formed now if a chord step left it unformed."""
+    if it.J is None:
+        it.J = F.linearize(it.z, it.active)
+    return it.J
 
 
 def _kept_if_better(F, model, it, dz, h, active, solver, found, merit_t, tol):
@@ -486,8 +545,9 @@ def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
     entering = ~it.active & (h + dz[:model.n_u] < F.floor)
     if _decreased(merit_t, it.merit, alpha) or step < FULL_STEP or not entering.any():
         return found
-    res_f, active_f, J_f = F(it.z, jacobian=True, force=entering)
-    forced = F.factor(J_f)
+    u, p = it.z[:model.n_u], it.z[model.n_u:]
+    res_f, active_f = F.contact_rows(u, F.tape(u, p), it.res[model.n_u:], force=entering)
+    forced = F.factor(F.with_contact(_film_blocks(F, it), active_f))
     dz_f = forced(res_f)
     if not np.all(np.isfinite(dz_f)):
         return found
@@ -525,8 +585,8 @@ def _contact_set_step(F, it: _Iterate, h, dz, found, tol):
         if np.array_equal(nxt, active):
             break
         active = nxt
-        res_a, _, J_a = F(it.z, jacobian=True, active=active)
-        solver = F.factor(J_a)
+        res_a, _ = F.contact_rows(u, r_u, it.res[n_u:], active)
+        solver = F.factor(F.with_contact(_film_blocks(F, it), active))
         d = solver(res_a)
         if not np.all(np.isfinite(d)):
             return found
