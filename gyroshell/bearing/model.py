@@ -374,8 +374,7 @@ class BearingModel:
                                              self.head_radius)
         h_foil, l_film, l_bend = foil_length_scales(params, self.air, self.velocity,
                                                     self.scale_radius)
-        if self.dry:
-            h_foil, l_film = 0.0, 0.0
+        h_foil, l_film = (0.0, 0.0) if self.dry else (h_foil, l_film)
         self.film_length, self.bending_length = l_film, l_bend
         self.arc_contact = validation.choice("arc_contact", arc_contact, ARC_CONTACTS)
         self.wrapped_corners = wrapped_corners(self.head, l_bend, self.arc_contact)
@@ -392,11 +391,7 @@ class BearingModel:
         if self.grading.corner_ratio is None:
             self.grading = replace(self.grading, **self._corner_grading(resolution))
         x_line = self._x_count(nx, l_film, resolution, span is not None)
-        if self.infinitely_wide and ny is not None:
-            raise ParameterError(f"ny applies to the 2-D tape only: leave it None with "
-                                 f"infinitely_wide=True, got {ny!r}")
-        y_line = None if self.infinitely_wide else self.grading.y_line(params.width)
-        ny = None if self.infinitely_wide else self._y_count(ny, y_line)
+        ny, y_line = self._y_grid(ny)
         budget.check_steady(self.nx, ny)          # before any array of the grid's size
         self.x = self._x_nodes(x_line)
         self._check_film_resolved(l_film, x_line)
@@ -409,11 +404,19 @@ class BearingModel:
             self._build_y_line(ny, y_line)
             self.tape = PlateOperators(tape_params, self.x, self.y)
         self._couple_film_and_loads()
-        #: The digests of Newton's folded Jacobian patterns on this grid, by
-        #: factorization kind, with the tape rows' pattern they were formed from
-        #: (:func:`gyroshell.bearing.steady._model_pattern`: a digest of the blocks once
-        #: per model, not at every solve)
+        #: Newton's folded Jacobian patterns' digests by factorization kind (steady.py)
         self.jacobian_patterns: dict = {}
+
+    def _y_grid(self, ny):
+        """(ny, the y-line of :meth:`Grading.y_line`) of a 2-D tape; (None, None) if
+        infinitely wide (where ``ny`` must be None)."""
+        if self.infinitely_wide:
+            if ny is not None:
+                raise ParameterError(f"ny applies to the 2-D tape only: leave it None with "
+                                     f"infinitely_wide=True, got {ny!r}")
+            return None, None
+        y_line = self.grading.y_line(self.params.width)
+        return self._y_count(ny, y_line), y_line
 
     def _resolution(self, l_film: float, l_bend: float) -> float:
         """The length the default x-grid resolves, m (:func:`resolution_length`; dry: the
