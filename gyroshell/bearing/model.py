@@ -404,8 +404,14 @@ class BearingModel:
             self._build_y_line(ny, y_line)
             self.tape = PlateOperators(tape_params, self.x, self.y)
         self._couple_film_and_loads()
-        #: Newton's folded Jacobian patterns' digests by factorization kind (steady.py)
-        self.jacobian_patterns: dict = {}
+
+    @cached_property
+    def jacobian_patterns(self) -> dict:
+        """Newton's folded Jacobian patterns' digests on this grid by factorization kind,
+        with the tape rows' pattern each was formed from
+        (:func:`gyroshell.bearing.steady._model_pattern`): a cache, formed again on use
+        (not part of the model's state: a loaded model starts it empty)."""
+        return {}
 
     def _y_grid(self, ny):
         """(ny, the y-line of :meth:`Grading.y_line`) of a 2-D tape; (None, None) if
