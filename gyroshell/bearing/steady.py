@@ -254,15 +254,20 @@ class _Residual:
         m = self.model
         self.noise = self._noise(z[:m.n_u], z[m.n_u:], self._abs_film_pp)
 
-    def jacobian(self, lin: Linearization) -> sp.csr_matrix:
-        """The whole (unfolded) Jacobian of the linearization ``lin``, CSR."""
+    def jacobian(self, lin: Linearization, format: str = "csr") -> sp.spmatrix:
+        """The whole (unfolded) Jacobian of the linearization ``lin``, the blocks stacked
+        (a contact node's tape row is c on its diagonal, its column of the film's rows
+        zero), as :meth:`_factor_pivoted` factors it."""
         m = self.model
         rows_u = self.tape_rows
         if lin.active.any():
             rows_u = (sp.diags((~lin.active).astype(float)) @ rows_u
                       + sp.diags(lin.active * self.c, shape=rows_u.shape))
-        J_pu = lin.J_h[:, m.nc:m.nc + m.n_u] @ sp.diags(lin.free.astype(float))
-        return sp.vstack([rows_u, sp.hstack([J_pu, lin.J_p])], format="csr")
+        J_pu = lin.J_h[:, m.nc:m.nc + m.n_u]
+        if not lin.free.all():
+            J_pu = J_pu @ sp.diags(lin.free.astype(float))
+        film_rows = sp.hstack([J_pu.tocsr(), lin.J_p], format="csr")
+        return sp.vstack([rows_u, film_rows], format=format)
 
     def factor(self, lin: Linearization):
         """A solver res ↦ −J⁻¹ res of the linearization ``lin``, by the model's
@@ -295,15 +300,7 @@ class _Residual:
         it is given: explicit zeros would move its order and so the iterates'
         round-off), folded by the mirror on a symmetric 2-D tape."""
         m = self.model
-        rows_u = self.tape_rows
-        if lin.active.any():
-            rows_u = (sp.diags((~lin.active).astype(float)) @ rows_u
-                      + sp.diags(lin.active * self.c, shape=rows_u.shape))
-        J_pu = lin.J_h[:, m.nc:m.nc + m.n_u]
-        if not lin.free.all():
-            J_pu = J_pu @ sp.diags(lin.free.astype(float))
-        film_rows = sp.hstack([J_pu.tocsr(), lin.J_p], format="csr")
-        J = sp.vstack([rows_u, film_rows], format="csc")
+        J = self.jacobian(lin, format="csc")
         fold = m.mirror
         if fold is not None:
             P, rows = fold
