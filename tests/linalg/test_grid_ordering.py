@@ -51,6 +51,16 @@ def _stencil_matrix(along: int, across: int, blocks: dict, rng) -> tuple:
     return A.tocsc(), coordinates, kinds
 
 
+def _coupled(A, xy, kinds, first, second):
+    """A with one more coupling, both ways, between the unknowns (i, j, kind) ``first``
+    and ``second``."""
+    a, b = (np.flatnonzero((xy[:, 0] == i) & (xy[:, 1] == j) & (kinds == s))[0]
+            for i, j, s in (first, second))
+    A = A.tolil()
+    A[a, b] = A[b, a] = 0.1
+    return A.tocsc()
+
+
 #: The bearing's pair: u (kind 0) by the plate, p (kind 1) by the film, coupled by 9 points.
 BEARING = {(0, 0): THIRTEEN, (0, 1): NINE, (1, 0): FIVE, (1, 1): FIVE}
 
@@ -64,15 +74,21 @@ def test_separator_widths_are_the_stencils_reach(blocks, expected):
     assert separator_widths(A, xy, kinds).tolist() == expected
 
 
-@pytest.mark.parametrize("blocks", [{(0, 0): FIVE}, {(0, 0): THIRTEEN}, BEARING],
-                         ids=["5-point", "13-point", "bearing u-p"])
-def test_the_top_separator_cuts_the_grid_into_two_halves(blocks):
+@pytest.mark.parametrize(("blocks", "coupling"), [
+    ({(0, 0): FIVE}, None), ({(0, 0): THIRTEEN}, None), (BEARING, None),
+    (BEARING, ((20, 3, 0), (28, 15, 0)))],
+    ids=["5-point", "13-point", "bearing u-p", "bearing u-p, u-u across 8 lines"])
+def test_the_top_separator_cuts_the_grid_into_two_halves(blocks, coupling):
     """On a 61 × 20 grid the first cut is across the long side: its separator holds w_s
     lines of `across` nodes per kind s (ordered last); without it the graph falls into two
     components of about (61 − max w)/2 lines each (a kind of separator narrower than the
-    widest leaves its extra lines to the second half)."""
+    widest leaves its extra lines to the second half). A long-range coupling widens its
+    kind's separator to its reach."""
     along, across = 61, 20
     A, xy, kinds = _stencil_matrix(along, across, blocks, np.random.default_rng(1))
+    if coupling is not None:
+        A = _coupled(A, xy, kinds, *coupling)
+        assert separator_widths(A, xy, kinds)[0].tolist() == [8, 1]
     perm = grid_nested_dissection(A, xy, kinds)
     assert np.array_equal(np.sort(perm), np.arange(A.shape[0]))
     widths = separator_widths(A, xy, kinds)[0]
@@ -123,16 +139,6 @@ def test_coordinates_of_the_wrong_shape_are_refused():
     A, xy, kinds = _stencil_matrix(10, 10, {(0, 0): FIVE}, np.random.default_rng(3))
     with pytest.raises(ParameterError, match="coordinates must have shape"):
         grid_nested_dissection(A, xy[:-1], kinds)
-
-
-def _coupled(A, xy, kinds, first, second):
-    """A with one more coupling, both ways, between the unknowns (i, j, kind) ``first``
-    and ``second``."""
-    a, b = (np.flatnonzero((xy[:, 0] == i) & (xy[:, 1] == j) & (kinds == s))[0]
-            for i, j, s in (first, second))
-    A = A.tolil()
-    A[a, b] = A[b, a] = 0.1
-    return A.tocsc()
 
 
 def _metis_fill(A):
