@@ -114,16 +114,29 @@ def grid_nested_dissection(graph: sp.spmatrix, coordinates: np.ndarray,
     falls back towards the natural one along it, with more fill.
     """
     n = graph.shape[0]
+    ij, kinds = _grid_indices(n, coordinates, kinds)
+    if n < 2:
+        return np.arange(n)
+    widths = separator_widths(graph, ij, kinds)
+    shape = tuple(int(s) + 1 for s in ij.max(axis=0))
+    block = _blocks(shape, widths)
+    # within a block: node by node (i, then j), the kinds of one node together
+    return np.lexsort((kinds, ij[:, 1], ij[:, 0], block[kinds, ij[:, 0], ij[:, 1]]))
+
+
+def _grid_indices(n: int, coordinates, kinds) -> tuple[np.ndarray, np.ndarray]:
+    """(node indices from 0, kinds) of :func:`grid_nested_dissection`'s n unknowns,
+    checked (its Raises)."""
     coordinates = np.asarray(coordinates)
     kinds = np.zeros(n, dtype=np.int64) if kinds is None else np.asarray(kinds, dtype=np.int64)
     if coordinates.shape != (n, 2) or kinds.shape != (n,):
         raise ParameterError(f"grid_nested_dissection: coordinates must have shape ({n}, 2) "
                              f"and kinds ({n},), got {coordinates.shape} and {kinds.shape}")
+    if n < 2:
+        return coordinates, kinds
     if not np.issubdtype(coordinates.dtype, np.integer):
         raise ParameterError("grid_nested_dissection: coordinates must be integer node "
                              f"indices, got dtype {coordinates.dtype}")
-    if n < 2:
-        return np.arange(n)
     if kinds.min() < 0:
         raise ParameterError(f"grid_nested_dissection: kinds must be >= 0, got {kinds.min()}")
     ij = coordinates - coordinates.min(axis=0)
@@ -133,11 +146,7 @@ def grid_nested_dissection(graph: sp.spmatrix, coordinates: np.ndarray,
             f"grid_nested_dissection: the unknowns must fill their grid (kinds × the nodes "
             f"of the box they span <= {PLACES_PER_UNKNOWN} × {n} unknowns), got "
             f"{places}")
-    widths = separator_widths(graph, ij, kinds)
-    shape = tuple(int(s) + 1 for s in ij.max(axis=0))
-    block = _blocks(shape, widths)
-    # within a block: node by node (i, then j), the kinds of one node together
-    return np.lexsort((kinds, ij[:, 1], ij[:, 0], block[kinds, ij[:, 0], ij[:, 1]]))
+    return ij, kinds
 
 
 def _blocks(shape: tuple, widths: np.ndarray) -> np.ndarray:
