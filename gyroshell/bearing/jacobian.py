@@ -54,7 +54,8 @@ class JacobianPattern:
 
         self.tape_row = row_of_entries(tape_rows)
         h_row = row_of_entries(J_h)
-        #: the entries of J_h on the tape's unknowns (the end node lines carry no u)
+        #: the entries of J_h on the tape's unknowns (the end node lines carry no u): the
+        #: columns of BearingModel.film_tape_block, scattered by value
         self.h_take = np.flatnonzero((J_h.indices >= nc) & (J_h.indices < nc + n_u))
         self.h_col = (J_h.indices[self.h_take] - nc).astype(index)
         p_row = row_of_entries(J_p)

@@ -1030,10 +1030,19 @@ class BearingModel:
                                                     jacobian=jacobian)
         if not jacobian:
             return r, None, None
+        return r, J_p, self.film_tape_block(J_h, free)
+
+    def film_tape_block(self, J_h: sp.csr_matrix, free: np.ndarray) -> sp.csr_matrix:
+        """∂r_p/∂u (r_p's units per m) from the film's ∂r_p/∂h over every node and
+        ``free`` of :meth:`film_linearization`: its columns at the tape's
+        unknowns (u_k is node nc + k: the first node line is pinned), zero where the
+        spacing was floored. The one formula of the film rows' u-block, for
+        :meth:`film_residual` and Newton's stacked Jacobian
+        (``_Residual.jacobian`` in :mod:`.steady`)."""
         J_u = J_h[:, self.nc:self.nc + self.n_u]
         if not free.all():
             J_u = J_u @ sp.diags(free.astype(float))
-        return r, J_p, J_u.tocsr()
+        return J_u.tocsr()
 
     def film_linearization(self, u: np.ndarray, p: np.ndarray, *, phi_old=None, dt=None,
                            jacobian: bool = True):

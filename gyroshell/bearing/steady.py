@@ -263,10 +263,7 @@ class _Residual:
         if lin.active.any():
             rows_u = (sp.diags((~lin.active).astype(float)) @ rows_u
                       + sp.diags(lin.active * self.c, shape=rows_u.shape))
-        J_pu = lin.J_h[:, m.nc:m.nc + m.n_u]
-        if not lin.free.all():
-            J_pu = J_pu @ sp.diags(lin.free.astype(float))
-        film_rows = sp.hstack([J_pu.tocsr(), lin.J_p], format="csr")
+        film_rows = sp.hstack([m.film_tape_block(lin.J_h, lin.free), lin.J_p], format="csr")
         return sp.vstack([rows_u, film_rows], format=format)
 
     def factor(self, lin: Linearization):

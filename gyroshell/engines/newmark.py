@@ -300,6 +300,13 @@ class Newmark:
     reported as ``info["factor_time"]``), once per object, or once per
     :func:`sharing_factorizations` block. :meth:`march` then costs one substitution per
     step plus a few vector operations and one (G + C) mat-vec.
+
+    ``info["backend"]`` is None until a K_eq is factored (or taken from a sharing block),
+    then the back-end of the K_eq last used (by a march, :attr:`factor` or
+    :attr:`half_factor`). With "auto" it depends on which K_eq: "band" (BandLU) on a
+    narrow band such as the symmetric half's, "superlu" otherwise, so it can change
+    between a half-size and a full-size march. A run's ``result.info["backend"]`` is its
+    own K_eq's.
     """
 
     def __init__(self, model: TapeModel, velocity: float = 0.0, *, dt: float,
@@ -327,11 +334,11 @@ class Newmark:
         self.m = np.ascontiguousarray(model.mass_diagonal, dtype=float)
         self.blas_threads = blas_threads
         #: The LU back-end asked for: "auto" or a name (refused here if unknown or not
-        #: installed); ``info["backend"]`` is the one that factored the last run's K_eq.
+        #: installed); ``info["backend"]`` is the one that factored K_eq (class notes).
         self.backend = "auto" if backend == "auto" else resolve_backend(backend)
         self._operators: dict[str, _Operators] = {}
         self._half_allowed: bool | None = None
-        self.info = {"backend": resolve_backend(self.backend), "factor_time": 0.0,
+        self.info = {"backend": None, "factor_time": 0.0,
                      "unknowns": model.unknowns, "factorizations": 0,
                      "blas_threads": blas_threads}
 
@@ -432,6 +439,7 @@ class Newmark:
                 K, m = K_s, np.ascontiguousarray(M_s.diagonal(), dtype=float)
             factor, shared = self._factored(which, K, GC, m)
             self._operators[which] = _Operators(K, GC, C, m, factor, shared, half)
+        self.info["backend"] = self._operators[which].factor.name
         return self._operators[which]
 
     def _factored(self, which: str, K, GC, m: np.ndarray) -> tuple[object, bool]:

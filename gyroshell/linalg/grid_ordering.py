@@ -32,6 +32,11 @@ from ..core.errors import ParameterError
 #: within a few per cent).
 LEAF_NODES = 16
 
+#: At most this many places (kinds × the nodes of the grid's box) per unknown: the
+#: bearing's unknowns fill their box (1.0 and 1.06 places per unknown on its default 2-D
+#: and a 64 × 16 grid); sparser ones are refused, to bound the memory of the dissection.
+PLACES_PER_UNKNOWN = 4
+
 
 def separator_widths(graph: sp.spmatrix, coordinates: np.ndarray,
                      kinds: np.ndarray) -> np.ndarray:
@@ -91,22 +96,57 @@ def grid_nested_dissection(graph: sp.spmatrix, coordinates: np.ndarray,
     Raises
     ------
     ParameterError
-        If the coordinates or kinds do not match the matrix.
+        If the coordinates or kinds do not match the matrix, the coordinates are not
+        integers, a kind is negative, or the unknowns do not fill their grid: the box of
+        n₁ × n₂ nodes they span, times the k kinds, holds more than PLACES_PER_UNKNOWN
+        · n places (scattered unknowns: order them with
+        :func:`gyroshell.linalg.factorization.nested_dissection` instead).
+
+    Notes
+    -----
+    Memory is bounded by O(nnz + k·n₁·n₂) = O(nnz + n) (the refusal above): the block
+    number of each of the box's k·n₁·n₂ places, the separators' widths from the nnz
+    couplings, and a stack of at most 2(n₁ + n₂) + 1 boxes — every cut takes at least a
+    node line off each half, whatever the widths, so the dissection is at most n₁ + n₂
+    cuts deep. Long-range couplings are allowed (the ordering is still a valid
+    permutation): they widen the separators to their reach, and an axis too short for a
+    separator of that width with a node line on either side is not cut, so the ordering
+    falls back towards the natural one along it, with more fill.
     """
     n = graph.shape[0]
+    ij, kinds = _grid_indices(n, coordinates, kinds)
+    if n < 2:
+        return np.arange(n)
+    widths = separator_widths(graph, ij, kinds)
+    shape = tuple(int(s) + 1 for s in ij.max(axis=0))
+    block = _blocks(shape, widths)
+    # within a block: node by node (i, then j), the kinds of one node together
+    return np.lexsort((kinds, ij[:, 1], ij[:, 0], block[kinds, ij[:, 0], ij[:, 1]]))
+
+
+def _grid_indices(n: int, coordinates, kinds) -> tuple[np.ndarray, np.ndarray]:
+    """(node indices from 0, kinds) of :func:`grid_nested_dissection`'s n unknowns,
+    checked (its Raises)."""
     coordinates = np.asarray(coordinates)
     kinds = np.zeros(n, dtype=np.int64) if kinds is None else np.asarray(kinds, dtype=np.int64)
     if coordinates.shape != (n, 2) or kinds.shape != (n,):
         raise ParameterError(f"grid_nested_dissection: coordinates must have shape ({n}, 2) "
                              f"and kinds ({n},), got {coordinates.shape} and {kinds.shape}")
     if n < 2:
-        return np.arange(n)
+        return coordinates, kinds
+    if not np.issubdtype(coordinates.dtype, np.integer):
+        raise ParameterError("grid_nested_dissection: coordinates must be integer node "
+                             f"indices, got dtype {coordinates.dtype}")
+    if kinds.min() < 0:
+        raise ParameterError(f"grid_nested_dissection: kinds must be >= 0, got {kinds.min()}")
     ij = coordinates - coordinates.min(axis=0)
-    widths = separator_widths(graph, ij, kinds)
-    shape = tuple(int(s) + 1 for s in ij.max(axis=0))
-    block = _blocks(shape, widths)
-    # within a block: node by node (i, then j), the kinds of one node together
-    return np.lexsort((kinds, ij[:, 1], ij[:, 0], block[kinds, ij[:, 0], ij[:, 1]]))
+    places = (int(kinds.max()) + 1) * int(np.prod(ij.max(axis=0) + 1, dtype=object))
+    if places > PLACES_PER_UNKNOWN * n:
+        raise ParameterError(
+            f"grid_nested_dissection: the unknowns must fill their grid (kinds × the nodes "
+            f"of the box they span <= {PLACES_PER_UNKNOWN} × {n} unknowns), got "
+            f"{places}")
+    return ij, kinds
 
 
 def _blocks(shape: tuple, widths: np.ndarray) -> np.ndarray:
@@ -125,15 +165,17 @@ def _blocks(shape: tuple, widths: np.ndarray) -> np.ndarray:
         box, done = stack.pop()
         extent = [max(max(hi - lo for lo, hi in (ranges[a] for ranges in box)), 0)
                   for a in (0, 1)]
-        if done or _is_leaf(extent, w_max):
+        axis = None if done else _cut_axis(extent, w_max)
+        if axis is None:
             for s, ((a0, a1), (b0, b1)) in enumerate(box):
                 if a1 > a0 and b1 > b0:
                     block[s, a0:a1, b0:b1] = count
             count += 1
             continue
-        axis = 0 if extent[0] >= extent[1] else 1
-        lo = min(ranges[axis][0] for ranges in box)
-        hi = max(ranges[axis][1] for ranges in box)
+        # the box's node lines along the axis, over the kinds present in it
+        present = [ranges[axis] for ranges in box if ranges[axis][1] > ranges[axis][0]]
+        lo = min(a0 for a0, _ in present)
+        hi = max(a1 for _, a1 in present)
         cut = lo + (hi - lo - w_max[axis]) // 2
         first, second, separator = [], [], []
         for s, ranges in enumerate(box):
@@ -146,9 +188,13 @@ def _blocks(shape: tuple, widths: np.ndarray) -> np.ndarray:
     return block
 
 
-def _is_leaf(extent: list, widths: list) -> bool:
-    """Whether a box of these extents (nodes along each axis) keeps its natural order: at
-    most LEAF_NODES nodes, or too thin to hold a separator (of these widths) with a node
-    line on either side."""
-    return (extent[0] * extent[1] <= LEAF_NODES
-            or max(extent[0] - widths[0], extent[1] - widths[1]) < 2)
+def _cut_axis(extent: list, widths: list) -> int | None:
+    """The axis a box of these extents (nodes along each axis) is cut across: the longer
+    of those that hold a separator (of these widths) with a node line on either side;
+    None (the box keeps its natural order) if it has at most LEAF_NODES nodes or neither
+    axis holds one. A cut then leaves at least one line of the box in each half, so the
+    halves are smaller than the box and the dissection ends."""
+    if extent[0] * extent[1] <= LEAF_NODES:
+        return None
+    cuttable = [a for a in (0, 1) if extent[a] - widths[a] >= 2]
+    return max(cuttable, key=lambda a: (extent[a], -a)) if cuttable else None

@@ -71,6 +71,33 @@ def test_jacobian_matches_finite_differences(air, wide, grading, rng):
     assert np.allclose(J.matrix @ direction, fd, rtol=1e-6, atol=1e-7 * np.abs(fd).max())
 
 
+@pytest.mark.parametrize("wide", [True, False], ids=["1-D", "2-D"])
+def test_film_residual_blocks_match_finite_differences(wide, rng):
+    """BearingModel.film_residual's ∂r_p/∂u and ∂r_p/∂p against central differences of
+    its r_p, with a few nodes pressed below the film's floor σ/2: their columns of ∂r_p/∂u
+    are zero, and r_p does not move with u there (the spacing stays floored)."""
+    model = _model(AIRS["compressible-slip"], wide)
+    z = model.initial_state()
+    u = z[:model.n_u] * (1 + 0.3 * rng.random(model.n_u))
+    p = z[model.n_u:] + 2000.0 * rng.random(model.n_p)
+    low = rng.choice(model.n_u, 4, replace=False)
+    u[low] = -model.dry_field[1:-1, :].ravel()[low]                 # h = 0 < σ/2
+    r, J_p, J_u = model.film_residual(u, p)
+    assert np.array_equal(model.film_residual(u, p, jacobian=False)[0], r)
+    assert abs(J_u[:, low]).sum() == 0.0
+    du = model.h_guess * rng.standard_normal(model.n_u)
+    dp = 1000.0 * rng.standard_normal(model.n_p)
+    eps = 1e-4   # r_p sums terms ~50x its derivative's size: smaller steps see round-off
+    for step, exact in (((du, 0 * dp), J_u @ du), ((0 * du, dp), J_p @ dp)):
+        plus, minus = (model.film_residual(u + s * step[0], p + s * step[1],
+                                           jacobian=False)[0] for s in (eps, -eps))
+        fd = (plus - minus) / (2 * eps)
+        assert np.allclose(exact, fd, rtol=1e-6, atol=1e-7 * np.abs(fd).max())
+    only_low = np.zeros(model.n_u)
+    only_low[low] = 0.4 * model.air.roughness                       # h = 0.4 σ: floored
+    assert np.array_equal(model.film_residual(u + only_low, p, jacobian=False)[0], r)
+
+
 @pytest.mark.parametrize("air", AIRS.values(), ids=AIRS.keys())
 def test_fluxes_balance_to_round_off_1d(air):
     """Steady and one-dimensional: every face carries the same flux."""

@@ -261,6 +261,37 @@ def test_one_stepper_factors_each_size_once(counted):
     assert stepper.info["factorizations"] == 2
 
 
+
+def _half_bandwidth(*matrices) -> int:
+    """The largest |i − j| of an entry of any of the matrices (that of K_eq = M + γΔt G +
+    βΔt² K, M being diagonal)."""
+    return max(int(np.abs(A.row - A.col).max()) for A in map(sp.coo_matrix, matrices))
+
+
+def test_info_names_the_backend_of_the_k_eq_last_factored():
+    """None before anything is factored; after each march the back-end of that march's
+    K_eq, which "auto" chooses by its half-bandwidth (LAPACK's band LU up to
+    NATURAL_HALF_BANDWIDTH, else SuperLU): 25 nodes across give the full K_eq a
+    half-bandwidth of 50 (the plate's stencil reaches two lines), the half's 13 nodes 26."""
+    from gyroshell.linalg.ordering import NATURAL_HALF_BANDWIDTH
+    from gyroshell.tape.mirror import mirror_split
+
+    model = tape(24)
+    M_s, G_s, K_s = mirror_split(model).matrices(model, SPEED, "symmetric")
+    bandwidth = {"half": _half_bandwidth(G_s, K_s),
+                 "full": _half_bandwidth(model.G(SPEED), model.K(SPEED))}
+    assert bandwidth["half"] <= NATURAL_HALF_BANDWIDTH < bandwidth["full"], bandwidth
+    expected = {"half": "band", "full": "superlu"}
+    stepper = Newmark(model, SPEED, dt=DT)
+    assert stepper.info["backend"] is None
+    for symmetry in (True, False, True):
+        run = stepper.march(5, symmetry=symmetry, progress=False)
+        which = run.info["symmetry"]
+        assert which == ("half" if symmetry else "full")
+        assert stepper.info["backend"] == run.info["backend"] == expected[which]
+    assert Newmark(model, SPEED, dt=DT, backend="superlu").info["backend"] is None
+
+
 def test_the_half_factor_exists_only_for_a_symmetric_tape():
     stepper = Newmark(tape(), SPEED, dt=DT)
     assert stepper.half_factor is stepper.half_factor is not None
