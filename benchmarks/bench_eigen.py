@@ -19,6 +19,9 @@ Prints medians (s) over alternating rounds of:
   .venv-slepc/bin/pip install dolfinx-solver-complex``);
 * a 20-speed sweep (0-95 m/s, 6 modes) by continuation against 20 separate ``modes`` calls
   on fresh models, and the continued sweep split over 2 local processes (``workers=2``);
+* the sweep's budget: factorizations, the Lanczos iteration (its substitutions inside)
+  and the rest, for the continued sweep and the separate calls, and the two bounds on their
+  ratio that the solves each makes imply (docs/performance.md, "the sweep's 2x");
 * the critical speed (both routes);
 * with ``--baseline DIR`` (a tree of the state before a change, e.g. ``git archive main |
   tar -x -C DIR``): the same ``modes`` call, sweep, separate calls and critical speed on
@@ -47,7 +50,7 @@ from gyroshell import TapeModel, TapeParameters
 from gyroshell.engines.critical import critical_speeds
 from gyroshell.engines.eigen import modes
 from gyroshell.linalg import cholesky
-from gyroshell.studies.sweep import sweep
+from gyroshell.studies.sweep import solve_speeds, sweep
 
 SLEPC_PYTHON = os.environ.get(
     "GYROSHELL_SLEPC_PYTHON",
@@ -217,6 +220,53 @@ def bench_sweep(args) -> None:
           f"relative difference from one process {pdiff:.1e}")
 
 
+def _budget(results: list, wall: float) -> dict:
+    """Sums over the speeds' solves: factorizations F, the Lanczos iteration I (its
+    substitutions S inside it), the solves n, and the rest R = wall − F − I, s."""
+    total = {key: sum(r.info.get(key, 0) or 0 for r in results)
+             for key in ("factor_time", "solve_time", "substitution_time",
+                         "operator_applications")}
+    return {"wall": wall, "F": total["factor_time"], "I": total["solve_time"],
+            "S": total["substitution_time"], "n": total["operator_applications"],
+            "R": wall - total["factor_time"] - total["solve_time"]}
+
+
+def bench_sweep_budget(args) -> None:
+    """Where the sweep's time goes, beside the separate calls', and the two bounds on
+    their ratio that follow from the solves each must make (module notes of
+    docs/performance.md, "the sweep's 2x")."""
+    speeds = list(np.linspace(0.0, 95.0, 20))
+    rows = {"continuation": [], "separate": []}
+    for k in range(args.sweep_rounds):
+        for name in (("continuation", "separate") if k % 2 == 0 else
+                     ("separate", "continuation")):
+            if name == "continuation":
+                model = fresh_model(args.length_ratio)
+                t0 = time.perf_counter()
+                results = solve_speeds(model, speeds, args.count, continuation=True,
+                                       workers=1, options={}, progress=False,
+                                       description="sweep")
+            else:
+                t0 = time.perf_counter()
+                results = [modes(fresh_model(args.length_ratio), v, args.count)
+                           for v in speeds]
+            rows[name].append(_budget(results, time.perf_counter() - t0))
+    med_rows = {name: {key: statistics.median(r[key] for r in rs) for key in rs[0]}
+                for name, rs in rows.items()}
+    for name, b in med_rows.items():
+        print(f"  {name:12s} wall {b['wall']:.2f} s = factorizations {b['F']:.2f} + Lanczos "
+              f"{b['I']:.2f} (substitutions {b['S']:.2f}, {b['n']:.0f} solves, "
+              f"{1e3 * b['I'] / b['n']:.2f} ms per solve with its iteration work) + rest "
+              f"{b['R']:.2f}")
+    c, s = med_rows["continuation"], med_rows["separate"]
+    shared = c["F"] + c["n"] * s["I"] / s["n"]
+    floor_only = (s["F"] + s["S"] + s["R"]) / (c["F"] + c["S"])
+    print(f"  ratio separate/continuation {s['wall'] / c['wall']:.2f}; bound with the "
+          f"continuation's rest removed and the same iteration work per solve: "
+          f"{s['wall'] / shared:.2f}; bound with no iteration work beyond the substitutions "
+          f"in either and no rest in the continuation: {floor_only:.2f}")
+
+
 def bench_critical(args) -> None:
     times, result = [], None
     for _ in range(args.sweep_rounds):
@@ -328,6 +378,7 @@ def main() -> None:
         bench_modes(args)
     if "sweep" not in args.skip:
         bench_sweep(args)
+        bench_sweep_budget(args)
     if "critical" not in args.skip:
         bench_critical(args)
 
