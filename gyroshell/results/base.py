@@ -266,10 +266,13 @@ def _reason(exc: OSError) -> str:
     return text if len(text) <= 160 else text[:157] + "..."
 
 
-def write_table(frame, path: str | os.PathLike[str]) -> Path:
-    """Write a DataFrame as CSV (exact floats, ``NaN`` for missing) or Parquet, atomically."""
+def write_table(frame, path: str | os.PathLike[str], *, option: str = "output") -> Path:
+    """Write a DataFrame as CSV (exact floats, ``NaN`` for missing) or, for a ``.parquet``
+    path, Parquet, whole or not at all: the one table writer, so that every table reads back
+    through :func:`gyroshell.load` with its missing values as NaN. ``option`` names the
+    path in an error message (e.g. ``--out``)."""
     path = Path(path)
-    with atomic_path(path) as tmp:
+    with atomic_path(path, option=option) as tmp:
         if path.suffix.lower() == ".parquet":
             frame.to_parquet(tmp, index=False)
         else:
