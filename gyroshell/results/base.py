@@ -108,6 +108,12 @@ class Result:
         """The result as a :class:`pandas.DataFrame` (kinds that are tables)."""
         raise ParameterError(f"a {type(self).__name__} is not a table: save it as .nc")
 
+    @classmethod
+    def is_table(cls) -> bool:
+        """Whether the kind is a table: it defines :meth:`to_frame`, so :meth:`save` also
+        writes it as CSV or Parquet (known before any result of the kind exists)."""
+        return cls.to_frame is not Result.to_frame
+
     def save(self, path: str | os.PathLike[str], *, params=None) -> Path:
         """Write NetCDF (``.nc``), or CSV / Parquet (``.csv``, ``.parquet``) for tables.
 
