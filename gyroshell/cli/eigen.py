@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 
-from ..core.files import PLOT, check_outputs, transaction, write_atomic
+from ..core.files import PLOT, check_outputs, transaction
 from .common import (
     grid_of,
     parameters_from_args,
@@ -68,7 +68,9 @@ def register(sub, common: argparse.ArgumentParser,
 
 def run_modes(args: argparse.Namespace) -> int:
     params, velocity, grid = tape_from_args(args)
-    check_save_path(args.save)
+    from ..results.modes import Modes
+
+    check_save_path(args.save, Modes)
     from ..engines.eigen import modes
     from ..tape.model import TapeModel
 
@@ -158,34 +160,44 @@ def run_critical(args: argparse.Namespace) -> int:
 
 def run_sweep(args: argparse.Namespace) -> int:
     from ..core.parallel import check_process_count
+    from ..results.base import TABLE_SUFFIXES
+    from ..studies.sweep import SweepResult, check_velocities
 
     params = parameters_from_args(args)
-    velocities = [params.check_velocity(v) for v in parse_velocities(args.velocities)]
+    velocities = check_velocities([params.check_velocity(v) for v in
+                                   parse_velocities(args.velocities)], name="--velocities")
     check_process_count("--workers", args.workers)
-    check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT),
+    check_outputs({"--out": (args.out, TABLE_SUFFIXES), "--plot": (args.plot, PLOT),
                    "--save": (args.save, None)})
+    check_save_path(args.save, SweepResult)
     grid = grid_of(params)
     from ..studies.sweep import plot_sweep, sweep
     from ..tape.model import TapeModel
 
-    check_save_path(args.save)
     model = TapeModel(params, grid)
-    frame = sweep(model, velocities, args.count, progress=False if args.quiet else None,
-                  workers=args.workers).table
-    with transaction():
-        save_result(args.save, frame, params)
+    result = sweep(model, velocities, args.count, progress=False if args.quiet else None,
+                   workers=args.workers)
+    text = None if args.out else _sweep_text(result.table)  # all that can fail, first
+    with transaction():  # every output of the run, or none
+        save_result(args.save, result, params)
         if args.out:
-            write_atomic(args.out, lambda tmp: frame.to_csv(tmp, index=False), option="--out")
+            result.save(args.out)
         if args.plot:
-            plot_sweep(frame, args.plot,
+            plot_sweep(result, args.plot,
                        title=f"L_x/L_y = {params.length_ratio:g}, {params.edges} edges")
-    if not args.out:
-        table = frame.pivot(index="velocity", columns="rank", values="omega")
-        table.columns = [f"omega_{c + 1}" for c in table.columns]
-        print("angular frequencies, rad/s (ascending at each speed V, m/s)")
-        print(table.to_string(float_format=lambda x: f"{x:.6g}"))
+    if text is not None:
+        print(text)
     else:
-        print(f"wrote {args.out} ({len(frame)} rows)")
+        print(f"wrote {args.out} ({len(result.table)} rows)")
     if args.plot:
         print(f"wrote {args.plot}")
     return 0
+
+
+def _sweep_text(frame) -> str:
+    """The printed sweep: one row per speed (m/s, ascending), one column per rank
+    of ω (rad/s)."""
+    table = frame.pivot(index="velocity", columns="rank", values="omega")
+    table.columns = [f"omega_{c + 1}" for c in table.columns]
+    return ("angular frequencies, rad/s (ascending at each speed V, m/s)\n"
+            + table.to_string(float_format=lambda x: f"{x:.6g}"))

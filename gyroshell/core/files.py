@@ -77,8 +77,9 @@ def check_output(path: str | os.PathLike[str], *, option: str = "output",
         The path as the user gave it.
     option : str
         How the user named it (e.g. ``--plot``), for the message.
-    kind : {None, "plot"}
-        ``"plot"`` also checks that matplotlib can write the suffix's format.
+    kind : {None, "plot"} or tuple of str
+        ``"plot"`` also checks that matplotlib can write the suffix's format; a tuple
+        holds the suffixes allowed (``(".csv", ".parquet")``), any other is refused.
 
     Raises
     ------
@@ -88,6 +89,8 @@ def check_output(path: str | os.PathLike[str], *, option: str = "output",
     if not isinstance(path, (str, os.PathLike)) or not os.fspath(path):
         raise OutputPathError(f"{option} must be a file path, got {path!r}")
     shown = os.fspath(path)
+    if isinstance(kind, tuple) and Path(shown).suffix.lower() not in kind:
+        raise OutputPathError(f"{option}: use a {' or '.join(kind)} file, got {shown}")
     real = os.path.realpath(shown)
     folder = os.path.dirname(real) or "."
 
@@ -142,7 +145,8 @@ def check_output_folder(path: str | os.PathLike[str], *, option: str = "output f
 
 def check_outputs(outputs: dict[str, tuple[str | os.PathLike[str] | None, str | None]]
                   ) -> dict[str, Path]:
-    """Check several outputs {option: (path or None, kind)}; also refuse one file named twice.
+    """Check several outputs {option: (path or None, kind)} (``kind`` as in
+    :func:`check_output`); also refuse one file named twice.
 
     Returns {option: file to write} for the paths given.
     """
