@@ -51,14 +51,16 @@ def register(sub, common: argparse.ArgumentParser,
                     "branches by mode-shape correlation.")
     p.add_argument("--velocities", default="0:100:10",
                    help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...', "
-                        "finite, >= 0, at most 10000 of them (default 0:100:10)")
+                        "finite, >= 0, each once (in any order), at most 10000 of them "
+                        "(default 0:100:10)")
     p.add_argument("--count", type=positive_int, default=6,
                    help="frequencies per speed, >= 1 (default 6)")
     p.add_argument("--workers", type=positive_int, default=1,
                    help="local processes, at most 4 per CPU: the speeds are split into "
                         "that many contiguous runs, each continued in its own process "
                         "(default 1)")
-    p.add_argument("--out", metavar="FILE.csv", help="write the table as CSV")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="write the table: CSV, or Parquet for a .parquet file")
     p.add_argument("--plot", metavar="FILE.png", help="write omega (rad/s) against V (m/s)")
     add_save_option(p)
     p.add_argument("--quiet", action="store_true",
