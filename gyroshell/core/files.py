@@ -89,8 +89,6 @@ def check_output(path: str | os.PathLike[str], *, option: str = "output",
     if not isinstance(path, (str, os.PathLike)) or not os.fspath(path):
         raise OutputPathError(f"{option} must be a file path, got {path!r}")
     shown = os.fspath(path)
-    if isinstance(kind, tuple) and Path(shown).suffix.lower() not in kind:
-        raise OutputPathError(f"{option}: use a {' or '.join(kind)} file, got {shown}")
     real = os.path.realpath(shown)
     folder = os.path.dirname(real) or "."
 
@@ -99,6 +97,8 @@ def check_output(path: str | os.PathLike[str], *, option: str = "output",
 
     if os.path.isdir(real):
         raise fail("is a folder, not a file")
+    if isinstance(kind, tuple) and Path(shown).suffix.lower() not in kind:
+        raise OutputPathError(f"{option}: use a {' or '.join(kind)} file, got {shown}")
     if not os.path.exists(folder):
         raise fail(f"folder {os.path.dirname(shown) or '.'} does not exist")
     if not os.path.isdir(folder):
