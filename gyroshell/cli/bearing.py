@@ -493,12 +493,13 @@ def _print_text(sol, grid_error: dict | None = None) -> None:
 def _write_out(out: Path, sol, summary: dict) -> None:
     """fields.csv (the solution's table) and summary.json into the folder ``out``."""
     from ..core.files import write_atomic
+    from ..results.base import write_table
 
-    fields = sol.to_frame().rename(columns=FIELD_COLUMNS)
-    write_atomic(out / "fields.csv", lambda tmp: fields.to_csv(tmp, index=False))
+    write_table(sol.to_frame().rename(columns=FIELD_COLUMNS), out / "fields.csv",
+                option="--out")
     lines, corners = readings_tables(sol)
-    write_atomic(out / "transducer_lines.csv", lambda tmp: lines.to_csv(tmp, index=False))
-    write_atomic(out / "corners.csv", lambda tmp: corners.to_csv(tmp, index=False))
+    write_table(lines, out / "transducer_lines.csv", option="--out")
+    write_table(corners, out / "corners.csv", option="--out")
     write_atomic(out / "summary.json",
                  lambda tmp: tmp.write_text(json.dumps(summary, indent=1) + "\n"))
 

@@ -7,7 +7,7 @@ import time
 
 import numpy as np
 
-from ..core.files import PLOT, check_outputs, transaction, write_atomic
+from ..core.files import PLOT, check_outputs, transaction
 from .common import (
     grid_of,
     parameters_from_args,
@@ -51,14 +51,16 @@ def register(sub, common: argparse.ArgumentParser,
                     "branches by mode-shape correlation.")
     p.add_argument("--velocities", default="0:100:10",
                    help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...', "
-                        "finite, >= 0, at most 10000 of them (default 0:100:10)")
+                        "finite, >= 0, each once (in any order), at most 10000 of them "
+                        "(default 0:100:10)")
     p.add_argument("--count", type=positive_int, default=6,
                    help="frequencies per speed, >= 1 (default 6)")
     p.add_argument("--workers", type=positive_int, default=1,
                    help="local processes, at most 4 per CPU: the speeds are split into "
                         "that many contiguous runs, each continued in its own process "
                         "(default 1)")
-    p.add_argument("--out", metavar="FILE.csv", help="write the table as CSV")
+    p.add_argument("--out", metavar="FILE.csv",
+                   help="write the table: CSV, or Parquet for a .parquet file")
     p.add_argument("--plot", metavar="FILE.png", help="write omega (rad/s) against V (m/s)")
     add_save_option(p)
     p.add_argument("--quiet", action="store_true",
@@ -68,7 +70,9 @@ def register(sub, common: argparse.ArgumentParser,
 
 def run_modes(args: argparse.Namespace) -> int:
     params, velocity, grid = tape_from_args(args)
-    check_save_path(args.save)
+    from ..results.modes import Modes
+
+    check_save_path(args.save, Modes)
     from ..engines.eigen import modes
     from ..tape.model import TapeModel
 
@@ -158,34 +162,44 @@ def run_critical(args: argparse.Namespace) -> int:
 
 def run_sweep(args: argparse.Namespace) -> int:
     from ..core.parallel import check_process_count
+    from ..results.base import TABLE_SUFFIXES
+    from ..studies.sweep import SweepResult, check_velocities
 
     params = parameters_from_args(args)
-    velocities = [params.check_velocity(v) for v in parse_velocities(args.velocities)]
+    velocities = check_velocities([params.check_velocity(v) for v in
+                                   parse_velocities(args.velocities)], name="--velocities")
     check_process_count("--workers", args.workers)
-    check_outputs({"--out": (args.out, None), "--plot": (args.plot, PLOT),
+    check_outputs({"--out": (args.out, TABLE_SUFFIXES), "--plot": (args.plot, PLOT),
                    "--save": (args.save, None)})
+    check_save_path(args.save, SweepResult)
     grid = grid_of(params)
     from ..studies.sweep import plot_sweep, sweep
     from ..tape.model import TapeModel
 
-    check_save_path(args.save)
     model = TapeModel(params, grid)
-    frame = sweep(model, velocities, args.count, progress=False if args.quiet else None,
-                  workers=args.workers).table
-    with transaction():
-        save_result(args.save, frame, params)
+    result = sweep(model, velocities, args.count, progress=False if args.quiet else None,
+                   workers=args.workers)
+    text = None if args.out else _sweep_text(result.table)  # all that can fail, first
+    with transaction():  # every output of the run, or none
+        save_result(args.save, result, params)
         if args.out:
-            write_atomic(args.out, lambda tmp: frame.to_csv(tmp, index=False), option="--out")
+            result.save(args.out)
         if args.plot:
-            plot_sweep(frame, args.plot,
+            plot_sweep(result, args.plot,
                        title=f"L_x/L_y = {params.length_ratio:g}, {params.edges} edges")
-    if not args.out:
-        table = frame.pivot(index="velocity", columns="rank", values="omega")
-        table.columns = [f"omega_{c + 1}" for c in table.columns]
-        print("angular frequencies, rad/s (ascending at each speed V, m/s)")
-        print(table.to_string(float_format=lambda x: f"{x:.6g}"))
+    if text is not None:
+        print(text)
     else:
-        print(f"wrote {args.out} ({len(frame)} rows)")
+        print(f"wrote {args.out} ({len(result.table)} rows)")
     if args.plot:
         print(f"wrote {args.plot}")
     return 0
+
+
+def _sweep_text(frame) -> str:
+    """The printed sweep: one row per speed (m/s, ascending), one column per rank
+    of ω (rad/s)."""
+    table = frame.pivot(index="velocity", columns="rank", values="omega")
+    table.columns = [f"omega_{c + 1}" for c in table.columns]
+    return ("angular frequencies, rad/s (ascending at each speed V, m/s)\n"
+            + table.to_string(float_format=lambda x: f"{x:.6g}"))

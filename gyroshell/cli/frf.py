@@ -36,7 +36,8 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                         "model, at most 100 (default 40; not with --method direct)")
     p.add_argument("--out", metavar="FILE.csv", default=None,
                    help="write omega (rad/s), frequency (Hz), amplitude (m), phase (rad), "
-                        "method, error_estimate, and amplitude_k, phase_k per probe")
+                        "method, error_estimate, and amplitude_k, phase_k per probe (CSV, "
+                        "or Parquet for a .parquet file)")
     p.add_argument("--plot", metavar="FILE.png", default=None, help="write a Bode plot (PNG)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
@@ -47,10 +48,11 @@ def register(sub, common: argparse.ArgumentParser) -> None:
 def _check_outputs(out: str | None, plot: str | None) -> None:
     """Fail before computing if an output could never be written (or two are one file)."""
     from ..core.files import PLOT, check_outputs
+    from ..results.base import TABLE_SUFFIXES
 
     if plot is not None and Path(plot).suffix.lower() != ".png":
         raise UserError(f"--plot must be a .png file, got {plot}")
-    check_outputs({"--out": (out, None), "--plot": (plot, PLOT)})
+    check_outputs({"--out": (out, TABLE_SUFFIXES), "--plot": (plot, PLOT)})
 
 
 def _reduced_options(args: argparse.Namespace) -> tuple[float, int]:

@@ -21,8 +21,10 @@ def register(sub, common: argparse.ArgumentParser,
                     "tape is the paper's Table 1 tape; --quick uses a coarse grid and short "
                     "records to preview in seconds (numbers are then not the paper's).")
     p.add_argument("studies", nargs="+", choices=(*STUDIES, "all"), metavar="STUDY",
-                   help=f"one or more of: {', '.join(STUDIES)}, all")
-    p.add_argument("--out", required=True, help="output folder (created if missing)")
+                   help=f"one or more of: {', '.join(STUDIES)}, all (a study named twice "
+                        "runs once)")
+    p.add_argument("--out", required=True,
+                   help="output folder (created if missing; its parent must exist)")
     p.add_argument("--quick", action="store_true",
                    help="coarse grid (12 intervals across) and short records")
     p.add_argument("--quiet", action="store_true", help="no progress bars or log lines")
@@ -41,11 +43,11 @@ def default_workers() -> int:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..core.files import check_output_folder, folder_transaction
+    from ..core.files import check_output_folder_with_files, folder_transaction
     from ..core.parallel import check_process_count
     from ..reproduce import Settings, run_studies
 
-    out = check_output_folder(args.out, option="--out")
+    out = check_output_folder_with_files(args.out, option="--out")  # as bearing --out
     workers = check_process_count("--workers", args.workers or default_workers())
     settings = Settings(quick=args.quick, progress=False if args.quiet else None)
     start = time.perf_counter()

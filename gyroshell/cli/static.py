@@ -22,7 +22,9 @@ def register(sub, common: argparse.ArgumentParser,
 
 def run(args: argparse.Namespace) -> int:
     params, velocity, grid = tape_from_args(args)
-    check_save_path(args.save)
+    from ..results.static import StaticSolution
+
+    check_save_path(args.save, StaticSolution)  # not a table: .nc only, refused now
     from ..engines.static import solve_static
     from ..tape.model import TapeModel
 

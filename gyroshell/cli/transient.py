@@ -30,7 +30,7 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--gamma", type=real, default=0.5, help="Newmark gamma (default 1/2)")
     p.add_argument("--out", metavar="FILE.csv", default=None,
                    help="write the load-point history: columns t (s), w (m), one row per step "
-                        "including t = 0")
+                        "including t = 0 (CSV, or Parquet for a .parquet file)")
     p.add_argument("--snapshot-every", metavar="N", type=positive_int, default=None,
                    help="keep the full field w (m) every N steps (needs --snapshots)")
     p.add_argument("--snapshots", metavar="FILE.npz", default=None,
@@ -107,9 +107,12 @@ def run(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
     velocity = params.check_velocity(args.velocity)
     validation.time_step(args.dt, args.beta)
-    files.check_outputs({"--out": (args.out, None), "--snapshots": (args.snapshots, None),
-                      "--save": (args.save, None)})
-    check_save_path(args.save)
+    from ..results.base import TABLE_SUFFIXES
+    from ..results.transient import TransientResult
+
+    files.check_outputs({"--out": (args.out, TABLE_SUFFIXES),
+                         "--snapshots": (args.snapshots, None), "--save": (args.save, None)})
+    check_save_path(args.save, TransientResult)
     grid = Grid.from_parameters(params)
     load, damping = load_from_args(args, params, args.dt), damping_from_args(args)
     budget.check_transient(grid.nx, grid.ny, grid.edges, args.steps,

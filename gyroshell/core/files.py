@@ -77,8 +77,9 @@ def check_output(path: str | os.PathLike[str], *, option: str = "output",
         The path as the user gave it.
     option : str
         How the user named it (e.g. ``--plot``), for the message.
-    kind : {None, "plot"}
-        ``"plot"`` also checks that matplotlib can write the suffix's format.
+    kind : {None, "plot"} or tuple of str
+        ``"plot"`` also checks that matplotlib can write the suffix's format; a tuple
+        holds the suffixes allowed (``(".csv", ".parquet")``), any other is refused.
 
     Raises
     ------
@@ -96,6 +97,8 @@ def check_output(path: str | os.PathLike[str], *, option: str = "output",
 
     if os.path.isdir(real):
         raise fail("is a folder, not a file")
+    if isinstance(kind, tuple) and Path(shown).suffix.lower() not in kind:
+        raise OutputPathError(f"{option}: use a {' or '.join(kind)} file, got {shown}")
     if not os.path.exists(folder):
         raise fail(f"folder {os.path.dirname(shown) or '.'} does not exist")
     if not os.path.isdir(folder):
@@ -142,7 +145,8 @@ def check_output_folder(path: str | os.PathLike[str], *, option: str = "output f
 
 def check_outputs(outputs: dict[str, tuple[str | os.PathLike[str] | None, str | None]]
                   ) -> dict[str, Path]:
-    """Check several outputs {option: (path or None, kind)}; also refuse one file named twice.
+    """Check several outputs {option: (path or None, kind)} (``kind`` as in
+    :func:`check_output`); also refuse one file named twice.
 
     Returns {option: file to write} for the paths given.
     """

@@ -612,8 +612,11 @@ class BandLU:
 #: with COLAMD and partial pivoting (the earlier default); "pardiso" MKL PARDISO
 #: (pypardiso); "auto" is "grid".
 PATTERN_LU = ("auto", "grid", "metis", "mmd", "colamd", "pardiso")
-_PATTERN_LU_PACKAGES = {"metis": ("pymetis", metis_available),
-                        "pardiso": ("pypardiso", PardisoFactor.available)}
+#: factorization -> (its optional package, whether it is installed, the pip command that
+#: installs it: pymetis is in the ``fast`` extra, pypardiso in no extra).
+_PATTERN_LU_PACKAGES = {
+    "metis": ("pymetis", metis_available, "pip install 'gyroshell[fast]'"),
+    "pardiso": ("pypardiso", PardisoFactor.available, "pip install pypardiso")}
 
 
 def check_pattern_lu(factorization, *, name: str = "factorization") -> str:
@@ -623,10 +626,10 @@ def check_pattern_lu(factorization, *, name: str = "factorization") -> str:
         raise ParameterError(f"{name} must be one of {', '.join(PATTERN_LU)}, "
                              f"got {factorization!r}")
     if factorization in _PATTERN_LU_PACKAGES:
-        package, available = _PATTERN_LU_PACKAGES[factorization]
+        package, available, install = _PATTERN_LU_PACKAGES[factorization]
         if not available():
             raise ParameterError(f"{name} {factorization!r} needs the optional package "
-                                 f"{package} (pip install 'gyroshell[fast]'); use 'auto'")
+                                 f"{package} ({install}); use 'auto'")
     return factorization
 
 

@@ -40,7 +40,8 @@ def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None
     Parameters
     ----------
     names : iterable of str
-        Study names (:data:`STUDIES`) or ``"all"``.
+        Study names (:data:`STUDIES`) or ``"all"``; a name given twice runs once (in the
+        order of its first mention).
     out : str or path
         Output folder (created if missing).
     settings : Settings, optional
@@ -53,7 +54,7 @@ def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None
         workers.
     """
     names = list(names)
-    expanded = list(STUDIES) if "all" in names else names
+    expanded = list(STUDIES) if "all" in names else list(dict.fromkeys(names))
     for name in expanded:
         if name not in STUDIES:
             raise ParameterError(f"study must be one of {', '.join(STUDIES)}, all; "

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from .. import plot
 from ..core.files import write_atomic
+from ..results.base import write_table
 from ..tape.parameters import TapeParameters
 
 if TYPE_CHECKING:  # pandas loads when a study runs, not when the CLI starts
@@ -48,8 +49,9 @@ class Settings:
 
 
 def save_csv(frame: pd.DataFrame, path: Path) -> Path:
-    """Write ``frame`` as CSV (no index), whole or not at all."""
-    return write_atomic(path, lambda tmp: frame.to_csv(tmp, index=False))
+    """Write ``frame`` as CSV (no index, ``NaN`` for missing), whole or not at all
+    (:func:`gyroshell.results.base.write_table`)."""
+    return write_table(frame, path)
 
 
 def markdown_table(frame: pd.DataFrame, floatfmt: str = ".6g") -> str:

@@ -108,6 +108,12 @@ class Result:
         """The result as a :class:`pandas.DataFrame` (kinds that are tables)."""
         raise ParameterError(f"a {type(self).__name__} is not a table: save it as .nc")
 
+    @classmethod
+    def is_table(cls) -> bool:
+        """Whether the kind is a table: it defines :meth:`to_frame`, so :meth:`save` also
+        writes it as CSV or Parquet (known before any result of the kind exists)."""
+        return cls.to_frame is not Result.to_frame
+
     def save(self, path: str | os.PathLike[str], *, params=None) -> Path:
         """Write NetCDF (``.nc``), or CSV / Parquet (``.csv``, ``.parquet``) for tables.
 
@@ -266,10 +272,13 @@ def _reason(exc: OSError) -> str:
     return text if len(text) <= 160 else text[:157] + "..."
 
 
-def write_table(frame, path: str | os.PathLike[str]) -> Path:
-    """Write a DataFrame as CSV (exact floats, ``NaN`` for missing) or Parquet, atomically."""
+def write_table(frame, path: str | os.PathLike[str], *, option: str = "output") -> Path:
+    """Write a DataFrame as CSV (exact floats, ``NaN`` for missing) or, for a ``.parquet``
+    path, Parquet, whole or not at all: the one table writer, so that every table reads back
+    through :func:`gyroshell.load` with its missing values as NaN. ``option`` names the
+    path in an error message (e.g. ``--out``)."""
     path = Path(path)
-    with atomic_path(path) as tmp:
+    with atomic_path(path, option=option) as tmp:
         if path.suffix.lower() == ".parquet":
             frame.to_parquet(tmp, index=False)
         else:

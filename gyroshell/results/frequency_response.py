@@ -16,9 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from ..core.errors import ParameterError
-from ..core.files import atomic_path
 from ..plot import bode, pyplot
-from .base import Result, dataset, from_json, get, put
+from .base import Result, dataset, from_json, get, put, write_table
 from .layout import INFO, Layout, Variable, nonnegative, speed
 
 #: Millimetres per metre, for the probe labels of :meth:`FrequencyResponse.plot`.
@@ -98,11 +97,9 @@ class FrequencyResponse(Result, kind="frequency_response"):
         return pd.DataFrame(data)
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
-        """Write :meth:`to_frame` as CSV, whole or not at all."""
-        frame = self.to_frame()
-        with atomic_path(path) as tmp:
-            frame.to_csv(tmp, index=False, float_format="%.17g")
-        return Path(path)
+        """Write :meth:`to_frame` as CSV (Parquet for a ``.parquet`` path), whole or not at
+        all (:func:`gyroshell.results.base.write_table`)."""
+        return write_table(self.to_frame(), path)
 
     def to_xarray(self, *, params=None):
         """Dataset of the response (see the module docstring); ``params`` (a

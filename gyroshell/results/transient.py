@@ -26,7 +26,7 @@ from ..core.errors import ParameterError
 from ..core.files import atomic_path
 from ..plot import load_point_history
 from ..tape.grid import Grid
-from .base import Result, dataset, from_json
+from .base import Result, dataset, from_json, write_table
 from .layout import INFO, Layout, Variable, X, Y, monotonic, nonnegative, positive, speed
 
 
@@ -373,11 +373,9 @@ class TransientResult(Result, kind="transient"):
         return pd.DataFrame(data)
 
     def to_csv(self, path: str | os.PathLike[str]) -> Path:
-        """Write the load-point history as CSV (``t``, ``w``), whole or not at all."""
-        frame = self.to_frame()[["t", "w"]]
-        with atomic_path(path) as tmp:
-            frame.to_csv(tmp, index=False, float_format="%.17g")
-        return Path(path)
+        """Write the load-point history (``t``, ``w``) as CSV (Parquet for a ``.parquet``
+        path), whole or not at all (:func:`gyroshell.results.base.write_table`)."""
+        return write_table(self.to_frame()[["t", "w"]], path)
 
     @staticmethod
     def read_csv(path: str | os.PathLike[str]):

@@ -193,11 +193,30 @@ def parse_velocities(text: str, *, option: str = "velocities") -> list[float]:
     return [check_velocity(v) for v in velocities]
 
 
-def check_velocities(velocities: Iterable[float]) -> list[float]:
-    """Validated speeds: at least one, each finite and >= 0 m/s."""
+def check_velocities(velocities: Iterable[float], *, name: str = "velocities"
+                     ) -> list[float]:
+    """Validated speeds: at least one, each finite and >= 0 m/s, no speed twice (a branch
+    is tracked from one speed to the next, and a table has one row per speed and rank);
+    in any order (a sweep tracks them in the order given). ``name`` is how the message
+    names them (``--velocities`` on the command line).
+
+    Examples
+    --------
+    >>> check_velocities([0, 20.0, 10])
+    [0.0, 20.0, 10.0]
+    >>> check_velocities([0, 10, 10])
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: velocities must be distinct speeds (m/s): 10 is given 2 times
+    """
     out = [check_velocity(v) for v in velocities]
     if not out:
-        raise ParameterError("velocities must contain at least one speed (m/s)")
+        raise ParameterError(f"{name} must contain at least one speed (m/s)")
+    values, counts = np.unique(out, return_counts=True)
+    if counts.max() > 1:
+        twice = int(np.argmax(counts > 1))
+        raise ParameterError(f"{name} must be distinct speeds (m/s): {values[twice]:g} is "
+                             f"given {counts[twice]} times")
     return out
 
 

@@ -71,7 +71,9 @@ def test_save_option_writes_a_loadable_result(tmp_path, command, capsys):
     elif command[0] == "modes":
         assert np.array_equal(back.eigenvalues, modes(model, 40.0, 3).eigenvalues)
     else:
-        assert list(back["velocity"].unique()) == [0.0, 50.0]
+        assert isinstance(back, gyroshell.SweepResult)  # the sweep, not its bare table
+        assert list(back.table["velocity"].unique()) == [0.0, 50.0]
+        assert back.velocities.tolist() == [0.0, 50.0] and back.params == BASE
     assert gyroshell.results.base.metadata(path)["parameters"] == BASE
 
 

@@ -55,17 +55,18 @@ BAD_OUTPUTS = [
      "--out afile/s.csv: afile is a file, not a folder"),
     ("missing folder", [*SWEEP, "--out", "none/s.csv"], "folder none does not exist"),
     ("output is a folder", [*SWEEP, "--out", "ro"], "--out ro: is a folder"),
-    ("same path twice", [*SWEEP, "--out", "s.png", "--plot", "s.png"],
-     "--out and --plot name the same file s.png"),
-    ("same file through ./", [*TRANSIENT, "--out", "h.npz", "--snapshot-every", "5",
-                              "--snapshots", "./h.npz"], "name the same file"),
+    ("same path twice", [*SWEEP, "--out", "s.csv", "--save", "s.csv"],
+     "--out and --save name the same file s.csv"),
+    ("same file through ./", [*TRANSIENT, "--out", "h.csv", "--save", "./h.csv"],
+     "name the same file"),
+    ("out not a table", [*SWEEP, "--out", "s.png"], "--out: use a .csv or .parquet file"),
     ("transient into a read-only folder", [*TRANSIENT, "--out", "ro/h.csv"], "read-only"),
     ("snapshots parent is a file", [*TRANSIENT, "--snapshot-every", "5", "--snapshots",
                                     "afile/s.npz"], "afile is a file"),
     ("frf plot into a read-only folder",
      ["frf", *COARSE, "--frequencies", "0:1e5:3", "--plot", "ro/f.png"], "read-only"),
-    ("frf same file twice", ["frf", *COARSE, "--frequencies", "0:1e5:3", "--out", "f.png",
-                             "--plot", "f.png"], "name the same file"),
+    ("frf out not a table", ["frf", *COARSE, "--frequencies", "0:1e5:3", "--out", "f.png",
+                             "--plot", "f.png"], "--out: use a .csv or .parquet file"),
     ("study out and save the same file",
      ["study", *COARSE, "--vary", "tension=80,90", "--compute", "modes", "--out", "s.csv",
       "--save", "./s.csv"], "name the same file"),
@@ -346,12 +347,12 @@ def test_reproduce_run_whose_last_study_fails_leaves_none_of_its_files(cli, tmp_
         raise OSError(28, "No space left on device")
 
     monkeypatch.setattr(fig3, "run", disk_full)
-    out = tmp_path / "results" / "today"
+    out = tmp_path / "today"  # its parent must exist (as for bearing --out)
     run = cli(["reproduce", "critical", "fig3", "--quick", "--quiet", "--workers", "1",
                "--out", out])
     assert run.code == 2 and "No space left on device" in run.err
     assert len(run.error_lines) == 1
-    assert listing(tmp_path) == []  # critical's files and the folders made for them are gone
+    assert listing(tmp_path) == []  # critical's files and the folder made for them are gone
 
 
 @pytest.mark.parametrize("command", [["static"], ["modes", "--count", "2"]])

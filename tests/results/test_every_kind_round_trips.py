@@ -77,3 +77,24 @@ def test_plot_draws_on_the_given_axes(kind):
     drawn = np.atleast_1d(EXAMPLES[kind]().plot(ax=fig.add_subplot()))  # a Bode: the amplitude
     ax = drawn[0]
     assert ax.figure is fig and (ax.lines or ax.collections or ax.patches or ax.images)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", KINDS)
+def test_is_table_says_whether_the_kind_gives_a_table(kind, tmp_path):
+    """What ``--save x.csv`` is refused by before any work (Result.is_table, known from the
+    class) is what the kind's result does: a table or 'not a table'."""
+    import pandas as pd
+
+    from gyroshell.core.errors import ParameterError
+
+    if kind not in EXAMPLES:
+        pytest.fail(f"no example of {kind!r}")
+    result = EXAMPLES[kind]()
+    if type(result).is_table():
+        assert isinstance(result.to_frame(), pd.DataFrame)
+        assert isinstance(gyroshell.load(result.save(tmp_path / "t.csv")), pd.DataFrame)
+    else:
+        with pytest.raises(ParameterError, match="is not a table"):
+            result.save(tmp_path / "t.csv")
+        assert not (tmp_path / "t.csv").exists()

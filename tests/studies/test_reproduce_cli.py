@@ -1,0 +1,60 @@
+"""`gyroshell reproduce`: a study named twice runs once; --out's parent must exist (as for
+`bearing --out`), the folder itself is created."""
+
+from __future__ import annotations
+
+import pytest
+
+import gyroshell.reproduce as reproduce
+from gyroshell.reproduce import Settings, run_studies
+
+
+@pytest.fixture
+def ran(monkeypatch):
+    """The studies run_studies would run, in order (none computed): [(name, folder)]."""
+    calls: list = []
+
+    def run_here(name, out, settings):
+        calls.append((name, out))
+        return []
+
+    def run_parallel(names, out, settings, workers, log=None):
+        calls.extend((name, out) for name in names)
+        return {name: [] for name in names}
+
+    monkeypatch.setattr(reproduce, "run_here", run_here)
+    monkeypatch.setattr(reproduce, "run_parallel", run_parallel)
+    return calls
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_a_study_named_twice_runs_once_in_the_order_first_named(tmp_path, ran, workers):
+    written = run_studies(["fig2", "critical", "fig2", "critical", "fig6"], tmp_path,
+                          Settings(quick=True, progress=False), log=None, workers=workers)
+    assert [name for name, _out in ran] == ["fig2", "critical", "fig6"]
+    assert list(written) == ["fig2", "critical", "fig6"]
+
+
+def test_the_cli_runs_a_repeated_study_once(cli, tmp_path, ran):
+    run = cli(["reproduce", "fig2", "fig2", "--quick", "--quiet", "--workers", "1",
+               "--out", tmp_path / "r2"])
+    assert run.code == 0, run.err
+    assert [name for name, _out in ran] == ["fig2"]
+
+
+def test_out_with_a_missing_parent_is_refused_like_bearing_out(cli, tmp_path, ran):
+    deep = tmp_path / "missing" / "deep" / "x"
+    run = cli(["reproduce", "fig2", "--quick", "--quiet", "--out", deep])
+    assert run.code == 2
+    assert run.err.count("\n") == 1, run.err
+    assert "--out" in run.err and "does not exist" in run.err
+    assert ran == [] and list(tmp_path.iterdir()) == []
+    bearing = cli(["bearing", "--velocity", "4", "--infinitely-wide", "--quiet", "--out", deep])
+    assert bearing.code == 2 and bearing.err.split(": ", 2)[2] == run.err.split(": ", 2)[2]
+
+
+def test_out_itself_is_created_when_its_parent_exists(cli, tmp_path, ran):
+    run = cli(["reproduce", "fig2", "--quick", "--quiet", "--workers", "1",
+               "--out", tmp_path / "new"])
+    assert run.code == 0, run.err
+    assert (tmp_path / "new").is_dir() and ran == [("fig2", tmp_path / "new")]
