@@ -164,7 +164,14 @@ METADATA = [
     ("grid: other grid", lambda p: edit_json(p, "grid", lambda d: d.update(nx=32)),
      "dimension x has 17 entries but the stored grid (32 x 8 intervals"),
     ("grid: other length", lambda p: edit_json(p, "grid", lambda d: d.update(length=1.0)),
-     "coordinate x does not match the stored grid"),
+     "grid length 1 m differs from the tape's length 0.0127 m"),
+    # a grid that does not span the stored tape (the grid's x, y still match each other)
+    ("parameters: other width", lambda p: edit_json(p, "parameters",
+                                                    lambda d: d.update(width=0.01)),
+     "grid length 0.0127 m differs from the tape's length 0.02 m"),  # L_x = ratio x L_y
+    ("grid: other edges", lambda p: edit_json(p, "grid",
+                                              lambda d: d.update(edges="simply-supported")),
+     "grid edges 'simply-supported' differ from the tape's edges 'free'"),
     ("info: not an object", lambda p: edit_attrs(p, info="[]"),
      "info must be a JSON object, got list"),
 ]
