@@ -376,3 +376,37 @@ def test_cli_free_python_refusal_is_the_package_error(static_file):
     static_file.write_bytes(static_file.read_bytes()[:500])
     with pytest.raises(ParameterError):
         gyroshell.load(static_file)
+
+
+def _with_attr(ds, name: str, value: str):
+    ds.attrs[name] = value
+    return ds
+
+
+def _count_plus(ds, step: int):
+    return _with_attr(ds, "count", json.dumps(int(json.loads(ds.attrs["count"])) + step))
+
+
+def _stray_speed(ds):
+    velocity = ds["velocity"].values.copy()
+    velocity[0] = 1e3
+    return ds.assign(velocity=(ds["velocity"].dims, velocity))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind, change, match", [
+    ("sweep", lambda ds: _count_plus(ds, 4), "modes per speed"),
+    ("sweep", lambda ds: _count_plus(ds, -1), "modes per speed"),
+    ("sweep", _stray_speed, "rows at 1000 m/s, not one of the stored velocities"),
+    ("study", lambda ds: _with_attr(ds, "varied", '["no_such_column"]'),
+     "varied lists no_such_column"),
+], ids=["sweep count above", "sweep count below", "sweep stray speed", "study varied"])
+def test_a_table_that_contradicts_its_own_settings_is_refused(example_files, tmp_path, kind,
+                                                              change, match):
+    """The settings a sweep or study file stores describe its table: a hand edit that
+    makes them disagree (seven modes said, three held) is refused on load, not loaded and
+    plotted as if it were consistent."""
+    path = tmp_path / f"{kind}.nc"
+    path.write_bytes(example_files[kind].read_bytes())
+    edit_dataset(path, change)
+    refused(path, match)
