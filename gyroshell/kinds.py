@@ -12,6 +12,8 @@ import os
 from importlib import import_module
 from pathlib import Path
 
+import numpy as np
+
 from .core.errors import InputFileError, ParameterError
 from .core.files import check_input, read_csv_exact
 from .results import base, layout
@@ -71,7 +73,6 @@ def _layouts() -> dict[str, Layout]:
     """The file layouts of the kinds whose modules declare none (checked on load)."""
     obj = layout.Attr(layout.of_type("value", dict, "a JSON object"))
     number = layout.Attr(layout.of_type("value", (int, float), "a number"))
-    table = layout.table_columns
     bearing_state = {name: layout.Variable(("x", "y")) for name in
                      ("spacing", "pressure", "departure", "contact")}
     coords = {"x": layout.X, "y": layout.Variable(("y",))}
@@ -87,7 +88,7 @@ def _layouts() -> dict[str, Layout]:
                          "min_correlation": number,
                          "continuation": layout.Attr(layout.of_type(
                              "continuation", bool, "true or false")),
-                         "info": layout.INFO}, check=table),
+                         "info": layout.INFO}, check=_sweep_table),
         "campbell": Layout(attrs={"tables": obj, "info": layout.INFO,
                                   "critical_speed": layout.Attr(layout.of_type(
                                       "critical_speed", (int, float, type(None)),
@@ -97,7 +98,7 @@ def _layouts() -> dict[str, Layout]:
                                "varied": layout.Attr(layout.of_type("varied", list, "a list")),
                                "compute": layout.Attr(layout.of_type("compute", list,
                                                                      "a list"))},
-                        check=table),
+                        check=_study_table),
         "reduced_model": Layout({**poles, "velocity": layout.Variable((), check=layout.speed()),
                                  "points": layout.Variable(("point", "axis")),
                                  "interpolation_points": layout.Variable(
@@ -116,6 +117,39 @@ def _layouts() -> dict[str, Layout]:
              "x_record": layout.Variable(("x",))},
             {"air": obj, "model": obj, "info": layout.INFO}, check=_bearing_attrs),
     }
+
+
+def _sweep_table(ds) -> None:
+    """A sweep's table: its columns stored, its speeds those of ``velocities``, and at most
+    ``count`` modes at each speed, ``count`` at one at least (a solve returns ``count``
+    modes; fewer only where a tiny model has no more)."""
+    layout.table_columns(ds)
+    if "velocity" not in ds.variables:
+        raise ParameterError("column velocity is missing")
+    count = int(ds.attrs["count"])
+    rows = ds["velocity"].values
+    speeds = np.asarray(ds["velocities"].values).ravel()
+    stray = np.setdiff1d(rows, speeds)
+    if stray.size:
+        raise ParameterError(f"the table has rows at {stray[0]:g} m/s, not one of the "
+                             "stored velocities")
+    per_speed = np.array([np.count_nonzero(rows == v) for v in np.unique(speeds)])
+    if per_speed.size and (per_speed.max() > count or per_speed.max() < count
+                           or per_speed.min() == 0):
+        raise ParameterError(f"count is {count} but the table holds {per_speed.min()} to "
+                             f"{per_speed.max()} modes per speed")
+
+
+def _study_table(ds) -> None:
+    """A study's table: its columns stored, among them every varied name."""
+    layout.table_columns(ds)
+    columns = base.from_json(ds.attrs["columns"])
+    varied = base.from_json(ds.attrs.get("varied", "[]"))
+    missing = [name for name in varied if name not in columns] if isinstance(
+        varied, list) else []
+    if missing:
+        raise ParameterError(f"varied lists {', '.join(map(str, missing))}, which the table "
+                             "has no column for")
 
 
 def _campbell_tables(ds) -> None:

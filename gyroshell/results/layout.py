@@ -237,12 +237,19 @@ def _fields_of(attrs: Mapping, name: str, cls: type, source: str,
 
 
 def check_metadata(attrs: Mapping, source: str):
-    """Check ``parameters``, ``grid`` and ``info``; returns the stored Grid (or None)."""
+    """Check ``parameters``, ``grid`` (spanning the tape of ``parameters`` where both are
+    stored) and ``info``; returns the stored Grid (or None)."""
     from ..tape.grid import Grid
     from ..tape.parameters import ORTHOTROPIC_FIELDS, TapeParameters
 
-    _fields_of(attrs, "parameters", TapeParameters, source, optional=ORTHOTROPIC_FIELDS)
+    params = _fields_of(attrs, "parameters", TapeParameters, source,
+                        optional=ORTHOTROPIC_FIELDS)
     grid = _fields_of(attrs, "grid", Grid, source)
+    if params is not None and grid is not None:
+        try:
+            grid.check_matches(params)
+        except ParameterError as exc:
+            raise InputFileError(f"{source}: {exc}") from None
     info = json_attr(attrs, "info", source, default="{}")
     if not isinstance(info, dict):
         raise InputFileError(f"{source}: info must be a JSON object, got "

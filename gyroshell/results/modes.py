@@ -108,8 +108,10 @@ class GyroscopicModes(_EigenvalueProperties, Result, kind="gyroscopic_modes"):
     ----------
     eigenvalues : numpy.ndarray
         λ, 1/s, one representative per conjugate pair (Im λ >= 0). Undamped below critical:
-        +iω, ascending ω. Otherwise ascending Im λ (undamped supercritical: the eigenvalues
-        nearest zero, with Re λ >= 0).
+        +iω, ascending ω. Undamped above critical: the eigenvalues nearest zero with
+        Re λ >= 0, ascending |λ| (a real, divergent λ and an oscillating one are ordered by
+        their distance from zero, so ``omega`` need not ascend). Damped: ascending damped
+        frequency Im λ.
     vectors : numpy.ndarray
         Mode shapes φ, complex, shape (n, count), largest entry 1.
     residuals : numpy.ndarray

@@ -20,6 +20,10 @@ from ..core import budget, validation
 from ..core.errors import ParameterError
 from .parameters import EDGE_CHOICES, MIN_INTERVALS_ACROSS, MIN_INTERVALS_ALONG, TapeParameters
 
+#: Relative difference of a grid's length or width from its tape's accepted as equal (the
+#: round-off of length_ratio x width and of a file's decimal text).
+MATCH_RTOL = 1e-12
+
 
 @dataclass(frozen=True)
 class Grid:
@@ -69,6 +73,21 @@ class Grid:
         nx = round(params.length / params.spacing)
         ny = round(params.width / params.spacing)
         return cls(params.length, params.width, nx, ny, params.edges)
+
+    def check_matches(self, params) -> Grid:
+        """This grid, if it spans the tape of ``params`` (a :class:`TapeParameters`): the
+        same length and width, m (to :data:`MATCH_RTOL`), and the same lateral edges; else a
+        ParameterError naming what differs. A grid may refine the tape's spacing, not
+        change its size or its edges."""
+        for name, mine, theirs in (("length", self.length, params.length),
+                                   ("width", self.width, params.width)):
+            if abs(mine - theirs) > MATCH_RTOL * abs(theirs):
+                raise ParameterError(f"grid {name} {mine:.9g} m differs from the tape's "
+                                     f"{name} {theirs:.9g} m: a grid must span the tape")
+        if self.edges != params.edges:
+            raise ParameterError(f"grid edges {self.edges!r} differ from the tape's edges "
+                                 f"{params.edges!r}")
+        return self
 
     def refined(self, factor: int = 2) -> Grid:
         """The same tape with ``factor`` times as many intervals each way."""

@@ -29,7 +29,8 @@ class TapeModel:
     params : TapeParameters
         Physical and numerical parameters (SI).
     grid : Grid, optional
-        Override the grid derived from ``params.spacing`` (e.g. for refinement studies).
+        Override the grid derived from ``params.spacing`` (e.g. for refinement studies): it
+        must span the tape (``params``' length, width and edges; else ParameterError).
     force : numpy.ndarray, optional
         Override the nodal force vector F, N (default: the Gaussian of Eq. 17).
     load : numpy.ndarray, optional
@@ -46,7 +47,8 @@ class TapeModel:
         validation.instance("params", params, TapeParameters, optional=True)
         validation.instance("grid", grid, Grid, optional=True)
         self.params = TapeParameters() if params is None else params
-        self.grid = Grid.from_parameters(self.params) if grid is None else grid
+        self.grid = Grid.from_parameters(self.params) if grid is None else \
+            grid.check_matches(self.params)
         if load is not None:
             warnings.warn("TapeModel(load=...) is deprecated; use force= (N)",
                           DeprecationWarning, stacklevel=2)

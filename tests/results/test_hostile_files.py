@@ -164,7 +164,14 @@ METADATA = [
     ("grid: other grid", lambda p: edit_json(p, "grid", lambda d: d.update(nx=32)),
      "dimension x has 17 entries but the stored grid (32 x 8 intervals"),
     ("grid: other length", lambda p: edit_json(p, "grid", lambda d: d.update(length=1.0)),
-     "coordinate x does not match the stored grid"),
+     "grid length 1 m differs from the tape's length 0.0127 m"),
+    # a grid that does not span the stored tape (the grid's x, y still match each other)
+    ("parameters: other width", lambda p: edit_json(p, "parameters",
+                                                    lambda d: d.update(width=0.01)),
+     "grid length 0.0127 m differs from the tape's length 0.02 m"),  # L_x = ratio x L_y
+    ("grid: other edges", lambda p: edit_json(p, "grid",
+                                              lambda d: d.update(edges="simply-supported")),
+     "grid edges 'simply-supported' differ from the tape's edges 'free'"),
     ("info: not an object", lambda p: edit_attrs(p, info="[]"),
      "info must be a JSON object, got list"),
 ]
@@ -369,3 +376,37 @@ def test_cli_free_python_refusal_is_the_package_error(static_file):
     static_file.write_bytes(static_file.read_bytes()[:500])
     with pytest.raises(ParameterError):
         gyroshell.load(static_file)
+
+
+def _with_attr(ds, name: str, value: str):
+    ds.attrs[name] = value
+    return ds
+
+
+def _count_plus(ds, step: int):
+    return _with_attr(ds, "count", json.dumps(int(json.loads(ds.attrs["count"])) + step))
+
+
+def _stray_speed(ds):
+    velocity = ds["velocity"].values.copy()
+    velocity[0] = 1e3
+    return ds.assign(velocity=(ds["velocity"].dims, velocity))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind, change, match", [
+    ("sweep", lambda ds: _count_plus(ds, 4), "modes per speed"),
+    ("sweep", lambda ds: _count_plus(ds, -1), "modes per speed"),
+    ("sweep", _stray_speed, "rows at 1000 m/s, not one of the stored velocities"),
+    ("study", lambda ds: _with_attr(ds, "varied", '["no_such_column"]'),
+     "varied lists no_such_column"),
+], ids=["sweep count above", "sweep count below", "sweep stray speed", "study varied"])
+def test_a_table_that_contradicts_its_own_settings_is_refused(example_files, tmp_path, kind,
+                                                              change, match):
+    """The settings a sweep or study file stores describe its table: a hand edit that
+    makes them disagree (seven modes said, three held) is refused on load, not loaded and
+    plotted as if it were consistent."""
+    path = tmp_path / f"{kind}.nc"
+    path.write_bytes(example_files[kind].read_bytes())
+    edit_dataset(path, change)
+    refused(path, match)
