@@ -201,5 +201,6 @@ def _sweep_text(frame) -> str:
     of ω (rad/s)."""
     table = frame.pivot(index="velocity", columns="rank", values="omega")
     table.columns = [f"omega_{c + 1}" for c in table.columns]
-    return ("angular frequencies, rad/s (ascending at each speed V, m/s)\n"
+    return ("angular frequencies, rad/s, at each speed V, m/s (ascending below critical;"
+            " above it ordered by |lambda|, nearest zero first)\n"
             + table.to_string(float_format=lambda x: f"{x:.6g}"))
