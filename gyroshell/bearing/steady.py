@@ -592,6 +592,79 @@ def _contact_set_step(F, it: _Iterate, h, dz, found, tol):
     return _kept_if_better(F, model, it, d, h, active, solver, found, merit_t, tol)
 
 
+#: Most factorizations of the feasible contact step (:func:`_feasible_contact_step`).
+MAX_FEASIBLE_UPDATES = 30
+
+
+def _feasible_contact_step(F, it: _Iterate, h, dz, found, tol):
+    """The step again by a primal active-set method on the linearized contact problem, if
+    the step ``found`` (α, step, trial, merit) was damped or failed; the better of the two.
+    Over the wrapped arcs of an infinitely wide tape (:func:`_contact_step_rule`).
+
+    J fixed at the iterate, the tape rows linear: from the iterate (feasible: h >= σ) the
+    step with contact set W (empty at first) is followed until the first free node
+    reaches σ (the ratio test); that node joins W and the step is formed again from
+    there; at the step's end the contact nodes whose force λ = r_u + [J_uu, −L] δz is
+    negative leave W, all at once. Every point of the path stays feasible, so the
+    line search along the step needs no projection, and W grows by the nodes the tape
+    actually reaches instead of all those a step would take below σ. The primal–dual
+    rule (:func:`_contact_set_step`) lets those all enter and then removes only the
+    contact zone's end nodes per update (their forces alone turn negative): over an arc
+    the tape touches at one node, on cells down to 25 nm, the zone shrinks by a node
+    at each end per update and cycles (measured: 108 to 2 nodes in 50 updates, or
+    14 → 0 → 14), so Newton stagnated and pseudo-time took 200-550 iterations.
+    At most MAX_FEASIBLE_UPDATES factorizations. Updates ``it.solver`` and ``it.active``
+    when that step is taken."""
+    model = F.model
+    n_u = model.n_u
+    alpha, step, _, merit_t = found
+    if (alpha == 1.0 and _decreased(merit_t, it.merit, alpha)) or step < FULL_STEP:
+        return found
+    u, p = it.z[:n_u], it.z[n_u:]
+    r_u = F.tape(u, p)
+    gap = np.maximum(h - F.floor, 0.0)        # the iterate's clearance (projected: >= 0)
+    lin = _film_blocks(F, it)
+    work = np.zeros(n_u, dtype=bool)
+    d = np.zeros_like(dz)                     # the path's point, from the iterate
+    solver, taken = None, False
+    for _ in range(MAX_FEASIBLE_UPDATES):
+        res_w, _ = F.contact_rows(u, r_u, it.res[n_u:], work)
+        solver = F.factor(F.with_contact(lin, work))
+        target = solver(res_w)
+        if not np.all(np.isfinite(target)):
+            return found
+        e = target - d
+        clearance = gap + d[:n_u]
+        falling = ~work & (e[:n_u] < 0.0) & (clearance + e[:n_u] < 0.0)
+        if falling.any():                    # the ratio test: the first node to touch
+            t_i = np.where(falling, np.maximum(clearance, 0.0)
+                           / np.where(falling, -e[:n_u], 1.0), np.inf)
+            t = float(t_i.min())
+            d = d + t * e
+            work |= falling & (t_i <= t * (1.0 + 1e-9) + 1e-15)
+            taken = True
+            continue
+        d, taken = target, True
+        lam = r_u + F.tape_rows @ d
+        leaving = work & (lam < 0.0)
+        if not leaving.any():
+            break
+        work &= ~leaving
+    if not taken:
+        return found
+    return _kept_if_better(F, model, it, d, h, work, solver, found, merit_t, tol)
+
+
+def _contact_step_rule(model: BearingModel, touching: bool, active_set: bool):
+    """The contact-set step of a Newton solve (:func:`newton`): over the wrapped arcs of an
+    infinitely wide tape the feasible step (:func:`_feasible_contact_step`); else the
+    linearized primal–dual rule from a start that touches (or ``active_set``), the
+    forced entry from one clear of the head."""
+    if model.infinitely_wide and model.wrapped_corners and not model.dry:
+        return _feasible_contact_step
+    return _contact_set_step if touching or active_set else _forced_contact_step
+
+
 def _noise_step(F: _Residual, it: _Iterate) -> float:
     """The relative size of the Newton step that the residual's round-off alone produces
     (the rows' round-off :attr:`_Residual.noise_rows` with fixed pseudo-random signs,
@@ -661,8 +734,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
     # linearized active-set rule; a start clear of the head keeps the damped steps with
     # the forced entry of the nodes a step takes below σ (far from the state, e.g. a
     # lifted tape, pseudo-time leads Newton instead).
-    contact_step = (_contact_set_step if it.active.any() or active_set
-                    else _forced_contact_step)
+    contact_step = _contact_step_rule(model, bool(it.active.any()), active_set)
     merits, alphas = [it.merit], []
     # A 2-D tape's chord steps need no Jacobian: it is formed when factored; the
     # infinitely wide tape's (a few thousand unknowns) at every iterate, as it always was.
