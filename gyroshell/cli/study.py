@@ -280,7 +280,7 @@ def _bearing_setup(args: argparse.Namespace, vary: dict, compute: list[str]):
             raise UserError(f"{args.config}: its [head] table is the head of --compute "
                             "bearing: add it, or drop the table")
         return None
-    design = head_design(args, table, args.config)
+    design = head_design(args, table, args.config, varied=tuple(vary))
     from .heads import HEAD_FLAGS
 
     for name in vary:

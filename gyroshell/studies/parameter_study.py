@@ -50,6 +50,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from ..bearing.head_config import check_design
 from ..core import validation
 from ..core.errors import ParameterError
 from ..core.progress import stage_progress
@@ -310,12 +311,16 @@ def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...]
     validation.instance("bearing", bearing, BearingStudy)
     if base.edges != "free" and not bearing.infinitely_wide:
         raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
+    check_design(bearing.head, varied=[n for n in varied if n in HEAD_VARIABLES])
+    first = None
     for i, point in enumerate(pts):
         try:
-            head_of_point(bearing, point).head()   # the contour's own checks too
+            design = head_of_point(bearing, point)
+            design.head()   # the contour's own checks too
         except ParameterError as exc:
             raise ParameterError(f"point {i} {point}: {exc}") from None
-    return bearing.with_columns(base)
+        first = design if first is None else first
+    return bearing.with_columns(base, first)
 
 
 def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyResult:

@@ -1,0 +1,54 @@
+"""``gyroshell study`` as review 46 found it wanting: the documented head study runs, a
+point with both wraps 0 is refused naming it."""
+
+from __future__ import annotations
+
+import math
+import shlex
+from pathlib import Path
+
+import pytest
+
+from gyroshell.core.files import read_csv_exact
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def documented_study(page: str) -> list[str]:
+    """The ``gyroshell study --compute bearing`` command of ``page`` (continuation lines
+    joined), without the program's name."""
+    lines = (ROOT / page).read_text(encoding="utf-8").splitlines()
+    start = next(i for i, line in enumerate(lines)
+                 if line.startswith("gyroshell study") and "--compute bearing" in line)
+    text = ""
+    for line in lines[start:]:
+        text += line.split("#")[0].rstrip().removesuffix("\\") + " "
+        if not line.rstrip().endswith("\\"):
+            break
+    return shlex.split(text)[1:]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("page", ["README.md", "docs/user_guide/studies.md"])
+def test_the_documented_wrap_study_runs(cli, tmp_path, monkeypatch, page):
+    argv = documented_study(page)
+    assert "wrap_in=0.5:4:8" in argv and "wrap_out=1,2,4" in argv
+    monkeypatch.chdir(tmp_path)
+    run = cli(argv + ["--quiet"])
+    assert run.code == 0, run.err
+    table = read_csv_exact(tmp_path / "wraps.csv")
+    assert len(table) == 24 and table.error.isna().all()
+    expected = [math.radians(0.5 + 0.5 * i) for i in range(8)]
+    assert table.wrap_in.unique().tolist() == pytest.approx(expected, rel=1e-15)
+    assert table.wrap_out.unique().tolist() == [math.radians(w) for w in (1, 2, 4)]
+
+
+def test_a_point_with_both_wraps_zero_is_refused_in_one_line(cli, tmp_path):
+    out = tmp_path / "w.csv"
+    run = cli(["study", "--compute", "bearing", "--head", "flat", "--land-length", "1e-3",
+               "--transducers", "0", "--infinitely-wide", "--velocity", "4",
+               "--vary", "wrap_in=1,0", "--vary", "wrap_out=2,0", "--workers", "1",
+               "--out", out, "--quiet"])
+    assert run.code == 2 and len(run.error_lines) == 1, run.err
+    assert "point 3 {'wrap_in': 0.0, 'wrap_out': 0.0}: a flat head needs a wrap" in run.err
+    assert not out.exists()
