@@ -310,13 +310,30 @@ def _report_study(args: argparse.Namespace, result) -> None:
         return
     summary = result.summary()
     if args.out is None:
-        print(result.table.drop(columns=["point"]).to_string(index=False))
+        print(study_text(result))
     print(f"{summary['points']} points ({summary['computed']} computed, {summary['cached']} "
           f"from the cache, {summary['failed']} with errors) in {summary['seconds']:.2f} s "
           f"on {summary['executor']}")
     for path in (args.out, args.save, args.plot):
         if path is not None:
             print(f"wrote {path}")
+
+
+def study_text(result) -> str:
+    """The study's table as printed: the varied values in Python's shortest round-trip
+    form (what the user typed: 2.04e-05), the computed ones to 6 significant digits."""
+    from pandas.api.types import is_float_dtype
+
+    table = result.table.drop(columns=["point"])
+    formats = {}
+    for column in table.columns:
+        if not is_float_dtype(table[column].dtype):
+            continue
+        if column in result.varied:
+            formats[column] = lambda x: repr(float(x))
+        else:
+            formats[column] = lambda x: f"{x:.6g}"
+    return table.to_string(index=False, formatters=formats)
 
 
 def run_campbell(args: argparse.Namespace) -> int:

@@ -52,3 +52,21 @@ def test_a_point_with_both_wraps_zero_is_refused_in_one_line(cli, tmp_path):
     assert run.code == 2 and len(run.error_lines) == 1, run.err
     assert "point 3 {'wrap_in': 0.0, 'wrap_out': 0.0}: a flat head needs a wrap" in run.err
     assert not out.exists()
+
+
+def test_the_printed_table_keeps_the_varied_values_and_six_digits(cli, tmp_path):
+    """20.4um is printed as 2.04e-05 (it reads back exactly), not rounded to 0.000020; the
+    critical speeds to 6 significant digits of those in --save's table."""
+    saved = tmp_path / "t.csv"
+    run = cli(["study", "--vary", "thickness=20um,20.4um,20.8um", "--compute", "critical",
+               "--length-ratio", "1", "--spacing", "8e-4", "--workers", "1", "--quiet",
+               "--save", saved])
+    assert run.code == 0, run.err
+    header, *rows = run.out.splitlines()[:4]
+    assert header.split()[:2] == ["thickness", "critical_speed"]
+    cells = [row.split() for row in rows]
+    assert [float(c[0]) for c in cells] == [20e-6, 20.4e-6, 20.8e-6]
+    assert [c[0] for c in cells] == ["2e-05", "2.04e-05", "2.08e-05"]
+    table = read_csv_exact(saved)
+    for c, speed in zip(cells, table.critical_speed, strict=True):
+        assert c[1] == f"{speed:.6g}" and len(c[1].replace(".", "")) >= 6
