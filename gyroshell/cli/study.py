@@ -9,6 +9,7 @@ from pathlib import Path
 from ..core.errors import ParameterError
 from .common import (
     UserError,
+    boolean,
     grid_of,
     parameters_from_args,
     parse_velocities,
@@ -135,16 +136,23 @@ def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> 
 
 def parse_values(name: str, text: str) -> list:
     """``V1,V2,...`` or ``START:STOP:NUM`` (numbers in SI, or values with a unit such as
-    ``20um`` / ``"20 um"``; words for ``edges``)."""
+    ``20um`` / ``"20 um"``; words for ``edges``, true/false, yes/no or 1/0 for the yes-or-no
+    variables such as ``wrap_pressure``)."""
     import numpy as np
 
     from ..core.budget import check_study_points
     from ..core.units import unit_of
+    from ..studies.points import BOOLEAN_VARIABLES
     from ..tape.config import parse_quantity
 
     text = text.strip()
     if not text:
         raise UserError(f"--vary {name}: no values")
+    if name.replace("-", "_") in BOOLEAN_VARIABLES:
+        try:
+            return [boolean(item) for item in text.split(",")]
+        except argparse.ArgumentTypeError as exc:
+            raise UserError(f"--vary {name}: {exc}") from None
     if ":" in text:
         parts = text.split(":")
         if len(parts) != 3:

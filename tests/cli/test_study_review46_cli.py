@@ -70,3 +70,31 @@ def test_the_printed_table_keeps_the_varied_values_and_six_digits(cli, tmp_path)
     table = read_csv_exact(saved)
     for c, speed in zip(cells, table.critical_speed, strict=True):
         assert c[1] == f"{speed:.6g}" and len(c[1].replace(".", "")) >= 6
+
+
+@pytest.mark.parametrize("text, values", [
+    ("true,false", [True, False]), ("TRUE,No", [True, False]), ("1,0,yes", [True, False, True]),
+])
+def test_vary_wrap_pressure_takes_true_and_false(cli, tmp_path, text, values):
+    out = tmp_path / "w.csv"
+    run = cli(["study", "--vary", f"wrap_pressure={text}", "--compute", "critical",
+               "--length-ratio", "1", "--spacing", "8e-4", "--workers", "1", "--quiet",
+               "--out", out])
+    assert run.code == 0, run.err
+    table = read_csv_exact(out)
+    assert table.wrap_pressure.tolist() == values and table.error.isna().all()
+
+
+@pytest.mark.parametrize("text", ["maybe", "0:1:2", "true,"])
+def test_vary_wrap_pressure_refuses_other_words_in_one_line(cli, text):
+    run = cli(["study", "--vary", f"wrap_pressure={text}", "--compute", "critical",
+               "--workers", "1", "--quiet"])
+    assert run.code == 2 and len(run.error_lines) == 1, run.err
+    assert "--vary wrap_pressure: not true or false" in run.err
+
+
+def test_one_boolean_parser():
+    from gyroshell.cli.common import boolean
+
+    assert [boolean(w) for w in ("yes", "YES", "Yes", "1", "true")] == [True] * 5
+    assert [boolean(w) for w in ("no", "NO", "False", "0", " false ")] == [False] * 5
