@@ -244,7 +244,7 @@ def run(args: argparse.Namespace) -> int:
         raise UserError("--plot with two varied parameters draws a stability map: add "
                         "--compute modes (or period)")
     result = run_study(params, vary=vary, compute=compute, velocity=velocity,
-                       count=3 if args.count is None else args.count,
+                       count=args.count,
                        workers=args.workers, scheduler=args.scheduler,
                        cache=args.cache, progress=False if args.quiet else None,
                        bearing=bearing, **_connect_timeout(args))

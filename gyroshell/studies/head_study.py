@@ -37,13 +37,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..bearing.air import AirParameters
-from ..bearing.head_config import HeadDesign, check_design, kind_fields
+from ..bearing.head_config import DEFAULT_WRAP_ANGLE, HeadDesign, check_design, kind_fields
 from ..core import validation
 from ..core.errors import ParameterError
 from ..tape.parameters import TapeParameters
 from .points import HEAD_VARIABLES, parameters_of
 
-__all__ = ["BearingStudy", "bearing_row", "head_of_point"]
+__all__ = ["BearingStudy", "bearing_row", "head_of_point", "head_value"]
 
 #: The columns every bearing point reports before its transducer and corner columns.
 LEADING = ("central_spacing", "minimum_spacing")
@@ -135,6 +135,17 @@ def head_of_point(setup: BearingStudy, point: Mapping) -> HeadDesign:
         if name not in kind_fields(kind):
             raise ParameterError(f"{name} is not a parameter of a {kind} head")
     return setup.head.replace(**changes)
+
+
+def head_value(design: HeadDesign, name: str) -> float:
+    """The value of the head variable ``name`` (:data:`HEAD_VARIABLES`) the head of
+    ``design`` is built with: 0 for a wrap or corner radius not given, the default wrap
+    angle, NaN for a gap a single module has not."""
+    value = getattr(design, name)
+    if value is not None:
+        return value
+    return {"wrap_in": 0.0, "wrap_out": 0.0, "corner_radius": 0.0,
+            "wrap_angle": DEFAULT_WRAP_ANGLE}.get(name, math.nan)
 
 
 def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -> dict:

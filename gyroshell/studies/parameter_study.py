@@ -61,11 +61,22 @@ from ..tape.parameters import TapeParameters, check_velocity
 from .cache import PointCache, point_key
 from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
 from .executors import CONNECT_TIMEOUT, Executor, StudyTask, check_executor, connected, execute
-from .head_study import BearingStudy, head_of_point
-from .points import HEAD_VARIABLES, VARIABLE_NAMES, canonical_name, check_points, grid_points
+from .head_study import BearingStudy, head_of_point, head_value
+from .points import (
+    HEAD_VARIABLES,
+    VARIABLE_NAMES,
+    canonical_name,
+    check_points,
+    grid_points,
+    parameters_of,
+    value_of,
+)
 
 if TYPE_CHECKING:
     import pandas as pd
+
+#: Frequencies per point of ``compute="modes"`` unless ``count`` says otherwise.
+DEFAULT_COUNT = 3
 
 __all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "BearingStudy", "StudyResult", "run_study"]
 
@@ -78,7 +89,8 @@ class StudyResult(results_base.Result, kind="study"):
     ----------
     table : pandas.DataFrame
         One row per point: ``point`` (index), the varied parameters (SI, named as in
-        :class:`~gyroshell.TapeParameters`, plus ``velocity`` in m/s), the computed
+        :class:`~gyroshell.TapeParameters`, plus ``velocity`` in m/s; where a point of a
+        list does not set one, the value it ran with, the base's), the computed
         columns (:func:`~gyroshell.studies.evaluation.result_columns`) and ``error`` ("" if
         the point succeeded).
     base : TapeParameters
@@ -186,7 +198,7 @@ class StudyResult(results_base.Result, kind="study"):
 
 def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence] | None = None,
               points: Sequence[Mapping] | None = None, compute: str | Sequence[str] = "critical",
-              velocity: float = 0.0, count: int = 3, workers: int | None = None,
+              velocity: float = 0.0, count: int | None = None, workers: int | None = None,
               scheduler: str | None = None, connect_timeout: float = CONNECT_TIMEOUT,
               cache: str | os.PathLike[str] | None = None, chunk_size: int | None = None,
               progress: bool | None = None, bearing: BearingStudy | None = None) -> StudyResult:
@@ -204,8 +216,9 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         Any of ``critical``, ``modes``, ``static``, ``period``, ``bearing`` (module doc).
     velocity : float
         Tape speed V, m/s, where a point does not set it.
-    count : int
-        Frequencies per point for ``modes``, in [1, 50].
+    count : int, optional
+        Frequencies per point for ``modes``, in [1, 50] (default :data:`DEFAULT_COUNT`);
+        refused without ``modes`` in ``compute``, which would ignore it.
     workers : int, optional
         Local processes (1: this process; at most 4 per CPU). Default: one per CPU.
     scheduler : str, optional
@@ -232,8 +245,9 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     Raises
     ------
     ParameterError
-        Bad names, values (naming the point) or options; a scheduler unreachable or not
-        Dask's, or workers of another gyroshell; a damaged cache (naming file and line).
+        Bad names, values (naming the point) or options (``count`` without ``modes``); a
+        scheduler unreachable or not Dask's, or workers of another gyroshell; a damaged
+        cache (naming file and line).
 
     Examples
     --------
@@ -258,6 +272,9 @@ class _Plan:
     compute: tuple[str, ...]
     count: int
     bearing: BearingStudy | None = None
+    #: Each point's row of varied values in the table: the point's own, and the value
+    #: used (the base's) for a name this point does not set.
+    cells: list[dict] = field(default_factory=list)
 
     @property
     def task(self) -> StudyTask:
@@ -283,7 +300,11 @@ def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
     validation.instance("base", base, TapeParameters)
     velocity = check_velocity(velocity)
     compute = check_compute(compute)
-    count = validation.integer("count", count, low=1, high=MAX_COUNT)
+    if count is not None and "modes" not in compute:
+        raise ParameterError("count is the number of frequencies of compute='modes': add "
+                             "'modes' to compute or leave count out")
+    count = validation.integer("count", DEFAULT_COUNT if count is None else count, low=1,
+                               high=MAX_COUNT)
     if (vary is None) == (points is None):
         raise ParameterError("give either vary (a grid) or points (a list), not both")
     raw = grid_points(vary) if vary is not None else list(points)
@@ -291,7 +312,22 @@ def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
     if vary is not None:
         varied = tuple(canonical_name(n) for n in vary)
     bearing = _bearing_plan(base, pts, varied, compute, bearing)
-    return _Plan(base, velocity, pts, varied, compute, int(count), bearing)
+    cells = [_cells(base, velocity, point, varied, bearing) for point in pts]
+    return _Plan(base, velocity, pts, varied, compute, int(count), bearing, cells)
+
+
+def _cells(base: TapeParameters, velocity: float, point: dict, varied: tuple[str, ...],
+           bearing: BearingStudy | None) -> dict:
+    """The point's varied values as the table shows them: a name the point does not set
+    (points given as a list may set different names) holds the value it ran with."""
+    missing = [name for name in varied if name not in point]
+    if not missing:
+        return point
+    params, v = parameters_of(base, velocity, point)
+    design = None if bearing is None else head_of_point(bearing, point)
+    used = {name: head_value(design, name) if name in HEAD_VARIABLES
+            else value_of(params, v, name) for name in missing}
+    return {name: point[name] if name in point else used[name] for name in varied}
 
 
 def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...],
@@ -351,7 +387,7 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
     import pandas as pd
 
     columns = result_columns(plan.compute, plan.count, plan.bearing)
-    records = [{"point": i, **pts[i], **{c: rows[i][c] for c in columns}}
+    records = [{"point": i, **plan.cells[i], **{c: rows[i][c] for c in columns}}
                for i in range(len(pts))]
     table = pd.DataFrame(records, columns=["point", *plan.varied, *columns])
     info = {"points": len(pts), "computed": len(todo), "cached": len(pts) - len(todo),

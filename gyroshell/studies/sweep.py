@@ -164,12 +164,15 @@ def parse_velocities(text: str, *, option: str = "velocities") -> list[float]:
     Raises
     ------
     ParameterError
-        For a malformed or non-finite entry, a step <= 0, stop < start, a negative speed, or
+        For a malformed, empty or non-finite entry, a step <= 0, stop < start, a negative speed, or
         too many speeds.
     """
     text = text.strip()
     form = f"{option} must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
-    parts = text.split(":") if ":" in text else [t for t in text.split(",") if t.strip()]
+    parts = text.split(":") if ":" in text else text.split(",")
+    if text and ":" not in text and not all(t.strip() for t in parts):
+        raise ParameterError(f"{option} {text!r}: an empty entry; give speeds in m/s "
+                             "separated by single commas")
     try:
         numbers = [float(t) for t in parts]
     except ValueError:

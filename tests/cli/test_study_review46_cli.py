@@ -98,3 +98,10 @@ def test_one_boolean_parser():
 
     assert [boolean(w) for w in ("yes", "YES", "Yes", "1", "true")] == [True] * 5
     assert [boolean(w) for w in ("no", "NO", "False", "0", " false ")] == [False] * 5
+
+
+def test_sweep_refuses_an_empty_speed_in_one_line(cli, tmp_path):
+    out = tmp_path / "s.csv"
+    run = cli(["sweep", "--velocities", "1,,2", "--count", "2", "--quiet", "--out", out])
+    assert run.code == 2 and len(run.error_lines) == 1, run.err
+    assert "--velocities '1,,2': an empty entry" in run.err and not out.exists()

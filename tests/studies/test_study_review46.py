@@ -60,3 +60,50 @@ def test_varying_both_wraps_runs_every_point_over_its_own_head():
     assert study.table.wrap_in.tolist() == wraps
     assert study.table.wrap_out.tolist() == [wraps[0]] * 2
     assert study.table.contact_force[1] > study.table.contact_force[0]
+
+
+def test_points_setting_different_names_show_the_values_they_ran_with():
+    """Row 0 sets only the speed, row 1 only the tension: each row's other cell is the
+    base's value, and its critical speed is that of the tape it ran with (the membrane's
+    closed form c = sqrt(T/rho) bounds it from above, and only T moves it)."""
+    base = COARSE.replace(tension=90.0)
+    study = run_study(base, points=[{"velocity": 1.0}, {"tension": 80.0}], velocity=0.0,
+                      workers=1, progress=False)
+    table = study.table
+    assert table.velocity.tolist() == [1.0, 0.0]
+    assert table.tension.tolist() == [90.0, 80.0]
+    alone = run_study(base, points=[{"tension": 90.0}, {"tension": 80.0}], workers=1,
+                      progress=False).table
+    assert table.critical_speed.tolist() == alone.critical_speed.tolist()
+    for t, c in zip(table.tension, table.critical_speed, strict=True):
+        assert c > math.sqrt(t / base.density)   # bending stiffens: above the string's
+
+
+def test_a_head_variable_a_point_does_not_set_shows_the_base_heads_value():
+    design = HeadDesign(kind="flat", land_length=1e-3, wrap_in=0.02, transducers=(0.0,))
+    study = run_study(TapeParameters(), points=[{"wrap_in": 0.01, "wrap_out": 0.03},
+                                                {"tension": 80.0}],
+                      compute="bearing", velocity=4.0, workers=1, progress=False,
+                      bearing=BearingStudy(design, infinitely_wide=True, nx=80))
+    assert study.failed.empty, study.failed.error.tolist()
+    assert study.table.wrap_in.tolist() == [0.01, 0.02]
+    assert study.table.wrap_out.tolist() == [0.03, 0.0]     # None: the head's 0
+    assert study.table.tension.tolist() == [90.0, 80.0]
+
+
+def test_count_without_modes_is_refused_as_the_command_refuses_it():
+    with pytest.raises(ParameterError, match="^count is the number of frequencies of "
+                                             "compute='modes'"):
+        run_study(COARSE, vary={"tension": [80.0]}, compute="critical", count=5, workers=1)
+    study = run_study(COARSE, vary={"tension": [80.0]}, compute="modes", workers=1,
+                      progress=False)
+    assert study.count == 3 and "omega_3" in study.table
+
+
+@pytest.mark.parametrize("text", ["1,,2", "1,2,", ",1", " , "])
+def test_an_empty_speed_is_refused(text):
+    from gyroshell.studies.sweep import parse_velocities
+
+    with pytest.raises(ParameterError, match="an empty entry"):
+        parse_velocities(text, option="--velocities")
+    assert parse_velocities("1, 2") == [1.0, 2.0]
