@@ -105,3 +105,38 @@ def test_sweep_refuses_an_empty_speed_in_one_line(cli, tmp_path):
     run = cli(["sweep", "--velocities", "1,,2", "--count", "2", "--quiet", "--out", out])
     assert run.code == 2 and len(run.error_lines) == 1, run.err
     assert "--velocities '1,,2': an empty entry" in run.err and not out.exists()
+
+
+TINY = ["--length-ratio", "1", "--spacing", "8e-4", "--quiet"]
+#: Commands the time limit covers, each with the file it would write.
+TIMED = {
+    "study": ["study", "--vary", "velocity=0:100:4", "--compute", "critical", *TINY],
+    "study on processes": ["study", "--vary", "velocity=0:100:4", "--compute", "critical",
+                           "--workers", "2", *TINY],
+    "sweep": ["sweep", "--velocities", "0:100:25", "--count", "2", *TINY],
+    "sweep on processes": ["sweep", "--velocities", "0:100:25", "--count", "2",
+                           "--workers", "2", *TINY],
+    "campbell": ["campbell", "--velocities", "0:100:25", "--count", "2", *TINY],
+}
+
+
+@pytest.mark.parametrize("name", TIMED)
+def test_work_estimated_above_the_time_limit_is_refused_with_its_estimate(
+        cli, tmp_path, monkeypatch, name):
+    monkeypatch.setenv("GYROSHELL_TIME_LIMIT", "1e-9")
+    out = tmp_path / "out.csv"
+    run = cli([*TIMED[name], "--out", out])
+    assert run.code == 2 and len(run.error_lines) == 1, run.err
+    assert "would take about" in run.err and "GYROSHELL_TIME_LIMIT" in run.err
+    assert "measured on the first 2" in run.err
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", TIMED)
+def test_the_default_time_limit_lets_the_commands_through(cli, tmp_path, monkeypatch, name):
+    monkeypatch.delenv("GYROSHELL_TIME_LIMIT", raising=False)
+    out = tmp_path / "out.csv"
+    run = cli([*TIMED[name], "--out", out])
+    assert run.code == 0, run.err
+    assert out.is_file()

@@ -107,3 +107,17 @@ def test_an_empty_speed_is_refused(text):
     with pytest.raises(ParameterError, match="an empty entry"):
         parse_velocities(text, option="--velocities")
     assert parse_velocities("1, 2") == [1.0, 2.0]
+
+
+def test_a_study_estimated_above_the_time_limit_opens_no_file(tmp_path, monkeypatch):
+    cache = tmp_path / "c.jsonl"
+    kwargs = dict(vary={"tension": [70.0, 80.0, 90.0]}, compute="critical", workers=1,
+                  progress=False, cache=cache)
+    monkeypatch.setenv("GYROSHELL_TIME_LIMIT", "1e-9")
+    with pytest.raises(ParameterError, match=r"^a study of 3 points \(critical\) would take "
+                                             "about .* more than the limit"):
+        run_study(COARSE, **kwargs)
+    assert not cache.exists()
+    monkeypatch.setenv("GYROSHELL_TIME_LIMIT", "3600")
+    study = run_study(COARSE, **kwargs)
+    assert study.failed.empty and len(cache.read_text().splitlines()) == 3
