@@ -255,7 +255,9 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     ParameterError
         Bad names, values (naming the point) or options (``count`` without ``modes``); a
         scheduler unreachable or not Dask's, or workers of another gyroshell; a damaged
-        cache (naming file and line).
+        cache (naming file and line); on local processes, a study of three points or more
+        whose time, estimated from its second point (the first two run in this process),
+        is above the time limit (:func:`gyroshell.core.progress.time_limit`).
 
     Examples
     --------

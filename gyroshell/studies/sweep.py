@@ -241,7 +241,8 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         Local processes (>= 1). With more than one, the speeds are split into that many
         contiguous runs, each solved with continuation in its own process, and the branches
         are tracked across them afterwards; the frequencies are the same as on one process
-        (to round-off: each run starts its continuation afresh).
+        (to round-off: each run starts its continuation afresh). This process solves the
+        first run, ``workers - 1`` worker processes the others.
     **options
         Passed to :func:`gyroshell.modes` (``sigma``, ``tol``, ``damping``, ...).
 
@@ -254,6 +255,13 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         unstable), ``residual``, ``correlation`` (with the previous speed's mode of the
         branch; 1 at the first speed), ``supercritical`` (K(V) indefinite), ``stability``
         ("stable", "divergence" or "flutter", of the speed's computed eigenvalues).
+
+    Raises
+    ------
+    ParameterError
+        Bad speeds, ``count`` or options; or a sweep whose time, estimated from its first
+        two solves (the first left out as warm-up), is above the time limit
+        (:func:`gyroshell.core.progress.time_limit`).
     """
     import pandas as pd
 
