@@ -168,8 +168,10 @@ def stop_pool(pool: ProcessPoolExecutor) -> None:
     """End ``pool`` now: cancel the tasks not started, terminate the workers running the
     others (their results are not wanted), and wait only for the workers to exit (SIGKILL
     after :data:`STOP_GRACE` s)."""
-    # the pool's worker processes (no public name before Python 3.14's terminate_workers)
+    # the pool's workers and queue (no public names before Python 3.14's terminate_workers)
     processes = list((getattr(pool, "_processes", None) or {}).values())
+    for item in dict(getattr(pool, "_pending_work_items", None) or {}).values():
+        item.future.cancel()   # the tasks not started: cancelled (False for running ones)
     pool.shutdown(wait=False, cancel_futures=True)
     for process in processes:
         if process.is_alive():
