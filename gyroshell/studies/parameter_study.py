@@ -225,8 +225,7 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     velocity : float
         Tape speed V, m/s, where a point does not set it.
     count : int, optional
-        Frequencies per point for ``modes``, in [1, 50] (default :data:`DEFAULT_COUNT`);
-        refused without ``modes`` in ``compute``, which would ignore it.
+        Frequencies per point for ``modes``, in [1, 50] (default 3; not without ``modes``).
     workers : int, optional
         Local processes (1: this process; at most 4 per CPU). Default: one per CPU.
     scheduler : str, optional
@@ -253,11 +252,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     Raises
     ------
     ParameterError
-        Bad names, values (naming the point) or options (``count`` without ``modes``); a
-        scheduler unreachable or not Dask's, or workers of another gyroshell; a damaged
-        cache (naming file and line); on local processes, a study of three points or more
-        whose time, estimated from its second point (the first two run in this process),
-        is above the time limit (:func:`gyroshell.core.progress.time_limit`).
+        Bad names, values (naming the point) or options; a scheduler unreachable or not
+        Dask's, or workers of another gyroshell; a damaged cache; over the time limit.
 
     Examples
     --------

@@ -164,8 +164,8 @@ def parse_velocities(text: str, *, option: str = "velocities") -> list[float]:
     Raises
     ------
     ParameterError
-        For a malformed, empty or non-finite entry, a step <= 0, stop < start, a negative speed, or
-        too many speeds.
+        For a malformed, empty or non-finite entry, a step <= 0, stop < start, a negative
+        speed, or too many speeds.
     """
     text = text.strip()
     form = f"{option} must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
@@ -241,8 +241,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         Local processes (>= 1). With more than one, the speeds are split into that many
         contiguous runs, each solved with continuation in its own process, and the branches
         are tracked across them afterwards; the frequencies are the same as on one process
-        (to round-off: each run starts its continuation afresh). This process solves the
-        first run, ``workers - 1`` worker processes the others.
+        (to round-off: each run starts its continuation afresh).
     **options
         Passed to :func:`gyroshell.modes` (``sigma``, ``tol``, ``damping``, ...).
 
@@ -255,13 +254,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         unstable), ``residual``, ``correlation`` (with the previous speed's mode of the
         branch; 1 at the first speed), ``supercritical`` (K(V) indefinite), ``stability``
         ("stable", "divergence" or "flutter", of the speed's computed eigenvalues).
-
-    Raises
-    ------
-    ParameterError
-        Bad speeds, ``count`` or options; or a sweep whose time, estimated from its first
-        two solves (the first left out as warm-up), is above the time limit
-        (:func:`gyroshell.core.progress.time_limit`).
+        Refused (ParameterError) above the time limit, timed on its first two solves.
     """
     import pandas as pd
 
