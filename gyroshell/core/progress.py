@@ -138,7 +138,7 @@ class TimeCheck:
         now = time.perf_counter()
         if before == 0:
             self._first = now
-        if self.done >= 2:
+        if 2 <= self.done < self.total:   # all done: nothing left to refuse
             warm = before == 1   # the first item's time is known: leave it out
             per_item = ((now - self._first) / (self.done - 1) if warm
                         else (now - self._start) / self.done)

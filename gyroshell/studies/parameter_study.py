@@ -66,7 +66,6 @@ from .executors import (
     StudyTask,
     check_executor,
     connected,
-    evaluate_chunk,
     execute,
 )
 from .head_study import BearingStudy, head_of_point, head_value
@@ -382,18 +381,15 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
     t0 = time.perf_counter()
     bar = stage_progress(len(pts), "study", progress=progress, unit="point",
                          initial=len(rows))
-    with connected(where if todo else None) as client, bar:
-        bar.start(_where_text(where, todo))
-        trial = _trial(plan, where, todo)
-        with cache:
-            def record(results: list[tuple[int, dict]]) -> None:
-                rows.update(results)
-                cache.add([(keys[i], row) for i, row in results])
-                bar.update(len(results))
+    with connected(where if todo else None) as client, cache, bar:
+        def record(results: list[tuple[int, dict]]) -> None:
+            rows.update(results)
+            cache.add([(keys[i], row) for i, row in results])
+            bar.update(len(results))
 
-            if trial:
-                record(trial)
-            executor, size = execute(todo[len(trial):], record, plan.task, where, client)
+        bar.start(_where_text(where, todo))
+        executor, size = execute(todo, record, plan.task, where, client,
+                                 _time_check(plan, where, len(todo)))
     import pandas as pd
 
     columns = result_columns(plan.compute, plan.count, plan.bearing)
@@ -406,32 +402,18 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
                        plan.count, info, None if plan.bearing is None else plan.bearing.spec())
 
 
-#: A study of at least this many points to compute on local processes is timed on its first
-#: two, run in this process before the others start: the time limit
-#: (:func:`gyroshell.core.progress.time_limit`) refuses it before any file is opened.
-TRIAL_FROM_POINTS = 3
-
-
-def _trial(plan: _Plan, where: Executor, todo: list[tuple[int, dict]]
-           ) -> list[tuple[int, dict]]:
-    """The rows of the first two points of ``todo``, computed here and timed: the study's
-    time is estimated from the second (the first carries the warm-up) over the local
-    processes, and refused above the time limit (ParameterError); none for fewer than
-    :data:`TRIAL_FROM_POINTS` points or on a Dask cluster (its workers are not these)."""
-    if where.scheduler is not None or len(todo) < TRIAL_FROM_POINTS:
-        return []
+def _time_check(plan: _Plan, where: Executor, points: int):
+    """The time limit over a local study of ``points`` points: this process's share
+    (all, or one in N beside N - 1 workers) timed on its first two points, the first left
+    out as warm-up (:class:`~gyroshell.core.progress.TimeCheck`); None on a Dask cluster
+    (its workers are not these)."""
+    if where.scheduler is not None:
+        return None
     from ..core.progress import TimeCheck
 
-    slots = where.workers
-    check = TimeCheck(len(todo) if slots == 1 else 2 + -(-(len(todo) - 2) // slots),
-                      unit="point", parallel=slots,
-                      size=f"a study of {len(todo)} points ({', '.join(plan.compute)})",
-                      advice="use fewer points, more workers or a Dask cluster")
-    rows = []
-    for point in todo[:2]:
-        rows += evaluate_chunk(plan.task, [point])
-        check(1)
-    return rows
+    return TimeCheck(-(-points // where.workers), unit="point", parallel=where.workers,
+                     size=f"a study of {points} points ({', '.join(plan.compute)})",
+                     advice="use fewer points, more workers or a Dask cluster")
 
 
 def _where_text(where: Executor, todo: list) -> str:

@@ -110,13 +110,14 @@ def test_sweep_refuses_an_empty_speed_in_one_line(cli, tmp_path):
 TINY = ["--length-ratio", "1", "--spacing", "8e-4", "--quiet"]
 #: Commands the time limit covers, each with the file it would write.
 TIMED = {
-    "study": ["study", "--vary", "velocity=0:100:4", "--compute", "critical", *TINY],
-    "study on processes": ["study", "--vary", "velocity=0:100:4", "--compute", "critical",
+    "study": ["study", "--vary", "velocity=0:100:8", "--compute", "critical", "--workers",
+              "1", *TINY],
+    "study on processes": ["study", "--vary", "velocity=0:100:8", "--compute", "critical",
                            "--workers", "2", *TINY],
-    "sweep": ["sweep", "--velocities", "0:100:25", "--count", "2", *TINY],
-    "sweep on processes": ["sweep", "--velocities", "0:100:25", "--count", "2",
+    "sweep": ["sweep", "--velocities", "0:100:10", "--count", "2", *TINY],
+    "sweep on processes": ["sweep", "--velocities", "0:100:10", "--count", "2",
                            "--workers", "2", *TINY],
-    "campbell": ["campbell", "--velocities", "0:100:25", "--count", "2", *TINY],
+    "campbell": ["campbell", "--velocities", "0:100:10", "--count", "2", *TINY],
 }
 
 
@@ -125,7 +126,7 @@ def test_work_estimated_above_the_time_limit_is_refused_with_its_estimate(
         cli, cli_process, tmp_path, monkeypatch, name):
     out = tmp_path / "out.csv"
     limit = {"GYROSHELL_TIME_LIMIT": "1e-9"}
-    if "--workers" in TIMED[name]:   # a fork server started here would keep the limit
+    if "processes" in name:   # a fork server started here would keep the limit for later
         run = cli_process([*TIMED[name], "--out", out], env=limit)
     else:
         monkeypatch.setenv(*limit.popitem())
