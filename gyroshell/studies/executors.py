@@ -3,7 +3,9 @@
 user started. The rows are the same on every executor.
 
 Points are sent in chunks (several points per task) to amortize the cost of scheduling a
-task; a chunk takes points spread over the study, so that chunks cost about the same.
+task; a chunk takes points spread over the study, so that chunks cost about the same. With
+N local processes, this process is one of them: it computes every N-th point itself, one at a
+time (timed: the study's time limit), beside N - 1 worker processes.
 """
 
 from __future__ import annotations

@@ -27,7 +27,8 @@ at every point:
     (:data:`~gyroshell.studies.points.HEAD_VARIABLES`).
 
 Every point is an independent task. They run in this process (``workers=1``), in local
-worker processes (``workers=N``, the default is the number of CPUs; no setup), or on a Dask
+processes (``workers=N``, the default is the number of CPUs; no setup: this one and N - 1
+workers; this process's first two points time the study against the time limit), or on a Dask
 distributed cluster the user started (``scheduler="tcp://HOST:PORT"``); the rows are the
 same in every case. A point that fails is reported in its row (``error``, the other values
 NaN) and the study goes on. With ``cache=PATH`` each finished point is appended to a JSON
