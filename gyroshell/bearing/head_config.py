@@ -55,7 +55,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -241,7 +241,7 @@ class HeadDesign:
 
 
 def check_design(design: HeadDesign, labels: Mapping[str, str] | None = None, *,
-                 degrees: bool = False) -> HeadDesign:
+                 degrees: bool = False, varied: Collection[str] = ()) -> HeadDesign:
     """``design`` checked whole, without building the head; returns it.
 
     Parameters
@@ -252,6 +252,11 @@ def check_design(design: HeadDesign, labels: Mapping[str, str] | None = None, *,
         (``"--head flat"``), for the messages; default: the field's name.
     degrees : bool
         State the angles' ranges in degrees (the command line's unit), not rad.
+    varied : collection of str
+        Fields a study sets at its points (``--vary wrap_in``): the checks that need them
+        (a flat head's wrap at either end, its land length, the gap of several modules)
+        are left to each point's head, checked whole when the point is
+        (:func:`gyroshell.studies.head_study.head_of_point`).
 
     Raises
     ------
@@ -265,7 +270,7 @@ def check_design(design: HeadDesign, labels: Mapping[str, str] | None = None, *,
         contour (a land shorter than its corner radii allow, transducers off the head, a
         bad profile file) is refused when :meth:`HeadDesign.head` builds it.
     """
-    name = _Names(labels or {}, degrees)
+    name = _Names(labels or {}, degrees, varied)
 
     validation.choice(name("kind"), design.kind, HEAD_KINDS)
     kind_label = name.labels.get("kind", design.kind)
@@ -288,8 +293,9 @@ def check_design(design: HeadDesign, labels: Mapping[str, str] | None = None, *,
 class _Names:
     """How the user named each field, and the angle check in the user's unit."""
 
-    def __init__(self, labels: Mapping[str, str], degrees: bool) -> None:
-        self.labels, self.degrees = dict(labels), degrees
+    def __init__(self, labels: Mapping[str, str], degrees: bool,
+                 varied: Collection[str] = ()) -> None:
+        self.labels, self.degrees, self.varied = dict(labels), degrees, frozenset(varied)
 
     def __call__(self, field: str) -> str:
         return self.labels.get(field, TABLE_NAMES.get(field, field))
@@ -358,7 +364,9 @@ def _checked_flat(design: HeadDesign, name) -> dict:
     if design.land_length is not None:
         changes["land_length"] = validation.positive(name("land_length"), design.land_length,
                                                      "m")
-    if not (changes.get("wrap_in") or 0.0) + (changes.get("wrap_out") or 0.0) > 0.0:
+    wraps_varied = {"wrap_in", "wrap_out"} & name.varied
+    if not wraps_varied and not (changes.get("wrap_in") or 0.0) + (changes.get("wrap_out")
+                                                                     or 0.0) > 0.0:
         raise ParameterError(
             f"a flat head needs a wrap: {name('wrap_in')} and {name('wrap_out')} are both 0, "
             "so nothing presses the tape onto the head; give at least one of them > 0 "
@@ -369,7 +377,7 @@ def _checked_flat(design: HeadDesign, name) -> dict:
 def _checked_gaps(gap, n: int, name):
     """The module gap(s), m, > 0, for ``n`` modules."""
     if gap is None:
-        if n > 1:
+        if n > 1 and "module_gap" not in name.varied:
             raise ParameterError(f"{n} modules need the gap between them: give "
                                  f"{name('module_gap')} (m, > 0)")
         return None
@@ -406,10 +414,11 @@ def _checked_shape(shape: ModuleShape, land: float | None, where: str, name) -> 
     own = shape.land_length is not None
     land = shape.land_length if own else land
     label = f"{where}land_length" if own else name("land_length")
-    if land is None:
+    if land is not None:
+        validation.positive(label, land, "m")
+    elif "land_length" not in name.varied:  # else each point gives its own
         raise ParameterError(f"a flat head needs its land length: give {name('land_length')} "
                              "(m, corner to corner, e.g. 1e-3)")
-    validation.positive(label, land, "m")
     if shape.corner_radius is not None:
         _checked_corner(f"{where}corner_radius", shape.corner_radius)
     height = validation.real(f"{where}height", shape.height, unit="m")

@@ -49,6 +49,25 @@ def real(text: str) -> float:
     return value
 
 
+#: The words a yes/no option value may be (any case), and what they mean.
+BOOLEAN_WORDS = {"true": True, "yes": True, "1": True, "false": False, "no": False, "0": False}
+
+
+def boolean(text: str) -> bool:
+    """True or False from ``true``/``false``, ``yes``/``no`` or ``1``/``0`` (any case).
+
+    Examples
+    --------
+    >>> boolean("True"), boolean("no"), boolean(" 1 ")
+    (True, False, True)
+    """
+    try:
+        return BOOLEAN_WORDS[text.strip().lower()]
+    except KeyError:
+        raise argparse.ArgumentTypeError(f"not true or false: {text!r} (give true, false, "
+                                         "yes, no, 1 or 0)") from None
+
+
 def positive_int(text: str) -> int:
     """An integer >= 1; whole numbers in exponent form (``1e6``) are accepted."""
     try:

@@ -85,9 +85,11 @@ def typed_head_options(args: argparse.Namespace) -> list[str]:
 
 
 def head_design(args: argparse.Namespace, table: dict | None = None,
-                config: str | os.PathLike | None = None):
+                config: str | os.PathLike | None = None, *, varied=()):
     """The :class:`~gyroshell.bearing.head_config.HeadDesign` of the head options over the
-    ``[head]`` table ``table`` of the file ``config`` (options win), checked.
+    ``[head]`` table ``table`` of the file ``config`` (options win), checked; without what
+    a study's ``--vary`` sets at every point (``varied``, HeadDesign fields), which is
+    checked with each point.
 
     Raises
     ------
@@ -121,7 +123,8 @@ def head_design(args: argparse.Namespace, table: dict | None = None,
         labels["kind"] = f"--head {args.head}"
         labels["profile"] = "--head"
     merged = dataclasses.replace(design, **changes)
-    return in_file(where, lambda: check_design(merged, labels, degrees=True))
+    return in_file(where, lambda: check_design(merged, labels, degrees=True,
+                                                    varied=varied))
 
 
 def _integer(text: str) -> int:

@@ -9,6 +9,7 @@ from pathlib import Path
 from ..core.errors import ParameterError
 from .common import (
     UserError,
+    boolean,
     grid_of,
     parameters_from_args,
     parse_velocities,
@@ -135,16 +136,23 @@ def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> 
 
 def parse_values(name: str, text: str) -> list:
     """``V1,V2,...`` or ``START:STOP:NUM`` (numbers in SI, or values with a unit such as
-    ``20um`` / ``"20 um"``; words for ``edges``)."""
+    ``20um`` / ``"20 um"``; words for ``edges``, true/false, yes/no or 1/0 for the yes-or-no
+    variables such as ``wrap_pressure``)."""
     import numpy as np
 
     from ..core.budget import check_study_points
     from ..core.units import unit_of
+    from ..studies.points import BOOLEAN_VARIABLES
     from ..tape.config import parse_quantity
 
     text = text.strip()
     if not text:
         raise UserError(f"--vary {name}: no values")
+    if name.replace("-", "_") in BOOLEAN_VARIABLES:
+        try:
+            return [boolean(item) for item in text.split(",")]
+        except argparse.ArgumentTypeError as exc:
+            raise UserError(f"--vary {name}: {exc}") from None
     if ":" in text:
         parts = text.split(":")
         if len(parts) != 3:
@@ -236,7 +244,7 @@ def run(args: argparse.Namespace) -> int:
         raise UserError("--plot with two varied parameters draws a stability map: add "
                         "--compute modes (or period)")
     result = run_study(params, vary=vary, compute=compute, velocity=velocity,
-                       count=3 if args.count is None else args.count,
+                       count=args.count,
                        workers=args.workers, scheduler=args.scheduler,
                        cache=args.cache, progress=False if args.quiet else None,
                        bearing=bearing, **_connect_timeout(args))
@@ -280,7 +288,7 @@ def _bearing_setup(args: argparse.Namespace, vary: dict, compute: list[str]):
             raise UserError(f"{args.config}: its [head] table is the head of --compute "
                             "bearing: add it, or drop the table")
         return None
-    design = head_design(args, table, args.config)
+    design = head_design(args, table, args.config, varied=tuple(vary))
     from .heads import HEAD_FLAGS
 
     for name in vary:
@@ -310,13 +318,30 @@ def _report_study(args: argparse.Namespace, result) -> None:
         return
     summary = result.summary()
     if args.out is None:
-        print(result.table.drop(columns=["point"]).to_string(index=False))
+        print(study_text(result))
     print(f"{summary['points']} points ({summary['computed']} computed, {summary['cached']} "
           f"from the cache, {summary['failed']} with errors) in {summary['seconds']:.2f} s "
           f"on {summary['executor']}")
     for path in (args.out, args.save, args.plot):
         if path is not None:
             print(f"wrote {path}")
+
+
+def study_text(result) -> str:
+    """The study's table as printed: the varied values in Python's shortest round-trip
+    form (what the user typed: 2.04e-05), the computed ones to 6 significant digits."""
+    from pandas.api.types import is_float_dtype
+
+    table = result.table.drop(columns=["point"])
+    formats = {}
+    for column in table.columns:
+        if not is_float_dtype(table[column].dtype):
+            continue
+        if column in result.varied:
+            formats[column] = lambda x: repr(float(x))
+        else:
+            formats[column] = lambda x: f"{x:.6g}"
+    return table.to_string(index=False, formatters=formats)
 
 
 def run_campbell(args: argparse.Namespace) -> int:

@@ -140,8 +140,9 @@ def process_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
     parent may hold BLAS or Dask threads, and a forked child can deadlock on their locks
     (Python 3.12+ warns). Each worker keeps to one BLAS thread and ends when the calling
     process dies, however it dies (:func:`worker_setup`).
-    If the block raises (an error, Ctrl-C), the tasks not yet started are cancelled before
-    the pool shuts down, so the error surfaces without waiting for the whole queue.
+    If the block raises (an error, Ctrl-C, SIGTERM), the tasks not yet started are
+    cancelled and the running ones stopped with their workers (:func:`stop_pool`), so the
+    error surfaces at once, without waiting for the chunks in progress.
     """
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
@@ -154,6 +155,30 @@ def process_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
     try:
         yield pool
     except BaseException:
-        pool.shutdown(wait=True, cancel_futures=True)
+        stop_pool(pool)
         raise
     pool.shutdown(wait=True)
+
+
+#: Seconds a stopped worker gets to end after SIGTERM before it is killed.
+STOP_GRACE = 1.0
+
+
+def stop_pool(pool: ProcessPoolExecutor) -> None:
+    """End ``pool`` now: cancel the tasks not started, terminate the workers running the
+    others (their results are not wanted), and wait only for the workers to exit (SIGKILL
+    after :data:`STOP_GRACE` s)."""
+    # the pool's workers and queue (no public names before Python 3.14's terminate_workers)
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    for item in dict(getattr(pool, "_pending_work_items", None) or {}).values():
+        item.future.cancel()   # the tasks not started: cancelled (False for running ones)
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        if process.is_alive():
+            process.terminate()
+    deadline = time.monotonic() + STOP_GRACE
+    for process in processes:
+        process.join(max(0.0, deadline - time.monotonic()))
+        if process.is_alive():
+            process.kill()
+            process.join()

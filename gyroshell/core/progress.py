@@ -94,6 +94,61 @@ def duration(seconds: float) -> str:
     return f"{seconds:.3g} s"
 
 
+def check_time(estimate: float, *, size: str, how: str, advice: str) -> None:
+    """Refuse work estimated to take ``estimate`` seconds above :func:`time_limit`.
+
+    Raises
+    ------
+    ParameterError
+        One line: what the work is (``size``), the estimate and how it was made (``how``),
+        the limit and how to ask for less (``advice``).
+    """
+    limit = time_limit()
+    if estimate > limit:
+        raise ParameterError(
+            f"{size} would take about {duration(estimate)} ({how}), more than the limit "
+            f"{duration(limit)}; {advice} (or set {TIME_LIMIT_VARIABLE}, seconds)")
+
+
+class TimeCheck:
+    """The time limit over work of ``total`` similar items done one by one: once the second
+    is done, the whole is estimated from it (the first, which carries the warm-up, left
+    out) and refused above :func:`time_limit` (:func:`check_time`). Call it with the items
+    done (a progress callback); ``parallel`` runs of the same length go on beside this one,
+    so only this one's items count.
+
+    Examples
+    --------
+    >>> check = TimeCheck(3, unit="speed", size="a sweep of 3 speeds", advice="use fewer")
+    >>> for _ in range(3):
+    ...     check(1)
+    """
+
+    def __init__(self, total: int, *, unit: str, size: str, advice: str,
+                 parallel: int = 1) -> None:
+        self.total, self.unit, self.size, self.advice = int(total), unit, size, advice
+        self.parallel = int(parallel)
+        self.done = 0
+        self._start = self._first = time.perf_counter()
+
+    def __call__(self, n: int = 1) -> None:
+        before, self.done = self.done, self.done + int(n)
+        if before >= 2:
+            return
+        now = time.perf_counter()
+        if before == 0:
+            self._first = now
+        if 2 <= self.done < self.total:   # all done: nothing left to refuse
+            warm = before == 1   # the first item's time is known: leave it out
+            per_item = ((now - self._first) / (self.done - 1) if warm
+                        else (now - self._start) / self.done)
+            how = (f"an estimate from {per_item:.3g} s per {self.unit} measured on the first "
+                   f"{self.done} {self.unit}s{', the first left out' if warm else ''}"
+                   + ("" if self.parallel == 1 else f", {self.parallel} runs side by side"))
+            check_time(now - self._start + per_item * (self.total - self.done),
+                       size=self.size, how=how, advice=self.advice)
+
+
 class LongWork:
     """Progress of ``total`` items whose time is measured on the first ones.
 
@@ -177,13 +232,11 @@ class LongWork:
         elapsed = time.perf_counter() - self._start if self.done else 0.0
         self.estimate = elapsed + per_item * (self.total - self.done)
         how = f"an estimate from {per_item:.3g} s per {self.unit} measured on {how}"
-        limit = time_limit()
-        if self.estimate > limit:
+        try:
+            check_time(self.estimate, size=self.size, how=how, advice=self.advice)
+        except ParameterError:
             self.close(finished=False)
-            raise ParameterError(
-                f"{self.size} would take about {duration(self.estimate)} ({how}), more than "
-                f"the limit {duration(limit)}; {self.advice} (or set {TIME_LIMIT_VARIABLE}, "
-                "seconds)")
+            raise
         self._lines = self._lines and self.estimate > LONG_WORK_SECONDS
         if self._lines:
             self._stages = StageLines(self.total, self.description, self.unit,

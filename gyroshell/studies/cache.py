@@ -159,16 +159,21 @@ class PointCache:
         return key, row
 
     def __enter__(self) -> PointCache:
-        if self.path is not None:
-            if self._keep is not None:
-                os.truncate(self.path, self._keep)
-            self._file = open(self.path, "a", encoding="utf-8")
-            if self._newline:
-                self._file.write("\n")
         return self
+
+    def _open(self) -> None:
+        """Open the file for appending (a cut last line dropped), at the first entry: a
+        study refused before it finishes a point leaves the file as it was."""
+        if self._keep is not None:
+            os.truncate(self.path, self._keep)
+        self._file = open(self.path, "a", encoding="utf-8")
+        if self._newline:
+            self._file.write("\n")
 
     def add(self, entries: list[tuple[str, dict]]) -> None:
         """Append ``(key, row)`` entries and flush them to the file."""
+        if self.path is not None and self._file is None and entries:
+            self._open()
         if self._file is not None:
             for key, row in entries:
                 self._file.write(json.dumps({"key": key, "row": row}) + "\n")

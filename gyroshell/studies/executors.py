@@ -3,7 +3,9 @@
 user started. The rows are the same on every executor.
 
 Points are sent in chunks (several points per task) to amortize the cost of scheduling a
-task; a chunk takes points spread over the study, so that chunks cost about the same.
+task; a chunk takes points spread over the study, so that chunks cost about the same. With
+N local processes, this process is one of them: it computes every N-th point itself, one at a
+time (timed: the study's time limit), beside N - 1 worker processes.
 """
 
 from __future__ import annotations
@@ -116,10 +118,15 @@ def evaluate_chunk(task: StudyTask, points: list[tuple[int, dict]]) -> Rows:
 
 
 def execute(todo: list[tuple[int, dict]], record: Callable[[Rows], None], task: StudyTask,
-            where: Executor, client=None) -> tuple[str, int]:
+            where: Executor, client=None, timed: Callable[[int], None] | None = None
+            ) -> tuple[str, int]:
     """Run the points ``todo`` ((index, point) pairs) where asked; ``record`` gets each
     finished chunk's rows as it finishes. With a scheduler, ``client`` is the connected
-    Dask client (:func:`connected`).
+    Dask client (:func:`connected`). Locally, this process computes a share of the points
+    itself (all of them with one worker; every N-th with N, beside N - 1 worker
+    processes), one at a time, calling ``timed`` with each
+    (:class:`gyroshell.core.progress.TimeCheck`: it may refuse the study); no row is
+    recorded before its second point, so a refused study records none.
 
     Returns
     -------
@@ -134,17 +141,46 @@ def execute(todo: list[tuple[int, dict]], record: Callable[[Rows], None], task: 
         return _execute_dask(todo, record, task, where, client)
     if where.workers == 1:
         size = where.chunk_size or 1
-        for chunk in chunks(todo, size):
-            record(evaluate_chunk(task, chunk))
+        _evaluate_here(todo, task, record, timed, size)
         return "serial", size
     from concurrent.futures import as_completed
 
-    size = _automatic_size(todo, where.workers, where.chunk_size)
-    with process_pool(where.workers) as pool:
-        futures = [pool.submit(evaluate_chunk, task, chunk) for chunk in chunks(todo, size)]
-        for fut in as_completed(futures):
+    here, there = todo[::where.workers], [p for k, p in enumerate(todo) if k % where.workers]
+    if not there:
+        _evaluate_here(here, task, record, timed, 1)
+        return f"processes({where.workers})", 1
+    size = _automatic_size(there, where.workers - 1, where.chunk_size)
+    with process_pool(where.workers - 1) as pool:
+        futures = [pool.submit(evaluate_chunk, task, chunk) for chunk in chunks(there, size)]
+        for fut in as_completed(_evaluate_here(here, task, record, timed, 1, futures)):
             record(fut.result())
     return f"processes({where.workers})", size
+
+
+def _evaluate_here(todo: list[tuple[int, dict]], task: StudyTask,
+                   record: Callable[[Rows], None], timed, size: int, futures=()) -> list:
+    """The points ``todo`` in this process, ``size`` at a time, each chunk timed; the
+    first chunk's rows held back until the second is timed (when ``timed`` may still
+    refuse: more than two points here); between chunks, the rows of
+    the ``futures`` (other processes' chunks) that are done. Returns the futures not
+    recorded yet."""
+    held: Rows = []
+    pending = list(futures)
+    for k, chunk in enumerate(chunks(todo, size)):
+        rows = evaluate_chunk(task, chunk)
+        if timed is not None:
+            timed(len(chunk))
+        if k == 0 and timed is not None and len(todo) > 2:   # checked at the second point
+            held = rows
+            continue
+        record(held + rows)
+        held = []
+        for fut in [f for f in pending if f.done()]:
+            pending.remove(fut)
+            record(fut.result())
+    if held:
+        record(held)
+    return pending
 
 
 def worker_version() -> str:

@@ -37,13 +37,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..bearing.air import AirParameters
-from ..bearing.head_config import HeadDesign, check_design, kind_fields
+from ..bearing.head_config import DEFAULT_WRAP_ANGLE, HeadDesign, check_design, kind_fields
 from ..core import validation
 from ..core.errors import ParameterError
 from ..tape.parameters import TapeParameters
 from .points import HEAD_VARIABLES, parameters_of
 
-__all__ = ["BearingStudy", "bearing_row", "head_of_point"]
+__all__ = ["BearingStudy", "bearing_row", "head_of_point", "head_value"]
 
 #: The columns every bearing point reports before its transducer and corner columns.
 LEADING = ("central_spacing", "minimum_spacing")
@@ -67,7 +67,10 @@ class BearingStudy:
     ----------
     head : HeadDesign
         The base head (:class:`gyroshell.bearing.head_config.HeadDesign`); points change
-        its fields.
+        its fields. What a study's points may set (a flat head's wraps, land length, module
+        gap: :data:`~gyroshell.studies.points.HEAD_VARIABLES`) may be missing here; the
+        study checks the base head without the fields its points vary, and every point's
+        head whole (:func:`head_of_point`).
     air : AirParameters or None
         The air film (None: air at 20 °C).
     infinitely_wide : bool
@@ -95,7 +98,7 @@ class BearingStudy:
         if self.infinitely_wide and self.ny is not None:
             raise ParameterError("ny applies to the 2-D tape only: leave it None with "
                                  "infinitely_wide=True")
-        object.__setattr__(self, "head", check_design(self.head))
+        object.__setattr__(self, "head", check_design(self.head, varied=HEAD_VARIABLES))
 
     def spec(self) -> dict:
         """The setup as plain JSON values, lists for tuples (a cache key's part, a saved
@@ -105,10 +108,12 @@ class BearingStudy:
             "air": None if self.air is None else dataclasses.asdict(self.air),
             "infinitely_wide": self.infinitely_wide, "nx": self.nx, "ny": self.ny}))
 
-    def with_columns(self, base: TapeParameters) -> BearingStudy:
-        """This setup with the columns of its points over the tape ``base`` (the head is
-        built here: one its constructor refuses, transducers off it, is refused now)."""
-        head = self.head.head()
+    def with_columns(self, base: TapeParameters, design: HeadDesign | None = None
+                     ) -> BearingStudy:
+        """This setup with the columns of its points over the tape ``base``, counted on the
+        head of ``design`` (a point's; default the base head, which is built here: one its
+        constructor refuses, transducers off it, is refused now)."""
+        head = (self.head if design is None else design).head()
         transducers = len(head.transducers)
         corners = len(head.corners(radius=base.radius))
         out = list(LEADING)
@@ -120,17 +125,27 @@ class BearingStudy:
 
 
 def head_of_point(setup: BearingStudy, point: Mapping) -> HeadDesign:
-    """The point's head design: the base head with the point's head variables (checked
-    whole, :func:`~gyroshell.bearing.head_config.check_design`; a variable the head's kind
-    has not is refused, naming it)."""
+    """The point's head design: the base head with the point's head variables, checked
+    whole (:func:`~gyroshell.bearing.head_config.check_design`: a flat head with both
+    wraps 0 is refused here, even when the base head left them to the points); a variable
+    the head's kind has not is refused, naming it."""
     changes = {k: v for k, v in point.items() if k in HEAD_VARIABLES}
-    if not changes:
-        return setup.head
     kind = setup.head.kind
     for name in changes:
         if name not in kind_fields(kind):
             raise ParameterError(f"{name} is not a parameter of a {kind} head")
     return setup.head.replace(**changes)
+
+
+def head_value(design: HeadDesign, name: str) -> float:
+    """The value of the head variable ``name`` (:data:`HEAD_VARIABLES`) the head of
+    ``design`` is built with: 0 for a wrap or corner radius not given, the default wrap
+    angle, NaN for a gap a single module has not."""
+    value = getattr(design, name)
+    if value is not None:
+        return value
+    return {"wrap_in": 0.0, "wrap_out": 0.0, "corner_radius": 0.0,
+            "wrap_angle": DEFAULT_WRAP_ANGLE}.get(name, math.nan)
 
 
 def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -> dict:

@@ -27,7 +27,8 @@ at every point:
     (:data:`~gyroshell.studies.points.HEAD_VARIABLES`).
 
 Every point is an independent task. They run in this process (``workers=1``), in local
-worker processes (``workers=N``, the default is the number of CPUs; no setup), or on a Dask
+processes (``workers=N``, the default is the number of CPUs; no setup: this one and N - 1
+workers; this process's first two points time the study against the time limit), or on a Dask
 distributed cluster the user started (``scheduler="tcp://HOST:PORT"``); the rows are the
 same in every case. A point that fails is reported in its row (``error``, the other values
 NaN) and the study goes on. With ``cache=PATH`` each finished point is appended to a JSON
@@ -50,6 +51,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from ..bearing.head_config import check_design
 from ..core import validation
 from ..core.errors import ParameterError
 from ..core.progress import stage_progress
@@ -59,12 +61,30 @@ from ..tape.config import parameter_fields
 from ..tape.parameters import TapeParameters, check_velocity
 from .cache import PointCache, point_key
 from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
-from .executors import CONNECT_TIMEOUT, Executor, StudyTask, check_executor, connected, execute
-from .head_study import BearingStudy, head_of_point
-from .points import HEAD_VARIABLES, VARIABLE_NAMES, canonical_name, check_points, grid_points
+from .executors import (
+    CONNECT_TIMEOUT,
+    Executor,
+    StudyTask,
+    check_executor,
+    connected,
+    execute,
+)
+from .head_study import BearingStudy, head_of_point, head_value
+from .points import (
+    HEAD_VARIABLES,
+    VARIABLE_NAMES,
+    canonical_name,
+    check_points,
+    grid_points,
+    parameters_of,
+    value_of,
+)
 
 if TYPE_CHECKING:
     import pandas as pd
+
+#: Frequencies per point of ``compute="modes"`` unless ``count`` says otherwise.
+DEFAULT_COUNT = 3
 
 __all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "BearingStudy", "StudyResult", "run_study"]
 
@@ -77,7 +97,8 @@ class StudyResult(results_base.Result, kind="study"):
     ----------
     table : pandas.DataFrame
         One row per point: ``point`` (index), the varied parameters (SI, named as in
-        :class:`~gyroshell.TapeParameters`, plus ``velocity`` in m/s), the computed
+        :class:`~gyroshell.TapeParameters`, plus ``velocity`` in m/s; where a point of a
+        list does not set one, the value it ran with, the base's), the computed
         columns (:func:`~gyroshell.studies.evaluation.result_columns`) and ``error`` ("" if
         the point succeeded).
     base : TapeParameters
@@ -185,7 +206,7 @@ class StudyResult(results_base.Result, kind="study"):
 
 def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence] | None = None,
               points: Sequence[Mapping] | None = None, compute: str | Sequence[str] = "critical",
-              velocity: float = 0.0, count: int = 3, workers: int | None = None,
+              velocity: float = 0.0, count: int | None = None, workers: int | None = None,
               scheduler: str | None = None, connect_timeout: float = CONNECT_TIMEOUT,
               cache: str | os.PathLike[str] | None = None, chunk_size: int | None = None,
               progress: bool | None = None, bearing: BearingStudy | None = None) -> StudyResult:
@@ -203,8 +224,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         Any of ``critical``, ``modes``, ``static``, ``period``, ``bearing`` (module doc).
     velocity : float
         Tape speed V, m/s, where a point does not set it.
-    count : int
-        Frequencies per point for ``modes``, in [1, 50].
+    count : int, optional
+        Frequencies per point for ``modes``, in [1, 50] (default 3; not without ``modes``).
     workers : int, optional
         Local processes (1: this process; at most 4 per CPU). Default: one per CPU.
     scheduler : str, optional
@@ -232,7 +253,7 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     ------
     ParameterError
         Bad names, values (naming the point) or options; a scheduler unreachable or not
-        Dask's, or workers of another gyroshell; a damaged cache (naming file and line).
+        Dask's, or workers of another gyroshell; a damaged cache; over the time limit.
 
     Examples
     --------
@@ -257,6 +278,9 @@ class _Plan:
     compute: tuple[str, ...]
     count: int
     bearing: BearingStudy | None = None
+    #: Each point's row of varied values in the table: the point's own, and the value
+    #: used (the base's) for a name this point does not set.
+    cells: list[dict] = field(default_factory=list)
 
     @property
     def task(self) -> StudyTask:
@@ -282,7 +306,11 @@ def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
     validation.instance("base", base, TapeParameters)
     velocity = check_velocity(velocity)
     compute = check_compute(compute)
-    count = validation.integer("count", count, low=1, high=MAX_COUNT)
+    if count is not None and "modes" not in compute:
+        raise ParameterError("count is the number of frequencies of compute='modes': add "
+                             "'modes' to compute or leave count out")
+    count = validation.integer("count", DEFAULT_COUNT if count is None else count, low=1,
+                               high=MAX_COUNT)
     if (vary is None) == (points is None):
         raise ParameterError("give either vary (a grid) or points (a list), not both")
     raw = grid_points(vary) if vary is not None else list(points)
@@ -290,7 +318,22 @@ def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
     if vary is not None:
         varied = tuple(canonical_name(n) for n in vary)
     bearing = _bearing_plan(base, pts, varied, compute, bearing)
-    return _Plan(base, velocity, pts, varied, compute, int(count), bearing)
+    cells = [_cells(base, velocity, point, varied, bearing) for point in pts]
+    return _Plan(base, velocity, pts, varied, compute, int(count), bearing, cells)
+
+
+def _cells(base: TapeParameters, velocity: float, point: dict, varied: tuple[str, ...],
+           bearing: BearingStudy | None) -> dict:
+    """The point's varied values as the table shows them: a name the point does not set
+    (points given as a list may set different names) holds the value it ran with."""
+    missing = [name for name in varied if name not in point]
+    if not missing:
+        return point
+    params, v = parameters_of(base, velocity, point)
+    design = None if bearing is None else head_of_point(bearing, point)
+    used = {name: head_value(design, name) if name in HEAD_VARIABLES
+            else value_of(params, v, name) for name in missing}
+    return {name: point[name] if name in point else used[name] for name in varied}
 
 
 def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...],
@@ -310,12 +353,16 @@ def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...]
     validation.instance("bearing", bearing, BearingStudy)
     if base.edges != "free" and not bearing.infinitely_wide:
         raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
+    check_design(bearing.head, varied=[n for n in varied if n in HEAD_VARIABLES])
+    first = None
     for i, point in enumerate(pts):
         try:
-            head_of_point(bearing, point).head()   # the contour's own checks too
+            design = head_of_point(bearing, point)
+            design.head()   # the contour's own checks too
         except ParameterError as exc:
             raise ParameterError(f"point {i} {point}: {exc}") from None
-    return bearing.with_columns(base)
+        first = design if first is None else first
+    return bearing.with_columns(base, first)
 
 
 def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyResult:
@@ -342,17 +389,32 @@ def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyRes
             bar.update(len(results))
 
         bar.start(_where_text(where, todo))
-        executor, size = execute(todo, record, plan.task, where, client)
+        executor, size = execute(todo, record, plan.task, where, client,
+                                 _time_check(plan, where, len(todo)))
     import pandas as pd
 
     columns = result_columns(plan.compute, plan.count, plan.bearing)
-    records = [{"point": i, **pts[i], **{c: rows[i][c] for c in columns}}
+    records = [{"point": i, **plan.cells[i], **{c: rows[i][c] for c in columns}}
                for i in range(len(pts))]
     table = pd.DataFrame(records, columns=["point", *plan.varied, *columns])
     info = {"points": len(pts), "computed": len(todo), "cached": len(pts) - len(todo),
             "seconds": time.perf_counter() - t0, "executor": executor, "chunk_size": size}
     return StudyResult(table, plan.base, plan.velocity, plan.varied, plan.compute,
                        plan.count, info, None if plan.bearing is None else plan.bearing.spec())
+
+
+def _time_check(plan: _Plan, where: Executor, points: int):
+    """The time limit over a local study of ``points`` points: this process's share
+    (all, or one in N beside N - 1 workers) timed on its first two points, the first left
+    out as warm-up (:class:`~gyroshell.core.progress.TimeCheck`); None on a Dask cluster
+    (its workers are not these)."""
+    if where.scheduler is not None:
+        return None
+    from ..core.progress import TimeCheck
+
+    return TimeCheck(-(-points // where.workers), unit="point", parallel=where.workers,
+                     size=f"a study of {points} points ({', '.join(plan.compute)})",
+                     advice="use fewer points, more workers or a Dask cluster")
 
 
 def _where_text(where: Executor, todo: list) -> str:

@@ -24,8 +24,8 @@ from ..core.errors import ParameterError
 from ..core.units import LAYER_NAME, LAYER_UNITS
 from ..tape.parameters import TapeParameters, check_velocity
 
-__all__ = ["HEAD_VARIABLES", "LAYER_VARIABLES", "VARIABLE_NAMES", "canonical_name",
-           "check_points", "grid_points", "parameters_of"]
+__all__ = ["BOOLEAN_VARIABLES", "HEAD_VARIABLES", "LAYER_VARIABLES", "VARIABLE_NAMES",
+           "canonical_name", "check_points", "grid_points", "parameters_of"]
 
 #: Parameters of the head a bearing study (``compute="bearing"``) can vary, SI (angles in
 #: rad): :class:`gyroshell.bearing.head_config.HeadDesign` fields.
@@ -39,6 +39,9 @@ NOT_SCALAR = ("bending_stiffness", "layers")
 VARIABLE_NAMES: tuple[str, ...] = ("velocity",) + tuple(
     f.name for f in dataclasses.fields(TapeParameters) if f.name not in NOT_SCALAR
 ) + HEAD_VARIABLES
+#: The variables that are yes or no (True or False), not numbers.
+BOOLEAN_VARIABLES: tuple[str, ...] = tuple(
+    f.name for f in dataclasses.fields(TapeParameters) if f.type in (bool, "bool"))
 #: How the quantities of a layered tape's layers are named (see the module docstring).
 LAYER_VARIABLES = f"layer<N>.<key> (key: {', '.join(LAYER_UNITS)})"
 

@@ -164,12 +164,15 @@ def parse_velocities(text: str, *, option: str = "velocities") -> list[float]:
     Raises
     ------
     ParameterError
-        For a malformed or non-finite entry, a step <= 0, stop < start, a negative speed, or
-        too many speeds.
+        For a malformed, empty or non-finite entry, a step <= 0, stop < start, a negative
+        speed, or too many speeds.
     """
     text = text.strip()
     form = f"{option} must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
-    parts = text.split(":") if ":" in text else [t for t in text.split(",") if t.strip()]
+    parts = text.split(":") if ":" in text else text.split(",")
+    if text and ":" not in text and not all(t.strip() for t in parts):
+        raise ParameterError(f"{option} {text!r}: an empty entry; give speeds in m/s "
+                             "separated by single commas")
     try:
         numbers = [float(t) for t in parts]
     except ValueError:
@@ -270,6 +273,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
         unstable), ``residual``, ``correlation`` (with the previous speed's mode of the
         branch; 1 at the first speed), ``supercritical`` (K(V) indefinite), ``stability``
         ("stable", "divergence" or "flutter", of the speed's computed eigenvalues).
+        Refused (ParameterError) above the time limit, timed on its first two solves.
     """
     import pandas as pd
 
@@ -319,9 +323,22 @@ def solve_speeds(model, velocities: list[float], count: int, *, continuation: bo
         bar.start(f"of {count} modes each, {model.unknowns} unknowns, "
                   + ("in this process" if workers == 1 else f"on {workers} processes"))
         if workers == 1:
-            return _solve_run(model, velocities, count, continuation, options, bar.update)
+            check = _time_check(model, len(velocities), len(velocities), count, 1)
+            return _solve_run(model, velocities, count, continuation, options,
+                              lambda n: (check(n), bar.update(n)))
         return _solve_parallel(model, velocities, count, continuation, options, workers,
                                bar.update)
+
+
+def _time_check(model, speeds: int, run: int, count: int, workers: int):
+    """The time limit over a run of ``run`` of the ``speeds`` speeds (one of ``workers``
+    runs side by side): measured on its first solves
+    (:class:`gyroshell.core.progress.TimeCheck`)."""
+    from ..core.progress import TimeCheck
+
+    return TimeCheck(run, unit="speed", parallel=workers,
+                     size=f"{speeds} speeds of {count} modes of {model.unknowns} unknowns",
+                     advice="use fewer speeds, more workers or a larger spacing")
 
 
 def _solve_run(model: TapeModel, velocities: list[float], count: int, continuation: bool,
@@ -342,19 +359,34 @@ def _solve_run(model: TapeModel, velocities: list[float], count: int, continuati
 
 def _solve_parallel(model: TapeModel, velocities: list[float], count: int,
                     continuation: bool, options: dict, workers: int, done) -> list[Modes]:
-    """Contiguous runs of speeds on ``workers`` local processes, results in the order of
-    the speeds."""
+    """Contiguous runs of speeds on ``workers`` processes, results in the order of the
+    speeds: this process solves the first run (timed on its first solves: the time limit,
+    :func:`_time_check`), ``workers - 1`` local processes the others. The model goes to
+    them pickled before this process touches it (its caches fill as it solves)."""
+    import pickle
+
     bounds = np.linspace(0, len(velocities), workers + 1).round().astype(int)
     runs = [velocities[a:b] for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
-    results: list[Modes] = []
-    with process_pool(workers) as pool:
-        futures = [pool.submit(_solve_run, model, run, count, continuation, options)
-                   for run in runs]
+    payload = pickle.dumps(model, protocol=pickle.HIGHEST_PROTOCOL)
+    check = _time_check(model, len(velocities), len(runs[0]), count, len(runs))
+    with process_pool(len(runs) - 1) as pool:
+        futures = [pool.submit(_solve_pickled, payload, run, count, continuation, options)
+                   for run in runs[1:]]
+        results = _solve_run(model, runs[0], count, continuation, options,
+                             lambda n: (check(n), done(n)))
         for fut in futures:
             part = fut.result()
             done(len(part))
             results.extend(part)
     return results
+
+
+def _solve_pickled(payload: bytes, velocities: list[float], count: int, continuation: bool,
+                   options: dict) -> list[Modes]:
+    """:func:`_solve_run` of a pickled model (in a worker process)."""
+    import pickle
+
+    return _solve_run(pickle.loads(payload), velocities, count, continuation, options)
 
 
 #: Speeds above √(T/ρ) from which proving the stiffness floor near divergence (a few

@@ -105,7 +105,7 @@ def test_a_damaged_cache_names_the_file_and_line(tmp_path):
 def test_rows_of_other_studies_in_the_same_cache_are_kept(tmp_path):
     cache = tmp_path / "c.jsonl"
     run_study(BASE, **ONE_POINT, workers=1, cache=cache, progress=False)
-    other = run_study(BASE, **{**ONE_POINT, "compute": "critical", "count": 3}, workers=1,
+    other = run_study(BASE, vary=ONE_POINT["vary"], compute="critical", workers=1,
                       cache=cache, progress=False)
     assert other.info["computed"] == 1
     again = run_study(BASE, **ONE_POINT, workers=1, cache=cache, progress=False)

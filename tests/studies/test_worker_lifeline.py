@@ -111,3 +111,35 @@ def test_a_worker_ends_when_its_starter_is_gone(when):
             if p.poll() is None:
                 p.kill()
         starter.wait()
+
+
+#: Ctrl-C or SIGTERM ends a study on workers within this, s, while each of its chunks takes
+#: far longer (about 100 points of some 0.3 s each): the running chunks are not waited for.
+STOP_BOUND = 10.0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_a_signal_ends_a_study_on_workers_at_once_and_leaves_nothing(tmp_path, sig, code):
+    out = tmp_path / "study.csv"
+    argv = [sys.executable, "-m", "gyroshell", "study", "--vary", "velocity=0:100:800",
+            "--compute", "critical,static", "--workers", "2", "--quiet", "--out", str(out)]
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
+    proc = subprocess.Popen(argv, cwd=tmp_path, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, env=env)
+    family: set[int] = set()
+    try:
+        family = wait_for(lambda: (lambda c: c if len(c) >= 3 else None)(
+            children_of(proc.pid)), START_BOUND, "the study did not start its workers")
+        time.sleep(3.0)  # the workers are in their first chunks
+        family |= children_of(proc.pid)
+        proc.send_signal(sig)
+        _out, err = proc.communicate(timeout=STOP_BOUND)
+        assert proc.returncode == code, err
+        assert err.decode().strip().endswith("no output written"), err
+        assert b"Traceback" not in err
+        wait_for(lambda: not living(family), EXIT_BOUND, "processes survive")
+        assert list(tmp_path.iterdir()) == []      # no output, no temporary file
+    finally:
+        for pid in living(family | {proc.pid}):
+            os.kill(pid, signal.SIGKILL)
