@@ -559,6 +559,18 @@ def _forced_contact_step(F, it: _Iterate, h, dz, found, tol):
 MAX_SET_UPDATES = 30
 
 
+def _set_step_start(F, it: _Iterate, found):
+    """(u, r_u, the trial's merit) for a contact-set step after the step ``found`` (α,
+    step, trial, merit); None where none is wanted: a full step that decreased the merit,
+    or a step below FULL_STEP (converged)."""
+    alpha, step, _, merit_t = found
+    if (alpha == 1.0 and _decreased(merit_t, it.merit, alpha)) or step < FULL_STEP:
+        return None
+    n_u = F.model.n_u
+    u, p = it.z[:n_u], it.z[n_u:]
+    return u, F.tape(u, p), merit_t
+
+
 def _contact_set_step(F, it: _Iterate, h, dz, found, tol):
     """The step again with a contact set consistent with its own linearization, if the
     step ``found`` (α, step, trial, merit) was damped or failed while the full step would
@@ -574,11 +586,10 @@ def _contact_set_step(F, it: _Iterate, h, dz, found, tol):
     instead of a few. Updates ``it.solver`` and ``it.active`` when that step is taken."""
     model = F.model
     n_u = model.n_u
-    alpha, step, _, merit_t = found
-    if (alpha == 1.0 and _decreased(merit_t, it.merit, alpha)) or step < FULL_STEP:
+    start = _set_step_start(F, it, found)
+    if start is None:
         return found
-    u, p = it.z[:n_u], it.z[n_u:]
-    r_u = F.tape(u, p)
+    u, r_u, merit_t = start
     active, d, solver = it.active, dz, it.solver
     for _ in range(MAX_SET_UPDATES):
         lam = r_u + F.tape_rows @ d
@@ -621,11 +632,10 @@ def _feasible_contact_step(F, it: _Iterate, h, dz, found, tol):
     when that step is taken."""
     model = F.model
     n_u = model.n_u
-    alpha, step, _, merit_t = found
-    if (alpha == 1.0 and _decreased(merit_t, it.merit, alpha)) or step < FULL_STEP:
+    start = _set_step_start(F, it, found)
+    if start is None:
         return found
-    u, p = it.z[:n_u], it.z[n_u:]
-    r_u = F.tape(u, p)
+    u, r_u, merit_t = start
     gap = np.maximum(h - F.floor, 0.0)        # the iterate's clearance (projected: >= 0)
     lin = _film_blocks(F, it)
     work = np.zeros(n_u, dtype=bool)

@@ -4,6 +4,7 @@ tracker behind, and the caller's pipes reach end-of-file."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import signal
 import subprocess
@@ -62,30 +63,40 @@ def wait_for(condition, bound: float, what: str):
     pytest.fail(f"{what} within {bound:g} s")
 
 
+@contextlib.contextmanager
+def running_study(argv: list[str], cwd, *, settle: float):
+    """A study started in a subprocess, yielded with the set of its processes once its
+    workers run (at least the fork server, two workers and the resource tracker) and
+    ``settle`` s more; every one still alive is killed on the way out (a failing test
+    cleans up after itself)."""
+    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
+    proc = subprocess.Popen(argv, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            env=env)
+    family: set[int] = set()
+    try:
+        family |= wait_for(lambda: (lambda c: c if len(c) >= 3 else None)(
+            children_of(proc.pid)), START_BOUND, "the study did not start its workers")
+        time.sleep(settle)
+        family |= children_of(proc.pid)
+        yield proc, family
+    finally:
+        for pid in living(family | {proc.pid}):
+            os.kill(pid, signal.SIGKILL)
+
+
 @pytest.mark.slow
 def test_kill_9_of_a_study_with_workers_leaves_no_process_and_closes_the_pipes(tmp_path):
     argv = [sys.executable, "-m", "gyroshell", "study", "--spacing", str(WIDTH / 8),
             "--length-ratio", "4", "--vary", "velocity=0:100:30", "--vary",
             "tension=40:120:20", "--compute", "modes", "--workers", "2"]
-    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
-    proc = subprocess.Popen(argv, cwd=tmp_path, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, env=env)
-    family: set[int] = set()
-    try:
-        # the fork server, its two workers and the resource tracker: at least 3 processes
-        family = wait_for(lambda: (lambda c: c if len(c) >= 3 else None)(
-            children_of(proc.pid)), START_BOUND, "the study did not start its workers")
-        time.sleep(1.0)  # the workers are computing points
-        family |= children_of(proc.pid)
+    # the fork server, its two workers and the resource tracker: at least 3 processes
+    with running_study(argv, tmp_path, settle=1.0) as (proc, family):  # workers computing
         os.kill(proc.pid, signal.SIGKILL)
         # the caller's pipes reach end-of-file: no survivor holds them
         _out, err = proc.communicate(timeout=EXIT_BOUND)
         assert proc.returncode == -signal.SIGKILL
         wait_for(lambda: not living(family), EXIT_BOUND, "processes survive")
         assert b"Traceback" not in err
-    finally:  # a failing run cleans up after itself
-        for pid in living(family | {proc.pid}):
-            os.kill(pid, signal.SIGKILL)
 
 
 @pytest.mark.slow
@@ -124,15 +135,7 @@ def test_a_signal_ends_a_study_on_workers_at_once_and_leaves_nothing(tmp_path, s
     out = tmp_path / "study.csv"
     argv = [sys.executable, "-m", "gyroshell", "study", "--vary", "velocity=0:100:800",
             "--compute", "critical,static", "--workers", "2", "--quiet", "--out", str(out)]
-    env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
-    proc = subprocess.Popen(argv, cwd=tmp_path, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, env=env)
-    family: set[int] = set()
-    try:
-        family = wait_for(lambda: (lambda c: c if len(c) >= 3 else None)(
-            children_of(proc.pid)), START_BOUND, "the study did not start its workers")
-        time.sleep(3.0)  # the workers are in their first chunks
-        family |= children_of(proc.pid)
+    with running_study(argv, tmp_path, settle=3.0) as (proc, family):  # in first chunks
         proc.send_signal(sig)
         _out, err = proc.communicate(timeout=STOP_BOUND)
         assert proc.returncode == code, err
@@ -140,6 +143,3 @@ def test_a_signal_ends_a_study_on_workers_at_once_and_leaves_nothing(tmp_path, s
         assert b"Traceback" not in err
         wait_for(lambda: not living(family), EXIT_BOUND, "processes survive")
         assert list(tmp_path.iterdir()) == []      # no output, no temporary file
-    finally:
-        for pid in living(family | {proc.pid}):
-            os.kill(pid, signal.SIGKILL)
