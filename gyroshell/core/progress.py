@@ -110,6 +110,15 @@ def check_time(estimate: float, *, size: str, how: str, advice: str) -> None:
             f"{duration(limit)}; {advice} (or set {TIME_LIMIT_VARIABLE}, seconds)")
 
 
+def seconds_per_item(now: float, start: float, first: float | None, done: int) -> float:
+    """Seconds per item of ``done`` items timed from ``start`` to ``now``: with the first
+    item's end known (``first``: it was reported alone) and others after it, from those
+    others only (the first carries the warm-up); else the mean over all."""
+    if first is not None and done > 1:
+        return (now - first) / (done - 1)
+    return (now - start) / done
+
+
 class TimeCheck:
     """The time limit over work of ``total`` similar items done one by one: once the second
     is done, the whole is estimated from it (the first, which carries the warm-up, left
@@ -129,19 +138,18 @@ class TimeCheck:
         self.total, self.unit, self.size, self.advice = int(total), unit, size, advice
         self.parallel = int(parallel)
         self.done = 0
-        self._start = self._first = time.perf_counter()
+        self._start, self._first = time.perf_counter(), None
 
     def __call__(self, n: int = 1) -> None:
         before, self.done = self.done, self.done + int(n)
         if before >= 2:
             return
         now = time.perf_counter()
-        if before == 0:
+        if self.done == 1:
             self._first = now
         if 2 <= self.done < self.total:   # all done: nothing left to refuse
-            warm = before == 1   # the first item's time is known: leave it out
-            per_item = ((now - self._first) / (self.done - 1) if warm
-                        else (now - self._start) / self.done)
+            warm = self._first is not None   # the first item's time is known: left out
+            per_item = seconds_per_item(now, self._start, self._first, self.done)
             how = (f"an estimate from {per_item:.3g} s per {self.unit} measured on the first "
                    f"{self.done} {self.unit}s{', the first left out' if warm else ''}"
                    + ("" if self.parallel == 1 else f", {self.parallel} runs side by side"))
@@ -201,12 +209,12 @@ class LongWork:
         self._next = 1
         self._reports = [int(f * total) for f in REPORT_FRACTIONS if int(f * total) > 0]
         self._stages: StageLines | None = None
-        self._start = self._first = time.perf_counter()
+        self._start, self._first = time.perf_counter(), None
 
     def __enter__(self) -> LongWork:
         self._bar = progress_bar(self.total, self.description, progress=self._progress,
                                  unit=self.unit)
-        self._start = self._first = time.perf_counter()
+        self._start, self._first = time.perf_counter(), None
         return self
 
     def __exit__(self, kind, value, traceback) -> None:
@@ -260,8 +268,7 @@ class LongWork:
             if self.done < min(PROBE_ITEMS, self.total) and elapsed < PROBE_SECONDS:
                 self._next = self.done + 1
                 return
-            per_item = ((now - self._first) / (self.done - 1) if self.done > 1
-                        else elapsed / self.done)
+            per_item = seconds_per_item(now, self._start, self._first, self.done)
             self.assess(per_item, f"the first {self.done} {self.unit}s")
             return
         if self._stages is not None:
