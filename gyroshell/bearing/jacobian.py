@@ -107,8 +107,8 @@ class JacobianPattern:
         self.output = inverse[self.to_half]
 
     def matrix(self, tape_values: np.ndarray, active: np.ndarray, contact: np.ndarray,
-               J_h: sp.csr_matrix, J_p: sp.csr_matrix, free: np.ndarray | None = None
-               ) -> sp.csc_matrix:
+               J_h: sp.csr_matrix, J_p: sp.csr_matrix, free: np.ndarray | None = None,
+               diagonal: np.ndarray | None = None) -> sp.csc_matrix:
         """The folded (ordered) Jacobian, CSC.
 
         Parameters
@@ -123,13 +123,17 @@ class JacobianPattern:
             The film's blocks at this state, in the patterns given at construction.
         free : numpy.ndarray of bool, shape (n_u,), optional
             False where the film saw a spacing floored (no dependence on u there).
+        diagonal : numpy.ndarray, shape (n_u,), optional
+            Added to the diagonal of the tape rows not in the contact set, N/m: a smooth
+            contact law's stiffness −∂f/∂u.
         """
         if self._map is None:
             self.compile()
         h_values = J_h.data[self.h_take]
         if free is not None:
             h_values = h_values * free[self.h_col]
-        values = np.concatenate([tape_values * ~active[self.tape_row],
-                                 np.where(active, contact, 0.0), h_values, J_p.data])
+        added = np.where(active, contact, 0.0 if diagonal is None else diagonal)
+        values = np.concatenate([tape_values * ~active[self.tape_row], added, h_values,
+                                 J_p.data])
         data = np.bincount(self._map, weights=values[self.keep], minlength=len(self.indices))
         return sp.csc_matrix((data, self.indices, self.indptr), shape=(self.size,) * 2)

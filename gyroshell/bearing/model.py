@@ -27,6 +27,7 @@ from ..linalg.factorization import check_pattern_lu
 from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
 from .air import AIR_VISCOSITY, AirParameters
+from .contact import ContactParameters
 from .film import DryFilm, Film
 from .head import (
     ARC_CONTACTS,
@@ -128,6 +129,26 @@ FLAT_START = 0.1
 #: 2° turn of a 1 mm land at 4 m/s; the start need only have the constriction's shape).
 DRY_START = 0.25
 START_SLOPE = 0.25
+
+
+#: The least spacing the film sees under a smooth contact law, in roughnesses σ_s
+#: (:attr:`BearingModel.film_floor`).
+SMOOTH_FILM_FLOOR = 0.05
+#: A smooth contact law is evaluated only where h is below this many roughnesses σ_s:
+#: beyond, the Gaussian summit heights give p_c < 1e-300 Pa (exp(−t²/2) at t = 38).
+CONTACT_REACH = 38.0
+
+
+def _resolved_contact(contact, air: AirParameters):
+    """(contact, air) of the constructor: the contact parameters (default: the hard wall
+    at the air's ``roughness``) and the air with its ``roughness`` set to the contact's
+    σ_s (the one roughness the grid, the starts and the film's floor are sized by)."""
+    if contact is None:
+        return ContactParameters(law="hard", roughness=air.roughness), air
+    contact = validation.instance("contact", contact, ContactParameters)
+    if contact.roughness != air.roughness:
+        air = air.replace(roughness=contact.roughness)
+    return contact, air
 
 
 #: The contact floor of the rounded arcs' nodes other than the contact node, m: far below
@@ -355,11 +376,18 @@ class BearingModel:
                  nx: int | None = None, ny: int | None = None,
                  grading: Grading | str | None = None, dry: bool = False,
                  factorization: str = "auto", corner_contacts=None,
-                 adapt_contacts: bool = True, arc_contact: str = "auto") -> None:
+                 adapt_contacts: bool = True, arc_contact: str = "auto",
+                 contact: ContactParameters | None = None) -> None:
         self.factorization = check_pattern_lu(factorization)
         self.params = validation.instance("params", params, TapeParameters)
         self.air = validation.instance("air", AirParameters() if air is None else air,
                                        AirParameters)
+        self.contact, self.air = _resolved_contact(contact, self.air)
+        #: Whether contact is a smooth law of the spacing (asperities, a measured curve)
+        #: acting wherever the tape is near the head, rather than a hard wall
+        self.smooth_contact = self.contact.law != "hard"
+        #: The smooth law (``pressure(h) -> (p_c, dp_c/dh)``, Pa and Pa/m) or None
+        self.contact_law = self.contact.law_object() if self.smooth_contact else None
         self.dry = validation.boolean("dry", dry)
         self.velocity = _checked_velocity(velocity, self.dry)
         self.head = _resolved_head(wrap_angle, head)
@@ -377,7 +405,13 @@ class BearingModel:
         h_foil, l_film = (0.0, 0.0) if self.dry else (h_foil, l_film)
         self.film_length, self.bending_length = l_film, l_bend
         self.arc_contact = validation.choice("arc_contact", arc_contact, ARC_CONTACTS)
-        self.wrapped_corners = wrapped_corners(self.head, l_bend, self.arc_contact)
+        if self.smooth_contact and self.arc_contact == "point":
+            raise ParameterError(
+                "arc_contact='point' applies to the hard wall (contact law 'hard') only: a "
+                f"smooth contact law ({self.contact.law!r}) acts on every node of a rounded "
+                "corner's arc; use arc_contact='auto' (or 'wrapped')")
+        self.wrapped_corners = wrapped_corners(
+            self.head, l_bend, "wrapped" if self.smooth_contact else self.arc_contact)
         self.h_guess = _FOIL_GUESS * h_foil
         self.span = self._checked_span(span, l_film, l_bend)
         self.adapt_contacts = validation.boolean("adapt_contacts", adapt_contacts)
@@ -561,6 +595,8 @@ class BearingModel:
         next to it, a degenerate contact set Newton cannot settle; they are left free and
         checked after the solve, :meth:`arc_clearance`) and the floor is
         :data:`NO_CONTACT_FLOOR`."""
+        if self.smooth_contact:      # no wall: the contact law acts at every spacing
+            return np.full(self.n_u, -np.inf)
         floor = np.full((self.nx - 1, self.nc), self.air.roughness)
         x = self.x_head[1:-1]
         for k, i in zip(self.rounded_corners, self.contact_nodes, strict=True):
@@ -936,13 +972,14 @@ class BearingModel:
     def rebuilt(self, **changes) -> BearingModel:
         """The same model with some constructor arguments changed (velocity, nx, ny,
         infinitely_wide, head, span, grading, dry, factorization, corner_contacts,
-        adapt_contacts, arc_contact)."""
+        adapt_contacts, arc_contact, contact)."""
         kw = dict(velocity=self.velocity, head=self.head,
                   infinitely_wide=self.infinitely_wide, span=self.span, nx=self.nx,
                   ny=self.ny, grading=self.grading, dry=self.dry,
                   factorization=self.factorization,
                   corner_contacts=self.corner_contacts or None,
-                  adapt_contacts=self.adapt_contacts, arc_contact=self.arc_contact)
+                  adapt_contacts=self.adapt_contacts, arc_contact=self.arc_contact,
+                  contact=self.contact)
         if {"head", "dry", "arc_contact"} & set(changes) or self._regime_changes(changes):
             kw["corner_contacts"] = None        # the new head's (or regime's) own estimate
         kw.update(changes)
@@ -1052,12 +1089,36 @@ class BearingModel:
         spacing was floored (r_p does not depend on them there). Without ``jacobian``
         the blocks are None."""
         H = self.spacing_field(u)
-        floor = 0.5 * self.air.roughness
+        floor = self.film_floor
         clipped = H < floor
         Hf = np.where(clipped, floor, H)
         r, J_p, J_h = self.film_residual_fields(self.pressure_field(p), Hf, phi_old=phi_old,
                                                 dt=dt, jacobian=jacobian)
         return r, J_p, J_h, ~clipped[1:-1, :].ravel()
+
+    @property
+    def film_floor(self) -> float:
+        """The least spacing the film sees, m: half the wall's gap σ (hard wall: reached
+        only during Newton's iterations), or :data:`SMOOTH_FILM_FLOOR` σ_s under a smooth
+        contact law (the asperities carry the tape there; the film's flow through such a
+        gap is negligible, and the rarefaction fits stay within their range)."""
+        return (SMOOTH_FILM_FLOOR if self.smooth_contact else 0.5) * self.air.roughness
+
+    def asperity_force(self, u: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(f, ∂f/∂u): the smooth contact law's nodal force on the tape, N (N/m per unit
+        width if infinitely wide), at the tape unknowns, f = A p_c(h) with A the nodes'
+        control areas (widths) and p_c the law's nominal pressure at the spacing h
+        (:mod:`.contact`); and its derivative by u, N/m (N/m² per unit width), <= 0.
+        Zero for the hard wall."""
+        if not self.smooth_contact:
+            return np.zeros(self.n_u), np.zeros(self.n_u)
+        h = u + self.dry_field[1:-1, :].ravel()
+        near = h < CONTACT_REACH * self.air.roughness
+        f, df = np.zeros(self.n_u), np.zeros(self.n_u)
+        if near.any():
+            p, dp = self.contact_law.pressure(h[near])
+            f[near], df[near] = self.W[near] * p, self.W[near] * dp
+        return f, df
 
     def film_residual_fields(self, P, H, **kw):
         return self.film.residual(P, H, **kw)

@@ -48,6 +48,9 @@ class NewtonInfo:
     seconds: float = 0.0
     continuation: list = field(default_factory=list)
     pseudo_time: list = field(default_factory=list)
+    #: the smooth contact law's scales s of the continuation from the hard wall
+    #: (:mod:`.smooth`; empty if none was needed)
+    law_scales: list = field(default_factory=list)
 
 
 @dataclass(frozen=True)

@@ -117,6 +117,28 @@ def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float,
     return alpha
 
 
+#: A smooth contact law's step may lower a spacing by this many roughnesses σ_s even
+#: where that is more than SPACING_KEEP of it allows: the tape pressed onto its
+#: asperities may reach d < 0 (the summits' mean plane below the head's surface).
+CONTACT_STEP = 2.0
+
+
+def _smooth_step_limit(h: np.ndarray, du: np.ndarray, sigma: float) -> float:
+    """Largest α <= 1 keeping every spacing above the larger drop of h/5 and h −
+    CONTACT_STEP σ_s, and below 5 h + σ_s (a smooth contact law: the film's
+    coefficients vary like h³, the asperity pressure like exp(−h²/2σ_s²))."""
+    alpha = 1.0
+    drop = np.maximum((1 - SPACING_KEEP) * np.maximum(h, 0.0), CONTACT_STEP * sigma)
+    down = du < -drop
+    if down.any():
+        alpha = min(alpha, float(np.min(-drop[down] / du[down])))
+    rise = SPACING_GROWTH * np.maximum(h, 0.0) + sigma
+    up = du > rise
+    if up.any():
+        alpha = min(alpha, float(np.min(rise[up] / du[up])))
+    return alpha
+
+
 def _project(z: np.ndarray, model: BearingModel, sigma: float) -> np.ndarray:
     """z with every spacing raised to at least σ (the feasible set of the contact; the
     rounded arcs' nodes off contact, :attr:`BearingModel.contact_floor`, to the film's
@@ -151,6 +173,8 @@ class _Residual:
         self.model, self.tension, self.transient = model, tension, transient
         self.K = model.K(tension)
         self.c = _contact_scale(model)
+        #: a smooth contact law: no contact set (the law's force is in the tape rows)
+        self.smooth = model.smooth_contact
         self.sigma = model.air.roughness
         #: σ at the nodes that may touch the head (not the rounded arcs' other nodes)
         self.floor = model.contact_floor
@@ -199,6 +223,8 @@ class _Residual:
 
     def tape(self, u, p):
         r_u = self.model.tape_residual(u, p, self.K, self.tension)
+        if self.smooth:
+            r_u = r_u - self.model.asperity_force(u)[0]
         if self.transient is not None:
             r_u = r_u + self.transient.tape_terms(u)[0]
         return r_u
@@ -220,12 +246,16 @@ class _Residual:
             self._last = (z, (res, active, None)) if plain else None
             return res, active, None
         self._film_jacobian_formed(u, p, J_pp)
-        return res, active, Linearization(self, active, J_h, J_pp, free)
+        return res, active, Linearization(self, active, J_h, J_pp, free,
+                                          self.contact_stiffness(u))
 
     def contact_rows(self, u, r_u, r_p, active=None, force=None):
         """(residual, contact set) from the tape's residual ``r_u`` at the tape state
         ``u`` and the film's ``r_p``: the contact set by the rule r_u > c (h − σ) unless
         ``active`` is given, with the nodes ``force`` added; its rows c (h − σ)."""
+        if self.smooth:      # no wall: every tape row is its equation
+            active = np.zeros(u.size, dtype=bool) if active is None else active
+            return np.concatenate([r_u, r_p]), active
         gap = self.c * (u + self.model.dry_field[1:-1, :].ravel() - self.floor)
         if active is None:
             active = r_u > gap
@@ -240,12 +270,25 @@ class _Residual:
         u, p = z[:m.n_u], z[m.n_u:]
         _, J_pp, J_h, free = m.film_linearization(u, p, jacobian=True, **self.film_kw)
         self._film_jacobian_formed(u, p, J_pp)
-        return Linearization(self, active, J_h, J_pp, free)
+        return Linearization(self, active, J_h, J_pp, free, self.contact_stiffness(u))
+
+    def contact_stiffness(self, u) -> np.ndarray | None:
+        """−∂f/∂u of a smooth contact law's nodal forces f at the tape state u (N/m;
+        None for the hard wall): added to the tape rows' diagonal."""
+        return -self.model.asperity_force(u)[1] if self.smooth else None
+
+    def contact_forces(self, z, active) -> np.ndarray:
+        """The head's contact force on each tape node at the converged state z, N (N/m
+        per unit width): the smooth law's, or the tape residual of the contact set."""
+        n_u = self.model.n_u
+        if self.smooth:
+            return self.model.asperity_force(z[:n_u])[0]
+        return np.where(active, self.tape(z[:n_u], z[n_u:]), 0.0)
 
     def with_contact(self, lin: Linearization, active) -> Linearization:
         """``lin`` with the contact set ``active`` (the film's blocks do not depend on
         it: they are reused)."""
-        return Linearization(self, active, lin.J_h, lin.J_p, lin.free)
+        return Linearization(self, active, lin.J_h, lin.J_p, lin.free, lin.diagonal)
 
     def _film_jacobian_formed(self, u, p, J_pp) -> None:
         """Keep |∂r_p/∂p| of the film's new Jacobian at (u, p) and the merit's round-off
@@ -270,6 +313,9 @@ class _Residual:
         if lin.active.any():
             rows_u = (sp.diags((~lin.active).astype(float)) @ rows_u
                       + sp.diags(lin.active * self.c, shape=rows_u.shape))
+        if lin.diagonal is not None:
+            rows_u = rows_u + sp.diags(np.where(lin.active, 0.0, lin.diagonal),
+                                       shape=rows_u.shape)
         film_rows = sp.hstack([m.film_tape_block(lin.J_h, lin.free), lin.J_p], format="csr")
         return sp.vstack([rows_u, film_rows], format=format)
 
@@ -284,7 +330,7 @@ class _Residual:
             return self._factor_pivoted(lin)
         pattern = self._pattern(kind, lin)
         J = pattern.matrix(self.tape_rows.data, lin.active, self.c, lin.J_h, lin.J_p,
-                           None if lin.free.all() else lin.free)
+                           None if lin.free.all() else lin.free, lin.diagonal)
         try:
             if kind in _ORDERED_KINDS:
                 lu = DiagonalPivotLU(J, ordered=True, single=SINGLE_LU)
@@ -347,8 +393,10 @@ class Linearization:
     spacing was floored); :meth:`_Residual.factor` assembles and factors it,
     :meth:`_Residual.jacobian` gives the whole matrix."""
 
-    def __init__(self, F: _Residual, active, J_h, J_p, free) -> None:
+    def __init__(self, F: _Residual, active, J_h, J_p, free, diagonal=None) -> None:
         self.F, self.active, self.J_h, self.J_p, self.free = F, active, J_h, J_p, free
+        #: a smooth contact law's stiffness on the tape rows' diagonal (N/m), or None
+        self.diagonal = diagonal
 
     @property
     def matrix(self) -> sp.csr_matrix:
@@ -443,8 +491,10 @@ def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):
     within NOISE_MULTIPLE of its round-off floor ``noise`` (:meth:`_Residual.noise`).
     Returns (α, relative step size, trial state, trial merit)."""
     n_u = model.n_u
-    # dry (no film, a linear complementarity problem): no h³ coefficients to protect
-    alpha = 1.0 if model.dry else _step_limit(h, dz[:n_u], active, F.sigma, F.floor)
+    # dry (no film, a linear complementarity problem): no h³ coefficients to protect;
+    # a smooth contact law: every spacing kept (no wall to project onto)
+    alpha = (_smooth_step_limit(h, dz[:n_u], F.sigma) if F.smooth
+             else 1.0 if model.dry else _step_limit(h, dz[:n_u], active, F.sigma, F.floor))
     alpha_p = 1.0
     if model.air.compressible:
         p, dp = z[n_u:], dz[n_u:]
@@ -457,7 +507,7 @@ def _line_search(F, model, z, dz, h, active, merit, tol, noise=None):
     if full:     # near round-off the merit can no longer decrease reliably: full steps,
         alpha = alpha_p   # but never to a pressure <= 0 (the compressible film's φ = p h)
     while True:
-        trial = _project(z + alpha * dz, model, F.sigma)
+        trial = z + alpha * dz if F.smooth else _project(z + alpha * dz, model, F.sigma)
         res_t, _, _ = F(trial, jacobian=False)
         merit_t = F.merit(res_t)
         if full or _decreased(merit_t, merit, alpha) or alpha < MIN_STEP:
@@ -682,7 +732,8 @@ def _wrapped_at_speed(model: BearingModel) -> bool:
     over the long 10 mm arcs of a 4 mm land at 4°/4° (no corner refinement) at 0.5 m/s it
     reached another steady state (h(0) = 1.53 µm instead of 0.356 µm, both converged:
     the head has two)."""
-    if not (model.infinitely_wide and model.wrapped_corners) or model.dry:
+    if not (model.infinitely_wide and model.wrapped_corners) or model.dry \
+            or model.smooth_contact:
         return False
     return (model.touching_arcs == model.wrapped_corners
             == wrapped_corners(model.head, model.bending_length, "auto"))
@@ -790,8 +841,7 @@ def newton(model: BearingModel, z0: np.ndarray, *, tension: float | None = None,
             log(f"Newton {info.iterations}: step {alpha * step:.2e} (alpha {alpha:.3g}), "
                 f"residual {it.merit:.2e}, {contacts} nodes in contact")
         if it.converged(active_new, alpha == 1.0 and step < max(tol, floor)):
-            lam = np.where(it.active, F.tape(it.z[:n_u], it.z[n_u:]), 0.0)
-            return it.z, lam, it.active, info
+            return it.z, F.contact_forces(it.z, it.active), it.active, info
         merits.append(it.merit)
         alphas.append(alpha)
         if _stagnated(merits, alphas):
@@ -844,6 +894,10 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
         If neither Newton, the pseudo-time march nor the continuation reaches the state.
     """
     tension, z0 = check_steady_arguments(model, z0, tension, progress, iteration_log)
+    if model.smooth_contact:      # asperities or a measured curve: see .smooth
+        from .smooth import solve_smooth
+
+        return solve_smooth(model, z0, tension, progress, iteration_log)
     if model.adapt_contacts and model.corner_contacts:   # rounded corners: see .corners
         from .corners import solve_adapting_contacts
 
