@@ -49,13 +49,15 @@ from .rarefaction import poiseuille_flow_factor
 
 #: |z| below which B(z) and B'(z) come from their Taylor series (cancellation-free).
 _SERIES_LIMIT = 0.05
-#: Péclet numbers are clipped to ±this (B(600) = 0 to double precision, no overflow).
+#: |z| beyond which B(z) is taken as its limits, B(z) = −z for z < 0 and 0 for z > 0 (exact
+#: to double precision: the neglected terms are below 600 e⁻⁶⁰⁰ ≈ 1e-258), without overflow.
 _PECLET_CLIP = 600.0
 
 
 def bernoulli(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """B(z) = z / (eᶻ − 1) and its derivative B'(z), elementwise (dimensionless)."""
-    z = np.clip(np.asarray(z, dtype=float), -_PECLET_CLIP, _PECLET_CLIP)
+    z_in = np.asarray(z, dtype=float)
+    z = np.clip(z_in, -_PECLET_CLIP, _PECLET_CLIP)
     small = np.abs(z) < _SERIES_LIMIT
     zs = np.where(small, 1.0, z)                   # keeps the direct formula finite
     b = zs / np.expm1(zs)
@@ -63,7 +65,10 @@ def bernoulli(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     z2 = z * z
     b_series = 1 - z / 2 + z2 / 12 * (1 - z2 / 60 * (1 - z2 / 42 * (1 - z2 / 40)))
     db_series = -0.5 + z / 6 * (1 - z2 / 30 * (1 - z2 / 28 * (1 - z2 / 30)))
-    return np.where(small, b_series, b), np.where(small, db_series, db)
+    b, db = np.where(small, b_series, b), np.where(small, db_series, db)
+    low, high = z_in < -_PECLET_CLIP, z_in > _PECLET_CLIP
+    return (np.where(low, -z_in, np.where(high, 0.0, b)),
+            np.where(low, -1.0, np.where(high, 0.0, db)))
 
 
 @dataclass
