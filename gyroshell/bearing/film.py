@@ -105,10 +105,10 @@ def _flow_roughness(air: AirParameters, roughness: float | None) -> float | None
     """The flow factors' σ, checked (m), or None when they are off."""
     if air.flow_factors == "none":
         return None
-    if roughness is None:
-        raise ParameterError(f"roughness (m) must be given with flow_factors "
-                             f"{air.flow_factors!r}, got None")
     low, high = ROUGHNESS_RANGE
+    if roughness is None:
+        raise ParameterError(f"roughness must be given (in [{low:g}, {high:g}] m) with "
+                             f"flow_factors {air.flow_factors!r}, got None")
     return validation.real("roughness", roughness, low=low, high=high, unit="m")
 
 

@@ -289,7 +289,8 @@ def test_general_path_meets_the_first_order_path(compressible, rng):
 
 def test_flow_factors_need_the_roughness():
     air = AirParameters(flow_factors="patir-cheng")
-    with pytest.raises(ParameterError, match="roughness .* must be given"):
+    with pytest.raises(ParameterError,
+                       match=r"roughness must be given \(in \[1e-12, 0.0001\] m\) with flow_f"):
         Film(8, 1, 1e-6, None, air, 1.0)
     with pytest.raises(ParameterError, match="roughness must be in"):
         Film(8, 1, 1e-6, None, air, 1.0, roughness=-1.0)
