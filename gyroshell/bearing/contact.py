@@ -66,7 +66,8 @@ from .air import ROUGHNESS
 
 __all__ = ["ASPERITY_DENSITY", "ASPERITY_RADIUS", "COMPLIANCE_HEADER", "CONTACT_LAWS",
            "CONTACT_MODULUS", "HARD_WALL_GAP", "SUMMIT_ROUGHNESS", "ComplianceCurve",
-           "ContactParameters", "GreenwoodWilliamson", "HardWall", "summit_integral"]
+           "ContactParameters", "GreenwoodWilliamson", "HardWall", "pchip_slopes",
+           "summit_integral"]
 
 #: The contact laws: a smooth asperity law, a hard wall, a measured compliance curve.
 CONTACT_LAWS: tuple[str, ...] = ("asperity", "hard", "compliance")
@@ -350,7 +351,7 @@ class ComplianceCurve:
     Notes
     -----
     Between the points: the monotone C¹ piecewise-cubic Hermite interpolant of Fritsch &
-    Carlson (scipy's PCHIP slopes); if the last pressure is 0 its end slope is set to 0, so
+    Carlson (PCHIP, :func:`pchip_slopes`); if the last pressure is 0 its end slope is set to 0, so
     that the curve meets p = 0 with zero slope (still monotone: a zero slope keeps the
     Fritsch–Carlson conditions). Beyond the table, both C¹:
 
@@ -371,19 +372,14 @@ class ComplianceCurve:
         self._build()
 
     def _build(self) -> None:
-        from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
-
         for a in (self.separations, self.pressures):
             a.setflags(write=False)
         d, p = self.separations, self.pressures
-        slopes = PchipInterpolator(d, p).derivative()(d)
+        widths = np.diff(d)
+        slopes = pchip_slopes(d, p)
         if p[-1] == 0.0:
             slopes[-1] = 0.0
-        self._spline = CubicHermiteSpline(d, p, slopes)
-        self._slope_of = self._spline.derivative()
-        self._end_slopes = (float(slopes[0]), float(slopes[-1]))
-        widths = np.diff(d)
-        self._widths = (float(widths[0]), float(widths[-1]))
+        self._slopes, self._widths = slopes, widths
         self._stiffness = float(np.max(-np.diff(p) / widths))
 
     @classmethod
@@ -485,11 +481,12 @@ class ComplianceCurve:
         d = np.asarray(separation, dtype=float)
         d0, dn = float(self.separations[0]), float(self.separations[-1])
         p0, pn = float(self.pressures[0]), float(self.pressures[-1])
-        (s0, sn), (w0, wn) = self._end_slopes, self._widths
+        s0, sn = float(self._slopes[0]), float(self._slopes[-1])
+        w0, wn = float(self._widths[0]), float(self._widths[-1])
         p, dp = np.zeros(d.shape), np.zeros(d.shape)
         inside = (d >= d0) & (d <= dn)
-        p[inside] = self._spline(d[inside])
-        dp[inside] = self._slope_of(d[inside])
+        if inside.any():
+            p[inside], dp[inside] = self._hermite(d[inside])
         below = d < d0
         if below.any():
             delta = d0 - d[below]
@@ -504,6 +501,21 @@ class ComplianceCurve:
         nan = np.isnan(d)
         p[nan] = dp[nan] = np.nan
         return _scalar(p), _scalar(dp)
+
+    def _hermite(self, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The cubic Hermite interpolant and its slope at d inside the table, in the basis
+        form, which gives the table's value and slope exactly at its points."""
+        knots, values, slopes, widths = (self.separations, self.pressures, self._slopes,
+                                         self._widths)
+        i = np.clip(np.searchsorted(knots, d, side="right") - 1, 0, len(knots) - 2)
+        h = widths[i]
+        s = (d - knots[i]) / h
+        r = 1.0 - s
+        p = (values[i] * (1.0 + 2.0 * s) * r * r + h * slopes[i] * s * r * r
+             + values[i + 1] * s * s * (3.0 - 2.0 * s) - h * slopes[i + 1] * s * s * r)
+        dp = (6.0 * s * r * (values[i + 1] - values[i]) / h + slopes[i] * r * (1.0 - 3.0 * s)
+              + slopes[i + 1] * s * (3.0 * s - 2.0))
+        return p, dp
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, ComplianceCurve):
@@ -527,6 +539,45 @@ class ComplianceCurve:
         self.separations, self.pressures = state["separations"], state["pressures"]
         self.source = state["source"]
         self._build()
+
+
+def pchip_slopes(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The slopes of the monotone piecewise-cubic Hermite interpolant at its points
+    (Fritsch & Carlson, SIAM J. Numer. Anal. 17:238, 1980, with Fritsch & Butland's weighted
+    harmonic mean, as SLATEC's PCHIM and scipy's ``PchipInterpolator``): 0 at a local
+    extremum or a flat neighbour, the three-point shape-preserving formula at the ends.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        Strictly increasing abscissae, at least 2.
+    y : numpy.ndarray
+        Values at x.
+    """
+    h = np.diff(x)
+    m = np.diff(y) / h
+    slopes = np.empty(len(x))
+    if len(x) == 2:
+        slopes[:] = m[0]
+        return slopes
+    w1, w2 = 2.0 * h[1:] + h[:-1], h[1:] + 2.0 * h[:-1]
+    same = m[:-1] * m[1:] > 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mean = (w1 + w2) / (w1 / m[:-1] + w2 / m[1:])
+    slopes[1:-1] = np.where(same, mean, 0.0)
+    slopes[0] = _end_slope(h[0], h[1], m[0], m[1])
+    slopes[-1] = _end_slope(h[-1], h[-2], m[-1], m[-2])
+    return slopes
+
+
+def _end_slope(h0: float, h1: float, m0: float, m1: float) -> float:
+    """The shape-preserving three-point end slope of PCHIP."""
+    s = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
+    if np.sign(s) != np.sign(m0):
+        return 0.0
+    if np.sign(m0) != np.sign(m1) and abs(s) > abs(3.0 * m0):
+        return 3.0 * m0
+    return float(s)
 
 
 def _numbers(cells: list[str]) -> list[float] | None:
