@@ -675,31 +675,30 @@ class ContactParameters:
     Notes
     -----
     The asperity defaults describe a modern thin particulate (BaFe or MP) data tape on a
-    lapped ceramic head. No single paper in reach tabulates all four numbers for today's
-    tapes, so each is a stated choice within published ranges:
+    lapped ceramic head. No source found tabulates all four numbers for today's tapes, so
+    each is a stated assumption, placed by the published work below:
 
-    - σ_s = 6 nm: the brief's range for modern data tapes (5–10 nm of summit-height
-      deviation); data tapes run at h/σ ≥ 4 and the roughness limits their spacing (Bhushan
-      & Tønder, J. Tribol. 111:228, 1989; Wu & Talke, J. Tribol. 118:376, 1996, who fitted
-      GW to measured tape compliance curves); smoother media are the route to lower spacing
-      (IBM Zurich's BaFe prototype media). Assumed: the rms of a modern tape, summits'
-      deviation ≈ surface rms for a broad-band surface.
-    - β = 10 µm: summits of micrometre lateral scale, which deform elastically (Oden,
-      Majumdar, Bhushan et al., J. Tribol. 114:666, 1992: AFM and optical roughness of a
-      tape, curvature strongly dependent on the instrument's resolution; nanometre-scale
-      asperities deform plastically, micrometre-scale ones elastically). Assumed.
-    - η = 6.7e11 1/m² (0.67 per µm²): from η β σ_s = 0.04, inside the 0.03–0.05 Greenwood &
-      Williamson (1966) found for real surfaces.
-    - E* = 5 GPa: the tape coating's modulus of a few GPa (nanoindentation of particulate
-      tapes: Bhushan, *Mechanics and Reliability of Flexible Magnetic Media*, 2nd ed.,
-      2000; Li & Bhushan, Scripta Mater. 42:929, 2000) with ν ≈ 0.3 against a head ~100×
-      stiffer (AlTiC). Assumed value within that range. Bhushan (J. Tribol. 106:26, 1984)
-      shows such tape contacts are elastic, the GW assumption.
+    - σ_s = 6 nm (assumed): summit heights of a modern data tape, 5–10 nm. Data tapes run at
+      h/σ >= 4 and their roughness limits the spacing (Bhushan & Tønder, J. Tribol.
+      111:228, 1989; Wu & Talke, J. Tribol. 118:376, 1996, who fitted GW to measured tape
+      compliance curves); smoother media are the route to lower magnetic spacing (IBM
+      Research Zurich, BaFe prototype media). Summit deviation taken ≈ the surface rms.
+    - β = 10 µm (assumed): summits of micrometre lateral scale, the scale that deforms
+      elastically (Oden, Majumdar, Bhushan et al., J. Tribol. 114:666, 1992: the tape's
+      curvatures depend strongly on the instrument's resolution; nanometre-scale
+      asperities deform plastically, micrometre-scale ones elastically).
+    - η = 6.7e11 1/m² (0.67 per µm²): from η β σ_s = 0.04, inside the 0.03–0.05 Greenwood
+      & Williamson (1966) found for real surfaces.
+    - E* = 5 GPa (assumed): the order of a particulate coating's modulus (nanoindentation
+      of tape layers: Li & Bhushan, Scripta Materialia, 2000, pp. 929–935; flexible media
+      generally: Bhushan, *Mechanics and Reliability of Flexible Magnetic Media*, 2nd ed.,
+      2000), ν ≈ 0.3, the head (AlTiC, ~400 GPa) taken rigid. Such tape contacts are
+      elastic, GW's assumption (Bhushan, J. Tribol. 106:26, 1984).
 
-    With these p_s = (4/3) E* η √β σ_s^{3/2} ≈ 6.5 MPa: a land load of 10–100 kPa (sub-ambient
-    film and wrap) rests at d ≈ 1.6–2.5 σ_s, the h/σ_s ≈ 2–3 of the design note's
-    independent check. Change them for a given tape with its measured values, or give the
-    measured curve itself (``law="compliance"``).
+    With these p_s = (4/3) E* η √β σ_s^{3/2} ≈ 6.6 MPa, and a land load of 10–100 kPa
+    (sub-ambient film and wrap) rests at d ≈ 1.6–2.5 σ_s, near the h/σ_s ≈ 2–3 at which an
+    independent 1-D solver found a flat land resting on its asperities. For a given tape use
+    its measured values, or give its measured curve (``law="compliance"``).
 
     Examples
     --------

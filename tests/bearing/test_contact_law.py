@@ -419,3 +419,12 @@ def test_toml_table_with_units_and_a_curve_beside_the_file(tmp_path):
 def test_toml_table_refusals_name_the_file_and_key(tmp_path, table, message):
     with pytest.raises(ParameterError, match=message):
         ContactParameters.from_table(table, tmp_path, where="run.toml: ")
+
+
+def test_docstring_examples():
+    import doctest
+
+    import gyroshell.bearing.contact as module
+
+    result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
