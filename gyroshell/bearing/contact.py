@@ -31,7 +31,7 @@ t ≈ −55 down; about 1 µs a point. Good enough for the physics, but not unif
 precision, so this module evaluates the defining integral by Gauss quadrature with u^{1/2}
 (u = s − t; u for F_1) in the weight, the integrand's remaining power of u being smooth, so
 that F_{1/2} and F_{3/2} share one set of exponentials. Measured the same way: ≤ 5e-14
-relative on t ∈ [−12, 14] (3e-14 for F_{3/2}), about 2 µs a point for p and dp/dd together:
+relative on t ∈ [−12, 14] (3e-14 for F_{3/2}), about 2.5 µs a point for p and dp/dd together:
 
 - t ≥ 2: u = s − t, F_n = e^{−t²/2} t^{−n−1}/√(2π) ∫_0^∞ v^n e^{−v} e^{−v²/(2t²)} dv
   (v = t u), 40-point generalized Gauss–Laguerre; F_n = 0 beyond t = 40 (it underflows
@@ -211,7 +211,7 @@ class GreenwoodWilliamson:
     d is the separation between the head and the mean plane of the summit heights, m;
     t = d/σ_s. Pressure p(d) = p_s F_{3/2}(t), p_s = (4/3) E* η √β σ_s^{3/2}; fraction of
     the nominal area in real contact π η β σ_s F_1(t); summits touching per unit area
-    η F_0(t) (Greenwood & Williamson 1966, eqs. 6–8 in this notation).
+    η F_0(t) (Greenwood & Williamson 1966, in this notation).
 
     Examples
     --------
