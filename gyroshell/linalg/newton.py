@@ -182,7 +182,8 @@ class NewtonProblem(Protocol):
         rows of the boolean mask ``active`` (unknowns at their bound) replaced by the
         identity: solve returns rhs at those entries (the caller passes 0 there) and solves
         the free rows J_FF δz_F = rhs_F. Called once per iteration (one factorization). A
-        singular J should give a non-finite result (or raise ConvergenceError).
+        singular J may give non-finite values or raise (numpy's LinAlgError, SuperLU's
+        RuntimeError, an ArithmeticError): Newton's step is then not finite.
 
     Optional hooks (looked up with ``getattr``):
 
@@ -359,8 +360,10 @@ def _direction(setup: _Setup, it: _Iterate, report: NewtonReport) -> np.ndarray:
         try:
             solve = setup.problem.linearize(it.z, it.active)
             dz = np.asarray(solve(rhs), dtype=float)
-        except (ArithmeticError, np.linalg.LinAlgError):
-            dz = np.full(setup.n, np.nan)
+        except ConvergenceError:
+            raise
+        except (ArithmeticError, np.linalg.LinAlgError, RuntimeError):  # singular: SuperLU's
+            dz = np.full(setup.n, np.nan)                                # is a RuntimeError
     if dz.shape != (setup.n,) or not np.all(np.isfinite(dz)):
         raise _failure(f"Newton's step is not finite ({_reached(report, it)}): the Jacobian "
                        "is singular or not finite there; check the problem's linearize, or "
