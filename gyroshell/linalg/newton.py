@@ -526,6 +526,20 @@ def newton(problem: NewtonProblem, z0, options: NewtonOptions | None = None, *, 
         attribute holds the report and ``state`` the last iterate.
     ParameterError
         If the options, the problem's bounds or scales, or z0 are invalid.
+
+    Examples
+    --------
+    arctan(z) = 0 from z = 3, where the whole Newton step overshoots to −9.5 and beyond:
+
+    >>> class Arctan:
+    ...     lower, row_scale, variable_scale = None, 1.0, 1.0
+    ...     def residual(self, z):
+    ...         return np.arctan(z)
+    ...     def linearize(self, z, active):
+    ...         return lambda rhs: np.where(active, rhs, rhs * (1.0 + z**2))
+    >>> z, report = newton(Arctan(), [3.0])
+    >>> float(abs(z[0])) < 1e-12, report.converged, report.alphas[0]
+    (True, True, 0.25)
     """
     options = NewtonOptions() if options is None else validation.instance(
         "options", options, NewtonOptions)

@@ -16,6 +16,7 @@
 
 from __future__ import annotations
 
+import doctest
 import math
 import pickle
 
@@ -24,6 +25,7 @@ import pytest
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+import gyroshell.linalg.newton
 from gyroshell import ConvergenceError, ParameterError
 from gyroshell.linalg.newton import NewtonOptions, NewtonReport, newton
 from tests.convergence import observed_order
@@ -122,6 +124,16 @@ class TestObstacle:
                 len(report.active_counts), len(report.alphas)] == [k] * 4
         assert all(0.0 < a <= 1.0 for a in report.alphas) and report.seconds > 0.0
         assert report.residual_norms[-1] < 1e-12 and report.active_counts[0] == 0
+
+    def test_nonmonotone_search_converges_where_a_monotone_one_stagnates(self):
+        """On 2,560 cells the projected steps' contact edges raise the merit: a monotone
+        search stalls, the nonmonotone default (memory 5) converges to the closed form."""
+        problem, x = obstacle(2560, self.DEPTH)
+        with pytest.raises(ConvergenceError, match="stagnated"):
+            newton(problem, np.zeros(x.size), NewtonOptions(memory=1))
+        z, report = newton(problem, np.zeros(x.size))
+        assert np.max(np.abs(z - obstacle_exact(x, self.DEPTH)[0])) <= 2560.0**-2
+        assert max(np.diff(report.residual_norms)) > 0.0      # the merit did rise
 
     def test_log_gets_one_line_per_iteration(self):
         problem, x = obstacle(40, self.DEPTH)
@@ -305,3 +317,8 @@ class TestValidation:
             newton(Problem(np.log, np.eye), [-1.0])
         with pytest.raises(ParameterError, match="options must be a NewtonOptions"):
             newton(good, [1.0], {"tol": 1e-8})
+
+
+def test_docstring_example():
+    result = doctest.testmod(gyroshell.linalg.newton)
+    assert result.attempted > 0 and result.failed == 0
