@@ -11,6 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from ..core import validation
+from .flow_factors import FLOW_FACTOR_MODELS
+from .rarefaction import RAREFACTION_MODELS
 
 #: Accepted ranges (SI): wide around air at 20 °C, narrow enough that the film's scales stay
 #: inside double precision (p_a 1e-300 Pa overflowed the slip factor 6 λ p_a / (p h)).
@@ -40,14 +42,28 @@ class AirParameters:
     ambient_pressure : float
         Ambient pressure p_a, Pa (> 0); the film pressure on every film boundary.
     mean_free_path : float
-        Mean free path λ at p_a, m (>= 0); the slip flow factor is
-        Q = 1 + 6 λ p_a / (p h). ``0`` turns slip off.
+        Mean free path λ at p_a, m (>= 0), in [0, 1e-3]: the local Knudsen number is
+        Kn = λ p_a / (p h) (compressible) or λ / h (incompressible). ``0`` turns
+        rarefaction off whatever the model.
     compressible : bool
         Compressible (isothermal ideal gas, p h transported) or incompressible Reynolds
-        equation (p h → h in the flux and the sources; slip then uses Q = 1 + 6 λ / h).
+        equation (p h → h in the flux and the sources).
     roughness : float
-        Combined surface roughness σ, m (> 0): the spacing never drops below it; where it
-        would, the tape touches the head and a contact force holds it at h = σ.
+        Combined surface roughness σ, m (> 0), in [1e-12, 1e-4]: the spacing never drops
+        below it; where it would, the tape touches the head and a contact force holds it
+        at h = σ.
+    rarefaction : str
+        The Poiseuille flow factor Q(Kn) multiplying the pressure-driven flux
+        (:mod:`.rarefaction`): ``"first-order"`` slip, Q = 1 + 6 Kn (Burgdorfer 1959; good
+        to Kn ≈ 0.5); ``"second-order"`` slip, Q = 1 + 6 Kn + 6 Kn² (Hsia & Domoto 1983;
+        good to Kn ≈ 1); ``"fukui-kaneko"``, the linearized Boltzmann flow rate of Fukui &
+        Kaneko (J. Tribol. 112:78, 1990), valid at every Kn; ``"none"``, Q = 1.
+    flow_factors : str
+        Average-flow factors of the rough film (:mod:`.flow_factors`): ``"patir-cheng"``
+        (Patir & Cheng 1978, 1979; isotropic roughness, the pressure flow factor φ_x(h/σ)
+        and the shear flow factor Φ_s(h/σ), fitted for h/σ > 0.5 and mattering below
+        h/σ ≈ 4; the film then needs its roughness σ, see :class:`.film.Film`) or
+        ``"none"`` (φ_x = 1, Φ_s = 0).
     """
 
     viscosity: float = AIR_VISCOSITY
@@ -55,6 +71,8 @@ class AirParameters:
     mean_free_path: float = MEAN_FREE_PATH
     compressible: bool = True
     roughness: float = ROUGHNESS
+    rarefaction: str = "first-order"
+    flow_factors: str = "none"
 
     def __post_init__(self) -> None:
         put = object.__setattr__
@@ -66,6 +84,8 @@ class AirParameters:
         put(self, "mean_free_path", validation.real(
             "mean_free_path", self.mean_free_path, low=0.0, high=MEAN_FREE_PATH_MAX, unit="m"))
         put(self, "compressible", validation.boolean("compressible", self.compressible))
+        validation.choice("rarefaction", self.rarefaction, RAREFACTION_MODELS)
+        validation.choice("flow_factors", self.flow_factors, FLOW_FACTOR_MODELS)
 
     def replace(self, **changes: object) -> AirParameters:
         """A copy with some fields changed (validated again)."""

@@ -3,25 +3,30 @@
 The film pressure p(x, y, t) in the gap h between the head and the tape moving at V along
 +x obeys
 
-    ∇·(Γ ∇p) − 6μV ∂φ/∂x − 12μ ∂φ/∂t = 0,
+    ∇·(Γ ∇p) − 6μV ∂(φ_c)/∂x − 12μ ∂φ/∂t = 0,
 
-compressible: φ = p h, Γ = Q p h³ = p h³ + 6 λ p_a h² (first-order slip,
-Q = 1 + 6 λ p_a / (p h)); incompressible: φ = h, Γ = Q h³ = h³ + 6 λ h².
+compressible: φ = p h, Γ = p h³ Q(Kn) φ_x(h/σ), Kn = λ p_a / (p h), φ_c = p (h + σ Φ_s);
+incompressible: φ = h, Γ = h³ Q(λ/h) φ_x(h/σ), φ_c = h + σ Φ_s. Q is the rarefaction
+model's Poiseuille flow factor (:mod:`.rarefaction`, ``air.rarefaction``: first-order slip
+Q = 1 + 6 Kn by default, so Γ = p h³ + 6 λ p_a h²); φ_x and Φ_s are Patir & Cheng's
+pressure and shear flow factors of the roughness σ (:mod:`.flow_factors`,
+``air.flow_factors``; φ_x = 1, Φ_s = 0 by default). The roughness is the tape's, the moving
+surface's: its shear flow adds to the Couette flux. The squeeze term carries the nominal h.
 
 Node-centred control volumes on the tape's grid; every face carries one flux
-F = −Γ ∂p/∂n + 6μV φ n_x (12μ times the volume or mass flux per unit face length), added
+F = −Γ ∂p/∂n + 6μV φ_c n_x (12μ times the volume or mass flux per unit face length), added
 to the node on one side and subtracted from the other, so the discrete fluxes balance
 exactly (conservation to round-off). The compressible Couette term is exponentially fitted
 (Scharfetter–Gummel): across each x-face the 1-D flux problem Γ p' − c p = const with
-c = 6μV h̄ is solved exactly,
+c = 6μV (h̄ + σ Φ_s(h̄/σ)) is solved exactly,
 
     F = (Γ/Δx) [B(−Pe) p_L − B(Pe) p_R],    Pe = c Δx / Γ,    B(z) = z / (eᶻ − 1),
 
 which is central (second order) for small cell Péclet numbers and upwind for large ones,
 so the scheme stays monotone at any bearing number. Incompressible Couette terms carry h
 only (a source in p) and are taken at the face centre. Face values of p and h are nodal
-averages. p = p_a is imposed on every film boundary (the ends of the domain and, in 2-D,
-the tape's lateral edges).
+averages (Q, φ_x and Φ_s are taken at the face's p̄ and h̄). p = p_a is imposed on every
+film boundary (the ends of the domain and, in 2-D, the tape's lateral edges).
 
 The grid may be graded (:mod:`.mesh`): each face's flux uses its own node distance, each
 x-face has the length of its node's control width across (and each y-face the control
@@ -36,17 +41,23 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from .air import AirParameters
+from ..core import validation
+from ..core.errors import ParameterError
+from .air import ROUGHNESS_RANGE, AirParameters
+from .flow_factors import pressure_flow_factor, shear_flow_factor
+from .rarefaction import poiseuille_flow_factor
 
 #: |z| below which B(z) and B'(z) come from their Taylor series (cancellation-free).
 _SERIES_LIMIT = 0.05
-#: Péclet numbers are clipped to ±this (B(600) = 0 to double precision, no overflow).
+#: |z| beyond which B(z) is taken as its limits, B(z) = −z for z < 0 and 0 for z > 0 (exact
+#: to double precision: the neglected terms are below 600 e⁻⁶⁰⁰ ≈ 1e-258), without overflow.
 _PECLET_CLIP = 600.0
 
 
 def bernoulli(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """B(z) = z / (eᶻ − 1) and its derivative B'(z), elementwise (dimensionless)."""
-    z = np.clip(np.asarray(z, dtype=float), -_PECLET_CLIP, _PECLET_CLIP)
+    z_in = np.asarray(z, dtype=float)
+    z = np.clip(z_in, -_PECLET_CLIP, _PECLET_CLIP)
     small = np.abs(z) < _SERIES_LIMIT
     zs = np.where(small, 1.0, z)                   # keeps the direct formula finite
     b = zs / np.expm1(zs)
@@ -54,7 +65,10 @@ def bernoulli(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     z2 = z * z
     b_series = 1 - z / 2 + z2 / 12 * (1 - z2 / 60 * (1 - z2 / 42 * (1 - z2 / 40)))
     db_series = -0.5 + z / 6 * (1 - z2 / 30 * (1 - z2 / 28 * (1 - z2 / 30)))
-    return np.where(small, b_series, b), np.where(small, db_series, db)
+    b, db = np.where(small, b_series, b), np.where(small, db_series, db)
+    low, high = z_in < -_PECLET_CLIP, z_in > _PECLET_CLIP
+    return (np.where(low, -z_in, np.where(high, 0.0, b)),
+            np.where(low, -1.0, np.where(high, 0.0, db)))
 
 
 @dataclass
@@ -72,11 +86,34 @@ class FaceFluxes:
     d_h: np.ndarray
 
 
-def face_fluxes(pl, pr, hl, hr, spacing: float, velocity: float, air: AirParameters
-                ) -> FaceFluxes:
+def face_fluxes(pl, pr, hl, hr, spacing: float, velocity: float, air: AirParameters, *,
+                roughness: float | None = None) -> FaceFluxes:
     """Fluxes F through faces between nodes (pl, hl) and (pr, hr) a distance ``spacing`` (m)
     apart, with the tape moving at ``velocity`` (m/s) along the face normal (0 across y).
+
+    ``roughness`` is the σ (m) of the flow factors, needed when ``air.flow_factors`` is
+    ``"patir-cheng"`` (ignored otherwise). Pressures (Pa) must be positive in the
+    compressible film unless the model is first-order slip without flow factors.
     """
+    if air.rarefaction == "first-order" and air.flow_factors == "none":
+        return _slip_fluxes(pl, pr, hl, hr, spacing, velocity, air)
+    return _model_fluxes(pl, pr, hl, hr, spacing, velocity, air,
+                         _flow_roughness(air, roughness))
+
+
+def _flow_roughness(air: AirParameters, roughness: float | None) -> float | None:
+    """The flow factors' σ, checked (m), or None when they are off."""
+    if air.flow_factors == "none":
+        return None
+    low, high = ROUGHNESS_RANGE
+    if roughness is None:
+        raise ParameterError(f"roughness must be given (in [{low:g}, {high:g}] m) with "
+                             f"flow_factors {air.flow_factors!r}, got None")
+    return validation.real("roughness", roughness, low=low, high=high, unit="m")
+
+
+def _slip_fluxes(pl, pr, hl, hr, spacing, velocity, air) -> FaceFluxes:
+    """First-order slip, smooth surfaces: Γ = p h³ + 6 λ p_a h² (or h³ + 6 λ h²)."""
     mu, lam, pa = air.viscosity, air.mean_free_path, air.ambient_pressure
     h = 0.5 * (hl + hr)
     c = 6.0 * mu * velocity * h
@@ -102,6 +139,51 @@ def face_fluxes(pl, pr, hl, hr, spacing: float, velocity: float, air: AirParamet
     d_pl = g * b_minus + f_gamma * dgamma_dp
     d_pr = -g * b_plus + f_gamma * dgamma_dp
     d_h = f_gamma * dgamma_dh + f_c * 3.0 * mu * velocity
+    return FaceFluxes(flux, d_pl, d_pr, d_h)
+
+
+def _model_fluxes(pl, pr, hl, hr, spacing, velocity, air, sigma) -> FaceFluxes:
+    """Any rarefaction model and flow factors: Γ = p h³ Q(Kn) φ_x (or h³ Q(λ/h) φ_x) and
+    the Couette flux 6μV (h̄ + σ Φ_s) (times p in the compressible film)."""
+    mu, lam, pa = air.viscosity, air.mean_free_path, air.ambient_pressure
+    h = 0.5 * (hl + hr)
+    if sigma is None:
+        phi, dphi, h_c, dhc = 1.0, 0.0, h, 1.0
+    else:
+        phi, dphi = pressure_flow_factor(air.flow_factors, h / sigma)
+        dphi = dphi / sigma
+        shear, dshear = shear_flow_factor(air.flow_factors, h / sigma)
+        h_c, dhc = h + sigma * shear, 1.0 + dshear
+    c = 6.0 * mu * velocity * h_c
+    dc_dh = 3.0 * mu * velocity * dhc                 # by either nodal spacing
+    if not air.compressible:
+        kn = lam / h if air.rarefaction != "none" else np.zeros_like(h)
+        q, dq = poiseuille_flow_factor(air.rarefaction, kn)
+        gamma = h**3 * q * phi
+        # dKn/dh̄ = −Kn/h̄
+        dgamma_dh = 0.5 * (h**2 * (3.0 * q - dq * kn) * phi + h**3 * q * dphi)
+        grad = (pr - pl) / spacing
+        flux = -gamma * grad + c
+        d_h = -dgamma_dh * grad + dc_dh
+        g = gamma / spacing
+        return FaceFluxes(flux, g, -g, d_h)
+    p = 0.5 * (pl + pr)
+    kn = lam * pa / (p * h) if air.rarefaction != "none" else np.zeros_like(p * h)
+    q, dq = poiseuille_flow_factor(air.rarefaction, kn)
+    gamma = p * h**3 * q * phi
+    peclet = c * spacing / gamma
+    b_plus, db_plus = bernoulli(peclet)
+    b_minus, db_minus = bernoulli(-peclet)
+    g = gamma / spacing
+    flux = g * (b_minus * pl - b_plus * pr)
+    f_gamma = ((b_minus + peclet * db_minus) * pl - (b_plus - peclet * db_plus) * pr) / spacing
+    f_c = -db_minus * pl - db_plus * pr
+    # dKn/dp̄ = −Kn/p̄, dKn/dh̄ = −Kn/h̄; each nodal p or h moves p̄ or h̄ by one half
+    dgamma_dp = 0.5 * h**3 * (q - dq * kn) * phi
+    dgamma_dh = 0.5 * (p * h**2 * (3.0 * q - dq * kn) * phi + p * h**3 * q * dphi)
+    d_pl = g * b_minus + f_gamma * dgamma_dp
+    d_pr = -g * b_plus + f_gamma * dgamma_dp
+    d_h = f_gamma * dgamma_dh + f_c * dc_dh
     return FaceFluxes(flux, d_pl, d_pr, d_h)
 
 
@@ -145,6 +227,10 @@ class Film:
     air : AirParameters
     velocity : float
         Tape speed V, m/s.
+    roughness : float or None
+        RMS roughness σ of the tape's surface seen by the flow factors, m (in
+        [1e-12, 1e-4]); required when ``air.flow_factors`` is ``"patir-cheng"``, ignored
+        otherwise.
 
     Notes
     -----
@@ -154,8 +240,9 @@ class Film:
     """
 
     def __init__(self, nx: int, nc: int, hx: float, hy: float | None, air: AirParameters,
-                 velocity: float) -> None:
+                 velocity: float, *, roughness: float | None = None) -> None:
         self.nx, self.nc = nx, nc
+        self.roughness = _flow_roughness(air, roughness)
         self.hx = np.broadcast_to(np.asarray(hx, dtype=float), (nx,)).copy()
         self.hy = (None if hy is None
                    else np.broadcast_to(np.asarray(hy, dtype=float), (nc - 1,)).copy())
@@ -222,10 +309,10 @@ class Film:
         """Face fluxes of nodal fields P (Pa) and H (m), shape (nx + 1, nc): x-faces first,
         then (2-D) y-faces; each per unit face length."""
         out = [face_fluxes(P[:-1], P[1:], H[:-1], H[1:], self.hx[:, None], self.velocity,
-                           self.air)]
+                           self.air, roughness=self.roughness)]
         if self.nc > 1:
             out.append(face_fluxes(P[:, :-1], P[:, 1:], H[:, :-1], H[:, 1:],
-                                   self.hy[None, :], 0.0, self.air))
+                                   self.hy[None, :], 0.0, self.air, roughness=self.roughness))
         return out
 
     def transported(self, P: np.ndarray, H: np.ndarray) -> np.ndarray:
