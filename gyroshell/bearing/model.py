@@ -134,9 +134,24 @@ START_SLOPE = 0.25
 #: The least spacing the film sees under a smooth contact law, in roughnesses σ_s
 #: (:attr:`BearingModel.film_floor`).
 SMOOTH_FILM_FLOOR = 0.05
+#: Under a smooth contact law the corners' geometric refinement (:func:`corner_grading`)
+#: is sized by this many roughnesses σ_s: the asperities spread a corner's load over
+#: the foundation length (D/k_c)^(1/4) (tens of µm, k_c = −dp_c/dh), and the film's
+#: constriction is σ_s/α long (about 1 µm): the hard wall's nm cells, whose plate rows
+#: reach a condition number near 1/ε, are not needed.
+SMOOTH_CORNER_SCALE = 10.0
 #: A smooth contact law is evaluated only where h is below this many roughnesses σ_s:
 #: beyond, the Gaussian summit heights give p_c < 1e-300 Pa (exp(−t²/2) at t = 38).
 CONTACT_REACH = 38.0
+
+
+def smooth_floor(h: np.ndarray, floor: float) -> tuple[np.ndarray, np.ndarray]:
+    """(h_f, dh_f/dh): a smooth maximum of h and ``floor`` (m), h_f = f + ((h − f) +
+    √((h − f)² + f²))/2, which is f/2 + h/2 ... h for h ≫ f (h_f − h = f²/(4 (h − f))
+    to leading order) and tends to f as h → −∞."""
+    s = h - floor
+    root = np.sqrt(s * s + floor * floor)
+    return floor + 0.5 * (s + root), 0.5 * (1.0 + s / root)
 
 
 def _resolved_contact(contact, air: AirParameters):
@@ -387,7 +402,7 @@ class BearingModel:
         #: acting wherever the tape is near the head, rather than a hard wall
         self.smooth_contact = self.contact.law != "hard"
         #: The smooth law (``pressure(h) -> (p_c, dp_c/dh)``, Pa and Pa/m) or None
-        self.contact_law = self.contact.law_object() if self.smooth_contact else None
+        self.contact_law = self.contact.law_object if self.smooth_contact else None
         self.dry = validation.boolean("dry", dry)
         self.velocity = _checked_velocity(velocity, self.dry)
         self.head = _resolved_head(wrap_angle, head)
@@ -639,7 +654,8 @@ class BearingModel:
         if (self.cylindrical or self.dry
                 or (self._all_corners_wrapped() and not self.touching_arcs)):
             return {"corner_ratio": 1.0, "corner_width": None}
-        return corner_grading(self.air.roughness,
+        return corner_grading(self.air.roughness * (SMOOTH_CORNER_SCALE if self.smooth_contact
+                                                    else 1.0),
                               self._zone_spacing(resolution) * self.grading.x_ratio)
 
     @property
@@ -1077,7 +1093,7 @@ class BearingModel:
         :meth:`film_residual` and Newton's stacked Jacobian
         (``_Residual.jacobian`` in :mod:`.steady`)."""
         J_u = J_h[:, self.nc:self.nc + self.n_u]
-        if not free.all():
+        if free.dtype != bool or not free.all():
             J_u = J_u @ sp.diags(free.astype(float))
         return J_u.tocsr()
 
@@ -1090,11 +1106,18 @@ class BearingModel:
         the blocks are None."""
         H = self.spacing_field(u)
         floor = self.film_floor
-        clipped = H < floor
-        Hf = np.where(clipped, floor, H)
+        if self.smooth_contact:
+            # a smooth floor (C∞): under a smooth law the tape presses through it at the
+            # corners, and a kink there makes Newton cycle; h_f − h < 3e-4 h above 10 f
+            Hf, slope = smooth_floor(H, floor)
+            free = slope[1:-1, :].ravel()
+        else:
+            clipped = H < floor
+            Hf = np.where(clipped, floor, H)
+            free = ~clipped[1:-1, :].ravel()
         r, J_p, J_h = self.film_residual_fields(self.pressure_field(p), Hf, phi_old=phi_old,
                                                 dt=dt, jacobian=jacobian)
-        return r, J_p, J_h, ~clipped[1:-1, :].ravel()
+        return r, J_p, J_h, free
 
     @property
     def film_floor(self) -> float:

@@ -1,17 +1,24 @@
 """Steady states under a smooth contact law (asperities or a measured compliance curve).
 
 A smooth law p_c(h) acts on every tape node near the head (:meth:`.model.BearingModel.
-asperity_force`): no contact set, no wall. Its stiffness −∂p_c/∂h grows like
-exp(h²/2σ_s²) as the tape comes down onto its summits, and at a sharp corner the tape's
-point load must spread over a zone a few σ_s/α wide (α the angle between tape and head):
-from a start far from that state Newton's steps are cut to nothing by its line search.
+asperity_force`): no contact set, no wall, and one problem (:class:`.problem.
+SteadyProblem`) solved by one generic Newton (:func:`gyroshell.linalg.newton.newton`).
+What remains is the start. Three paths are tried in turn, within one budget of Newton
+iterations (:class:`SolverOptions`), every iteration counted in the solution's
+:class:`~.results.NewtonInfo`:
 
-The solve therefore starts from the hard wall's state on the same grid (the limit
-σ_s → 0 of the law, with the wall at σ_s: the tape's shape away from the contact zones is
-nearly right) and follows the law scaled by s, s p_c(h), from s = 100 (:data:`LAW_SCALE_STARTS`)
-down to s = 1 (:func:`law_continuation`): at large s the law is a stiff wall a few σ_s
-above the head, and each stage lowers it by about σ_s √(2 ln(factor)); a stage that fails
-is retried with the factor's square root, down to :data:`LAW_MIN_FACTOR`.
+1. **Direct**: Newton from the flying start (:func:`flying_start`: the flexible-foil or
+   corner start, tapered to the pinned ends).
+2. **The law's scale**: the hard wall's state at the roughness σ_s on the same grid
+   (:func:`hard_wall_state`; the law's limit σ_s → 0) continued along the law scaled by
+   s, s p_c(h), from s = 100 (a stiff wall a few σ_s above) down to s = 1
+   (:func:`gyroshell.linalg.continuation.continuation`).
+3. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
+   without the film), continued in V up from a thousandth of the speed.
+
+The first two are cheap where they work (tens of iterations); the third follows the
+tape's own path as the film builds up under it, through the collapse of the land's tents
+onto their asperities at low speed (contact recording).
 """
 
 from __future__ import annotations
@@ -19,29 +26,120 @@ from __future__ import annotations
 import copy
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
+from ..core import validation
 from ..core.errors import ConvergenceError
+from ..linalg.continuation import StepController, continuation
+from ..linalg.newton import NewtonOptions, NewtonReport, newton
+from .film import DryFilm
 from .model import BearingModel
+from .problem import SteadyProblem
 from .results import BearingSolution, NewtonInfo
 
-#: The law's scales at the first stage, tried in turn: at s the law is a stiff wall about
-#: σ_s √(2 ln s) above where it carries the same load at s = 1. Measured (1 mm land,
-#: 2°/2°, Table 1 tape, 1-D): from 100, 0.5-4 m/s reached s = 1 in 32-91 iterations; from
-#: 1 (the law itself) Newton stagnated at the corners; from 1e8 it failed at 0.5-1 m/s.
-LAW_SCALE_STARTS = (1e2, 1e4, 1e8)
-#: The ratio between stages' scales ...
-LAW_FACTOR = 10.0
-#: ... cut to its square root after a failed stage, down to this ratio.
-LAW_MIN_FACTOR = 1.05
-#: Newton iterations per stage at most, and in all stages together.
-STAGE_ITERATIONS = 40
-TOTAL_ITERATIONS = 600
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """The one set of options of the steady solve under a smooth contact law.
+
+    Parameters
+    ----------
+    tol : float
+        Relative Newton step at which a solve has converged (of the spacing scale, m,
+        and the wrap pressure, Pa).
+    max_iterations : int
+        Newton iterations of the direct path.
+    stage_iterations : int
+        Newton iterations of one continuation stage.
+    budget : int
+        Newton iterations of the whole solve, every path and stage together: a solve
+        that has not converged within it stops with a ConvergenceError.
+    law_scale : float
+        The law's scale at the first stage of the law's continuation (> 1).
+    speed_fraction : float
+        The first speed of the continuation in V, as a fraction of V, in (0, 1).
+    """
+
+    tol: float = 1e-8
+    max_iterations: int = 40
+    stage_iterations: int = 25
+    budget: int = 400
+    law_scale: float = 100.0
+    speed_fraction: float = 1e-3
+
+    def __post_init__(self) -> None:
+        put = object.__setattr__
+        put(self, "tol", validation.real("tol", self.tol, low=0.0, high=1.0, low_open=True))
+        for name in ("max_iterations", "stage_iterations", "budget"):
+            put(self, name, validation.integer(name, getattr(self, name), low=1))
+        put(self, "law_scale", validation.real("law_scale", self.law_scale, low=1.0,
+                                               low_open=True))
+        put(self, "speed_fraction", validation.real(
+            "speed_fraction", self.speed_fraction, low=0.0, high=1.0, low_open=True,
+            high_open=True))
+
+
+class _Budget:
+    """The Newton iterations left, and the record every solve adds to."""
+
+    def __init__(self, options: SolverOptions, info: NewtonInfo, log) -> None:
+        self.options, self.info, self.log = options, info, log
+
+    @property
+    def left(self) -> int:
+        return self.options.budget - self.info.iterations
+
+    def solve(self, model: BearingModel, z0: np.ndarray, limit: int, *, tension=None
+              ) -> np.ndarray:
+        """Newton on ``model`` from z0, at most ``limit`` iterations (and what is left);
+        each iteration recorded in the NewtonInfo."""
+        limit = min(limit, self.left)
+        if limit < 1:
+            raise ConvergenceError(f"the budget of {self.options.budget} Newton iterations "
+                                   "is spent")
+        report = NewtonReport()
+        options = NewtonOptions(tol=self.options.tol, max_iterations=limit)
+        try:
+            z, report = newton(SteadyProblem(model, tension=tension), z0, options,
+                               report=report, log=self.log)
+        finally:
+            self._record(model, report)
+        return z
+
+    def _record(self, model: BearingModel, report: NewtonReport) -> None:
+        info = self.info
+        info.iterations += report.iterations
+        info.step_norms += report.step_norms
+        info.residual_norms += report.residual_norms
+        info.contact_nodes += [0] * report.iterations
+
+
+def flying_start(model: BearingModel) -> np.ndarray:
+    """The model's own start (:meth:`BearingModel.initial_state`) with u tapered to 0
+    over the outer half of each span (C¹): u = 0 at the pinned ends, where the start's
+    spacing above the dry gap would otherwise kink the tape."""
+    z = np.array(model.initial_state(), dtype=float)
+    x = model.x[1:-1]
+    t = np.clip(np.minimum(x, model.length - x) / (0.5 * model.span), 0.0, 1.0)
+    z[:model.n_u] *= np.repeat(t * t * (3.0 - 2.0 * t), model.nc)
+    return z
+
+
+def without_film(model: BearingModel) -> BearingModel:
+    """``model`` on the same grid with no film (p = p_a): the tape resting on the head's
+    asperities at the model's T − ρV² (a shallow copy sharing grid and operators)."""
+    out = copy.copy(model)
+    out.film = DryFilm(model.nx, model.nc, np.diff(model.x),
+                       None if model.infinitely_wide else np.diff(model.y), model.air,
+                       model.velocity)
+    out.dry = True
+    return out
 
 
 class _ScaledLaw:
-    """The contact law times s (pressure and derivative)."""
+    """A contact law times s (pressure and derivative)."""
 
     def __init__(self, law, scale: float) -> None:
         self.law, self.scale = law, scale
@@ -51,9 +149,8 @@ class _ScaledLaw:
         return self.scale * p, self.scale * dp
 
 
-def scaled_model(model: BearingModel, scale: float) -> BearingModel:
-    """``model`` with its contact law multiplied by ``scale`` (a shallow copy sharing the
-    grid, operators and film)."""
+def scaled_law(model: BearingModel, scale: float) -> BearingModel:
+    """``model`` with its contact law multiplied by ``scale`` (a shallow copy)."""
     if scale == 1.0:
         return model
     out = copy.copy(model)
@@ -61,97 +158,111 @@ def scaled_model(model: BearingModel, scale: float) -> BearingModel:
     return out
 
 
-def hard_wall_start(model: BearingModel, tension, progress, iteration_log) -> np.ndarray:
-    """[u, p] of the hard wall at the roughness σ_s on ``model``'s grid (its rounded arcs
-    all resolved, as the smooth law needs them): the start of :func:`law_continuation`."""
+def dry_state(model: BearingModel, budget: _Budget, tension=None) -> np.ndarray:
+    """[u, p_a]: the tape at rest on its asperities on ``model``'s grid, by Newton from
+    the dry start with the sharp corners held at σ_s (:meth:`BearingModel.dry_start`)."""
+    dry = without_film(model)
+    return budget.solve(dry, dry.dry_start(), budget.options.max_iterations,
+                        tension=tension)
+
+
+def hard_wall_state(model: BearingModel, tension, progress) -> np.ndarray:
+    """[u, p] of the hard wall at the roughness σ_s on ``model``'s grid (every rounded
+    arc resolved, as the smooth law needs), interpolated if its grid differs."""
     from .contact import ContactParameters
     from .steady import interpolated_state, solve_steady
 
     hard = model.rebuilt(contact=ContactParameters(law="hard",
-                                                   roughness=model.contact.roughness),
+                                                   roughness=model.air.roughness),
                          arc_contact="wrapped")
     if progress is not None:
         progress("start: the hard wall at the roughness on the same grid")
-    sol = solve_steady(hard, tension=tension, progress=progress,
-                       iteration_log=iteration_log)
-    if np.array_equal(hard.x, model.x):
-        return np.concatenate([sol.u, sol.p]), sol.info
-    return interpolated_state(model, sol), sol.info
+    sol = solve_steady(hard, tension=tension)
+    if np.array_equal(hard.x, model.x) and hard.nc == model.nc:
+        return np.concatenate([sol.u, sol.p])
+    return interpolated_state(model, sol)
 
 
-def law_continuation(model: BearingModel, z0: np.ndarray, *, tension=None,
-                     info: NewtonInfo, progress=None, iteration_log=None,
-                     scale: float | None = None):
-    """Newton along the law's scale s from ``scale`` down to 1, each stage from the last
-    state (see the module notes). Returns (z, contact forces, info); raises
-    ConvergenceError naming the scale reached and what to try."""
-    from .steady import newton
+def _law_path(model, budget, tension, progress) -> np.ndarray:
+    """Path 2: the hard wall's state, then the law's scale from ``law_scale`` to 1."""
+    z = hard_wall_state(model, tension, progress)
 
-    scale = LAW_SCALE_STARTS[0] if scale is None else scale
-    z, s, factor, budget = np.array(z0, dtype=float), scale, LAW_FACTOR, TOTAL_ITERATIONS
-    lam = None
-    while True:
-        stage = scaled_model(model, s)
+    def at(scale, state):
         if progress is not None:
-            progress(f"contact law scaled by {s:.3g}")
-        try:
-            z1, lam, _, info = newton(stage, z, tension=tension, info=info,
-                                      log=iteration_log,
-                                      max_iterations=min(STAGE_ITERATIONS, budget))
-        except ConvergenceError as exc:
-            if s == scale or factor <= LAW_MIN_FACTOR or info.iterations >= budget:
-                info.law_scales.clear()
-                raise ConvergenceError(
-                    f"the smooth contact law was not reached: stopped at the law scaled "
-                    f"by {s:.3g} ({exc}); try a finer grid, or contact='hard'") from None
-            s = min(s * factor, scale)            # back to the last scale reached
-            factor = math.sqrt(factor)
-            s = max(s / factor, 1.0)
-            continue
-        z = z1
-        info.law_scales.append(s)
-        if s == 1.0:
-            return z, lam, info
-        s = max(s / factor, 1.0)
+            progress(f"contact law scaled by {scale:.3g}")
+        return budget.solve(scaled_law(model, scale), state,
+                            budget.options.stage_iterations, tension=tension), None
+
+    z, stages = continuation(at, budget.options.law_scale, 1.0, z,
+                             controller=StepController(initial=10.0, growth=1.0,
+                                                       minimum=1.05, max_stages=40))
+    budget.info.law_scales += [s for s, _ in stages]
+    return z
 
 
-def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log
-                 ) -> BearingSolution:
-    """The steady state under the model's smooth contact law: Newton from ``z0`` if
-    given; else (or if that fails) the hard wall's state on the same grid, then the
-    continuation in the law's scale."""
-    from .steady import check_cavitation, newton
+def _speed_path(model, budget, tension, progress) -> np.ndarray:
+    """Path 3: the dry tape on its asperities, then V up from ``speed_fraction`` V."""
+    z = dry_state(model, budget, tension)
 
+    def at(v, state):
+        if progress is not None:
+            progress(f"continuation in V: {v:.4g} m/s")
+        stage = model if v == model.velocity else model.at_velocity(v)
+        return budget.solve(stage, state, budget.options.stage_iterations,
+                            tension=tension), None
+
+    v0 = model.velocity * budget.options.speed_fraction
+    z, stages = continuation(at, v0, model.velocity, z,
+                             controller=StepController(initial=3.0, growth=1.5, cut=0.5,
+                                                       minimum=1.01, max_stages=80))
+    budget.info.continuation += [v for v, _ in stages]
+    return z
+
+
+def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
+                 options: SolverOptions | None = None) -> BearingSolution:
+    """The steady state under the model's smooth contact law (see the module notes):
+    Newton from ``z0`` (default :func:`flying_start`), then the law's and the speed's
+    continuations, within ``options.budget`` Newton iterations.
+
+    Raises
+    ------
+    ConvergenceError
+        Naming each path's failure and what to try.
+    """
+    from .steady import check_cavitation
+
+    options = SolverOptions() if options is None else options
     start = time.perf_counter()
     info = NewtonInfo()
-    z = lam = None
-    if z0 is not None:
+    budget = _Budget(options, info, iteration_log)
+    failures = []
+    z = None
+    paths = (("direct", lambda: budget.solve(model, flying_start(model) if z0 is None
+                                             else z0, options.max_iterations,
+                                             tension=tension)),
+             ("the law's scale from the hard wall",
+              lambda: _law_path(model, budget, tension, progress)),
+             ("the speed from the dry tape",
+              lambda: _speed_path(model, budget, tension, progress)))
+    for name, path in paths:
+        if budget.left < 1:
+            break
         try:
-            z, lam, _, info = newton(model, z0, tension=tension, info=info,
-                                     log=iteration_log)
+            z = path()
+            break
         except ConvergenceError as exc:
+            failures.append(f"{name}: {exc}")
             if progress is not None:
-                progress(f"{exc}: the hard wall's state, then the law's continuation")
+                progress(f"{name} did not reach the state ({exc})")
     if z is None:
-        z_hard, hard_info = hard_wall_start(model, tension, progress, iteration_log)
-        info.iterations += hard_info.iterations
-        info.step_norms += hard_info.step_norms
-        info.residual_norms += hard_info.residual_norms
-        info.contact_nodes += hard_info.contact_nodes
-        info.continuation += hard_info.continuation
-        info.pseudo_time += hard_info.pseudo_time
-        for k, scale in enumerate(LAW_SCALE_STARTS):
-            try:
-                z, lam, info = law_continuation(model, z_hard, tension=tension, info=info,
-                                                progress=progress,
-                                                iteration_log=iteration_log, scale=scale)
-                break
-            except ConvergenceError as exc:
-                if k == len(LAW_SCALE_STARTS) - 1 or info.iterations >= TOTAL_ITERATIONS:
-                    raise
-                if progress is not None:
-                    progress(f"{exc}: starting the law's continuation from "
-                             f"{LAW_SCALE_STARTS[k + 1]:.3g}")
+        raise ConvergenceError(
+            f"no steady state reached within {options.budget} Newton iterations "
+            f"({info.iterations} taken): " + "; ".join(failures)
+            + "; try a finer grid (nx), a start (z0) from a neighbouring state, or "
+              "contact='hard'")
     info.seconds = time.perf_counter() - start
     check_cavitation(model, z[model.n_u:])
+    lam = SteadyProblem(model, tension=tension).contact_forces(
+        z, np.zeros(z.size, dtype=bool))
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)

@@ -330,7 +330,8 @@ class _Residual:
             return self._factor_pivoted(lin)
         pattern = self._pattern(kind, lin)
         J = pattern.matrix(self.tape_rows.data, lin.active, self.c, lin.J_h, lin.J_p,
-                           None if lin.free.all() else lin.free, lin.diagonal)
+                           None if lin.free.dtype == bool and lin.free.all() else lin.free,
+                           lin.diagonal)
         try:
             if kind in _ORDERED_KINDS:
                 lu = DiagonalPivotLU(J, ordered=True, single=SINGLE_LU)
