@@ -21,10 +21,10 @@ READING_KEYS = ("transducer_lines", "tents", "corner_forces", "land_forces", "vi
                 "friction_drag", "drag", "tension_rise", "tension_ratio", "friction")
 
 
-def _cylinder(nx=None, *, wide=True, **kw):
+def _cylinder(nx=None, *, wide=True, velocity=4.0, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
-        return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
+        return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=velocity,
                             wrap_angle=math.radians(15), infinitely_wide=wide, nx=nx, **kw)
 
 
@@ -155,6 +155,34 @@ def test_flying_flat_head_readings_keep_their_books():
     i = int(np.argmax(sol.contact_pressure[:, 0]))
     assert sol.contact_pressure[i, 0] * sol.model.film.cell_area[i, 0] == pytest.approx(
         max(s.force for s in sol.corner_forces), rel=1e-14)
+
+
+def test_a_reversed_tape_reads_as_the_mirrored_head_run_forward():
+    """V < 0 over wraps (1°, 3°) is the forward run over the mirrored head (3°, 1°): the
+    same viscous and friction drag, both against the motion, and the same tension ratio
+    above 1 (the outgoing tension is the higher one whichever way the tape runs). The
+    reversed cylinder's ratio is its forward one. Friction alone (a dry reversed tape):
+    the capstan law 1 + μ_f θ (T − ρV²)/T to first order."""
+    def flat(t_in, t_out, velocity, **kw):
+        head = FlatHead((Module(1e-3),), t_in, t_out, transducers=(0.0,), friction=0.3)
+        return solve_steady(BearingModel(TAPE, AirParameters(), velocity=velocity,
+                                         head=head, infinitely_wide=True, **kw))
+    reversed_, mirrored = flat(1 * DEG, 3 * DEG, -4.0), flat(3 * DEG, 1 * DEG, 4.0)
+    assert mirrored.viscous_drag > 0 and mirrored.friction_drag > 0
+    for name in ("viscous_drag", "friction_drag", "drag", "tension_ratio"):
+        assert getattr(reversed_, name) == pytest.approx(getattr(mirrored, name), rel=1e-6)
+    assert reversed_.tension_ratio > 1
+    backwards, forwards = solve_steady(_cylinder(velocity=-4.0)), solve_steady(_cylinder())
+    assert backwards.viscous_drag == pytest.approx(forwards.viscous_drag, rel=1e-6)
+    assert backwards.tension_ratio == pytest.approx(forwards.tension_ratio, rel=1e-12)
+    assert backwards.tension_ratio > 1
+    lam = math.sqrt(TAPE.D / TAPE.tension)
+    dry = flat(1 * DEG, 3 * DEG, -4.0, dry=True, span=40 * lam)
+    moving = TAPE.tension - TAPE.density * 16.0
+    turn = dry.contact_force / moving
+    assert turn == pytest.approx(4 * DEG, rel=1 / 20)
+    assert dry.tension_ratio == pytest.approx(1 + 0.3 * turn * moving / TAPE.tension,
+                                              rel=1e-15)
 
 
 @pytest.mark.slow
