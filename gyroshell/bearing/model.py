@@ -392,7 +392,7 @@ class BearingModel:
             self.grading = replace(self.grading, **self._corner_grading(resolution))
         x_line = self._x_count(nx, l_film, resolution, span is not None)
         ny, y_line = self._y_grid(ny)
-        budget.check_steady(self.nx, ny)          # before any array of the grid's size
+        budget.check_steady(self.nx, ny, self.factorization)   # before any array of that size
         self.x = self._x_nodes(x_line)
         self._check_film_resolved(l_film, x_line)
         tape_params = (params if self.cylindrical else params.replace(
