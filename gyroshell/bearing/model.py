@@ -35,6 +35,7 @@ from .head import (
     Cylinder,
     FlatHead,
     Head,
+    ProfileHead,
 )
 from .mesh import (
     UNIFORM,
@@ -107,6 +108,9 @@ MAX_SPAN_FLAT = 0.1
 FEATURE_RESOLUTION = 0.5
 #: ... and leaves at least this many intervals between two sharp corners.
 FEWEST_BETWEEN_CORNERS = 4
+#: A measured profile's feature the grid misses (:meth:`BearingModel._warn_unresolved_profile`)
+#: is resolved by this many intervals across its width (the remedy the warning names).
+FEATURE_NODES = 4
 #: The default grid of a flat or profile head flying on its film refines towards every
 #: corner geometrically (:func:`corner_grading`): spacing CORNER_GROWTH times the distance
 #: from the corner beyond CORNER_WIDTH roughnesses. Measured (1 mm land, 2°/2°, Table 1
@@ -395,6 +399,7 @@ class BearingModel:
         budget.check_steady(self.nx, ny, self.factorization)   # before any array of that size
         self.x = self._x_nodes(x_line)
         self._check_film_resolved(l_film, x_line)
+        self._warn_unresolved_profile()
         tape_params = (params if self.cylindrical else params.replace(
             foundation_stiffness=self.head.foundation_stiffness(params)))
         if self.infinitely_wide:
@@ -709,6 +714,32 @@ class BearingModel:
             f"{l_film:.3g} m, and "
             f"the spacings are then wrong by up to 50 % (measured: h_c 48 % low at 1.9 film "
             f"lengths, 2 % at 0.9); use nx >= {needed} (or the default)")
+
+    def _warn_unresolved_profile(self) -> None:
+        """One :class:`BearingGridWarning` line if a measured profile has a feature the
+        x-grid does not see (:meth:`ProfileHead.unresolved_features`: standing more than
+        the roughness σ above the contour through the nodes), with its size and place."""
+        if not isinstance(self.head, ProfileHead):
+            return
+        found = self.head.unresolved_features(self.x_head, self.air.roughness)
+        if not found:
+            return
+        missed, width, x = found[0]
+        i = int(np.clip(np.searchsorted(self.x_head, x), 1, self.nx))
+        spacing = float(self.x_head[i] - self.x_head[i - 1])
+        needed = 4 * math.ceil(self.nx * spacing * FEATURE_NODES / width / 4)
+        remedy = (f"use nx >= {needed} (a quarter of its width between nodes) or smooth "
+                  "the profile" if needed <= MAX_INTERVALS_ALONG else "smooth the profile")
+        shift = self.head.shift
+        where = f"x = {x * 1e3:.6g} mm" + (f" ({(x - shift) * 1e3:.6g} mm in the profile)"
+                                           if shift else "")
+        warnings.warn(
+            f"the profile's feature at {where}, {width * 1e6:.3g} um wide, stands "
+            f"{missed * 1e9:.3g} nm above the contour the grid sees, more than the roughness "
+            f"{self.air.roughness * 1e9:.3g} nm: nodes {spacing * 1e6:.3g} um apart there "
+            "step over it and the tape flies through it"
+            + (f" ({len(found) - 1} more such features)" if len(found) > 1 else "")
+            + f"; {remedy}", BearingGridWarning, stacklevel=3)
 
     def _default_nx(self, x_line, l_film: float, resolution: float,
                     span_given: bool) -> int:
