@@ -33,7 +33,12 @@ How the tape's reference follows the contour (the bearing's model, :mod:`.model`
   per unit width; on a rounded corner 1/r_c over the wrapped arc r_c θ_c.
 * **Shell stiffness k** (:meth:`Head.foundation_stiffness`). A wrapped shell of radius R
   resists departures from its wrapped shape with the hoop stiffness k = E c/(R²(1 − ν²)):
-  the cylinder keeps ``params.k`` over the whole domain, as before. A flat land has no
+  the cylinder keeps ``params.k`` over the whole domain, as before, its straight spans
+  included, where it holds the tape up with about k R² ε (ε = 6μ|V|/(T − ρV²)). That is
+  small against the wrap load (T − ρV²) θ only for θ above
+  :meth:`~.model.BearingModel.smallest_valid_wrap`, 23 (ℓ_film/R)(ℓ_film/ℓ_k)²
+  (ℓ_film = R ε^(1/3), ℓ_k = √((T − ρV²)/k); 6.2° for the Table 1 tape at 4 m/s);
+  below it the spacing comes out too low and the model warns. A flat land has no
   wrap curvature, so a tape lying on it has no hoop stiffness; the corners' wrapped arcs
   r_c θ_c are mostly far shorter than the bending length √(D/T), so their hoop stiffness
   acts over a negligible length. Flat and profile heads therefore use k =

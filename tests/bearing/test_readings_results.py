@@ -200,3 +200,39 @@ def test_transducer_line_across_the_width_converges_at_second_order():
     centre, minimum, mean = _line_orders(values)[0]
     assert centre == pytest.approx(2.0, abs=0.25) and minimum == pytest.approx(2.0, abs=0.25)
     assert mean > 1.5
+
+
+def test_cylinder_below_its_smallest_valid_wrap_warns_where_the_model_stops_holding():
+    """The cylinder keeps the hoop stiffness k on its straight spans. Their support, the
+    air force less the wrap load (T − ρV²) θ (the tape's vertical balance), is about
+    k R² ε at small wraps, bounded by HOOP_SPAN_SUPPORT k R² ε; the smallest valid wrap
+    is where that bound is HOOP_SPAN_SHARE of the wrap load, 23 (ℓ_film/R)(ℓ_film/ℓ_k)²
+    (6.2° here). Below it one warning line says so; at 15° none."""
+    from gyroshell.bearing.model import (
+        HOOP_SPAN_SHARE,
+        HOOP_SPAN_SUPPORT,
+        BearingModelWarning,
+        foil_length_scales,
+    )
+
+    air = AirParameters()
+    t_eff = TAPE.tension - TAPE.density * 16.0
+    _, l_film, _ = foil_length_scales(TAPE, air, 4.0)
+    l_k = math.sqrt(t_eff / TAPE.k)
+    limit = 23.0 * (l_film / TAPE.radius) * (l_film / l_k) ** 2
+    support = HOOP_SPAN_SUPPORT * TAPE.k * TAPE.radius**2 * 6 * air.viscosity * 4.0 / t_eff
+    assert limit == pytest.approx(support / (HOOP_SPAN_SHARE * t_eff), rel=1e-12)
+    assert math.degrees(limit) == pytest.approx(6.24, abs=0.01)
+    for deg in (0.01, 0.1):
+        with pytest.warns(BearingModelWarning) as caught:
+            model = BearingModel(TAPE, air, velocity=4.0, wrap_angle=deg * DEG,
+                                 infinitely_wide=True)
+        (line,) = [str(w.message) for w in caught]
+        assert f"a wrap of {deg:g} deg is below 6.24 deg, where this model stops" in line
+        assert model.smallest_valid_wrap() == pytest.approx(limit, rel=1e-12)
+        sol = solve_steady(model)
+        spans = sol.air_force - t_eff * deg * DEG
+        assert support / 3 < spans < support
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", BearingModelWarning)
+        BearingModel(TAPE, air, velocity=4.0, wrap_angle=15 * DEG, infinitely_wide=True)

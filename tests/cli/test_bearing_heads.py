@@ -147,3 +147,16 @@ def test_a_wrapped_corner_radius_answers_as_the_direct_solve(cli):
     direct = solve_steady(model)
     assert out["central_spacing"] == pytest.approx(direct.central_spacing, rel=1e-9)
     assert out["contact_force"] == pytest.approx(float(direct.contact.sum()), abs=1e-12)
+
+
+def test_small_wrap_warns_in_one_line_through_the_whole_solve(cli_process):
+    """A 1° cylinder (below its smallest valid wrap, 6.24° here) on a 2-D tape: the
+    solve's start and continuation rebuild the model, and still one warning line, in the
+    CLI's form, says where the model stops holding."""
+    run = cli_process(["bearing", "--wrap-angle", "1", "--velocity", "4", "--width", "3e-3",
+                       "--nx", "96", "--ny", "32", "--span", "2e-3", "--quiet", "--json"])
+    assert run.code == 0, run.err
+    said = [line for line in run.err.splitlines() if "stops holding" in line]
+    assert len(said) == 1 and said[0].startswith("gyroshell: warning: a wrap of 1 deg is "
+                                                 "below 6.24 deg")
+    assert "Warning:" not in run.err
