@@ -33,7 +33,12 @@ How the tape's reference follows the contour (the bearing's model, :mod:`.model`
   per unit width; on a rounded corner 1/r_c over the wrapped arc r_c θ_c.
 * **Shell stiffness k** (:meth:`Head.foundation_stiffness`). A wrapped shell of radius R
   resists departures from its wrapped shape with the hoop stiffness k = E c/(R²(1 − ν²)):
-  the cylinder keeps ``params.k`` over the whole domain, as before. A flat land has no
+  the cylinder keeps ``params.k`` over the whole domain, as before, its straight spans
+  included, where it holds the tape up with about k R² ε (ε = 6μ|V|/(T − ρV²)). That is
+  small against the wrap load (T − ρV²) θ only for θ above
+  :meth:`~.model.BearingModel.smallest_valid_wrap`, 23 (ℓ_film/R)(ℓ_film/ℓ_k)²
+  (ℓ_film = R ε^(1/3), ℓ_k = √((T − ρV²)/k); 6.2° for the Table 1 tape at 4 m/s);
+  below it the spacing comes out too low and the model warns. A flat land has no
   wrap curvature, so a tape lying on it has no hoop stiffness; the corners' wrapped arcs
   r_c θ_c are mostly far shorter than the bending length √(D/T), so their hoop stiffness
   acts over a negligible length. Flat and profile heads therefore use k =
@@ -773,7 +778,11 @@ class ProfileHead(Head):
     The profile must contain the wrapped region: the tape must not meet it at its first
     or last sample. Corners are the envelope's vertices where the tape turns by at least
     5 % of the wrap, and the wrapped region's ends; the sharp ones (a node of the
-    bearing's grid on each) those where it turns by 25 % in one sample.
+    bearing's grid on each) those where it turns by 25 % in one sample. The bearing flies
+    over the contour interpolated through its grid's nodes: a feature narrower than the
+    node spacing (an asperity between two nodes) that stands more than the roughness above
+    that contour makes :class:`~gyroshell.bearing.model.BearingModel` warn, naming its
+    place, width and height (:meth:`unresolved_features`).
     """
 
     x: np.ndarray
@@ -903,6 +912,39 @@ class ProfileHead(Head):
         c = np.array(self.corners())
         gaps = np.diff(c)
         return float(gaps.min()) if len(gaps) else float(np.diff(self.x).min())
+
+    def unresolved_features(self, nodes, height: float) -> tuple[tuple, ...]:
+        """The profile's features that a grid with the x-``nodes`` (m, head coordinates,
+        increasing) does not see: where, within the wrapped region (:meth:`extent`), the
+        measured contour (the highest line across a 2-D profile) stands more than
+        ``height`` (m; the bearing passes the roughness σ) above its linear interpolation
+        through the nodes, which is the contour the bearing flies over.
+
+        Returns
+        -------
+        tuple of (missed, width, x)
+            Per feature, highest first: how far it stands above the grid's contour, m;
+            its width, m (between the samples on either side where it does not); and the
+            x of its highest point, m (head coordinates).
+        """
+        nodes = np.asarray(nodes, dtype=float)
+        ridge = self.z if self.y is None else self.z.max(axis=1)
+        first, last = self.extent()
+        inside = (self.x >= first) & (self.x <= last)
+        missed = np.where(inside, ridge - np.interp(self.x, nodes, self._line(nodes, ridge)),
+                          0.0)
+        above = missed > GEOMETRY_TOLERANCE * max(float(np.ptp(ridge)), height)
+        # runs of samples above the grid's contour: [start, stop) index pairs
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], above.astype(np.int8), [0]])))
+        features = []
+        for start, stop in zip(edges[::2], edges[1::2], strict=True):
+            peak = start + int(np.argmax(missed[start:stop]))
+            if missed[peak] <= height:
+                continue
+            lo, hi = max(start - 1, 0), min(stop, len(self.x) - 1)
+            features.append((float(missed[peak]), float(self.x[hi] - self.x[lo]),
+                             float(self.x[peak])))
+        return tuple(sorted(features, reverse=True))
 
     @property
     def wrap(self):

@@ -36,6 +36,7 @@ from .head import (
     Cylinder,
     FlatHead,
     Head,
+    ProfileHead,
 )
 from .mesh import (
     UNIFORM,
@@ -108,6 +109,9 @@ MAX_SPAN_FLAT = 0.1
 FEATURE_RESOLUTION = 0.5
 #: ... and leaves at least this many intervals between two sharp corners.
 FEWEST_BETWEEN_CORNERS = 4
+#: A measured profile's feature the grid misses (:meth:`BearingModel._warn_unresolved_profile`)
+#: is resolved by this many intervals across its width (the remedy the warning names).
+FEATURE_NODES = 4
 #: The default grid of a flat or profile head flying on its film refines towards every
 #: corner geometrically (:func:`corner_grading`): spacing CORNER_GROWTH times the distance
 #: from the corner beyond CORNER_WIDTH roughnesses. Measured (1 mm land, 2°/2°, Table 1
@@ -173,6 +177,26 @@ NO_CONTACT_FLOOR = -1.0
 
 class BearingGridWarning(UserWarning):
     """The grid is coarse enough that the result may be off (the message says by how much)."""
+
+
+class BearingModelWarning(BearingGridWarning):
+    """The model's own assumptions stop holding for this input (the message says where);
+    a kind of :class:`BearingGridWarning`, so that whatever shows or silences the one
+    does the other."""
+
+
+#: A cylinder keeps the wrapped shell's hoop stiffness k on its straight spans too, where
+#: the flat tape has none; there it holds the tape up with about HOOP_SPAN_SUPPORT
+#: k R² ε (N/m, ε = 6μ|V|/(T − ρV²)): the spacing ~ R ε^(2/3) over the entrance and
+#: exit lengths ~ R ε^(1/3). Measured as the air force less the wrap load (T − ρV²) θ at
+#: wraps of 0.01° and 0.1° (where the arc's own share is negligible; it also holds the
+#: pinned span ends' reaction): 0.9-2.3 k R² ε over T 45-90 N/m, V 2-8 m/s, R 10-20 mm.
+HOOP_SPAN_SUPPORT = 2.3
+#: The model holds while that support is at most this fraction of the wrap load, i.e. for
+#: θ >= (HOOP_SPAN_SUPPORT / HOOP_SPAN_SHARE) k R² ε/(T − ρV²)
+#: = 23 (ℓ_film/R)(ℓ_film/ℓ_k)², ℓ_film = R ε^(1/3) and ℓ_k = √((T − ρV²)/k) (6.2° for the
+#: Table 1 tape at 4 m/s); below it the model warns (:class:`BearingModelWarning`).
+HOOP_SPAN_SHARE = 0.1
 
 
 def foil_length_scales(params: TapeParameters, air: AirParameters, velocity: float,
@@ -314,7 +338,11 @@ class BearingModel:
         over a head at −V is the mirror image of the solution at +V over the mirrored head).
     wrap_angle : float, optional
         Wrap angle θ of the tape on a cylindrical head of the tape's radius R, rad, in
-        (0, π/2]: the same as ``head=Cylinder(wrap_angle)``.
+        (0, π/2]: the same as ``head=Cylinder(wrap_angle)``. The cylinder keeps the
+        hoop stiffness k on its straight spans too: the model holds for θ at least
+        :meth:`smallest_valid_wrap`, 23 (ℓ_film/R)(ℓ_film/ℓ_k)² with ℓ_film = R ε^(1/3),
+        ℓ_k = √((T − ρV²)/k) (6.2° for the Table 1 tape at 4 m/s; see
+        :data:`HOOP_SPAN_SHARE`), and warns below it (:class:`BearingModelWarning`).
     head : Head, optional
         The head (:mod:`gyroshell.bearing.head`): a Cylinder, FlatHead or ProfileHead;
         exactly one of ``wrap_angle`` and ``head``. The domain is [x_first − span,
@@ -419,6 +447,7 @@ class BearingModel:
                                                     self.scale_radius)
         h_foil, l_film = (0.0, 0.0) if self.dry else (h_foil, l_film)
         self.film_length, self.bending_length = l_film, l_bend
+        self._warn_small_wrap()
         self.arc_contact = validation.choice("arc_contact", arc_contact, ARC_CONTACTS)
         if self.smooth_contact and self.arc_contact == "point":
             raise ParameterError(
@@ -441,9 +470,10 @@ class BearingModel:
             self.grading = replace(self.grading, **self._corner_grading(resolution))
         x_line = self._x_count(nx, l_film, resolution, span is not None)
         ny, y_line = self._y_grid(ny)
-        budget.check_steady(self.nx, ny)          # before any array of the grid's size
+        budget.check_steady(self.nx, ny, self.factorization)   # before any array of that size
         self.x = self._x_nodes(x_line)
         self._check_film_resolved(l_film, x_line)
+        self._warn_unresolved_profile()
         tape_params = (params if self.cylindrical else params.replace(
             foundation_stiffness=self.head.foundation_stiffness(params)))
         if self.infinitely_wide:
@@ -762,6 +792,59 @@ class BearingModel:
             f"the spacings are then wrong by up to 50 % (measured: h_c 48 % low at 1.9 film "
             f"lengths, 2 % at 0.9); use nx >= {needed} (or the default)")
 
+    def smallest_valid_wrap(self) -> float:
+        """The cylinder's smallest wrap angle the model holds for, rad (0 for other heads
+        or dry): below it the hoop stiffness k it keeps on the straight spans carries more
+        than :data:`HOOP_SPAN_SHARE` of the wrap load (:data:`HOOP_SPAN_SUPPORT`)."""
+        if not self.cylindrical or self.dry:
+            return 0.0
+        t_eff = self.effective_tension()
+        eps = 6.0 * self.air.viscosity * abs(self.velocity) / t_eff
+        return (HOOP_SPAN_SUPPORT / HOOP_SPAN_SHARE * self.params.k
+                * self.scale_radius**2 * eps / t_eff)
+
+    def _warn_small_wrap(self) -> None:
+        """One :class:`BearingModelWarning` line if the cylinder's wrap is below
+        :meth:`smallest_valid_wrap`."""
+        limit = self.smallest_valid_wrap()
+        if self.wrap_angle >= limit:
+            return
+        share = HOOP_SPAN_SHARE * limit / self.wrap_angle
+        warnings.warn(
+            f"a wrap of {math.degrees(self.wrap_angle):.3g} deg is below "
+            f"{math.degrees(limit):.3g} deg, where this model stops holding: it keeps the "
+            f"wrapped shell's hoop stiffness k = {self.params.k:.3g} N/m^3 on the straight "
+            f"spans, which then hold the tape up with up to {share:.2g} times the wrap load "
+            "(T - rho V^2) theta, so the spacing comes out too low; use a larger wrap "
+            "(or a flat or profile head, whose spans have no hoop stiffness)",
+            BearingModelWarning, stacklevel=3)
+
+    def _warn_unresolved_profile(self) -> None:
+        """One :class:`BearingGridWarning` line if a measured profile has a feature the
+        x-grid does not see (:meth:`ProfileHead.unresolved_features`: standing more than
+        the roughness σ above the contour through the nodes), with its size and place."""
+        if not isinstance(self.head, ProfileHead):
+            return
+        found = self.head.unresolved_features(self.x_head, self.air.roughness)
+        if not found:
+            return
+        missed, width, x = found[0]
+        i = int(np.clip(np.searchsorted(self.x_head, x), 1, self.nx))
+        spacing = float(self.x_head[i] - self.x_head[i - 1])
+        needed = 4 * math.ceil(self.nx * spacing * FEATURE_NODES / width / 4)
+        remedy = (f"use nx >= {needed} (a quarter of its width between nodes) or smooth "
+                  "the profile" if needed <= MAX_INTERVALS_ALONG else "smooth the profile")
+        shift = self.head.shift
+        where = f"x = {x * 1e3:.6g} mm" + (f" ({(x - shift) * 1e3:.6g} mm in the profile)"
+                                           if shift else "")
+        warnings.warn(
+            f"the profile's feature at {where}, {width * 1e6:.3g} um wide, stands "
+            f"{missed * 1e9:.3g} nm above the contour the grid sees, more than the roughness "
+            f"{self.air.roughness * 1e9:.3g} nm: nodes {spacing * 1e6:.3g} um apart there "
+            "step over it and the tape flies through it"
+            + (f" ({len(found) - 1} more such features)" if len(found) > 1 else "")
+            + f"; {remedy}", BearingGridWarning, stacklevel=3)
+
     def _default_nx(self, x_line, l_film: float, resolution: float,
                     span_given: bool) -> int:
         """The default number of x-intervals (see the class docstring)."""
@@ -988,7 +1071,8 @@ class BearingModel:
     def rebuilt(self, **changes) -> BearingModel:
         """The same model with some constructor arguments changed (velocity, nx, ny,
         infinitely_wide, head, span, grading, dry, factorization, corner_contacts,
-        adapt_contacts, arc_contact, contact)."""
+        adapt_contacts, arc_contact, contact); its :class:`BearingGridWarning` lines are
+        given again only for a new head or grid (head, nx, ny, span or grading changed)."""
         kw = dict(velocity=self.velocity, head=self.head,
                   infinitely_wide=self.infinitely_wide, span=self.span, nx=self.nx,
                   ny=self.ny, grading=self.grading, dry=self.dry,
@@ -998,8 +1082,14 @@ class BearingModel:
                   contact=self.contact)
         if {"head", "dry", "arc_contact"} & set(changes) or self._regime_changes(changes):
             kw["corner_contacts"] = None        # the new head's (or regime's) own estimate
+        new_grid = (any(k in changes and changes[k] is not kw[k] and changes[k] != kw[k]
+                        for k in ("head", "nx", "span", "grading"))
+                    or changes.get("ny") not in (None, kw["ny"]))
         kw.update(changes)
-        return BearingModel(self.params, self.air, **kw)
+        with warnings.catch_warnings():
+            if not new_grid:     # the same head on the same grid (or its strip): said
+                warnings.simplefilter("ignore", BearingGridWarning)
+            return BearingModel(self.params, self.air, **kw)
 
     def _regime_changes(self, changes: dict) -> bool:
         """Whether a new speed in ``changes`` moves a rounded corner across the handover

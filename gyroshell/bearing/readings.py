@@ -23,11 +23,18 @@ against its motion:
 
     τ = μV/(h + 2λ_e) + (h/2) ∂p/∂x      (Pa; > 0 resists the tape's motion).
 
+That is the stress towards −x; a tape running backwards (V < 0) moves towards −x, and the
+stress that resists its motion is −τ = μ|V|/(h + 2λ_e) − (h/2) ∂p/∂x: the readings
+take τ sign(V) (sign 1 at V = 0), so that the drag acts against the motion and the tension
+rises along it whichever way the tape runs (a reversed tape reads as the mirrored head's
+forward one).
+
 Drag and tension. ``viscous_drag`` = ∫ τ dA over the film (the model's whole domain: head
 and spans), ``friction_drag`` = μ_f × the total contact force (Coulomb friction of the
 head on the tape), ``drag`` their sum. The tape model keeps the tension T uniform along the
 tape: the drag is the first-order change of tension across the head, ``tension_rise`` =
-drag per unit width, and ``tension_ratio`` = 1 + tension_rise/T. For friction alone over
+drag per unit width, and ``tension_ratio`` = 1 + tension_rise/T, outgoing (downstream in
+the tape's motion) over incoming tension. For friction alone over
 a wrap θ this is the capstan law to first order: the contact force is (T − ρV²)θ, so the
 ratio is 1 + μ_f θ (T − ρV²)/T, against the exact (T_out − ρV²)/(T_in − ρV²) = e^{μ_f θ}
 of a belt whose tension grows along the wrap; the difference is O((μ_f θ)²).
@@ -408,9 +415,10 @@ def contact_pressure(force: np.ndarray, area: np.ndarray) -> np.ndarray:
 
 # ----- shear and drag ---------------------------------------------------------------------
 def shear_stress(x, spacing, pressure, velocity: float, air) -> np.ndarray:
-    """The air's shear stress on the tape, Pa, on every node (> 0 resists its motion):
-    τ = μV/(h + 2λ_e) + (h/2) ∂p/∂x (module notes), ∂p/∂x by the three-point
-    difference of the graded grid (second order, one-sided at the domain's ends).
+    """The air's shear stress on the tape against its motion, Pa, on every node (> 0
+    resists the motion, whichever way the tape runs): sign(V) (μV/(h + 2λ_e) +
+    (h/2) ∂p/∂x) (module notes; sign 1 at V = 0), ∂p/∂x by the three-point difference of
+    the graded grid (second order, one-sided at the domain's ends).
 
     Parameters
     ----------
@@ -431,7 +439,8 @@ def shear_stress(x, spacing, pressure, velocity: float, air) -> np.ndarray:
                              "compressible film)")
     slip = air.mean_free_path * (air.ambient_pressure / p if air.compressible else 1.0)
     dpdx = np.gradient(p, x, axis=0, edge_order=2)
-    return air.viscosity * velocity / (h + 2.0 * slip) + 0.5 * h * dpdx
+    direction = -1.0 if velocity < 0.0 else 1.0
+    return direction * (air.viscosity * velocity / (h + 2.0 * slip) + 0.5 * h * dpdx)
 
 
 def integral(values: np.ndarray, area: np.ndarray) -> float:

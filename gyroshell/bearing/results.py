@@ -209,9 +209,10 @@ class BearingSolution(Result, kind="bearing"):
     @cached_property
     def shear_stress(self) -> np.ndarray:
         """The air's shear stress on the tape, Pa, on every node, shape (nx + 1, nc);
-        > 0 resists the tape's motion: τ = μV/(h + 2λ_e) + (h/2) ∂p/∂x with first-order
-        slip (:func:`gyroshell.bearing.readings.shear_stress`); 0 for a dry model (no
-        air film)."""
+        > 0 resists the tape's motion, whichever way it runs: sign(V) (μV/(h + 2λ_e) +
+        (h/2) ∂p/∂x) with first-order slip
+        (:func:`gyroshell.bearing.readings.shear_stress`); 0 for a dry model (no air
+        film)."""
         m = self.model
         if m.dry:
             return np.zeros_like(self.spacing)

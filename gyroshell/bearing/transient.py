@@ -281,7 +281,7 @@ def _checked_march(start, dt, steps, record_every, beta, gamma, tension, moving_
         raise ParameterError(f"moving_load must be None or a callable f(t) giving nodal "
                              f"forces in N, got {type(moving_load).__name__}")
     _moving_force(moving_load, dt, model.n_u)
-    budget.check_march(model.nx, model.ny, steps, record_every)
+    budget.check_march(model.nx, model.ny, steps, record_every, model.factorization)
     return model, dt, steps, record_every, beta, gamma, T
 
 

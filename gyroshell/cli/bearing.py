@@ -362,11 +362,20 @@ def corner_arc_models(model) -> list[str | None]:
 def _grid_error(args: argparse.Namespace, sol, inputs) -> dict:
     """The spacings of ``sol`` less those on the grid with half its intervals each way
     (m): the coarse grid's intervals and, per reading, the difference."""
+    from ..bearing.model import MIN_INTERVALS_ALONG
     from ..tape.parameters import MIN_INTERVALS_ACROSS
 
     model = sol.model
-    nx = max(8, model.nx // 2)
+    nx = max(MIN_INTERVALS_ALONG, model.nx // 2)
     ny = None if model.infinitely_wide else max(MIN_INTERVALS_ACROSS, 2 * (model.ny // 4))
+    kept = [f"{name} = {fine} (the fewest is {low})" for name, fine, coarse, low in (
+        ("nx", model.nx, nx, MIN_INTERVALS_ALONG), ("ny", model.ny, ny, MIN_INTERVALS_ACROSS))
+        if coarse is not None and 2 * coarse > fine + 2]
+    if kept:
+        print(f"gyroshell: warning: --error-estimate cannot halve {' or '.join(kept)}: the "
+              f"coarse grid is {nx}" + ("" if ny is None else f" x {ny}") + " intervals, so "
+              "grid_error understates (or leaves out) that direction's error; use at least "
+              "twice the fewest intervals", file=sys.stderr, flush=True)
     progress = None if args.quiet else _progress
     if progress is not None:
         progress(f"error estimate: the same on {nx}" + ("" if ny is None else f" x {ny}")

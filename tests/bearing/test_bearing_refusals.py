@@ -39,7 +39,7 @@ def flying():
 # ----- 1. size before work -------------------------------------------------------------------
 @pytest.mark.parametrize("tape, kw, message", [
     (TapeParameters(), {"nx": 50000, "ny": 100000}, "a bearing grid of 50000 x 100000"),
-    (TapeParameters(width=1.0, spacing=1e-3), {}, "factor entries, more than the sparse"),
+    (TapeParameters(width=5.0, spacing=1e-3), {}, "factor entries, more than the sparse"),
 ])
 def test_grid_beyond_the_solver_is_refused_before_allocating(tape, kw, message):
     with pytest.raises(ParameterError, match=message):
@@ -283,7 +283,7 @@ def test_a_2d_solve_reports_every_stage_and_iteration():
 # ----- through the CLI -------------------------------------------------------------------------
 @pytest.mark.parametrize("argv, message", [
     (["--nx", "50000", "--ny", "100000"], "a bearing grid of 50000 x 100000 intervals"),
-    (["--width", "1"], "more than the sparse solver's limit"),
+    (["--width", "5"], "more than the sparse solver's limit"),
     (["--span", "5"], "span must be in [0.00101, 0.02] m, got 5"),
     (["--viscosity", "1000"], "the viscosity 1000 Pa*s makes the film thick"),
     (["--infinitely-wide", "--span", "1e-12"], "span must be in [0.00101, 0.02] m"),

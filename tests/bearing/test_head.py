@@ -252,3 +252,54 @@ def test_invalid_heads_are_refused_in_one_line_naming_the_parameter(make, match)
     with pytest.raises(ParameterError, match=match) as err:
         make()
     assert "\n" not in str(err.value)
+
+
+# ----- features narrower than the bearing's grid ------------------------------------------
+def _asperity_profile(height=50e-9, base=2e-6, x0=0.1e-3):
+    """The sampled 1 mm flat land (2°/2°) with a triangular asperity ``height`` high and
+    ``base`` wide at ``x0`` (m), sampled every base/8 about it."""
+    head, x, _, _ = _sampled_flat()
+    x = np.unique(np.concatenate([x, x0 + np.linspace(-base, base, 17)]))
+    bump = np.clip(height * (1 - np.abs(x - x0) / (base / 2)), 0.0, None)
+    return ProfileHead(x, head.surface(x) + bump, 2 * DEG, 2 * DEG)
+
+
+def test_unresolved_features_are_those_standing_above_the_contour_through_the_nodes():
+    """Nodes 6.5 µm apart that step over a 50 nm × 2 µm asperity: the grid's contour is
+    the flat land there, so the asperity stands its whole height above it, over its base;
+    nodes on its foot and apex see it whole; a threshold above its height hides it."""
+    profile = _asperity_profile()
+    stepping = np.concatenate([np.linspace(-1e-3, 98e-6, 40), np.linspace(104.5e-6, 1e-3, 40),
+                               [-0.5e-3, 0.5e-3]])      # a node on each corner, as the bearing's
+    stepping.sort()
+    ((missed, width, x),) = profile.unresolved_features(stepping, 20e-9)
+    assert (missed, width, x) == pytest.approx((50e-9, 2e-6, 0.1e-3), rel=1e-9)
+    assert profile.unresolved_features(stepping, 51e-9) == ()
+    seeing = np.sort(np.concatenate([stepping, [99e-6, 100e-6, 101e-6]]))
+    assert profile.unresolved_features(seeing, 1e-12) == ()
+
+
+def test_bearing_grid_stepping_over_an_asperity_warns_with_its_size_and_place():
+    """The issue's case: the default 1-D grid (nodes 6.5 µm apart at x = 0.1 mm) steps
+    over a 50 nm × 2 µm asperity under a tape flying at ~31.5 nm; one warning line names
+    its place, width and height and the nx that resolves it, and with that nx (or
+    without the asperity) no warning."""
+    import warnings
+
+    from gyroshell import TapeParameters
+    from gyroshell.bearing import AirParameters, BearingModel
+    from gyroshell.bearing.model import BearingGridWarning
+
+    def build(profile, nx=None):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=profile,
+                         infinitely_wide=True, nx=nx)
+        return [str(w.message) for w in caught if w.category is BearingGridWarning]
+
+    (line,) = build(_asperity_profile())
+    assert "x = 0.1 mm, 2 um wide, stands 50 nm above the contour the grid sees" in line
+    assert "\n" not in line
+    nx = int(line.split("use nx >= ")[1].split()[0])
+    assert build(_asperity_profile(), nx) == []
+    assert build(_asperity_profile(height=10e-9)) == []     # below the roughness, 20 nm

@@ -87,6 +87,21 @@ def test_shear_and_film_flux_come_from_one_slip_velocity_profile(gradient):
     assert np.allclose(tau, wall_shear, rtol=1e-10, atol=0)
 
 
+@pytest.mark.parametrize("gradient", [-3e9, 0.0, 5e9])   # Pa/m
+def test_shear_resists_a_reversed_tape_from_the_same_slip_profile(gradient):
+    """A tape running towards −x (V < 0): the air pushes it towards +x with −μ u'(h),
+    and that is the stress against its motion; in a Couette film it is μ|V|/(h + 2λ)."""
+    h, lam = 0.15e-6, 64e-9
+    air = AirParameters(mean_free_path=lam, compressible=False)
+    _, wall_shear = _slip_profile(h, gradient, lam, -V)
+    x = np.linspace(0.0, 4e-6, 5)
+    P = (PA + gradient * x)[:, None]
+    tau = readings.shear_stress(x, np.full((5, 1), h), P, -V, air)
+    assert np.allclose(tau, -wall_shear, rtol=1e-10, atol=0)
+    if gradient == 0.0:
+        assert np.allclose(tau, MU * V / (h + 2 * lam), rtol=1e-12, atol=0)
+
+
 def test_plane_poiseuille_part_with_a_linear_pressure():
     x = _graded(2e-3, 48)
     h0, g = 0.3e-6, -2e8                  # Pa/m: pressure falling along the motion

@@ -21,10 +21,10 @@ READING_KEYS = ("transducer_lines", "tents", "corner_forces", "land_forces", "vi
                 "friction_drag", "drag", "tension_rise", "tension_ratio", "friction")
 
 
-def _cylinder(nx=None, *, wide=True, **kw):
+def _cylinder(nx=None, *, wide=True, velocity=4.0, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
-        return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
+        return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=velocity,
                             wrap_angle=math.radians(15), infinitely_wide=wide, nx=nx, **kw)
 
 
@@ -157,6 +157,34 @@ def test_flying_flat_head_readings_keep_their_books():
         max(s.force for s in sol.corner_forces), rel=1e-14)
 
 
+def test_a_reversed_tape_reads_as_the_mirrored_head_run_forward():
+    """V < 0 over wraps (1°, 3°) is the forward run over the mirrored head (3°, 1°): the
+    same viscous and friction drag, both against the motion, and the same tension ratio
+    above 1 (the outgoing tension is the higher one whichever way the tape runs). The
+    reversed cylinder's ratio is its forward one. Friction alone (a dry reversed tape):
+    the capstan law 1 + μ_f θ (T − ρV²)/T to first order."""
+    def flat(t_in, t_out, velocity, **kw):
+        head = FlatHead((Module(1e-3),), t_in, t_out, transducers=(0.0,), friction=0.3)
+        return solve_steady(BearingModel(TAPE, AirParameters(), velocity=velocity,
+                                         head=head, infinitely_wide=True, **kw))
+    reversed_, mirrored = flat(1 * DEG, 3 * DEG, -4.0), flat(3 * DEG, 1 * DEG, 4.0)
+    assert mirrored.viscous_drag > 0 and mirrored.friction_drag > 0
+    for name in ("viscous_drag", "friction_drag", "drag", "tension_ratio"):
+        assert getattr(reversed_, name) == pytest.approx(getattr(mirrored, name), rel=1e-6)
+    assert reversed_.tension_ratio > 1
+    backwards, forwards = solve_steady(_cylinder(velocity=-4.0)), solve_steady(_cylinder())
+    assert backwards.viscous_drag == pytest.approx(forwards.viscous_drag, rel=1e-6)
+    assert backwards.tension_ratio == pytest.approx(forwards.tension_ratio, rel=1e-12)
+    assert backwards.tension_ratio > 1
+    lam = math.sqrt(TAPE.D / TAPE.tension)
+    dry = flat(1 * DEG, 3 * DEG, -4.0, dry=True, span=40 * lam)
+    moving = TAPE.tension - TAPE.density * 16.0
+    turn = dry.contact_force / moving
+    assert turn == pytest.approx(4 * DEG, rel=1 / 20)
+    assert dry.tension_ratio == pytest.approx(1 + 0.3 * turn * moving / TAPE.tension,
+                                              rel=1e-15)
+
+
 @pytest.mark.slow
 def test_transducer_line_across_the_width_converges_at_second_order():
     """A 3 mm tape over the cylinder, both counts doubled (96 × 24 → 384 × 96), the
@@ -172,3 +200,39 @@ def test_transducer_line_across_the_width_converges_at_second_order():
     centre, minimum, mean = _line_orders(values)[0]
     assert centre == pytest.approx(2.0, abs=0.25) and minimum == pytest.approx(2.0, abs=0.25)
     assert mean > 1.5
+
+
+def test_cylinder_below_its_smallest_valid_wrap_warns_where_the_model_stops_holding():
+    """The cylinder keeps the hoop stiffness k on its straight spans. Their support, the
+    air force less the wrap load (T − ρV²) θ (the tape's vertical balance), is about
+    k R² ε at small wraps, bounded by HOOP_SPAN_SUPPORT k R² ε; the smallest valid wrap
+    is where that bound is HOOP_SPAN_SHARE of the wrap load, 23 (ℓ_film/R)(ℓ_film/ℓ_k)²
+    (6.2° here). Below it one warning line says so; at 15° none."""
+    from gyroshell.bearing.model import (
+        HOOP_SPAN_SHARE,
+        HOOP_SPAN_SUPPORT,
+        BearingModelWarning,
+        foil_length_scales,
+    )
+
+    air = AirParameters()
+    t_eff = TAPE.tension - TAPE.density * 16.0
+    _, l_film, _ = foil_length_scales(TAPE, air, 4.0)
+    l_k = math.sqrt(t_eff / TAPE.k)
+    limit = 23.0 * (l_film / TAPE.radius) * (l_film / l_k) ** 2
+    support = HOOP_SPAN_SUPPORT * TAPE.k * TAPE.radius**2 * 6 * air.viscosity * 4.0 / t_eff
+    assert limit == pytest.approx(support / (HOOP_SPAN_SHARE * t_eff), rel=1e-12)
+    assert math.degrees(limit) == pytest.approx(6.24, abs=0.01)
+    for deg in (0.01, 0.1):
+        with pytest.warns(BearingModelWarning) as caught:
+            model = BearingModel(TAPE, air, velocity=4.0, wrap_angle=deg * DEG,
+                                 infinitely_wide=True)
+        (line,) = [str(w.message) for w in caught]
+        assert f"a wrap of {deg:g} deg is below 6.24 deg, where this model stops" in line
+        assert model.smallest_valid_wrap() == pytest.approx(limit, rel=1e-12)
+        sol = solve_steady(model)
+        spans = sol.air_force - t_eff * deg * DEG
+        assert support / 3 < spans < support
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", BearingModelWarning)
+        BearingModel(TAPE, air, velocity=4.0, wrap_angle=15 * DEG, infinitely_wide=True)

@@ -90,6 +90,22 @@ def test_error_estimate_is_the_difference_from_half_the_intervals(cli):
                                - coarse.transducer_lines[0].minimum)
 
 
+def test_error_estimate_says_in_one_line_when_it_cannot_halve_the_width(cli):
+    """ny = 8 is already the fewest intervals across: the coarse grid keeps it, and the
+    one warning line says so, naming ny and the coarse grid; nx = 64 halves silently."""
+    run = cli(["bearing", "--velocity", "4", "--width", "3e-3", "--nx", "64", "--ny", "8",
+               "--error-estimate", "--quiet", "--json"])
+    assert run.code == 0, run.err
+    error = json.loads(run.out)["grid_error"]
+    assert (error["coarse_nx"], error["coarse_ny"]) == (32, 8)
+    said = [line for line in run.error_lines if "--error-estimate" in line]
+    assert len(said) == 1
+    assert "cannot halve ny = 8 (the fewest is 8)" in said[0] and "nx = " not in said[0]
+    assert "32 x 8 intervals" in said[0]
+    quiet = cli([*FLAT_1D, "--error-estimate", "--json"])
+    assert not any("--error-estimate" in line for line in quiet.error_lines)
+
+
 def test_plot_draws_the_head_figure(cli, tmp_path):
     png = tmp_path / "head.png"
     run = cli([*FLAT_1D, "--plot", png])
@@ -131,3 +147,16 @@ def test_a_wrapped_corner_radius_answers_as_the_direct_solve(cli):
     direct = solve_steady(model)
     assert out["central_spacing"] == pytest.approx(direct.central_spacing, rel=1e-9)
     assert out["contact_force"] == pytest.approx(float(direct.contact.sum()), abs=1e-12)
+
+
+def test_small_wrap_warns_in_one_line_through_the_whole_solve(cli_process):
+    """A 1° cylinder (below its smallest valid wrap, 6.24° here) on a 2-D tape: the
+    solve's start and continuation rebuild the model, and still one warning line, in the
+    CLI's form, says where the model stops holding."""
+    run = cli_process(["bearing", "--wrap-angle", "1", "--velocity", "4", "--width", "3e-3",
+                       "--nx", "96", "--ny", "32", "--span", "2e-3", "--quiet", "--json"])
+    assert run.code == 0, run.err
+    said = [line for line in run.err.splitlines() if "stops holding" in line]
+    assert len(said) == 1 and said[0].startswith("gyroshell: warning: a wrap of 1 deg is "
+                                                 "below 6.24 deg")
+    assert "Warning:" not in run.err
