@@ -247,7 +247,8 @@ def run(args: argparse.Namespace) -> int:
                        count=args.count,
                        workers=args.workers, scheduler=args.scheduler,
                        cache=args.cache, progress=False if args.quiet else None,
-                       bearing=bearing, **_connect_timeout(args))
+                       bearing=bearing, inputs=[args.config] if args.config else [],
+                       **_connect_timeout(args))
     from ..core.files import transaction
 
     with transaction():  # every output of the run, or none

@@ -37,7 +37,7 @@ except ImportError:  # pragma: no cover - Windows: no advisory locks
 
 from ..core.errors import ParameterError
 
-__all__ = ["KEY_LENGTH", "PointCache", "point_key"]
+__all__ = ["KEY_LENGTH", "PointCache", "file_digest", "point_key"]
 
 #: Hexadecimal digits of a point's key (128 bits of SHA-256: collisions are out of reach).
 KEY_LENGTH = 32
@@ -65,6 +65,27 @@ def point_key(spec: str, point: dict) -> str:
     """
     text = spec + json.dumps(point, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:KEY_LENGTH]
+
+
+def file_digest(path: str | os.PathLike[str]) -> str:
+    """The SHA-256 of a file's content (hexadecimal): an input file's part of a cache key,
+    so that a file edited in place is not taken for the one the cached rows were computed
+    from.
+
+    Raises
+    ------
+    ParameterError
+        Naming the file, if it cannot be read.
+    """
+    digest = hashlib.sha256()
+    try:
+        with open(path, "rb") as fh:
+            for block in iter(lambda: fh.read(1 << 20), b""):
+                digest.update(block)
+    except OSError as exc:
+        raise ParameterError(f"{os.fspath(path)}: cannot read it to key the study's cache "
+                             f"({exc.strerror or exc})") from None
+    return digest.hexdigest()
 
 
 class PointCache:

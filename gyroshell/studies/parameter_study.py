@@ -59,7 +59,7 @@ from ..core.units import unit_of
 from ..results import base as results_base
 from ..tape.config import parameter_fields
 from ..tape.parameters import TapeParameters, check_velocity
-from .cache import PointCache, point_key
+from .cache import PointCache, file_digest, point_key
 from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
 from .executors import (
     CONNECT_TIMEOUT,
@@ -209,7 +209,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
               velocity: float = 0.0, count: int | None = None, workers: int | None = None,
               scheduler: str | None = None, connect_timeout: float = CONNECT_TIMEOUT,
               cache: str | os.PathLike[str] | None = None, chunk_size: int | None = None,
-              progress: bool | None = None, bearing: BearingStudy | None = None) -> StudyResult:
+              progress: bool | None = None, bearing: BearingStudy | None = None,
+              inputs: Sequence[str | os.PathLike[str]] = ()) -> StudyResult:
     """Run a parameter study; one row per point.
 
     Parameters
@@ -244,6 +245,10 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
         per stage (:class:`gyroshell.core.progress.StageLines`).
     bearing : BearingStudy, optional
         The head, air and grid of ``compute="bearing"`` (default ``BearingStudy()``).
+    inputs : sequence of paths, optional
+        Files the study's settings were read from (a tape file): the content of each, as
+        that of a measured head's profile, is part of every point's cache key, so that a
+        file edited in place computes its points again.
 
     Returns
     -------
@@ -262,8 +267,9 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     >>> list(study.table.columns)
     ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
     """
-    return _run(_plan(base, vary, points, compute, velocity, count, bearing),
-                check_executor(workers, scheduler, chunk_size, connect_timeout), cache, progress)
+    plan = _plan(base, vary, points, compute, velocity, count, bearing, inputs)
+    return _run(plan, check_executor(workers, scheduler, chunk_size, connect_timeout), cache,
+                progress)
 
 
 @dataclass(frozen=True)
@@ -281,6 +287,8 @@ class _Plan:
     #: Each point's row of varied values in the table: the point's own, and the value
     #: used (the base's) for a name this point does not set.
     cells: list[dict] = field(default_factory=list)
+    #: The files the rows depend on (the settings' files, a measured head's profile).
+    inputs: tuple[str, ...] = ()
 
     @property
     def task(self) -> StudyTask:
@@ -289,18 +297,21 @@ class _Plan:
         return StudyTask(fields, self.velocity, self.compute, self.count, self.bearing)
 
     def keys(self) -> list[str]:
-        """Each point's cache key: its values, the rest of the study and the version."""
+        """Each point's cache key: its values, the rest of the study, the version and the
+        content of every input file."""
         from ..core.version import __version__
 
         task = self.task
         parts = [task.base, self.velocity, self.compute, self.count, __version__]
         if self.bearing is not None:
             parts.append(self.bearing.spec())
+        if self.inputs:
+            parts.append({"input_sha256": [file_digest(path) for path in self.inputs]})
         spec = json.dumps(parts, sort_keys=True, default=repr)
         return [point_key(spec, p) for p in self.points]
 
 
-def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
+def _plan(base, vary, points, compute, velocity, count, bearing=None, inputs=()) -> _Plan:
     """The study's settings validated (ParameterError names what is wrong)."""
     base = TapeParameters() if base is None else base
     validation.instance("base", base, TapeParameters)
@@ -319,7 +330,22 @@ def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
         varied = tuple(canonical_name(n) for n in vary)
     bearing = _bearing_plan(base, pts, varied, compute, bearing)
     cells = [_cells(base, velocity, point, varied, bearing) for point in pts]
-    return _Plan(base, velocity, pts, varied, compute, int(count), bearing, cells)
+    return _Plan(base, velocity, pts, varied, compute, int(count), bearing, cells,
+                 _input_files(inputs, bearing))
+
+
+def _input_files(inputs, bearing: BearingStudy | None) -> tuple[str, ...]:
+    """The files whose content the rows depend on: ``inputs`` and a measured head's
+    profile."""
+    if isinstance(inputs, (str, os.PathLike)):
+        raise ParameterError(f"inputs must be a sequence of paths, got the one path {inputs!r}")
+    files = [os.fspath(path) for path in inputs]
+    for path in files:
+        if not os.path.isfile(path):
+            raise ParameterError(f"inputs: {path} is not a file")
+    if bearing is not None and bearing.head.profile is not None:
+        files.append(os.fspath(bearing.head.profile))
+    return tuple(files)
 
 
 def _cells(base: TapeParameters, velocity: float, point: dict, varied: tuple[str, ...],
