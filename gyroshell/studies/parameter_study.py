@@ -57,6 +57,7 @@ from ..core.errors import ParameterError
 from ..core.progress import stage_progress
 from ..core.units import unit_of
 from ..results import base as results_base
+from ..results import layout
 from ..tape.config import parameter_fields
 from ..tape.parameters import TapeParameters, check_velocity
 from .cache import PointCache, file_digest, point_key
@@ -127,6 +128,17 @@ class StudyResult(results_base.Result, kind="study"):
     count: int
     info: dict = field(default_factory=dict)
     bearing: dict | None = None
+
+    #: The file: the table's columns on ``row`` (every varied name among them), the speed,
+    #: what was computed and, for a bearing study, its setup.
+    file_layout = layout.Layout(attrs={
+        "velocity": layout.Attr(layout.of_type("velocity", (int, float), "a number")),
+        "count": layout.Attr(layout.count("count", 1)),
+        "varied": layout.Attr(layout.of_type("varied", list, "a list")),
+        "compute": layout.Attr(layout.of_type("compute", list, "a list")),
+        "bearing": layout.Attr(layout.of_type("bearing", dict, "a JSON object"),
+                               optional=True)},
+        check=lambda ds: _check_file(ds))
 
     @property
     def failed(self) -> pd.DataFrame:
@@ -204,6 +216,26 @@ class StudyResult(results_base.Result, kind="study"):
 
 
 
+def _check_file(ds) -> None:
+    """A study file: its columns stored, among them every varied name; the bearing setup
+    of a bearing study, as checked when built (:meth:`BearingStudy.from_spec`)."""
+    layout.table_columns(ds)
+    from_json = results_base.from_json
+    columns = from_json(ds.attrs["columns"])
+    varied = from_json(ds.attrs["varied"])
+    missing = [name for name in varied if name not in columns]
+    if missing:
+        raise ParameterError(f"varied lists {', '.join(map(str, missing))}, which the table "
+                             "has no column for")
+    bearing = "bearing" in from_json(ds.attrs["compute"])
+    if bearing != ("bearing" in ds.attrs):
+        raise ParameterError("compute lists bearing but the bearing setup is missing" if
+                             bearing else "a bearing setup is stored but compute does not "
+                             "list bearing")
+    if bearing:
+        BearingStudy.from_spec(from_json(ds.attrs["bearing"]))
+
+
 def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence] | None = None,
               points: Sequence[Mapping] | None = None, compute: str | Sequence[str] = "critical",
               velocity: float = 0.0, count: int | None = None, workers: int | None = None,
@@ -230,25 +262,20 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     workers : int, optional
         Local processes (1: this process; at most 4 per CPU). Default: one per CPU.
     scheduler : str, optional
-        A running Dask scheduler's address (``tcp://HOST:PORT``, :mod:`~.scheduler` lists
-        the schemes): the points run on its workers (``pip install "gyroshell[cluster]"``).
+        A Dask scheduler's address (``tcp://HOST:PORT``, :mod:`~.scheduler`): its workers run it.
     connect_timeout : float
         Seconds, in (0, 3600], to connect and complete Dask's handshake (refused: at once).
     cache : path, optional
-        JSON Lines file of finished points (checked as strictly as computed rows); a
-        repeated study skips them.
+        JSON Lines file of finished points, which a repeated study skips (checked as
+        strictly as computed rows; several studies may share it).
     chunk_size : int, optional
-        Points per task; default: 1 in this process, else about
-        :data:`~gyroshell.studies.executors.CHUNKS_PER_WORKER` tasks per worker.
+        Points per task (default: 1 in this process, else ``CHUNKS_PER_WORKER`` per worker).
     progress : bool, optional
-        True: a bar on stderr, False: nothing, None: the bar on a terminal, else one line
-        per stage (:class:`gyroshell.core.progress.StageLines`).
+        True: a bar on stderr, False: nothing, None: a bar on a terminal, else a line per stage.
     bearing : BearingStudy, optional
         The head, air and grid of ``compute="bearing"`` (default ``BearingStudy()``).
     inputs : sequence of paths, optional
-        Files the study's settings were read from (a tape file): the content of each, as
-        that of a measured head's profile, is part of every point's cache key, so that a
-        file edited in place computes its points again.
+        Files the settings were read from (a tape file): their content keys the cache.
 
     Returns
     -------
@@ -267,9 +294,8 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     >>> list(study.table.columns)
     ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
     """
-    plan = _plan(base, vary, points, compute, velocity, count, bearing, inputs)
-    return _run(plan, check_executor(workers, scheduler, chunk_size, connect_timeout), cache,
-                progress)
+    return _run(_plan(base, vary, points, compute, velocity, count, bearing, inputs),
+                check_executor(workers, scheduler, chunk_size, connect_timeout), cache, progress)
 
 
 @dataclass(frozen=True)
