@@ -213,18 +213,44 @@ def head_value(design: HeadDesign, name: str) -> float:
             "wrap_angle": DEFAULT_WRAP_ANGLE}.get(name, math.nan)
 
 
-def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -> dict:
-    """Solve the point's steady bearing; its columns (see the module docstring)."""
+def point_model(base: dict, velocity: float, point: dict, setup: BearingStudy):
+    """The point's :class:`~gyroshell.bearing.model.BearingModel` (its tape, speed of
+    either sign, head and grid), refused as the single ``gyroshell bearing`` refuses it: a
+    speed of 0, a grid that does not fit in memory
+    (:func:`gyroshell.bearing.budget.check_steady`), a speed at or above the string speed.
+
+    Raises
+    ------
+    ParameterError
+        What the model refuses (a speed of 0 in the study's own words: it has no dry tape).
+    """
     from ..bearing import BearingModel
-    from ..bearing.steady import solve_steady
 
     tape = {k: v for k, v in point.items() if k not in HEAD_VARIABLES}
-    params, v = parameters_of(TapeParameters(**base), velocity, tape)
+    params, v = parameters_of(TapeParameters(**base), velocity, tape, signed=True)
+    if v == 0.0:
+        raise ParameterError("velocity must be nonzero for an air bearing (either sign: "
+                             "the tape running along +x or -x, e.g. 4 or -4 m/s), got 0")
     design = head_of_point(setup, point)
-    model = BearingModel(params, setup.air, velocity=v, head=design.head(),
-                         infinitely_wide=setup.infinitely_wide, nx=setup.nx, ny=setup.ny,
-                         **design.model_options())
-    return readings_row(solve_steady(model), list(setup.columns))
+    return BearingModel(params, setup.air, velocity=v, head=design.head(),
+                        infinitely_wide=setup.infinitely_wide, nx=setup.nx, ny=setup.ny,
+                        **design.model_options())
+
+
+def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -> dict:
+    """Solve the point's steady bearing; its columns (see the module docstring). A solve
+    that fails carries the hint the single command gives
+    (:func:`gyroshell.bearing.corners.arc_contact_hint`)."""
+    from ..bearing.corners import arc_contact_hint
+    from ..bearing.steady import solve_steady
+    from ..core.errors import ConvergenceError
+
+    model = point_model(base, velocity, point, setup)
+    try:
+        sol = solve_steady(model)
+    except ConvergenceError as exc:
+        raise ConvergenceError(f"{exc}{arc_contact_hint(model)}") from None
+    return readings_row(sol, list(setup.columns))
 
 
 def readings_row(sol, columns: list[str]) -> dict:

@@ -24,7 +24,10 @@ at every point:
     The steady air bearing over a head (``bearing=BearingStudy(head, ...)``): central,
     minimum and transducer-line spacings, tents, corner forces, drag and tension rise
     (:mod:`~gyroshell.studies.head_study`); points may also vary the head
-    (:data:`~gyroshell.studies.points.HEAD_VARIABLES`).
+    (:data:`~gyroshell.studies.points.HEAD_VARIABLES`). The speed may have either sign
+    when nothing else is computed, never 0; every point's model is built before any work,
+    so that what the single ``gyroshell bearing`` refuses (a grid beyond the memory) is
+    refused for the study.
 
 Every point is an independent task. They run in this process (``workers=1``), in local
 processes (``workers=N``, the default is the number of CPUs; no setup: this one and N - 1
@@ -59,7 +62,7 @@ from ..core.units import unit_of
 from ..results import base as results_base
 from ..results import layout
 from ..tape.config import parameter_fields
-from ..tape.parameters import TapeParameters, check_velocity
+from ..tape.parameters import TapeParameters
 from .cache import PointCache, file_digest, point_key
 from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
 from .executors import (
@@ -70,12 +73,13 @@ from .executors import (
     connected,
     execute,
 )
-from .head_study import BearingStudy, head_of_point, head_value
+from .head_study import BearingStudy, head_of_point, head_value, point_model
 from .points import (
     HEAD_VARIABLES,
     VARIABLE_NAMES,
     canonical_name,
     check_points,
+    check_speed,
     grid_points,
     parameters_of,
     value_of,
@@ -341,8 +345,9 @@ def _plan(base, vary, points, compute, velocity, count, bearing=None, inputs=())
     """The study's settings validated (ParameterError names what is wrong)."""
     base = TapeParameters() if base is None else base
     validation.instance("base", base, TapeParameters)
-    velocity = check_velocity(velocity)
     compute = check_compute(compute)
+    signed = compute == ("bearing",)   # the tape alone runs one way; the bearing either
+    velocity = check_speed(velocity, signed=signed)
     if count is not None and "modes" not in compute:
         raise ParameterError("count is the number of frequencies of compute='modes': add "
                              "'modes' to compute or leave count out")
@@ -351,10 +356,10 @@ def _plan(base, vary, points, compute, velocity, count, bearing=None, inputs=())
     if (vary is None) == (points is None):
         raise ParameterError("give either vary (a grid) or points (a list), not both")
     raw = grid_points(vary) if vary is not None else list(points)
-    pts, varied = check_points(base, velocity, raw)
+    pts, varied = check_points(base, velocity, raw, signed=signed)
     if vary is not None:
         varied = tuple(canonical_name(n) for n in vary)
-    bearing = _bearing_plan(base, pts, varied, compute, bearing)
+    bearing = _bearing_plan(base, velocity, pts, varied, compute, bearing)
     cells = [_cells(base, velocity, point, varied, bearing) for point in pts]
     return _Plan(base, velocity, pts, varied, compute, int(count), bearing, cells,
                  _input_files(inputs, bearing))
@@ -381,15 +386,16 @@ def _cells(base: TapeParameters, velocity: float, point: dict, varied: tuple[str
     missing = [name for name in varied if name not in point]
     if not missing:
         return point
-    params, v = parameters_of(base, velocity, point)
+    params, v = parameters_of(base, velocity, point, signed=True)   # checked before
     design = None if bearing is None else head_of_point(bearing, point)
     used = {name: head_value(design, name) if name in HEAD_VARIABLES
             else value_of(params, v, name) for name in missing}
     return {name: point[name] if name in point else used[name] for name in varied}
 
 
-def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...],
-                  compute: tuple[str, ...], bearing) -> BearingStudy | None:
+def _bearing_plan(base: TapeParameters, velocity: float, pts: list[dict],
+                  varied: tuple[str, ...], compute: tuple[str, ...], bearing
+                  ) -> BearingStudy | None:
     """The bearing setup with its columns, every point's head checked; None without
     ``bearing`` in ``compute`` (then no head variable may vary and no setup be given)."""
     if "bearing" not in compute:
@@ -406,15 +412,37 @@ def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...]
     if base.edges != "free" and not bearing.infinitely_wide:
         raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
     check_design(bearing.head, varied=[n for n in varied if n in HEAD_VARIABLES])
-    first = None
     for i, point in enumerate(pts):
         try:
-            design = head_of_point(bearing, point)
-            design.head()   # the contour's own checks too
+            head_of_point(bearing, point).head()   # the contour's own checks too
         except ParameterError as exc:
             raise ParameterError(f"point {i} {point}: {exc}") from None
-        first = design if first is None else first
-    return bearing.with_columns(base, first)
+    _check_bearing_points(base, velocity, pts, bearing)
+    return bearing.with_columns(base, head_of_point(bearing, pts[0]))
+
+
+def _check_bearing_points(base: TapeParameters, velocity: float, pts: list[dict],
+                          bearing: BearingStudy) -> None:
+    """Refuse, before any work, a point whose bearing model the single ``gyroshell
+    bearing`` would refuse (:func:`~gyroshell.studies.head_study.point_model`: its head,
+    a speed of 0, a grid beyond the memory), naming the point; the speed where no point
+    sets one first."""
+    import warnings
+
+    from ..bearing.model import BearingGridWarning
+
+    if velocity == 0.0 and any("velocity" not in point for point in pts):
+        raise ParameterError("velocity must be nonzero for an air bearing (either sign: the "
+                             "tape running along +x or -x, e.g. 4 or -4 m/s), got 0: give "
+                             "it (--velocity), or vary it")
+    fields = parameter_fields(base)
+    for i, point in enumerate(pts):
+        try:
+            with warnings.catch_warnings():   # a coarse grid warns when the point runs
+                warnings.simplefilter("ignore", BearingGridWarning)
+                point_model(fields, velocity, point, bearing)
+        except ParameterError as exc:
+            raise ParameterError(f"point {i} {point}: {exc}") from None
 
 
 def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyResult:
