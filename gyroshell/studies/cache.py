@@ -22,6 +22,7 @@ last whole line and reported as an OSError naming the file.
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
@@ -45,9 +46,13 @@ _KEY = re.compile(f"^[0-9a-f]{{{KEY_LENGTH}}}$")
 #: What the user can do about a refused cache line, and about a refused cache file.
 _REMEDY = "remove that line (or the file) or give another cache path"
 _FILE_REMEDY = "remove it or give another cache path"
-#: What a study that could not write its cache may do.
-_WRITE_REMEDY = ("the points it holds are kept: free some space and run the study again to "
-                 "resume")
+#: What a study that could not write its cache may do: on a full disk, and otherwise.
+_FULL_REMEDY = ("the points it holds are kept: free some space and run the study again to "
+                "resume")
+_WRITE_REMEDY = "the points it holds are kept: run the study again to resume"
+#: Errors of a lock the file system does not keep (some network file systems): go on
+#: without it, as where there are no locks at all.
+_NO_LOCKS = (errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOSYS, errno.EINVAL)
 #: Bytes read at a time looking back for the last line's start.
 _TAIL_CHUNK = 4096
 
@@ -234,7 +239,13 @@ def _locked(fd: int, *, shared: bool = False) -> Iterator[None]:
     if fcntl is None:  # pragma: no cover - Windows
         yield
         return
-    fcntl.flock(fd, fcntl.LOCK_SH if shared else fcntl.LOCK_EX)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH if shared else fcntl.LOCK_EX)
+    except OSError as exc:  # pragma: no cover - a file system without locks
+        if exc.errno not in _NO_LOCKS:
+            raise
+        yield
+        return
     try:
         yield
     finally:
@@ -283,5 +294,6 @@ def _last_line(fd: int, end: int) -> tuple[int, bytes]:
 
 def _write_error(path: Path, exc: OSError) -> OSError:
     """The one-line OSError of a cache that could not be written."""
+    full = exc.errno in (errno.ENOSPC, errno.EDQUOT)
     return OSError(exc.errno, f"cannot write the study cache {path}: "
-                              f"{exc.strerror or exc}; {_WRITE_REMEDY}")
+                              f"{exc.strerror or exc}; {_FULL_REMEDY if full else _WRITE_REMEDY}")

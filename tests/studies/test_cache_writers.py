@@ -168,3 +168,23 @@ def test_rows_written_before_the_disk_filled_are_whole_and_resume(small_disk):
                       progress=False)
     assert again.info["cached"] == len(kept) > 0
     assert again.info["computed"] == 60 - len(kept)
+
+
+def test_a_cache_on_a_read_only_disk_is_one_line_naming_it(small_disk):
+    """The rows the cache holds are served; the first new one cannot be kept (the command
+    line refuses the folder before any work)."""
+    cache = small_disk / "c.jsonl"
+    run_study(BASE, vary={"tension": [80.0]}, compute="critical", workers=1, cache=cache,
+              progress=False)
+    kept = cache.read_bytes()
+    remounted = subprocess.run(["mount", "-o", "remount,ro", str(small_disk)],
+                               capture_output=True, text=True)
+    if remounted.returncode != 0:
+        pytest.skip(f"cannot remount the tmpfs read-only: {remounted.stderr.strip()}")
+    with pytest.raises(OSError) as refused:
+        run_study(BASE, vary={"tension": [80.0, 90.0]}, compute="critical", workers=1,
+                  cache=cache, progress=False)
+    assert str(refused.value) == (f"[Errno 30] cannot write the study cache {cache}: "
+                                  "Read-only file system; the points it holds are kept: run "
+                                  "the study again to resume")
+    assert cache.read_bytes() == kept
