@@ -3,21 +3,18 @@
 This module stands above the layers: it imports each module that defines a result kind, so
 that the registry of :mod:`gyroshell.results.base` knows every kind before a file is read.
 The base never names a kind; this list does, and a test checks that it names them all.
+What each kind's file holds is declared once, on its class (``file_layout``).
 """
 
 from __future__ import annotations
 
-import dataclasses
 import os
 from importlib import import_module
 from pathlib import Path
 
-import numpy as np
-
 from .core.errors import InputFileError, ParameterError
 from .core.files import check_input, read_csv_exact
-from .results import base, layout
-from .results.layout import Layout
+from .results import base
 
 #: The modules that define result kinds (each registers its kinds when imported).
 KIND_MODULES: tuple[str, ...] = (
@@ -33,143 +30,6 @@ KIND_MODULES: tuple[str, ...] = (
     "gyroshell.studies.parameter_study",
     "gyroshell.bearing.results",
 )
-
-
-def _keys_of(name: str, cls: type, value) -> None:
-    """A JSON object whose keys are fields of dataclass ``cls``, with every field that has
-    no default (what ``cls(**value)`` needs to be called at all)."""
-    if not isinstance(value, dict):
-        raise ParameterError(f"{name} must be a JSON object, got {value!r}")
-    fields = dataclasses.fields(cls)
-    unknown = sorted(set(value) - {f.name for f in fields})
-    if unknown:
-        raise ParameterError(f"{name}: unknown field(s) {', '.join(unknown)}")
-    missing = [f.name for f in fields if f.name not in value
-               and f.default is dataclasses.MISSING
-               and f.default_factory is dataclasses.MISSING]
-    if missing:
-        raise ParameterError(f"{name}: missing field(s) {', '.join(missing)}")
-
-
-def _bearing_attrs(ds) -> None:
-    """The bearing's JSON attributes, their keys those its classes accept."""
-    from .bearing.air import AirParameters
-    from .bearing.mesh import Grading
-    from .bearing.results import NewtonInfo
-
-    attrs = {name: base.from_json(ds.attrs[name]) for name in ("air", "model", "info")}
-    _keys_of("attribute air", AirParameters, attrs["air"])
-    _keys_of("attribute info", NewtonInfo, attrs["info"])
-    model = attrs["model"]
-    settings = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny", "grading",
-                "head", "dry")
-    if not isinstance(model, dict) or set(model) - set(settings):
-        raise ParameterError(f"attribute model must be a JSON object of {', '.join(settings)}")
-    if "grading" in model:
-        _keys_of("attribute model: grading", Grading, model["grading"])
-
-
-def _layouts() -> dict[str, Layout]:
-    """The file layouts of the kinds whose modules declare none (checked on load)."""
-    obj = layout.Attr(layout.of_type("value", dict, "a JSON object"))
-    number = layout.Attr(layout.of_type("value", (int, float), "a number"))
-    bearing_state = {name: layout.Variable(("x", "y")) for name in
-                     ("spacing", "pressure", "departure", "contact")}
-    coords = {"x": layout.X, "y": layout.Variable(("y",))}
-    series = {name: layout.Variable(("t",)) for name in
-              ("tension", "central_spacing", "minimum_spacing", "contact_force",
-               "newton_iterations")}
-    poles = {f"{p}_{what}": layout.Variable(dims, "complex") for p in ("full", "nested")
-             for what, dims in (("poles", (f"{p}_pole",)),
-                                ("residues", ("point", f"{p}_pole")))}
-    return {
-        "sweep": Layout({"velocities": layout.Variable(("speed",), check=layout.speed())},
-                        {"count": layout.Attr(layout.count("count", 1)),
-                         "min_correlation": number,
-                         "continuation": layout.Attr(layout.of_type(
-                             "continuation", bool, "true or false")),
-                         "info": layout.INFO}, check=_sweep_table),
-        "campbell": Layout(attrs={"tables": obj, "info": layout.INFO,
-                                  "critical_speed": layout.Attr(layout.of_type(
-                                      "critical_speed", (int, float, type(None)),
-                                      "a speed in m/s or null"))}, check=_campbell_tables),
-        "study": Layout(attrs={"velocity": number, "count": layout.Attr(layout.count(
-                            "count", 1)),
-                               "varied": layout.Attr(layout.of_type("varied", list, "a list")),
-                               "compute": layout.Attr(layout.of_type("compute", list,
-                                                                     "a list"))},
-                        check=_study_table),
-        "reduced_model": Layout({**poles, "velocity": layout.Variable((), check=layout.speed()),
-                                 "points": layout.Variable(("point", "axis")),
-                                 "interpolation_points": layout.Variable(
-                                     ("interpolation_point",),
-                                     check=layout.nonnegative("interpolation_points"))},
-                                {"moments": layout.Attr(layout.count("moments", 2)),
-                                 "basis_size": layout.Attr(layout.count("basis_size", 0)),
-                                 "info": layout.INFO}),
-        "bearing": Layout({**bearing_state, **coords}, {"air": obj, "model": obj,
-                                                        "info": layout.INFO},
-                          check=_bearing_attrs),
-        "bearing_transient": Layout(
-            {**{f"final_{k}": v for k, v in bearing_state.items()}, **coords, **series,
-             "t": layout.Variable(("t",), check=layout.monotonic("t")),
-             "centreline": layout.Variable(("t", "x")),
-             "x_record": layout.Variable(("x",))},
-            {"air": obj, "model": obj, "info": layout.INFO}, check=_bearing_attrs),
-    }
-
-
-def _sweep_table(ds) -> None:
-    """A sweep's table: its columns stored, its speeds those of ``velocities``, and at most
-    ``count`` modes at each speed, ``count`` at one at least (a solve returns ``count``
-    modes; fewer only where a tiny model has no more)."""
-    layout.table_columns(ds)
-    if "velocity" not in ds.variables:
-        raise ParameterError("column velocity is missing")
-    count = int(ds.attrs["count"])
-    rows = ds["velocity"].values
-    speeds = np.asarray(ds["velocities"].values).ravel()
-    stray = np.setdiff1d(rows, speeds)
-    if stray.size:
-        raise ParameterError(f"the table has rows at {stray[0]:g} m/s, not one of the "
-                             "stored velocities")
-    per_speed = np.array([np.count_nonzero(rows == v) for v in np.unique(speeds)])
-    if per_speed.size and (per_speed.max() > count or per_speed.max() < count
-                           or per_speed.min() == 0):
-        raise ParameterError(f"count is {count} but the table holds {per_speed.min()} to "
-                             f"{per_speed.max()} modes per speed")
-
-
-def _study_table(ds) -> None:
-    """A study's table: its columns stored, among them every varied name."""
-    layout.table_columns(ds)
-    columns = base.from_json(ds.attrs["columns"])
-    varied = base.from_json(ds.attrs.get("varied", "[]"))
-    missing = [name for name in varied if name not in columns] if isinstance(
-        varied, list) else []
-    if missing:
-        raise ParameterError(f"varied lists {', '.join(map(str, missing))}, which the table "
-                             "has no column for")
-
-
-def _campbell_tables(ds) -> None:
-    """The diagram's ``tables`` attribute: each table's columns stored on its dimension."""
-    tables = base.from_json(ds.attrs["tables"])
-    stored = {"frame": ("", "row"), "crossings": ("crossing_", "crossing"),
-              "veerings": ("veering_", "veering")}
-    if set(tables) != set(stored) or not all(isinstance(t, dict) for t in tables.values()):
-        raise ParameterError(f"attribute tables must map {', '.join(stored)} to their columns")
-    for name, columns in tables.items():
-        prefix, dim = stored[name]
-        for column in columns:
-            variable = prefix + column
-            if variable not in ds.variables or tuple(ds[variable].dims) != (dim,):
-                raise ParameterError(f"column {column} of the {name} table is missing "
-                                     f"(variable {variable} on {dim})")
-
-
-#: kind -> its file layout, for the kinds whose classes declare no ``file_layout``.
-FILE_LAYOUTS: dict[str, Layout] = _layouts()
 
 
 def import_kinds() -> None:
@@ -204,7 +64,7 @@ def load(path: str | os.PathLike[str]):
         else ""
     if suffix in base.TABLE_SUFFIXES:
         return load_table(path)
-    result = base.read(path, layouts=FILE_LAYOUTS)
+    result = base.read(path)
     table = base.kinds().get("table")
     return result.frame if table is not None and isinstance(result, table) else result
 

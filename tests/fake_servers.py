@@ -6,12 +6,25 @@ import socket
 import struct
 import threading
 
+import pytest
+
+#: The server modes a gyroshell without Dask cannot tell from a scheduler: the probe
+#: passes (a plausible message length), so only Dask's own handshake refuses them.
+NEEDS_DASK = ("stall",)
+
 
 def closed_port() -> int:
     """A loopback port nothing listens on (bound, then released)."""
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+def dask_for(mode: str) -> None:
+    """Skip the test if refusing a server of ``mode`` needs Dask and it is not importable
+    (without Dask such a server is refused earlier, for want of Dask)."""
+    if mode in NEEDS_DASK:
+        pytest.importorskip("distributed", exc_type=ImportError)
 
 
 class FakeServer:

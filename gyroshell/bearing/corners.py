@@ -42,6 +42,20 @@ ARC_TOLERANCE = 0.05
 MAX_CONTACT_PASSES = 8
 
 
+def arc_contact_hint(model) -> str:
+    """The hint that ends the message of a failed solve of ``model``: point contacts
+    forced (``arc_contact="point"``) on rounded corners whose arcs ``"auto"`` would have
+    wrapped, with what to try; "" otherwise. Spelled as the command line's option, the
+    same for ``gyroshell bearing`` and a study's row."""
+    from .model import WRAPPED_ARC_BENDING_LENGTHS, wrapped_corners
+
+    if model.arc_contact != "point" or not wrapped_corners(model.head, model.bending_length):
+        return ""
+    return (f" (--arc-contact point on a rounded corner whose arc r_c theta_c exceeds "
+            f"{WRAPPED_ARC_BENDING_LENGTHS:g} bending lengths: the tape may wrap it; try "
+            "--arc-contact wrapped or auto)")
+
+
 def _moved(model, new: tuple[float, ...]) -> float:
     """The largest move of a contact, in units of the smallest cell next to its node."""
     i = model.contact_nodes

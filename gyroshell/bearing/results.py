@@ -21,6 +21,7 @@ import numpy as np
 
 from ..core import validation
 from ..core.errors import ParameterError
+from ..results import layout
 from ..results.base import Result, dataset, from_json, params_from
 from . import readings
 from .air import AirParameters
@@ -30,6 +31,10 @@ from .model import BearingGridWarning, BearingModel
 
 #: Summary entries not stored in a file's ``summary`` attribute (lists, kept in ``info``).
 _NOT_STORED = ("newton_step_norms",)
+#: The nodal fields of a state stored on (x, y) and read back.
+_STATE = ("spacing", "pressure", "departure", "contact")
+#: The node coordinates of a file, m.
+_COORDS = {"x": layout.X, "y": layout.Variable(("y",))}
 #: Stored node coordinates must match the rebuilt grid's to this fraction of its extent.
 COORDINATE_TOLERANCE = 1e-12
 
@@ -39,7 +44,10 @@ class NewtonInfo:
     """What a Newton solve did: iterations, step and residual norms per iteration, the
     number of nodes in contact per iteration, the wall time (s), the pseudo-time steps
     taken (dimensionless, :func:`pseudo_transient`; empty if Newton reached the state
-    directly) and the continuation path (speeds in m/s, empty if none was needed)."""
+    directly), the continuation path (speeds in m/s, empty if none was needed) and, over
+    rounded corners touched at a point (:func:`gyroshell.bearing.corners.
+    solve_adapting_contacts`), the passes that adapted the contacts and how far, in cells,
+    they moved on the last (0 and 0.0 where none were adapted)."""
 
     iterations: int = 0
     step_norms: list = field(default_factory=list)
@@ -48,6 +56,8 @@ class NewtonInfo:
     seconds: float = 0.0
     continuation: list = field(default_factory=list)
     pseudo_time: list = field(default_factory=list)
+    contact_passes: int = 0
+    contact_move: float = 0.0
     #: the smooth contact law's scales s of the continuation from the hard wall
     #: (:mod:`.smooth`; empty if none was needed)
     law_scales: list = field(default_factory=list)
@@ -74,6 +84,13 @@ class BearingSolution(Result, kind="bearing"):
     p: np.ndarray
     contact: np.ndarray
     info: NewtonInfo
+
+    #: The file: the state on (x, y), the air, model settings and Newton record.
+    file_layout = layout.Layout(
+        {**{name: layout.Variable(("x", "y")) for name in _STATE}, **_COORDS},
+        {"air": layout.json_object("air"), "model": layout.json_object("model"),
+         "info": layout.INFO},
+        check=lambda ds: _check_attrs(ds))
 
     @property
     def spacing(self) -> np.ndarray:
@@ -386,6 +403,19 @@ class BearingTransient(Result, kind="bearing_transient"):
     newton_iterations: np.ndarray
     final: BearingSolution
 
+    #: The file: the series on t, the centre lines on (t, x), the final state as
+    #: ``final_*`` on (x, y), the air, model settings and the final Newton record.
+    file_layout = layout.Layout(
+        {**{f"final_{name}": layout.Variable(("x", "y")) for name in _STATE}, **_COORDS,
+         **{name: layout.Variable(("t",)) for name in ("tension", "central_spacing",
+                                                       "minimum_spacing", "contact_force",
+                                                       "newton_iterations")},
+         "t": layout.Variable(("t",), check=layout.monotonic("t")),
+         "centreline": layout.Variable(("t", "x")), "x_record": layout.Variable(("x",))},
+        {"air": layout.json_object("air"), "model": layout.json_object("model"),
+         "info": layout.INFO},
+        check=lambda ds: _check_attrs(ds))
+
     def summary(self) -> dict:
         """Headline numbers (SI): recorded times, the end time, the extremes of the
         spacings and of the contact force, the Newton iterations in all, and the final
@@ -613,6 +643,19 @@ def _model_from(ds, prefix: str = "") -> BearingModel:
         raise ParameterError("the stored node coordinates do not match the grid rebuilt "
                              "from its settings")
     return model
+
+
+def _check_attrs(ds) -> None:
+    """The JSON attributes air, model and info: objects whose keys are those this module
+    writes (:func:`_settings`, :class:`AirParameters`, :class:`NewtonInfo`, the grading's),
+    checked before the model is rebuilt."""
+    _stored_dict(ds.attrs, "air", [f.name for f in dataclasses.fields(AirParameters)])
+    _stored_dict(ds.attrs, "info", [f.name for f in dataclasses.fields(NewtonInfo)])
+    settings = _stored_dict(ds.attrs, "model", (*_SETTINGS, *_OPTIONAL_SETTINGS), _SETTINGS)
+    grading = settings.get("grading", {})
+    if not isinstance(grading, dict) or not set(grading) <= set(Grading().as_dict()):
+        raise ParameterError(f"the file's grading must be an object with keys among "
+                             f"{sorted(Grading().as_dict())}, got {grading!r}")
 
 
 def _info_from(ds) -> NewtonInfo:

@@ -425,6 +425,7 @@ def size_line(model) -> str:
 def _solve(model, progress):
     """The steady state, with one line per stage through ``progress`` (None: silent);
     a UserError if none is reached."""
+    from ..bearing.corners import arc_contact_hint
     from ..bearing.steady import initial_state, solve_steady
     from ..core.errors import ConvergenceError
 
@@ -448,23 +449,11 @@ def _solve(model, progress):
         sol = solve_steady(model, z0=z0, progress=log, iteration_log=log)
     except ConvergenceError as exc:
         raise UserError(f"no steady flying state reached for this input: {exc}"
-                        f"{_arc_hint(model)}") from None
+                        f"{arc_contact_hint(model)}") from None
     sol.info.seconds = time.perf_counter() - start     # the starting state included
     if log is not None:
         log(f"done: {sol.info.iterations} Newton iterations")
     return sol
-
-
-def _arc_hint(model) -> str:
-    """A hint to end a failed solve's message: forced point contacts on rounded corners
-    whose arcs ``arc_contact="auto"`` would have wrapped ("" otherwise)."""
-    from ..bearing.model import WRAPPED_ARC_BENDING_LENGTHS, wrapped_corners
-
-    if model.arc_contact != "point" or not wrapped_corners(model.head, model.bending_length):
-        return ""
-    return (f" (--arc-contact point on a rounded corner whose arc r_c theta_c exceeds "
-            f"{WRAPPED_ARC_BENDING_LENGTHS:g} bending lengths: the tape may wrap it; try "
-            "--arc-contact wrapped or auto)")
 
 
 def _print_text(sol, grid_error: dict | None = None) -> None:

@@ -222,13 +222,12 @@ def _save_plot(path: str, ax) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..studies.parameter_study import run_study
-    from ..tape.parameters import check_velocity
 
     typed = typed_tape_options(args)  # before --config fills in the defaults
     params = parameters_from_args(args)
-    velocity = check_velocity(args.velocity)
-    vary = parse_vary(args.vary)
     compute = [c.strip() for item in args.compute for c in item.split(",") if c.strip()]
+    velocity = _study_velocity(args.velocity, compute)
+    vary = parse_vary(args.vary)
     _check_study_options(args, typed, vary, compute)
     bearing = _bearing_setup(args, vary, compute)
     from ..results.base import NETCDF_SUFFIXES, TABLE_SUFFIXES
@@ -247,7 +246,8 @@ def run(args: argparse.Namespace) -> int:
                        count=args.count,
                        workers=args.workers, scheduler=args.scheduler,
                        cache=args.cache, progress=False if args.quiet else None,
-                       bearing=bearing, **_connect_timeout(args))
+                       bearing=bearing, inputs=[args.config] if args.config else [],
+                       **_connect_timeout(args))
     from ..core.files import transaction
 
     with transaction():  # every output of the run, or none
@@ -258,6 +258,13 @@ def run(args: argparse.Namespace) -> int:
             _save_plot(args.plot, result.plot())
     _report_study(args, result)
     return 0
+
+
+def _study_velocity(velocity: float, compute: list[str]) -> float:
+    """--velocity, m/s: >= 0, or of either sign in a study of the air bearing alone."""
+    from ..studies.points import check_speed
+
+    return check_speed(velocity, signed=set(compute) == {"bearing"})
 
 
 def _check_study_options(args: argparse.Namespace, typed: dict[str, str], vary: dict,

@@ -44,6 +44,7 @@ from ..core.parallel import blas_threads as limit_blas_threads
 from ..core.progress import LongWork
 from ..linalg.factorization import splu
 from ..plot import bode
+from ..results import layout
 from ..results.base import Result, dataset, from_json, get, put
 from ..results.frequency_response import FrequencyResponse
 from ..tape.damping import Damping, as_damping
@@ -291,6 +292,19 @@ class ReducedModel(Result, kind="reduced_model"):
     points (m), the speed, the moments and the basis size. A loaded model evaluates exactly
     as the saved one; it cannot :meth:`add_points` (that needs the tape's matrices).
     """
+
+    #: The file: poles and residues of the full and nested models, the speed, the
+    #: response and interpolation points, the moments and the basis size.
+    file_layout = layout.Layout(
+        {**{f"{p}_{what}": layout.Variable(dims, "complex") for p in ("full", "nested")
+            for what, dims in (("poles", (f"{p}_pole",)),
+                               ("residues", ("point", f"{p}_pole")))},
+         "velocity": layout.Variable((), check=layout.speed()),
+         "points": layout.Variable(("point", "axis")),
+         "interpolation_points": layout.Variable(
+             ("interpolation_point",), check=layout.nonnegative("interpolation_points"))},
+        {"moments": layout.Attr(layout.count("moments", 2)),
+         "basis_size": layout.Attr(layout.count("basis_size", 0)), "info": layout.INFO})
 
     def __init__(self, model: TapeModel, velocity: float = 0.0, *,
                  damping: Damping | float | None = None, force: np.ndarray | None = None,

@@ -147,12 +147,11 @@ def _result_class(attrs: Mapping, source: str) -> type[Result]:
     return cls
 
 
-def from_dataset(ds, *, source: str = "the dataset",
-                 layouts: Mapping[str, Layout] | None = None):
+def from_dataset(ds, *, source: str = "the dataset"):
     """The object of the kind stored in ``ds.attrs['gyroshell_type']``.
 
-    The metadata and the kind's :attr:`Result.file_layout` (else ``layouts[kind]``) are
-    checked first (:func:`gyroshell.results.layout.check_dataset`).
+    The metadata and the kind's :attr:`Result.file_layout` are checked first
+    (:func:`gyroshell.results.layout.check_dataset`).
 
     Raises
     ------
@@ -161,13 +160,13 @@ def from_dataset(ds, *, source: str = "the dataset",
         metadata, a missing variable, text where numbers belong, NaN, a value out of range.
     """
     cls = _result_class(ds.attrs, source)
-    check_dataset(ds, cls.file_layout or (layouts or {}).get(cls.kind), source)
+    check_dataset(ds, cls.file_layout, source)
     return cls.from_xarray(ds)
 
 
-def read(path: str | os.PathLike[str], *, layouts: Mapping[str, Layout] | None = None):
+def read(path: str | os.PathLike[str]):
     """The result stored in a NetCDF file, as the object of its kind (checked as in
-    :func:`from_dataset`; ``layouts`` for kinds that declare none).
+    :func:`from_dataset`).
 
     The kind, version and metadata of a NetCDF-4 file are checked from its attributes
     alone (h5py) before any array is read, so a file whose grid claims 10⁷ intervals is
@@ -178,7 +177,7 @@ def read(path: str | os.PathLike[str], *, layouts: Mapping[str, Layout] | None =
         _result_class(attrs, source)
         check_version(attrs, source)
         check_metadata(attrs, source)
-    return from_dataset(open_netcdf(path), source=source, layouts=layouts)
+    return from_dataset(open_netcdf(path), source=source)
 
 
 def _header(path: Path) -> dict | None:

@@ -390,8 +390,13 @@ def table_columns(ds, *, attribute: str = "columns", dim: str = "row") -> None:
                                  f"expected ({dim!r},)")
 
 
+def json_object(name: str) -> Attr:
+    """A required JSON attribute holding an object (``{...}``)."""
+    return Attr(of_type(name, dict, "a JSON object"))
+
+
 #: The ``info`` attribute as most kinds read it: a JSON object, required.
-INFO = Attr(of_type("info", dict, "a JSON object"))
+INFO = json_object("info")
 #: Node coordinates of a grid, m.
 X = Variable(("x",), check=monotonic("x"))
 Y = Variable(("y",), check=monotonic("y"))

@@ -11,20 +11,34 @@ not what the study computes (``"critical_speed": "fast"``) is refused, naming th
 the line, and the file is left as it was. Only a last line cut short by an interruption
 (no newline, not JSON) is skipped: its point runs again, and the cut line is dropped before
 new lines are appended.
+
+Several studies may share one cache, at once: each appends whole lines in one write under
+an exclusive lock of the file (``fcntl.flock``; where there is none, on Windows, one
+writer at a time) and reads it under a shared one, and a cut last line is dropped only as
+found at the moment of writing, under that lock, so that what another study appended
+since this one read the file is kept. A write that fails (a full disk) is undone to the
+last whole line and reported as an OSError naming the file.
 """
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
 import os
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
+
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - Windows: no advisory locks
+    fcntl = None
 
 from ..core.errors import ParameterError
 
-__all__ = ["KEY_LENGTH", "PointCache", "point_key"]
+__all__ = ["KEY_LENGTH", "PointCache", "file_digest", "point_key"]
 
 #: Hexadecimal digits of a point's key (128 bits of SHA-256: collisions are out of reach).
 KEY_LENGTH = 32
@@ -32,6 +46,15 @@ _KEY = re.compile(f"^[0-9a-f]{{{KEY_LENGTH}}}$")
 #: What the user can do about a refused cache line, and about a refused cache file.
 _REMEDY = "remove that line (or the file) or give another cache path"
 _FILE_REMEDY = "remove it or give another cache path"
+#: What a study that could not write its cache may do: on a full disk, and otherwise.
+_FULL_REMEDY = ("the points it holds are kept: free some space and run the study again to "
+                "resume")
+_WRITE_REMEDY = "the points it holds are kept: run the study again to resume"
+#: Errors of a lock the file system does not keep (some network file systems): go on
+#: without it, as where there are no locks at all.
+_NO_LOCKS = (errno.ENOLCK, errno.EOPNOTSUPP, errno.ENOSYS, errno.EINVAL)
+#: Bytes read at a time looking back for the last line's start.
+_TAIL_CHUNK = 4096
 
 
 def point_key(spec: str, point: dict) -> str:
@@ -47,6 +70,27 @@ def point_key(spec: str, point: dict) -> str:
     """
     text = spec + json.dumps(point, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:KEY_LENGTH]
+
+
+def file_digest(path: str | os.PathLike[str]) -> str:
+    """The SHA-256 of a file's content (hexadecimal): an input file's part of a cache key,
+    so that a file edited in place is not taken for the one the cached rows were computed
+    from.
+
+    Raises
+    ------
+    ParameterError
+        Naming the file, if it cannot be read.
+    """
+    digest = hashlib.sha256()
+    try:
+        with open(path, "rb") as fh:
+            for block in iter(lambda: fh.read(1 << 20), b""):
+                digest.update(block)
+    except OSError as exc:
+        raise ParameterError(f"{os.fspath(path)}: cannot read it to key the study's cache "
+                             f"({exc.strerror or exc})") from None
+    return digest.hexdigest()
 
 
 class PointCache:
@@ -67,9 +111,7 @@ class PointCache:
 
     def __init__(self, path: str | os.PathLike[str] | None) -> None:
         self.path = None if path is None else Path(path)
-        self._file = None
-        self._keep: int | None = None  # bytes to keep before appending (a cut line dropped)
-        self._newline = False  # the last line lacks its newline: add one before appending
+        self._fd: int | None = None  # opened for appending at the first entry
         if self.path is None:
             return
         if not self.path.parent.is_dir():
@@ -116,7 +158,8 @@ class PointCache:
     def _lines(self) -> list[str]:
         """The file's lines (with their newlines), as text."""
         try:
-            data = self.path.read_bytes()
+            with open(self.path, "rb") as fh, _locked(fh.fileno(), shared=True):
+                data = fh.read()
         except OSError as exc:
             raise ParameterError(f"cache {self.path}: cannot read it ({exc.strerror})"
                                  ) from None
@@ -129,10 +172,7 @@ class PointCache:
             raise ParameterError(f"cache {self.path} is not a study cache: it holds NUL "
                                  f"bytes (a binary file?); {_FILE_REMEDY}")
         parts = text.split("\n")  # JSON Lines break at "\n" only
-        lines = [part + "\n" for part in parts[:-1]] + ([parts[-1]] if parts[-1] else [])
-        if lines and not lines[-1].endswith("\n"):
-            self._newline = True
-        return lines
+        return [part + "\n" for part in parts[:-1]] + ([parts[-1]] if parts[-1] else [])
 
     def _entry(self, line: str, number: int, last: bool) -> tuple[str, dict] | None:
         """(key, row) of one line; None for a last line cut short."""
@@ -140,9 +180,7 @@ class PointCache:
         try:
             entry = json.loads(line)
         except json.JSONDecodeError as exc:
-            if last:  # cut short by an interruption: dropped before appending
-                self._keep = len(self.path.read_bytes()) - len(line.encode("utf-8"))
-                self._newline = False
+            if last:  # cut short by an interruption: dropped before appending (_append)
                 return None
             raise ParameterError(f"{where} is not JSON ({exc.msg}); {_REMEDY}") from None
         if not isinstance(entry, dict) or set(entry) != {"key", "row"}:
@@ -162,23 +200,100 @@ class PointCache:
         return self
 
     def _open(self) -> None:
-        """Open the file for appending (a cut last line dropped), at the first entry: a
-        study refused before it finishes a point leaves the file as it was."""
-        if self._keep is not None:
-            os.truncate(self.path, self._keep)
-        self._file = open(self.path, "a", encoding="utf-8")
-        if self._newline:
-            self._file.write("\n")
+        """Open the file for appending, at the first entry: a study refused before it
+        finishes a point leaves the file as it was."""
+        try:
+            self._fd = os.open(self.path, os.O_RDWR | os.O_APPEND | os.O_CREAT, 0o666)
+        except OSError as exc:
+            raise _write_error(self.path, exc) from None
 
     def add(self, entries: list[tuple[str, dict]]) -> None:
-        """Append ``(key, row)`` entries and flush them to the file."""
-        if self.path is not None and self._file is None and entries:
+        """Append ``(key, row)`` entries to the file, whole lines in one write.
+
+        Raises
+        ------
+        OSError
+            The file could not be written (a full disk), naming it; the lines written
+            before are kept whole.
+        """
+        if self.path is None or not entries:
+            return
+        if self._fd is None:
             self._open()
-        if self._file is not None:
-            for key, row in entries:
-                self._file.write(json.dumps({"key": key, "row": row}) + "\n")
-            self._file.flush()
+        data = "".join(json.dumps({"key": key, "row": row}) + "\n" for key, row in entries)
+        try:
+            with _locked(self._fd):
+                _append(self._fd, data.encode("utf-8"))
+        except OSError as exc:
+            raise _write_error(self.path, exc) from None
 
     def __exit__(self, *exc) -> None:
-        if self._file is not None:
-            self._file.close()
+        if self._fd is not None:
+            os.close(self._fd)
+            self._fd = None
+
+
+@contextmanager
+def _locked(fd: int, *, shared: bool = False) -> Iterator[None]:
+    """Hold an advisory lock of the open file ``fd`` (shared to read, exclusive to write)."""
+    if fcntl is None:  # pragma: no cover - Windows
+        yield
+        return
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH if shared else fcntl.LOCK_EX)
+    except OSError as exc:  # pragma: no cover - a file system without locks
+        if exc.errno not in _NO_LOCKS:
+            raise
+        yield
+        return
+    try:
+        yield
+    finally:
+        fcntl.flock(fd, fcntl.LOCK_UN)
+
+
+def _append(fd: int, data: bytes) -> None:
+    """Append ``data`` (whole lines) to the locked file ``fd``: a last line cut short is
+    dropped first (one that is JSON gets its newline); a failed write is undone."""
+    end = os.fstat(fd).st_size
+    start, tail = _last_line(fd, end)
+    if tail:
+        try:
+            json.loads(tail.decode("utf-8"))
+        except (UnicodeDecodeError, json.JSONDecodeError):  # cut by an interruption
+            os.ftruncate(fd, start)
+            end = start
+        else:
+            data = b"\n" + data
+    try:
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view):]
+    except OSError:
+        try:
+            os.ftruncate(fd, end)
+        except OSError:  # pragma: no cover - the next reader skips a cut last line
+            pass
+        raise
+
+
+def _last_line(fd: int, end: int) -> tuple[int, bytes]:
+    """(offset, bytes) of what follows the last newline of the first ``end`` bytes of
+    ``fd`` (empty if the file is empty or ends in a newline)."""
+    tail, position = b"", end
+    while position > 0:
+        size = min(_TAIL_CHUNK, position)
+        position -= size
+        chunk = os.pread(fd, size, position)
+        cut = chunk.rfind(b"\n")
+        if cut >= 0:
+            return position + cut + 1, chunk[cut + 1:] + tail
+        tail = chunk + tail
+    return 0, tail
+
+
+def _write_error(path: Path, exc: OSError) -> OSError:
+    """The one-line OSError of a cache that could not be written."""
+    full = exc.errno in (errno.ENOSPC, errno.EDQUOT)
+    return OSError(exc.errno, f"cannot write the study cache {path}: "
+                              f"{exc.strerror or exc}; {_FULL_REMEDY if full else _WRITE_REMEDY}")

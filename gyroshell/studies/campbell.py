@@ -27,7 +27,7 @@ from ..core import validation
 from ..core.errors import ParameterError
 from ..core.progress import stage_line
 from ..core.units import unit_of
-from ..results import base
+from ..results import base, layout
 from ..tape.parameters import TapeParameters
 from .branches import BranchTracker, track
 
@@ -118,6 +118,14 @@ class CampbellDiagram(base.Result, kind="campbell"):
     critical_speed: float | None = None
     info: dict = field(default_factory=dict)
     params: TapeParameters | None = None
+
+    #: The file: the three tables' columns, the critical speed and the tracking record.
+    file_layout = layout.Layout(attrs={
+        "tables": layout.json_object("tables"), "info": layout.INFO,
+        "critical_speed": layout.Attr(layout.of_type("critical_speed",
+                                                     (int, float, type(None)),
+                                                     "a speed in m/s or null"))},
+        check=lambda ds: _check_tables(ds))
 
     @staticmethod
     def excitation(order: int, circumference: float, velocity):
@@ -329,3 +337,20 @@ def _critical_speed(model, critical_speed: float | bool | None) -> float | None:
     elif critical_speed is False:
         critical_speed = None
     return None if critical_speed is None else float(critical_speed)
+
+
+def _check_tables(ds) -> None:
+    """A Campbell file's ``tables`` attribute: each table's columns stored on its
+    dimension."""
+    tables = base.from_json(ds.attrs["tables"])
+    stored = {"frame": ("", "row"), "crossings": ("crossing_", "crossing"),
+              "veerings": ("veering_", "veering")}
+    if set(tables) != set(stored) or not all(isinstance(t, dict) for t in tables.values()):
+        raise ParameterError(f"attribute tables must map {', '.join(stored)} to their columns")
+    for name, columns in tables.items():
+        prefix, dim = stored[name]
+        for column in columns:
+            variable = prefix + column
+            if variable not in ds.variables or tuple(ds[variable].dims) != (dim,):
+                raise ParameterError(f"column {column} of the {name} table is missing "
+                                     f"(variable {variable} on {dim})")

@@ -37,7 +37,13 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..bearing.air import AirParameters
-from ..bearing.head_config import DEFAULT_WRAP_ANGLE, HeadDesign, check_design, kind_fields
+from ..bearing.head_config import (
+    DEFAULT_WRAP_ANGLE,
+    HeadDesign,
+    ModuleShape,
+    check_design,
+    kind_fields,
+)
 from ..core import validation
 from ..core.errors import ParameterError
 from ..tape.parameters import TapeParameters
@@ -57,6 +63,10 @@ NUMBER_RANGES = {"spacing": (0.0, "m"), "tent_height": (-math.inf, "m"),
                  "friction_drag": (0.0, "N or N/m"), "drag": (-math.inf, "N or N/m"),
                  "tension_rise": (-math.inf, "N/m"), "tension_ratio": (0.0, "1"),
                  "newton_iterations": (0.0, "1")}
+#: The keys of :meth:`BearingStudy.spec` (a saved study's ``bearing`` attribute).
+SPEC_KEYS = ("head", "air", "infinitely_wide", "nx", "ny")
+#: HeadDesign fields that hold tuples (JSON lists in a spec).
+_TUPLE_FIELDS = ("corner_radius", "module_gap", "transducers")
 
 
 @dataclass(frozen=True)
@@ -108,6 +118,21 @@ class BearingStudy:
             "air": None if self.air is None else dataclasses.asdict(self.air),
             "infinitely_wide": self.infinitely_wide, "nx": self.nx, "ny": self.ny}))
 
+    @classmethod
+    def from_spec(cls, spec: object) -> BearingStudy:
+        """The setup that :meth:`spec` describes (a saved study's ``bearing`` attribute),
+        checked as when it is built (``modules: 99`` is refused as ``modules=99`` is).
+
+        Raises
+        ------
+        ParameterError
+            Naming the key and what is wrong with it.
+        """
+        try:
+            return cls(**_fields_of_spec(spec))
+        except (TypeError, ValueError) as exc:  # ParameterError, or a value of a wrong type
+            raise ParameterError(f"bearing: {exc}") from None
+
     def with_columns(self, base: TapeParameters, design: HeadDesign | None = None
                      ) -> BearingStudy:
         """This setup with the columns of its points over the tape ``base``, counted on the
@@ -122,6 +147,46 @@ class BearingStudy:
         for j in range(1, corners + 1):
             out += [f"corner_{j}_tent_height", f"corner_{j}_tent_x", f"corner_{j}_force"]
         return dataclasses.replace(self, columns=tuple(out + list(TRAILING)))
+
+
+def _fields_of_spec(spec: object) -> dict:
+    """The BearingStudy fields of a :meth:`~BearingStudy.spec`, their keys checked."""
+    _check_keys("the setup", spec, SPEC_KEYS, required=SPEC_KEYS)
+    head = dict(_check_keys("head", spec["head"],
+                            [f.name for f in dataclasses.fields(HeadDesign)]))
+    shapes = head.get("module_shapes", [])
+    if not isinstance(shapes, list):
+        raise ParameterError(f"head: module_shapes must be a list, got {shapes!r}")
+    shape_fields = [f.name for f in dataclasses.fields(ModuleShape)]
+    head["module_shapes"] = tuple(
+        ModuleShape(**_tuples(_check_keys(f"head: module_shapes[{i}]", shape, shape_fields)))
+        for i, shape in enumerate(shapes))
+    air = spec["air"]
+    if air is not None:
+        air = AirParameters(**_check_keys("air", air, [
+            f.name for f in dataclasses.fields(AirParameters)]))
+    return {"head": HeadDesign(**_tuples(head)), "air": air,
+            "infinitely_wide": spec["infinitely_wide"], "nx": spec["nx"], "ny": spec["ny"]}
+
+
+def _check_keys(name: str, value: object, allowed, required=()) -> dict:
+    """``value``, a JSON object whose keys are among ``allowed`` and include
+    ``required``."""
+    if not isinstance(value, dict):
+        raise ParameterError(f"{name} must be a JSON object, got {value!r}")
+    unknown = sorted(set(value) - set(allowed))
+    missing = [key for key in required if key not in value]
+    if unknown or missing:
+        raise ParameterError(f"{name}: " + "; ".join(
+            part for part in (unknown and f"unknown key(s) {', '.join(unknown)}",
+                              missing and f"missing key(s) {', '.join(missing)}") if part))
+    return value
+
+
+def _tuples(fields: dict) -> dict:
+    """The fields with JSON lists back as the tuples a design holds."""
+    return {key: tuple(value) if key in _TUPLE_FIELDS and isinstance(value, list) else value
+            for key, value in fields.items()}
 
 
 def head_of_point(setup: BearingStudy, point: Mapping) -> HeadDesign:
@@ -148,18 +213,44 @@ def head_value(design: HeadDesign, name: str) -> float:
             "wrap_angle": DEFAULT_WRAP_ANGLE}.get(name, math.nan)
 
 
-def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -> dict:
-    """Solve the point's steady bearing; its columns (see the module docstring)."""
+def point_model(base: dict, velocity: float, point: dict, setup: BearingStudy):
+    """The point's :class:`~gyroshell.bearing.model.BearingModel` (its tape, speed of
+    either sign, head and grid), refused as the single ``gyroshell bearing`` refuses it: a
+    speed of 0, a grid that does not fit in memory
+    (:func:`gyroshell.bearing.budget.check_steady`), a speed at or above the string speed.
+
+    Raises
+    ------
+    ParameterError
+        What the model refuses (a speed of 0 in the study's own words: it has no dry tape).
+    """
     from ..bearing import BearingModel
-    from ..bearing.steady import solve_steady
 
     tape = {k: v for k, v in point.items() if k not in HEAD_VARIABLES}
-    params, v = parameters_of(TapeParameters(**base), velocity, tape)
+    params, v = parameters_of(TapeParameters(**base), velocity, tape, signed=True)
+    if v == 0.0:
+        raise ParameterError("velocity must be nonzero for an air bearing (either sign: "
+                             "the tape running along +x or -x, e.g. 4 or -4 m/s), got 0")
     design = head_of_point(setup, point)
-    model = BearingModel(params, setup.air, velocity=v, head=design.head(),
-                         infinitely_wide=setup.infinitely_wide, nx=setup.nx, ny=setup.ny,
-                         **design.model_options())
-    return readings_row(solve_steady(model), list(setup.columns))
+    return BearingModel(params, setup.air, velocity=v, head=design.head(),
+                        infinitely_wide=setup.infinitely_wide, nx=setup.nx, ny=setup.ny,
+                        **design.model_options())
+
+
+def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -> dict:
+    """Solve the point's steady bearing; its columns (see the module docstring). A solve
+    that fails carries the hint the single command gives
+    (:func:`gyroshell.bearing.corners.arc_contact_hint`)."""
+    from ..bearing.corners import arc_contact_hint
+    from ..bearing.steady import solve_steady
+    from ..core.errors import ConvergenceError
+
+    model = point_model(base, velocity, point, setup)
+    try:
+        sol = solve_steady(model)
+    except ConvergenceError as exc:
+        raise ConvergenceError(f"{exc}{arc_contact_hint(model)}") from None
+    return readings_row(sol, list(setup.columns))
 
 
 def readings_row(sol, columns: list[str]) -> dict:

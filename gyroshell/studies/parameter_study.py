@@ -24,7 +24,10 @@ at every point:
     The steady air bearing over a head (``bearing=BearingStudy(head, ...)``): central,
     minimum and transducer-line spacings, tents, corner forces, drag and tension rise
     (:mod:`~gyroshell.studies.head_study`); points may also vary the head
-    (:data:`~gyroshell.studies.points.HEAD_VARIABLES`).
+    (:data:`~gyroshell.studies.points.HEAD_VARIABLES`). The speed may have either sign
+    when nothing else is computed, never 0; every point's model is built before any work,
+    so that what the single ``gyroshell bearing`` refuses (a grid beyond the memory) is
+    refused for the study.
 
 Every point is an independent task. They run in this process (``workers=1``), in local
 processes (``workers=N``, the default is the number of CPUs; no setup: this one and N - 1
@@ -57,9 +60,10 @@ from ..core.errors import ParameterError
 from ..core.progress import stage_progress
 from ..core.units import unit_of
 from ..results import base as results_base
+from ..results import layout
 from ..tape.config import parameter_fields
-from ..tape.parameters import TapeParameters, check_velocity
-from .cache import PointCache, point_key
+from ..tape.parameters import TapeParameters
+from .cache import PointCache, file_digest, point_key
 from .evaluation import COMPUTE_CHOICES, MAX_COUNT, check_compute, check_row, result_columns
 from .executors import (
     CONNECT_TIMEOUT,
@@ -69,12 +73,13 @@ from .executors import (
     connected,
     execute,
 )
-from .head_study import BearingStudy, head_of_point, head_value
+from .head_study import BearingStudy, head_of_point, head_value, point_model
 from .points import (
     HEAD_VARIABLES,
     VARIABLE_NAMES,
     canonical_name,
     check_points,
+    check_speed,
     grid_points,
     parameters_of,
     value_of,
@@ -127,6 +132,17 @@ class StudyResult(results_base.Result, kind="study"):
     count: int
     info: dict = field(default_factory=dict)
     bearing: dict | None = None
+
+    #: The file: the table's columns on ``row`` (every varied name among them), the speed,
+    #: what was computed and, for a bearing study, its setup.
+    file_layout = layout.Layout(attrs={
+        "velocity": layout.Attr(layout.of_type("velocity", (int, float), "a number")),
+        "count": layout.Attr(layout.count("count", 1)),
+        "varied": layout.Attr(layout.of_type("varied", list, "a list")),
+        "compute": layout.Attr(layout.of_type("compute", list, "a list")),
+        "bearing": layout.Attr(layout.of_type("bearing", dict, "a JSON object"),
+                               optional=True)},
+        check=lambda ds: _check_file(ds))
 
     @property
     def failed(self) -> pd.DataFrame:
@@ -204,12 +220,33 @@ class StudyResult(results_base.Result, kind="study"):
 
 
 
+def _check_file(ds) -> None:
+    """A study file: its columns stored, among them every varied name; the bearing setup
+    of a bearing study, as checked when built (:meth:`BearingStudy.from_spec`)."""
+    layout.table_columns(ds)
+    from_json = results_base.from_json
+    columns = from_json(ds.attrs["columns"])
+    varied = from_json(ds.attrs["varied"])
+    missing = [name for name in varied if name not in columns]
+    if missing:
+        raise ParameterError(f"varied lists {', '.join(map(str, missing))}, which the table "
+                             "has no column for")
+    bearing = "bearing" in from_json(ds.attrs["compute"])
+    if bearing != ("bearing" in ds.attrs):
+        raise ParameterError("compute lists bearing but the bearing setup is missing" if
+                             bearing else "a bearing setup is stored but compute does not "
+                             "list bearing")
+    if bearing:
+        BearingStudy.from_spec(from_json(ds.attrs["bearing"]))
+
+
 def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence] | None = None,
               points: Sequence[Mapping] | None = None, compute: str | Sequence[str] = "critical",
               velocity: float = 0.0, count: int | None = None, workers: int | None = None,
               scheduler: str | None = None, connect_timeout: float = CONNECT_TIMEOUT,
               cache: str | os.PathLike[str] | None = None, chunk_size: int | None = None,
-              progress: bool | None = None, bearing: BearingStudy | None = None) -> StudyResult:
+              progress: bool | None = None, bearing: BearingStudy | None = None,
+              inputs: Sequence[str | os.PathLike[str]] = ()) -> StudyResult:
     """Run a parameter study; one row per point.
 
     Parameters
@@ -229,21 +266,20 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     workers : int, optional
         Local processes (1: this process; at most 4 per CPU). Default: one per CPU.
     scheduler : str, optional
-        A running Dask scheduler's address (``tcp://HOST:PORT``, :mod:`~.scheduler` lists
-        the schemes): the points run on its workers (``pip install "gyroshell[cluster]"``).
+        A Dask scheduler's address (``tcp://HOST:PORT``, :mod:`~.scheduler`): its workers run it.
     connect_timeout : float
         Seconds, in (0, 3600], to connect and complete Dask's handshake (refused: at once).
     cache : path, optional
-        JSON Lines file of finished points (checked as strictly as computed rows); a
-        repeated study skips them.
+        JSON Lines file of finished points, which a repeated study skips (checked as
+        strictly as computed rows; several studies may share it).
     chunk_size : int, optional
-        Points per task; default: 1 in this process, else about
-        :data:`~gyroshell.studies.executors.CHUNKS_PER_WORKER` tasks per worker.
+        Points per task (default: 1 in this process, else ``CHUNKS_PER_WORKER`` per worker).
     progress : bool, optional
-        True: a bar on stderr, False: nothing, None: the bar on a terminal, else one line
-        per stage (:class:`gyroshell.core.progress.StageLines`).
+        True: a bar on stderr, False: nothing, None: a bar on a terminal, else a line per stage.
     bearing : BearingStudy, optional
         The head, air and grid of ``compute="bearing"`` (default ``BearingStudy()``).
+    inputs : sequence of paths, optional
+        Files the settings were read from (a tape file): their content keys the cache.
 
     Returns
     -------
@@ -262,7 +298,7 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     >>> list(study.table.columns)
     ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
     """
-    return _run(_plan(base, vary, points, compute, velocity, count, bearing),
+    return _run(_plan(base, vary, points, compute, velocity, count, bearing, inputs),
                 check_executor(workers, scheduler, chunk_size, connect_timeout), cache, progress)
 
 
@@ -281,6 +317,8 @@ class _Plan:
     #: Each point's row of varied values in the table: the point's own, and the value
     #: used (the base's) for a name this point does not set.
     cells: list[dict] = field(default_factory=list)
+    #: The files the rows depend on (the settings' files, a measured head's profile).
+    inputs: tuple[str, ...] = ()
 
     @property
     def task(self) -> StudyTask:
@@ -289,23 +327,27 @@ class _Plan:
         return StudyTask(fields, self.velocity, self.compute, self.count, self.bearing)
 
     def keys(self) -> list[str]:
-        """Each point's cache key: its values, the rest of the study and the version."""
+        """Each point's cache key: its values, the rest of the study, the version and the
+        content of every input file."""
         from ..core.version import __version__
 
         task = self.task
         parts = [task.base, self.velocity, self.compute, self.count, __version__]
         if self.bearing is not None:
             parts.append(self.bearing.spec())
+        if self.inputs:
+            parts.append({"input_sha256": [file_digest(path) for path in self.inputs]})
         spec = json.dumps(parts, sort_keys=True, default=repr)
         return [point_key(spec, p) for p in self.points]
 
 
-def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
+def _plan(base, vary, points, compute, velocity, count, bearing=None, inputs=()) -> _Plan:
     """The study's settings validated (ParameterError names what is wrong)."""
     base = TapeParameters() if base is None else base
     validation.instance("base", base, TapeParameters)
-    velocity = check_velocity(velocity)
     compute = check_compute(compute)
+    signed = compute == ("bearing",)   # the tape alone runs one way; the bearing either
+    velocity = check_speed(velocity, signed=signed)
     if count is not None and "modes" not in compute:
         raise ParameterError("count is the number of frequencies of compute='modes': add "
                              "'modes' to compute or leave count out")
@@ -314,12 +356,27 @@ def _plan(base, vary, points, compute, velocity, count, bearing=None) -> _Plan:
     if (vary is None) == (points is None):
         raise ParameterError("give either vary (a grid) or points (a list), not both")
     raw = grid_points(vary) if vary is not None else list(points)
-    pts, varied = check_points(base, velocity, raw)
+    pts, varied = check_points(base, velocity, raw, signed=signed)
     if vary is not None:
         varied = tuple(canonical_name(n) for n in vary)
-    bearing = _bearing_plan(base, pts, varied, compute, bearing)
+    bearing = _bearing_plan(base, velocity, pts, varied, compute, bearing)
     cells = [_cells(base, velocity, point, varied, bearing) for point in pts]
-    return _Plan(base, velocity, pts, varied, compute, int(count), bearing, cells)
+    return _Plan(base, velocity, pts, varied, compute, int(count), bearing, cells,
+                 _input_files(inputs, bearing))
+
+
+def _input_files(inputs, bearing: BearingStudy | None) -> tuple[str, ...]:
+    """The files whose content the rows depend on: ``inputs`` and a measured head's
+    profile."""
+    if isinstance(inputs, (str, os.PathLike)):
+        raise ParameterError(f"inputs must be a sequence of paths, got the one path {inputs!r}")
+    files = [os.fspath(path) for path in inputs]
+    for path in files:
+        if not os.path.isfile(path):
+            raise ParameterError(f"inputs: {path} is not a file")
+    if bearing is not None and bearing.head.profile is not None:
+        files.append(os.fspath(bearing.head.profile))
+    return tuple(files)
 
 
 def _cells(base: TapeParameters, velocity: float, point: dict, varied: tuple[str, ...],
@@ -329,15 +386,16 @@ def _cells(base: TapeParameters, velocity: float, point: dict, varied: tuple[str
     missing = [name for name in varied if name not in point]
     if not missing:
         return point
-    params, v = parameters_of(base, velocity, point)
+    params, v = parameters_of(base, velocity, point, signed=True)   # checked before
     design = None if bearing is None else head_of_point(bearing, point)
     used = {name: head_value(design, name) if name in HEAD_VARIABLES
             else value_of(params, v, name) for name in missing}
     return {name: point[name] if name in point else used[name] for name in varied}
 
 
-def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...],
-                  compute: tuple[str, ...], bearing) -> BearingStudy | None:
+def _bearing_plan(base: TapeParameters, velocity: float, pts: list[dict],
+                  varied: tuple[str, ...], compute: tuple[str, ...], bearing
+                  ) -> BearingStudy | None:
     """The bearing setup with its columns, every point's head checked; None without
     ``bearing`` in ``compute`` (then no head variable may vary and no setup be given)."""
     if "bearing" not in compute:
@@ -354,15 +412,37 @@ def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...]
     if base.edges != "free" and not bearing.infinitely_wide:
         raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
     check_design(bearing.head, varied=[n for n in varied if n in HEAD_VARIABLES])
-    first = None
     for i, point in enumerate(pts):
         try:
-            design = head_of_point(bearing, point)
-            design.head()   # the contour's own checks too
+            head_of_point(bearing, point).head()   # the contour's own checks too
         except ParameterError as exc:
             raise ParameterError(f"point {i} {point}: {exc}") from None
-        first = design if first is None else first
-    return bearing.with_columns(base, first)
+    _check_bearing_points(base, velocity, pts, bearing)
+    return bearing.with_columns(base, head_of_point(bearing, pts[0]))
+
+
+def _check_bearing_points(base: TapeParameters, velocity: float, pts: list[dict],
+                          bearing: BearingStudy) -> None:
+    """Refuse, before any work, a point whose bearing model the single ``gyroshell
+    bearing`` would refuse (:func:`~gyroshell.studies.head_study.point_model`: its head,
+    a speed of 0, a grid beyond the memory), naming the point; the speed where no point
+    sets one first."""
+    import warnings
+
+    from ..bearing.model import BearingGridWarning
+
+    if velocity == 0.0 and any("velocity" not in point for point in pts):
+        raise ParameterError("velocity must be nonzero for an air bearing (either sign: the "
+                             "tape running along +x or -x, e.g. 4 or -4 m/s), got 0: give "
+                             "it (--velocity), or vary it")
+    fields = parameter_fields(base)
+    for i, point in enumerate(pts):
+        try:
+            with warnings.catch_warnings():   # a coarse grid warns when the point runs
+                warnings.simplefilter("ignore", BearingGridWarning)
+                point_model(fields, velocity, point, bearing)
+        except ParameterError as exc:
+            raise ParameterError(f"point {i} {point}: {exc}") from None
 
 
 def _run(plan: _Plan, where: Executor, cache, progress: bool | None) -> StudyResult:

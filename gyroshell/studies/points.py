@@ -19,7 +19,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from ..core import budget
+from ..core import budget, validation
 from ..core.errors import ParameterError
 from ..core.units import LAYER_NAME, LAYER_UNITS
 from ..tape.parameters import TapeParameters, check_velocity
@@ -141,8 +141,17 @@ def grid_points(vary: Mapping[str, Sequence]) -> list[dict]:
     return [dict(zip(names, combo, strict=True)) for combo in itertools.product(*values)]
 
 
-def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping]
-                 ) -> tuple[list[dict], tuple[str, ...]]:
+def check_speed(velocity: object, *, signed: bool = False) -> float:
+    """A tape speed V, m/s: finite and >= 0 (:func:`~gyroshell.tape.parameters.
+    check_velocity`), or, ``signed``, any finite real number (the air bearing alone: the
+    tape runs along +x or -x)."""
+    if signed:
+        return validation.real("velocity", velocity, unit="m/s")
+    return check_velocity(velocity)
+
+
+def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping], *,
+                 signed: bool = False) -> tuple[list[dict], tuple[str, ...]]:
     """The points with canonical names and validated values, and the names varied.
 
     Parameters
@@ -153,6 +162,8 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
         Tape speed V, m/s, where a point does not set it.
     points : sequence of mappings
         The user's points.
+    signed : bool
+        Speeds of either sign (a study of the air bearing alone, :func:`check_speed`).
 
     Returns
     -------
@@ -178,7 +189,7 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
             if key not in names:
                 names.append(key)
         try:
-            params, v = parameters_of(base, velocity, clean)
+            params, v = parameters_of(base, velocity, clean, signed=signed)
         except ParameterError as exc:
             raise ParameterError(f"point {i} {clean}: {exc}") from None
         clean = {k: clean[k] if k in HEAD_VARIABLES else value_of(params, v, k)
@@ -189,15 +200,15 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
     return out, tuple(names)
 
 
-def parameters_of(base: TapeParameters, velocity: float, point: Mapping
-                  ) -> tuple[TapeParameters, float]:
+def parameters_of(base: TapeParameters, velocity: float, point: Mapping, *,
+                  signed: bool = False) -> tuple[TapeParameters, float]:
     """The point's tape and speed V (m/s): ``base`` changed by the point's fields (its
     layers by the ``layer<N>.<key>`` ones), and the point's ``velocity`` or else
-    ``velocity``; the head's variables are not the tape's
-    (:func:`gyroshell.studies.head_study.head_of_point`)."""
+    ``velocity`` (of either sign if ``signed``, :func:`check_speed`); the head's variables
+    are not the tape's (:func:`gyroshell.studies.head_study.head_of_point`)."""
     changes = {k: v for k, v in point.items()
                if k != "velocity" and layer_of(k) is None and k not in HEAD_VARIABLES}
-    v = check_velocity(point.get("velocity", velocity))
+    v = check_speed(point.get("velocity", velocity), signed=signed)
     params = base
     layer_changes = {k: v for k, v in point.items() if layer_of(k) is not None}
     if layer_changes:

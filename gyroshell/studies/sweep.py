@@ -29,7 +29,7 @@ from ..core.parallel import check_process_count, process_pool
 from ..core.progress import stage_progress
 from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
 from ..linalg.qep.problem import check_count
-from ..results import base
+from ..results import base, layout
 from ..tape.model import TapeModel
 from ..tape.parameters import TapeParameters, check_velocity
 from .branches import BranchTracker, Match, track
@@ -84,6 +84,15 @@ class SweepResult(base.Result, kind="sweep"):
     params: TapeParameters | None = None
     grid: Grid | None = None
     info: dict = field(default_factory=dict)
+
+    #: The file: the speeds, the table's columns on ``row`` and the settings.
+    file_layout = layout.Layout(
+        {"velocities": layout.Variable(("speed",), check=layout.speed())},
+        {"count": layout.Attr(layout.count("count", 1)),
+         "min_correlation": layout.Attr(layout.of_type("min_correlation", (int, float),
+                                                       "a number")),
+         "continuation": layout.Attr(layout.of_type("continuation", bool, "true or false")),
+         "info": layout.INFO}, check=lambda ds: _check_table(ds))
 
     def to_frame(self) -> pd.DataFrame:
         """The table (columns :data:`COLUMNS`)."""
@@ -477,3 +486,24 @@ def plot_sweep(result, path=None, *, ax=None, title: str | None = None):
     if path is not None:
         plot.save_figure(ax.figure, path, dpi=SWEEP_DPI, close=False)
     return ax.figure
+
+
+def _check_table(ds) -> None:
+    """A sweep file's table: its columns stored, its speeds those of ``velocities``, and
+    ``count`` modes at each speed (a solve returns ``count`` modes; fewer only where a tiny
+    model has no more)."""
+    layout.table_columns(ds)
+    if "velocity" not in ds.variables:
+        raise ParameterError("column velocity is missing")
+    count = int(ds.attrs["count"])
+    rows = ds["velocity"].values
+    speeds = np.asarray(ds["velocities"].values).ravel()
+    stray = np.setdiff1d(rows, speeds)
+    if stray.size:
+        raise ParameterError(f"the table has rows at {stray[0]:g} m/s, not one of the "
+                             "stored velocities")
+    per_speed = np.array([np.count_nonzero(rows == v) for v in np.unique(speeds)])
+    if per_speed.size and (per_speed.max() > count or per_speed.max() < count
+                           or per_speed.min() == 0):
+        raise ParameterError(f"count is {count} but the table holds {per_speed.min()} to "
+                             f"{per_speed.max()} modes per speed")

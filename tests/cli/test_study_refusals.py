@@ -9,7 +9,7 @@ import json
 
 import pytest
 from conftest import WIDTH
-from fake_servers import FakeServer, closed_port
+from fake_servers import FakeServer, closed_port, dask_for
 
 COARSE = ["--spacing", WIDTH / 8, "--length-ratio", 2]
 LOUD_STUDY = ["study", *COARSE, "--vary", "tension=80,90", "--compute", "modes"]
@@ -57,6 +57,7 @@ def test_closed_port_is_refused_as_connection_refused(cli, tmp_path, monkeypatch
 
 @pytest.fixture(params=list(FakeServer.REPLIES))
 def fake_server(request):
+    dask_for(request.param)
     server = FakeServer(request.param)
     yield server
     server.stop()

@@ -33,8 +33,7 @@ DOCS = Path(__file__).resolve().parents[2] / "docs"
 WITHOUT_ALL: dict[str, tuple[str, ...]] = {
     "gyroshell.core.errors": ("InputFileError", "MissingFileError", "SingularError"),
     "gyroshell.core.units": ("SI_UNITS", "ACCEPTED", "unit_of", "axis_label"),
-    "gyroshell.kinds": ("load", "save", "load_table", "import_kinds", "KIND_MODULES",
-                        "FILE_LAYOUTS"),
+    "gyroshell.kinds": ("load", "save", "load_table", "import_kinds", "KIND_MODULES"),
     "gyroshell.results.base": ("Result", "kinds", "read", "from_dataset"),
     "gyroshell.results.tables": ("Table",),
     "gyroshell.tape.config": ("TapeConfig", "load_config", "write_config", "config_text"),

@@ -246,8 +246,7 @@ KINDS = sorted(base.kinds())
 
 
 def _layout(kind: str):
-    cls = base.kinds()[kind]
-    return cls.file_layout or gyroshell.kinds.FILE_LAYOUTS.get(kind)
+    return base.kinds()[kind].file_layout
 
 
 def test_every_kind_declares_what_its_file_holds():

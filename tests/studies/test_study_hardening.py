@@ -10,7 +10,7 @@ import math
 
 import pytest
 from conftest import WIDTH
-from fake_servers import FakeServer, closed_port
+from fake_servers import FakeServer, closed_port, dask_for
 
 from gyroshell import ParameterError, TapeModel, TapeParameters, run_study
 from gyroshell.core.parallel import check_process_count, max_processes, process_pool
@@ -55,6 +55,7 @@ def test_a_closed_port_is_refused_without_waiting_for_the_timeout(tmp_path):
 
 @pytest.mark.parametrize("mode", list(FakeServer.REPLIES))
 def test_a_server_that_is_not_dask_raises_a_parameter_error(mode):
+    dask_for(mode)
     server = FakeServer(mode)
     try:
         with pytest.raises(ParameterError, match=f"tcp://127.0.0.1:{server.port}"):
@@ -65,6 +66,7 @@ def test_a_server_that_is_not_dask_raises_a_parameter_error(mode):
 
 
 def test_websocket_and_in_process_addresses_that_lead_nowhere(tmp_path):
+    pytest.importorskip("distributed", exc_type=ImportError)  # Dask's own refusals
     with pytest.raises(ParameterError, match="no Dask scheduler of this process listens"):
         run_study(BASE, **ONE_POINT, scheduler="inproc://192.0.2.1/1/1", connect_timeout=1)
     server = FakeServer("http")
