@@ -53,7 +53,7 @@ from ..linalg.qep.spectrum import norm1
 from ..results.modes import GyroscopicModes, Modes
 from ..tape.grid import Grid
 from ..tape.mirror import mirror_split
-from ..tape.model import TapeModel
+from ..tape.model import TapeModel, check_model
 from ..tape.parameters import TapeParameters, check_velocity
 from .gyroscopic import gyroscopic_modes
 
@@ -178,7 +178,8 @@ MIRROR_HINT_MARGIN = 1
 def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
           sigma: complex | str = "auto", damping=None, start: Modes | None = None,
           estimate: float | None = None, symmetry: bool = True,
-          options: SolverOptions | None = None, **tuning) -> Modes:
+          options: SolverOptions | None = None, progress: bool | None = None,
+          **tuning) -> Modes:
     """Lowest ``count`` frequencies and complex mode shapes of the tape at speed V.
 
     Parameters
@@ -205,6 +206,8 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     options : SolverOptions, optional
         The tuning knobs together; ``**tuning`` gives any of them (``tol``, ``ncv``,
         ``maxiter``, ``method``, ``factorization``) by name, replacing the one in ``options``.
+    progress : bool or None
+        As for every engine (True, False or None); one eigen-solve has no progress to show.
 
     Returns
     -------
@@ -215,12 +218,14 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     Raises
     ------
     ParameterError
-        Bad count, sigma, tol, ncv or damping.
+        Not a model (:func:`gyroshell.tape.model.check_model`), bad count, sigma, tol, ncv,
+        damping or progress.
     ConvergenceError
         No convergence, or the residuals or the mode count failed.
     """
     opts = SolverOptions.of(options, **tuning)
-    velocity = check_speed(model, velocity)
+    validation.progress(progress)
+    velocity = check_speed(check_model(model), velocity)
     check_count(count, model.unknowns)  # before any assembly: a refusal costs nothing
     check_factorization(opts.factorization)
     C = damping_operator(model, velocity, damping)
@@ -462,5 +467,6 @@ def _below_count_frequency(M, G, K, count: int, omega_bar: float, factor, start,
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options
                 ) -> np.ndarray:
-    """The lowest ``count`` angular frequencies ω, rad/s, ascending (see :func:`modes`)."""
+    """The lowest ``count`` angular frequencies ω, rad/s, ascending (see :func:`modes`;
+    ``options`` include ``progress``)."""
     return modes(model, velocity, count, **options).omega

@@ -79,7 +79,7 @@ from ..results.transient import Recorder, TransientResult
 from ..tape.damping import Damping, as_damping
 from ..tape.loads import TimeProfile, step
 from ..tape.mirror import SymmetricHalf, mirror_split
-from ..tape.model import TapeModel
+from ..tape.model import MODEL_MEMBERS, TapeModel, check_model
 from ..tape.moving_loads import MovingLoad, PreparedLoads, as_loads, check_contact_steps
 from ..tape.parameters import check_velocity
 
@@ -313,7 +313,7 @@ class Newmark:
                  beta: float = 0.25, gamma: float = 0.5,
                  damping: Damping | float | None = None, backend: str = "auto",
                  blas_threads: int | None = 1) -> None:
-        self.model = model
+        self.model = check_model(model, members=(*MODEL_MEMBERS, "force", "load_point_row"))
         self.velocity = check_velocity(velocity)
         self.beta = validation.positive("beta", beta)
         self.K = model.K(self.velocity)
@@ -513,6 +513,7 @@ class Newmark:
             If the solution becomes non-finite or grows past the bound.
         """
         steps, t0 = check_steps(steps), validation.real("t0", t0, unit="s")
+        progress = validation.progress(progress)
         blowup_factor = validation.positive("blowup_factor", blowup_factor)
         kept = _kept(snapshot_times, snapshot_every, centerline_times)
         w, v, fixed, half = self._inputs(load, force, profile, w0, v0, symmetry)

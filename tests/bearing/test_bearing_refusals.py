@@ -280,6 +280,21 @@ def test_a_2d_solve_reports_every_stage_and_iteration():
     assert len(newton_lines) >= sol.info.iterations + 1   # the start's iterations too
 
 
+def test_progress_false_reports_nothing_as_in_every_engine(flying):
+    quiet = solve_steady(strip(), progress=False)
+    np.testing.assert_array_equal(quiet.u, flying.u)
+    np.testing.assert_array_equal(quiet.p, flying.p)
+
+
+def test_progress_false_on_a_2d_tape_whose_start_reports_stages(capsys):
+    model = BearingModel(TapeParameters(width=3e-3), velocity=4.0, wrap_angle=WRAP, nx=96,
+                         ny=24, span=2e-3)
+    iterations = []
+    sol = solve_steady(model, progress=False, iteration_log=iterations.append)
+    assert sol.info.iterations >= 1 and iterations     # the coarse start ran (and was quiet)
+    assert capsys.readouterr().err == ""
+
+
 # ----- through the CLI -------------------------------------------------------------------------
 @pytest.mark.parametrize("argv, message", [
     (["--nx", "50000", "--ny", "100000"], "a bearing grid of 50000 x 100000 intervals"),
