@@ -177,9 +177,8 @@ MIRROR_HINT_MARGIN = 1
 
 def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
           sigma: complex | str = "auto", damping=None, start: Modes | None = None,
-          estimate: float | None = None, symmetry: bool = True,
-          options: SolverOptions | None = None, progress: bool | None = None,
-          **tuning) -> Modes:
+          estimate: float | None = None, symmetry: bool = True, progress: bool | None = None,
+          options: SolverOptions | None = None, **tuning) -> Modes:
     """Lowest ``count`` frequencies and complex mode shapes of the tape at speed V.
 
     Parameters
@@ -207,7 +206,7 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
         The tuning knobs together; ``**tuning`` gives any of them (``tol``, ``ncv``,
         ``maxiter``, ``method``, ``factorization``) by name, replacing the one in ``options``.
     progress : bool or None
-        As for every engine (True, False or None); one eigen-solve has no progress to show.
+        As for every engine (True, False or None); one eigen-solve shows no progress.
 
     Returns
     -------
@@ -218,16 +217,12 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     Raises
     ------
     ParameterError
-        Not a model (:func:`gyroshell.tape.model.check_model`), bad count, sigma, tol, ncv,
-        damping or progress.
+        Not a model, bad count, sigma, tol, ncv, damping or progress.
     ConvergenceError
         No convergence, or the residuals or the mode count failed.
     """
     opts = SolverOptions.of(options, **tuning)
-    validation.progress(progress)
-    velocity = check_speed(check_model(model), velocity)
-    check_count(count, model.unknowns)  # before any assembly: a refusal costs nothing
-    check_factorization(opts.factorization)
+    velocity = _check_modes(model, velocity, count, opts, progress)
     C = damping_operator(model, velocity, damping)
     estimate, shift, first = _checked_guesses(model, velocity, sigma, start, estimate)
     if check_flag("symmetry", symmetry) and C is None and shift is None:
@@ -240,6 +235,17 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
                               options=opts)
     return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
                  result.supercritical, result.info, result.damped)
+
+
+def _check_modes(model, velocity: float, count: int, opts: SolverOptions, progress) -> float:
+    """The checks of :func:`modes`, before any assembly (a refusal costs nothing): the model
+    (:func:`gyroshell.tape.model.check_model`), speed, count, factorization and progress;
+    returns the speed, m/s."""
+    velocity = check_speed(check_model(model), velocity)
+    check_count(count, model.unknowns)
+    check_factorization(opts.factorization)
+    validation.progress(progress)
+    return velocity
 
 
 def check_flag(name: str, value) -> bool:

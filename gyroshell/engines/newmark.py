@@ -513,7 +513,6 @@ class Newmark:
             If the solution becomes non-finite or grows past the bound.
         """
         steps, t0 = check_steps(steps), validation.real("t0", t0, unit="s")
-        progress = validation.progress(progress)
         blowup_factor = validation.positive("blowup_factor", blowup_factor)
         kept = _kept(snapshot_times, snapshot_every, centerline_times)
         w, v, fixed, half = self._inputs(load, force, profile, w0, v0, symmetry)
@@ -555,7 +554,7 @@ class Newmark:
         :data:`TRIAL_FROM_STEPS` steps on, its time measured on :data:`TRIAL_STEPS` trial
         steps (on the half if the inputs known so far allow it); returns the run's progress
         (shorter runs are timed on their first steps)."""
-        grid = self.model.grid
+        grid, progress = self.model.grid, validation.progress(progress)
         loads = None if load is None else as_loads(load)
         if loads is not None:
             check_contact_steps(loads, self.dt)
