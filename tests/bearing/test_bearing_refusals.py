@@ -104,6 +104,29 @@ def test_forged_metadata_is_refused_on_load(tmp_path, flying, change, message):
     assert str(path) in str(info.value)
 
 
+@pytest.mark.parametrize("change, message", [
+    (_set("model", "velocity", 0.0), "velocity must be nonzero"),
+    (_set("model", "span", -1.0), "span must be > 0 m, got -1"),
+    (_set("model", "head", {"kind": "flat", "modules": 99}),
+     "a flat head's modules must be a list of objects"),
+    (_set("air", "viscosity", -1.0), "viscosity must be in [1e-07, 1000] Pa*s, got -1"),
+    (_set("parameters", "tension", -1.0), "tension must be >= 0 N/m, got -1"),
+], ids=["speed 0", "span", "head", "viscosity", "tension"])
+@pytest.mark.parametrize("loader", ["gyroshell.load", "bearing.storage.load"])
+def test_a_tampered_file_is_named_once_with_what_is_wrong(tmp_path, flying, change, message,
+                                                            loader):
+    import gyroshell
+    from gyroshell.bearing import storage
+
+    path = _forged(tmp_path, flying, change)
+    load = gyroshell.load if loader == "gyroshell.load" else storage.load
+    with pytest.raises(ParameterError) as info:
+        load(path)
+    text = str(info.value)
+    assert text.startswith(f"{path}: ") and text.count(str(path)) == 1
+    assert message in text and "\n" not in text
+
+
 def test_forged_2d_count_is_refused_before_allocating(tmp_path):
     """A 2-D file claiming ny = 10**7 (59 GiB of operators) is refused from its sizes."""
     from gyroshell.bearing import storage
