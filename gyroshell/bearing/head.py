@@ -63,6 +63,7 @@ import numpy as np
 
 from ..core import budget, validation
 from ..core.errors import InputFileError, ParameterError
+from ..core.files import check_input
 
 #: Largest wrap angle at either end of a flat or profile head, rad (small slopes).
 MAX_SIDE_WRAP = math.radians(45.0)
@@ -86,6 +87,9 @@ ARC_CONTACTS = ("auto", "point", "wrapped")
 #: made well inside that range, where the tangent point is still second order and the
 #: general contact set already resolves the arc.
 WRAPPED_ARC_BENDING_LENGTHS = 0.3
+#: Beyond each corner of a flat head the head falls away along a flank at this angle below
+#: the land, rad, unless the head says otherwise (``FlatHead(flank_angle=...)``).
+DEFAULT_FLANK_ANGLE = math.radians(20.0)
 #: Beyond a measured profile the head falls away at this angle, rad.
 PROFILE_FALLOFF = math.radians(20.0)
 #: Samples along each rounded corner's arc for the dry envelope (its chords lie within
@@ -101,6 +105,9 @@ PROFILE_SHARP_FRACTION = 0.25
 #: Fewest samples of a measured profile along x, and across y for an (x, y, z) profile.
 MIN_PROFILE_POINTS = 4
 MIN_PROFILE_COLUMNS = 2
+#: Longest measured profile along x, m: longer than any head (a few cm at most), shorter than
+#: a profile of one written in mm (a 2 mm contour would read 2 m).
+MAX_PROFILE_LENGTH = 0.1
 #: Bytes of memory a CSV file's byte costs when read whole (its text, the parsed rows and
 #: the float array), generously.
 CSV_BYTES_PER_BYTE = 16.0
@@ -516,10 +523,12 @@ class FlatHead(Head):
         At least one of wrap_in, wrap_out must be > 0: nothing else presses the tape onto
         a flat head.
     gaps : tuple of float
-        m, >= 0, between consecutive modules (n − 1 values; corner to corner).
+        m, > 0, between consecutive modules (n − 1 values; corner to corner).
     flank_angle : float
-        rad, in (0, 90°): beyond each corner the head falls away along a flank at this
-        angle below the land; it must be steeper than the tape's span at that corner.
+        rad, in (0, 90°), default :data:`DEFAULT_FLANK_ANGLE`: beyond each corner the head
+        falls away along a flank at this angle below the land; it must be steeper than the
+        tape's span at that corner (for coplanar modules: steeper than wrap_in and
+        wrap_out).
     transducers : tuple of float
         x of the read/write element lines, m (head coordinates, on the wrapped region).
     friction : float
@@ -541,7 +550,7 @@ class FlatHead(Head):
     wrap_in: float
     wrap_out: float
     gaps: tuple[float, ...] = ()
-    flank_angle: float = math.radians(20)
+    flank_angle: float = DEFAULT_FLANK_ANGLE
     transducers: tuple[float, ...] = ()
     friction: float = 0.0
     _mesas: tuple = field(default=(), init=False, repr=False, compare=False)
@@ -575,8 +584,8 @@ class FlatHead(Head):
                                  f"consecutive modules) for {len(modules)} modules, got "
                                  f"{len(gaps)}")
         for i, g in enumerate(gaps):
-            if g < 0.0:
-                raise ParameterError(f"gaps[{i}] must be >= 0 m, got {g:g}")
+            if not g > 0.0:   # modules that touch are one module
+                raise ParameterError(f"gaps[{i}] must be > 0 m, got {g:g}")
         put(self, "gaps", gaps)
         put(self, "flank_angle", validation.real("flank_angle", self.flank_angle, low=0.0,
                                                  high=0.5 * math.pi, low_open=True,
@@ -817,6 +826,10 @@ class ProfileHead(Head):
         shape = (len(x),) if y is None else (len(x), len(y))
         if z.shape != shape:
             raise ParameterError(f"z must have the shape {shape} of x (and y), got {z.shape}")
+        if x[-1] - x[0] > MAX_PROFILE_LENGTH:
+            raise ParameterError(
+                f"x spans {x[-1] - x[0]:.4g} m, longer than any head ({MAX_PROFILE_LENGTH:g} "
+                "m): a profile is in m; are its numbers in mm or um?")
         put(self, "wrap_in", _side_wrap("wrap_in", self.wrap_in))
         put(self, "wrap_out", _side_wrap("wrap_out", self.wrap_out))
         if self.wrap_in + self.wrap_out <= 0.0:
@@ -848,18 +861,25 @@ class ProfileHead(Head):
 
         Raises
         ------
+        ParameterError
+            For the arguments (wraps, friction, transducers off the wrapped region).
         InputFileError
-            Naming the file: missing, a folder, too large for the memory limit, empty,
-            not numbers, the wrong number of columns, x not increasing, (x, y) not a grid.
+            Naming the file and what is wrong with its contour: missing, a folder or not a
+            regular file (a FIFO), too large for the memory limit, empty, a line not
+            numbers or of another number of columns, x not increasing, (x, y) not a grid,
+            too short to hold the wrapped region.
         """
+        wrap_in, wrap_out = _side_wrap("wrap_in", wrap_in), _side_wrap("wrap_out", wrap_out)
+        friction = _friction(friction)
         x, y, z = _read_profile(path)
         try:
-            return cls(x, z, wrap_in, wrap_out, y, transducers=transducers,
-                       friction=friction)
-        except ParameterError as exc:
-            if "wrap_" in str(exc) or "transducers" in str(exc) or "friction" in str(exc):
+            head = cls(x, z, wrap_in, wrap_out, y, friction=friction)
+        except ParameterError as exc:   # the arguments are checked: the contour is wrong
+            if "nothing presses the tape" in str(exc):
                 raise
-            raise InputFileError(f"{path}: {exc}") from None
+            raise InputFileError(f"{os.fspath(path)}: {exc}") from None
+        object.__setattr__(head, "transducers", _check_transducers(head, transducers))
+        return head
 
     # --- the contour ---------------------------------------------------------------------
     def extent(self, radius=None):
@@ -994,31 +1014,24 @@ def _read_profile(path):
     name = os.fspath(path)
     if os.path.isdir(name):
         raise InputFileError(f"{name}: is a folder, not a profile CSV file")
-    try:
-        size = os.path.getsize(name)
-    except OSError as exc:
-        raise InputFileError(f"{name}: cannot be read ({exc.strerror})") from None
+    name = os.fspath(check_input(name, what="profile CSV file"))  # not a FIFO: it would block
+    size = os.path.getsize(name)
     budget.check_memory(f"the profile file {name} ({size} bytes)",
                         CSV_BYTES_PER_BYTE * size, "use a shorter profile (fewer samples)")
     try:
-        with open(name, encoding="utf-8") as f:
-            lines = [line.strip() for line in f if line.strip()
+        with open(name, encoding="utf-8-sig") as f:   # -sig: a byte-order mark is no header
+            lines = [(k, line.strip()) for k, line in enumerate(f, 1) if line.strip()
                      and not line.lstrip().startswith("#")]
     except (OSError, UnicodeDecodeError) as exc:
         raise InputFileError(f"{name}: cannot be read as UTF-8 text ({exc})") from None
-    if lines and not _numeric(lines[0]):
+    if lines and not _numeric(lines[0][1]):
         lines = lines[1:]                    # a header
     if not lines:
         raise InputFileError(f"{name}: the profile file is empty (no rows of numbers)")
-    try:
-        rows = np.array([[float(v) for v in _fields(line)] for line in lines])
-    except ValueError:
-        bad = next(i for i, line in enumerate(lines) if not _numeric(line))
-        raise InputFileError(f"{name}: row {bad + 1} is not numbers: {lines[bad][:60]!r}"
-                             ) from None
-    if rows.ndim != 2 or rows.shape[1] not in (2, 3):
+    rows = np.array(_rows(name, lines))
+    if rows.shape[1] not in (2, 3):
         raise InputFileError(f"{name}: the profile must have 2 columns (x, z) or 3 "
-                             "(x, y, z) in m on every row")
+                             f"(x, y, z) in m on every row, got {rows.shape[1]}")
     if not np.all(np.isfinite(rows)):
         raise InputFileError(f"{name}: the profile holds non-finite values")
     if rows.shape[1] == 2:
@@ -1033,6 +1046,24 @@ def _read_profile(path):
         raise InputFileError(f"{name}: the (x, y) of the rows repeat a point instead of "
                              "filling the grid")
     return xs, ys, z
+
+
+def _rows(name: str, lines: list[tuple[int, str]]) -> list[list[float]]:
+    """The numbers of the (line number, text) ``lines`` of the profile file ``name``, each
+    with as many as the first; InputFileError naming the file and line otherwise."""
+    rows = []
+    for row, (k, line) in enumerate(lines, 1):
+        try:
+            rows.append([float(v) for v in _fields(line)])
+        except ValueError:
+            raise InputFileError(f"{name}: line {k}: row {row} is not numbers: "
+                                 f"{line[:60]!r}") from None
+        if len(rows[-1]) != len(rows[0]):
+            raise InputFileError(
+                f"{name}: line {k}: row {row} has {len(rows[-1])} values, but the rows "
+                f"before have {len(rows[0])}: every row must be (x, z) or every row "
+                "(x, y, z), m")
+    return rows
 
 
 def _fields(line: str) -> list[str]:

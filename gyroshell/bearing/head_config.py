@@ -55,16 +55,18 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import re
 from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..core import validation
-from ..core.errors import ParameterError
-from .head import ARC_CONTACTS, MAX_MODULES, MAX_SIDE_WRAP, MAX_TILT
+from ..core.errors import InputFileError, ParameterError
+from .head import ARC_CONTACTS, DEFAULT_FLANK_ANGLE, MAX_MODULES, MAX_SIDE_WRAP, MAX_TILT
 
 __all__ = ["DEFAULT_WRAP_ANGLE", "HEAD_KINDS", "MAX_MODULES", "HeadDesign", "ModuleShape",
-           "check_design", "design_from_table", "in_file", "kind_fields", "table_labels"]
+           "build_head", "check_design", "design_from_table", "in_file", "kind_fields",
+           "table_labels"]
 
 #: The kinds of head.
 HEAD_KINDS: tuple[str, ...] = ("cylinder", "flat", "profile")
@@ -136,16 +138,17 @@ class HeadDesign:
         Flat: the number of modules, 1 to :data:`MAX_MODULES` (None: one, or as many as
         ``module_shapes``).
     module_gap : float, tuple or None
-        Flat: the gap between consecutive modules, m, >= 0, corner to corner (one for all,
+        Flat: the gap between consecutive modules, m, > 0, corner to corner (one for all,
         or modules − 1 values; required for two modules or more).
     module_shapes : tuple of ModuleShape
         Flat: per-module heights, tilts, lands and corner radii (empty: equal coplanar
         modules).
     flank_angle : float or None
-        Flat: the angle of the flanks below the land beyond each corner, rad (None: the
-        head's default, 20°).
+        Flat: the angle of the flanks below the land beyond each corner, rad, in (0, π/2)
+        (None: the head's default, 20°); steeper than wrap_in and wrap_out.
     arc_contact : str or None
-        Flat: how the tape meets the rounded corners, one of
+        Flat, rounded corners only (refused on sharp ones, where it has no effect): how the
+        tape meets the rounded corners, one of
         :data:`~gyroshell.bearing.head.ARC_CONTACTS`
         (``"auto"``, ``"point"``, ``"wrapped"``: the module notes; None: ``"auto"``); an
         option of the bearing model (:meth:`model_options`), not of the contour.
@@ -265,10 +268,14 @@ def check_design(design: HeadDesign, labels: Mapping[str, str] | None = None, *,
         another kind of head (``--wrap-angle`` on a flat head, ``--land-length`` on a
         cylinder); a value out of range; a flat head with no land length or no wrap at
         either end (nothing would press the tape onto it), fewer than 1 or more than
-        :data:`MAX_MODULES` modules, a negative gap or a gap without a second module; a
-        profile head without its file; a friction coefficient < 0. What needs the
-        contour (a land shorter than its corner radii allow, transducers off the head, a
-        bad profile file) is refused when :meth:`HeadDesign.head` builds it.
+        :data:`MAX_MODULES` modules, a gap <= 0 or a gap without a second module; coplanar
+        modules' wrap at either end not below the flank angle (the tape would lie on the
+        flank); ``arc_contact`` on a head whose corners are all sharp; a profile head
+        without its file; a friction coefficient < 0. What needs the contour (a land
+        shorter than its corner radii allow, tilted or raised modules overlapping,
+        transducers off the head, a bad profile file) is refused when
+        :meth:`HeadDesign.head` builds it (:func:`build_head` names the fields as the
+        user did).
     """
     name = _Names(labels or {}, degrees, varied)
 
@@ -301,15 +308,15 @@ class _Names:
         return self.labels.get(field, TABLE_NAMES.get(field, field))
 
     def angle(self, label: str, value, *, high: float, low: float = 0.0,
-              low_open: bool = False) -> float:
-        """``value`` (rad) checked within [low, high] rad, the range stated in degrees
-        if the user typed degrees."""
+              low_open: bool = False, high_open: bool = False) -> float:
+        """``value`` (rad) checked within [low, high] rad (or open ends), the range stated
+        in degrees if the user typed degrees."""
         value = validation.real(label, value, unit="rad")
+        ends = {"low_open": low_open, "high_open": high_open}
         if not self.degrees:
-            return validation.real(label, value, low=low, high=high, low_open=low_open,
-                                   unit="rad")
+            return validation.real(label, value, low=low, high=high, unit="rad", **ends)
         validation.real(label, math.degrees(value), low=math.degrees(low),
-                        high=math.degrees(high), low_open=low_open, unit="degrees")
+                        high=math.degrees(high), unit="degrees", **ends)
         return value
 
 
@@ -348,12 +355,13 @@ def _checked_flat(design: HeadDesign, name) -> dict:
     changes["module_gap"] = _checked_gaps(design.module_gap, n, name)
     if design.flank_angle is not None:
         changes["flank_angle"] = name.angle(name("flank_angle"), design.flank_angle,
-                                            low_open=True, high=math.pi / 2)
+                                            low_open=True, high=math.pi / 2, high_open=True)
     if design.arc_contact is not None:
         changes["arc_contact"] = validation.choice(name("arc_contact"), design.arc_contact,
                                                    ARC_CONTACTS)
     corner = _checked_corner(name("corner_radius"), design.corner_radius)
     changes["corner_radius"] = corner
+    _check_arc_contact_has_arcs(design, name)
     shapes = design.module_shapes or (ModuleShape(),)
     checked = []
     for i, shape in enumerate(shapes):
@@ -371,7 +379,44 @@ def _checked_flat(design: HeadDesign, name) -> dict:
             f"a flat head needs a wrap: {name('wrap_in')} and {name('wrap_out')} are both 0, "
             "so nothing presses the tape onto the head; give at least one of them > 0 "
             f"(e.g. 2 {'degrees' if name.degrees else 'deg'})")
+    if not design.module_shapes:
+        _check_wraps_below_flank(changes, design.flank_angle, name)
     return changes
+
+
+def _check_arc_contact_has_arcs(design: HeadDesign, name) -> None:
+    """Refuse ``arc_contact`` on a flat head whose corners are all sharp: it sets how the
+    tape meets rounded corners, and would be ignored."""
+    if design.arc_contact is None or "corner_radius" in name.varied:
+        return
+    radii = [design.corner_radius] + [m.corner_radius for m in design.module_shapes]
+    flat = [r for radius in radii if radius is not None
+            for r in (radius if isinstance(radius, tuple | list) else (radius,))]
+    if not any(r > 0.0 for r in flat):
+        raise ParameterError(
+            f"{name('arc_contact')} {design.arc_contact} sets how the tape meets rounded "
+            f"corners, and this head's corners are all sharp ({name('corner_radius')} 0): "
+            f"drop {name('arc_contact')} or give {name('corner_radius')} > 0")
+
+
+def _check_wraps_below_flank(changes: dict, flank: float | None, name) -> None:
+    """Coplanar modules: the span at the outer corners (wrap_in, wrap_out) must be less
+    steep than the flank beyond them, or the tape would lie on the flank (what
+    :class:`~gyroshell.bearing.head.FlatHead` refuses, said here in the user's names)."""
+    flank = DEFAULT_FLANK_ANGLE if changes.get("flank_angle") is None \
+        else changes["flank_angle"]
+    unit, scale = ("degrees", math.degrees) if name.degrees else ("rad", float)
+    for field in ("wrap_in", "wrap_out"):
+        wrap = changes.get(field)
+        if field in name.varied or wrap is None or wrap < flank:
+            continue
+        given = "" if changes.get("flank_angle") is not None else ", its default"
+        raise ParameterError(
+            f"{name(field)} must be below the flank angle {scale(flank):.4g} {unit} "
+            f"({name('flank_angle')}{given}), got {scale(wrap):.4g}: beyond the outer "
+            "corners the head falls away along the flanks, and a steeper span would lie on "
+            f"them; use a smaller {name(field)} or a steeper {name('flank_angle')} (< "
+            f"{scale(math.pi / 2):g} {unit})")
 
 
 def _checked_gaps(gap, n: int, name):
@@ -388,9 +433,9 @@ def _checked_gaps(gap, n: int, name):
         if len(gap) != n - 1:
             raise ParameterError(f"{name('module_gap')} must be one gap or {n - 1} (one "
                                  f"between each two of the {n} modules), got {len(gap)}")
-        return tuple(validation.nonnegative(f"{name('module_gap')}[{i}]", g, "m")
+        return tuple(validation.positive(f"{name('module_gap')}[{i}]", g, "m")
                      for i, g in enumerate(gap))
-    return validation.nonnegative(name("module_gap"), gap, "m")
+    return validation.positive(name("module_gap"), gap, "m")  # touching modules are one
 
 
 def _checked_corner(label: str, corner):
@@ -518,6 +563,50 @@ def table_labels(kind: str | None) -> dict[str, str]:
     labels = {field: f"[head] {TABLE_NAMES.get(field, field)}" for field in fields}
     labels["kind"] = f"[head] kind = {kind!r}" if kind else "[head] without a kind"
     return labels
+
+
+def build_head(design: HeadDesign, labels: Mapping[str, str] | None = None, where: str = ""):
+    """:meth:`HeadDesign.head`, its contour's refusals (a land shorter than its corner
+    radii allow, modules overlapping, a flank not steeper than the tape) naming the fields
+    as ``labels`` do (how the user named them, as for :func:`check_design`) and, for a
+    ``[head]`` key, the file ``where`` (``"head.toml: "``).
+
+    Raises
+    ------
+    ParameterError
+        As :meth:`HeadDesign.head`, in the user's names; InputFileError (a profile file's)
+        as it is: it names its file.
+    """
+    try:
+        return design.head()
+    except InputFileError:
+        raise
+    except ParameterError as exc:
+        if not labels:
+            raise
+        text = _in_users_names(str(exc), design, _Names(labels, degrees=True))
+        if where and "[head]" in text:
+            text = f"{where}{text}"
+        raise type(exc)(text) from None
+
+
+def _in_users_names(text: str, design: HeadDesign, name: _Names) -> str:
+    """A message of :class:`~gyroshell.bearing.head.FlatHead` (``modules[i]``,
+    ``land_length``, ``flank_angle``, ``corner_radius``, "a smaller wrap") in the names
+    ``name`` gives the fields: a ``[[head.module]]`` table is ``[head] module[i]``."""
+    module = name("module_shapes") if design.module_shapes else None
+
+    def land(match) -> str:
+        i = int(match.group(1))
+        own = module is not None and design.module_shapes[i].land_length is not None
+        return f"{module}[{i}] land_length" if own else name("land_length")
+
+    text = re.sub(r"modules\[(\d+)\]\.land_length", land, text)
+    if module is not None:
+        text = re.sub(r"modules\[(\d+)\]", lambda m: f"{module}[{m.group(1)}]", text)
+    for field in ("flank_angle", "corner_radius"):
+        text = re.sub(rf"\b{field}\b", name(field), text)
+    return text.replace("a smaller wrap", f"a smaller {name('wrap_in')} or {name('wrap_out')}")
 
 
 def in_file(where: str, check):

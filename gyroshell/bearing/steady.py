@@ -882,7 +882,7 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     progress : callable, optional
         Called with a one-line message per stage: the coarse-grid start of a 2-D tape,
         Newton giving way to the pseudo-time march, each pseudo-time step and each
-        continuation stage.
+        continuation stage. False, like None, reports nothing.
     iteration_log : callable, optional
         Called with a one-line message per Newton iteration (those of the coarse-grid
         start too).
@@ -894,6 +894,7 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
     ConvergenceError
         If neither Newton, the pseudo-time march nor the continuation reaches the state.
     """
+    progress = None if progress is False else progress  # False: no progress, as elsewhere
     tension, z0 = check_steady_arguments(model, z0, tension, progress, iteration_log)
     if model.smooth_contact:      # asperities or a measured curve: see .smooth
         from .smooth import solve_smooth

@@ -43,5 +43,7 @@ def load(path: str | os.PathLike[str]) -> BearingSolution:
                              f"{kind!r})")
     try:
         return from_dataset(ds, source=str(path))
-    except ParameterError as exc:
+    except ParameterError as exc:   # each message names the file once
+        if str(exc).startswith(str(path)):
+            raise
         raise ParameterError(f"{path}: {exc}") from None

@@ -31,7 +31,7 @@ from .common import (
     real,
     typed_overrides,
 )
-from .heads import add_head_options, head_design
+from .heads import add_head_options, build_head_of, head_design
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
@@ -179,7 +179,8 @@ def run(args: argparse.Namespace) -> int:
     _refuse_unused_in_mode(args)
     params, velocity, head_table = _tape(args)
     design = head_design(args, head_table, args.config)
-    head = design.head()   # the contour's checks: transducers on it, a profile file's
+    # the contour's checks: transducers on it, a profile file's
+    head = build_head_of(args, design, head_table, args.config)
     air = _air(args)
     out = _check_outputs(args)
     options = design.model_options()

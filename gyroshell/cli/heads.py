@@ -19,16 +19,17 @@ from pathlib import Path
 from ..bearing.head import WRAPPED_ARC_BENDING_LENGTHS
 from .common import UserError, real
 
-__all__ = ["HEAD_FLAGS", "add_head_options", "head_design", "typed_head_options"]
+__all__ = ["HEAD_FLAGS", "add_head_options", "build_head_of", "head_design",
+           "typed_head_options"]
 
 #: The head options: HeadDesign field -> flag.
 HEAD_FLAGS: dict[str, str] = {
     "wrap_angle": "--wrap-angle", "wrap_in": "--wrap-in", "wrap_out": "--wrap-out",
     "land_length": "--land-length", "corner_radius": "--corner-radius",
-    "modules": "--modules", "module_gap": "--module-gap", "transducers": "--transducers",
-    "friction": "--friction", "arc_contact": "--arc-contact"}
+    "modules": "--modules", "module_gap": "--module-gap", "flank_angle": "--flank-angle",
+    "transducers": "--transducers", "friction": "--friction", "arc_contact": "--arc-contact"}
 #: The options given in degrees.
-DEGREE_FIELDS = ("wrap_angle", "wrap_in", "wrap_out")
+DEGREE_FIELDS = ("wrap_angle", "wrap_in", "wrap_out", "flank_angle")
 #: The kinds ``--head`` names; anything else is a profile file.
 NAMED_KINDS = ("cylinder", "flat")
 
@@ -47,10 +48,12 @@ def add_head_options(p: argparse.ArgumentParser, *, title: str = "head") -> None
                         "(default 15)")
     g.add_argument("--wrap-in", type=real, default=None,
                    help="flat or measured head: angle of the incoming span below the first "
-                        "land, degrees, in [0, 45] (default 0; e.g. 2)")
+                        "land, degrees, in [0, 45] (default 0; e.g. 2); on a flat head "
+                        "below --flank-angle (default 20)")
     g.add_argument("--wrap-out", type=real, default=None,
                    help="flat or measured head: angle of the outgoing span below the last "
-                        "land, degrees, in [0, 45] (default 0)")
+                        "land, degrees, in [0, 45] (default 0); on a flat head below "
+                        "--flank-angle (default 20)")
     g.add_argument("--land-length", type=real, default=None,
                    help="flat head: each module's land, corner to corner, m (e.g. 1e-3)")
     g.add_argument("--corner-radius", default=None, metavar="R or R_IN,R_OUT",
@@ -63,6 +66,10 @@ def add_head_options(p: argparse.ArgumentParser, *, title: str = "head") -> None
     g.add_argument("--module-gap", type=real, default=None,
                    help="flat head: gap between consecutive modules, m, > 0 (required with "
                         "--modules 2 or more)")
+    g.add_argument("--flank-angle", type=real, default=None,
+                   help="flat head: angle below the land at which the head falls away "
+                        "beyond each corner, degrees, in (0, 90) (default 20); steeper than "
+                        "the tape's spans, so above --wrap-in and --wrap-out")
     g.add_argument("--transducers", default=None, metavar="X1,X2,...",
                    help="x of the read/write element lines, m from the head's middle, on "
                         "the wrapped region (the spacing along each is reported)")
@@ -70,7 +77,8 @@ def add_head_options(p: argparse.ArgumentParser, *, title: str = "head") -> None
                    help="Coulomb friction coefficient between tape and head, >= 0 (default "
                         "0): friction drag = friction x contact force")
     g.add_argument("--arc-contact", default=None, metavar="auto|point|wrapped",
-                   help="flat head, rounded corners: how the tape meets each arc: point, at "
+                   help="flat head with rounded corners (refused on sharp ones, where it "
+                        "has no effect): how the tape meets each arc: point, at "
                         "one tangent point (found by regridding; valid while the tape is "
                         "less curved than the arc); wrapped, lying on part of the arc (every "
                         "arc node may touch); auto (default), per corner: wrapped when the "
@@ -96,13 +104,28 @@ def head_design(args: argparse.Namespace, table: dict | None = None,
     UserError, ParameterError
         One line naming the option or the file's key.
     """
-    from ..bearing.head_config import (
-        HeadDesign,
-        check_design,
-        design_from_table,
-        in_file,
-        table_labels,
-    )
+    from ..bearing.head_config import check_design, in_file
+
+    merged, labels, where = _stated(args, table, config)
+    return in_file(where, lambda: check_design(merged, labels, degrees=True,
+                                                    varied=varied))
+
+
+def build_head_of(args: argparse.Namespace, design, table: dict | None = None,
+                  config: str | os.PathLike | None = None):
+    """The :class:`~gyroshell.bearing.head.Head` of ``design`` (:func:`head_design` of the
+    same arguments), its contour's refusals naming the options, ``[head]`` keys and file
+    as the user wrote them (:func:`gyroshell.bearing.head_config.build_head`)."""
+    from ..bearing.head_config import build_head
+
+    _, labels, where = _stated(args, table, config)
+    return build_head(design, labels, where)
+
+
+def _stated(args: argparse.Namespace, table: dict | None, config) -> tuple:
+    """(the design the options state over the table, unchecked; how the user named each
+    field; the file as messages name it, ``"head.toml: "`` or "")."""
+    from ..bearing.head_config import HeadDesign, design_from_table, table_labels
 
     design = HeadDesign()
     labels = {**HEAD_FLAGS, "kind": "the default cylinder", "profile": "--head FILE.csv"}
@@ -122,9 +145,7 @@ def head_design(args: argparse.Namespace, table: dict | None = None,
         changes["profile"] = profile
         labels["kind"] = f"--head {args.head}"
         labels["profile"] = "--head"
-    merged = dataclasses.replace(design, **changes)
-    return in_file(where, lambda: check_design(merged, labels, degrees=True,
-                                                    varied=varied))
+    return dataclasses.replace(design, **changes), labels, where
 
 
 def _integer(text: str) -> int:

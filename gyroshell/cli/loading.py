@@ -29,12 +29,16 @@ def add_damping_options(p: argparse.ArgumentParser) -> None:
 
 
 def damping_from_args(args: argparse.Namespace):
-    """A Damping from --damping and --rayleigh (validated; raises ParameterError)."""
+    """A Damping from --damping and --rayleigh (validated; raises ParameterError naming the
+    option, not the API's parameter)."""
+    from ..core import validation
     from ..tape.damping import Damping
 
     a, b = args.rayleigh if args.rayleigh is not None else (0.0, 0.0)
     c = 0.0 if args.damping is None else args.damping
-    return Damping(viscous=c, mass_coefficient=a, stiffness_coefficient=b)
+    return Damping(viscous=validation.nonnegative("--damping", c, "N*s/m^3"),
+                   mass_coefficient=validation.nonnegative("--rayleigh A", a, "1/s"),
+                   stiffness_coefficient=validation.nonnegative("--rayleigh B", b, "s"))
 
 
 def add_load_options(p: argparse.ArgumentParser) -> None:

@@ -45,9 +45,10 @@ def default_workers() -> int:
 def run(args: argparse.Namespace) -> int:
     from ..core.files import check_output_folder_with_files, folder_transaction
     from ..core.parallel import check_process_count
-    from ..reproduce import Settings, run_studies
+    from ..reproduce import Settings, output_files, run_studies
 
-    out = check_output_folder_with_files(args.out, option="--out")  # as bearing --out
+    # as bearing --out: the folder and every file the studies write, before any work
+    out = check_output_folder_with_files(args.out, output_files(args.studies), option="--out")
     workers = check_process_count("--workers", args.workers or default_workers())
     settings = Settings(quick=args.quick, progress=False if args.quiet else None)
     start = time.perf_counter()

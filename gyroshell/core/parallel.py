@@ -7,11 +7,17 @@ without it this does nothing and the engines only run slower.
 
 Studies and sweeps that run on several local processes get them from :func:`process_pool`.
 Its workers die with the process that started them (:func:`worker_setup`): a study killed
-with ``kill -9`` leaves no worker, no fork server and no held pipe behind.
+with ``kill -9`` leaves no worker, no fork server and no held pipe behind. A signal that
+stops the study while a worker starts waits until the worker has started
+(:func:`held_signals`), so that the worker is stopped with the others instead of starting
+after the study is gone (it then failed to open the pool's semaphores and printed a
+traceback); workers share no semaphore of their own (:func:`worker_setup`), so a stopped
+one leaves none for the resource tracker to report as leaked.
 """
 
 from __future__ import annotations
 
+import functools
 import os
 import sys
 import threading
@@ -21,6 +27,7 @@ from contextlib import AbstractContextManager, contextmanager, nullcontext
 from typing import TYPE_CHECKING
 
 from . import validation
+from .progress import bars_of_this_process
 
 if TYPE_CHECKING:
     from concurrent.futures import ProcessPoolExecutor
@@ -72,8 +79,9 @@ def check_process_count(name: str, value: object) -> int:
 
 
 def worker_setup(starter: int) -> None:
-    """Initializer of worker processes: one BLAS thread (:func:`one_blas_thread`), and
-    death with the process ``starter`` (its pid) that started the pool.
+    """Initializer of worker processes: one BLAS thread (:func:`one_blas_thread`), progress
+    bars' lock of this process only (:func:`gyroshell.core.progress.bars_of_this_process`),
+    and death with the process ``starter`` (its pid) that started the pool.
 
     On Linux the kernel kills the worker when its parent (the fork server) dies
     (``PR_SET_PDEATHSIG``); on every POSIX system a daemon thread checks every
@@ -82,6 +90,7 @@ def worker_setup(starter: int) -> None:
     starter and all its workers are gone (Python closes its lifeline pipe then).
     """
     one_blas_thread()
+    bars_of_this_process()
     if os.name == "nt":  # no parent death signal, and os.kill(pid, 0) would end the starter
         return
     _die_with_parent()
@@ -132,6 +141,56 @@ def _alive(pid: int) -> bool:
     return True
 
 
+#: Signals that stop a run (Ctrl-C, ``kill``, a closed terminal), held while a worker starts.
+HELD_SIGNALS = ("SIGINT", "SIGTERM", "SIGHUP")
+
+
+@contextmanager
+def held_signals() -> Iterator[None]:
+    """Within the block, :data:`HELD_SIGNALS` are held and acted on when it ends (the first
+    one caught, by the handler it had, or its default action); the block is never cut
+    short by them. Does nothing outside the main thread (where handlers cannot change)."""
+    import signal
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[tuple[int, object]] = []
+    previous = {}
+    for name in HELD_SIGNALS:
+        signum = getattr(signal, name, None)
+        if signum is not None and signal.getsignal(signum) not in (signal.SIG_IGN, None):
+            previous[signum] = signal.signal(signum, lambda *caught_now: caught.append(
+                caught_now))
+    try:
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
+        if caught:
+            signum, frame = caught[0]
+            if callable(previous[signum]):
+                previous[signum](signum, frame)
+            else:  # SIG_DFL: the default action (usually the end of this process), now
+                os.kill(os.getpid(), signum)
+
+
+@functools.cache
+def _pool_class() -> type[ProcessPoolExecutor]:
+    """ProcessPoolExecutor whose workers start under :func:`held_signals`: a signal during a
+    start comes after the worker is in the pool's list, so that :func:`stop_pool` stops
+    it. Cut short, the start left a worker that the pool did not know, which read the
+    pool's semaphores after the study had removed them (a FileNotFoundError traceback)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    class Pool(ProcessPoolExecutor):
+        def _spawn_process(self) -> None:  # Python 3.10-3.13's one place a worker starts
+            with held_signals():
+                super()._spawn_process()
+
+    return Pool
+
+
 @contextmanager
 def process_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
     """A :class:`~concurrent.futures.ProcessPoolExecutor` of ``workers`` local processes.
@@ -145,13 +204,12 @@ def process_pool(workers: int) -> Iterator[ProcessPoolExecutor]:
     error surfaces at once, without waiting for the chunks in progress.
     """
     import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
 
     workers = check_process_count("workers", workers)
     methods = multiprocessing.get_all_start_methods()
     context = multiprocessing.get_context("forkserver" if "forkserver" in methods else "spawn")
-    pool = ProcessPoolExecutor(max_workers=workers, initializer=worker_setup,
-                               initargs=(os.getpid(),), mp_context=context)
+    pool = _pool_class()(max_workers=workers, initializer=worker_setup,
+                         initargs=(os.getpid(),), mp_context=context)
     try:
         yield pool
     except BaseException:

@@ -48,6 +48,18 @@ def progress_bar(total: int, description: str, *, progress: bool | None = None,
                 leave=leave, file=sys.stderr)
 
 
+def bars_of_this_process() -> None:
+    """Give tqdm a lock of this process's threads instead of the one it shares between
+    processes (a named semaphore made on its first bar, even a disabled one). For worker
+    processes, which draw no bars: a worker stopped by a signal cannot remove that
+    semaphore, and Python's resource tracker then warns of a leaked semaphore."""
+    import threading
+
+    from tqdm import tqdm
+
+    tqdm.set_lock(threading.RLock())
+
+
 # ----- long work: a measured time estimate, a time limit and progress lines -------------------
 #: Environment variable overriding the time limit, seconds (e.g. ``86400`` for a day).
 TIME_LIMIT_VARIABLE = "GYROSHELL_TIME_LIMIT"

@@ -125,6 +125,26 @@ def boolean(name: str, value: object) -> bool:
     raise ParameterError(f"{name} must be True or False, got {value!r}")
 
 
+def progress(value: object, name: str = "progress") -> bool | None:
+    """An engine's ``progress=``: True (a bar on stderr), False (nothing) or None (the bar
+    on a terminal, else what the engine reports in lines); returned as bool or None.
+
+    Examples
+    --------
+    >>> progress(False)
+    False
+    >>> progress("yes")
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: progress must be True, False or None, got 'yes'
+    """
+    if value is None:
+        return None
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise ParameterError(f"{name} must be True, False or None, got {value!r}")
+
+
 def choice(name: str, value: object, choices: tuple[str, ...]) -> str:
     """One of ``choices``."""
     if not isinstance(value, str) or value not in choices:

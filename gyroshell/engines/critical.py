@@ -35,8 +35,8 @@ from ..linalg.factorization import resolve_factorization
 from ..linalg.inertia import factor_inertia, proved_definite
 from ..results.critical import PAPER_SPEED, SUNDARAM_BENSON_SPEED, CriticalSpeeds
 from ..tape.mirror import mirror_split
-from ..tape.model import TapeModel
-from .divergence import beam_mu_estimate, divergence, proved_above
+from ..tape.model import TapeModel, check_model
+from .divergence import DIVERGENCE_MEMBERS, beam_mu_estimate, divergence, proved_above
 from .eigen import check_speed, modes
 from .gyroscopic import gyroscopic_modes
 
@@ -161,7 +161,7 @@ def critical_function(model: TapeModel, velocity: float, *, count: int = 1,
     above, an oscillating pair can be nearer zero than the divergent one; f then uses the
     growing eigenvalue if found, else −|λ₀|² (still negative: K(V) is indefinite).
     """
-    return _evaluate(model, velocity, count, options)[0]
+    return _evaluate(check_model(model), velocity, count, options)[0]
 
 
 #: The default starting speed is this fraction of the beam estimate √((T + μ_beam)/ρ).
@@ -291,7 +291,8 @@ def _next_trial(f: _Counted) -> float:
 
 def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
                          xtol: float = 1e-9, count: int = 1, max_evaluations: int = 30,
-                         step: float | None = None, **options) -> tuple[float, dict]:
+                         step: float | None = None, progress: bool | None = None,
+                         **options) -> tuple[float, dict]:
     """Route (a): the speed where the lowest frequency reaches zero, m/s, and diagnostics.
 
     Below the root ω₁²(s), s = V², is smooth; above it the eigenvalue nearest zero may
@@ -318,6 +319,8 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
         default ADVANCE_FACTOR − 1 (0.4 %). A guess known to lie close below the root
         (:func:`critical_speeds` starts DIVERGENCE_GAP below route (b)'s speed) wants a
         step of that size.
+    progress : bool or None
+        As for every engine (True, False or None); the few eigen-solves show no progress.
 
     Notes
     -----
@@ -332,10 +335,12 @@ def critical_speed_eigen(model: TapeModel, *, guess: float | None = None,
     Raises
     ------
     ParameterError
-        Bad guess, xtol or max_evaluations.
+        Not a model, bad guess, xtol, max_evaluations or progress.
     ConvergenceError
         If no bracketed root is found within ``max_evaluations`` eigen-solves.
     """
+    check_model(model)
+    validation.progress(progress)
     guess = default_guess(model) if guess is None else guess
     guess = validation.positive("guess", guess, "m/s")
     xtol = validation.real("xtol", xtol, low=0.0, high=MAX_XTOL, low_open=True, high_open=True)
@@ -421,7 +426,8 @@ def _half_of(model: TapeModel, mode: np.ndarray) -> str | None:
     return "symmetric" if sym > anti else "antisymmetric"
 
 
-def critical_speeds(model: TapeModel, **options) -> CriticalSpeeds:
+def critical_speeds(model: TapeModel, *, progress: bool | None = None,
+                    **options) -> CriticalSpeeds:
     """Critical speed by both routes (a) and (b), with the context values, m/s.
 
     ``options`` go to :func:`critical_speed_eigen` (``guess``, ``xtol``, solver options).
@@ -431,9 +437,11 @@ def critical_speeds(model: TapeModel, **options) -> CriticalSpeeds:
     the zero of its own eigen-solves' ω₁², extrapolated and bracketed by a sign change, so
     the comparison of the two routes keeps its meaning; it needs 2-3 eigen-solves instead
     of about 8 from :func:`default_guess` (the point just below the zero is a proof that
-    K(V) > 0, :data:`PROOF_RANGE`).
+    K(V) > 0, :data:`PROOF_RANGE`). ``progress`` is as for every engine (True, False or
+    None); the few eigen-solves show no progress.
     """
-    p = model.params
+    p = check_model(model, members=DIVERGENCE_MEMBERS).params
+    validation.progress(progress)
     t0 = time.perf_counter()
     div = divergence(model)
     t1 = time.perf_counter()

@@ -25,7 +25,7 @@ from ..linalg import cholesky
 from ..linalg.factorization import resolve_factorization
 from ..linalg.inertia import InertiaFactor, factor_inertia
 from ..results.critical import Divergence
-from ..tape.model import TapeModel
+from ..tape.model import MODEL_MEMBERS, TapeModel, check_model
 
 #: Factorizations tried by :func:`safe_shift` before giving up (τ = 0).
 SHIFT_TRIES = 8
@@ -37,6 +37,9 @@ SHIFT_UNDERSHOOT = 0.1
 DIVERGENCE_TOL = 1e-12
 #: Seed of ARPACK's start vector: reproducible results.
 START_SEED = 12345
+
+#: What the divergence solver reads from a model: the engines' members and K's parts A, B.
+DIVERGENCE_MEMBERS = (*MODEL_MEMBERS, "A", "B")
 
 __all__ = ["Divergence", "beam_mu_estimate", "divergence", "divergence_speed", "proved_shift",
            "safe_shift"]
@@ -184,8 +187,8 @@ def _safe_shift(pencils: _Pencils, tau: float, tries: int) -> tuple[float, list 
     return 0.0, None
 
 
-def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | None = None
-               ) -> Divergence:
+def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | None = None,
+               progress: bool | None = None) -> Divergence:
     """Divergence speed and buckling mode of the discrete model, by ``eigsh``.
 
     Shift-invert about a shift τ just below μ_min, through one sparse factorization of
@@ -202,7 +205,12 @@ def divergence(model: TapeModel, *, tol: float = DIVERGENCE_TOL, shift: float | 
         ARPACK relative tolerance.
     shift : float, optional
         τ, N/m, to use instead (must be below μ_min); 0 reproduces plain shift-invert.
+    progress : bool or None
+        As for every engine (True, False or None); one eigen-solve (or two, on the
+        halves) has no progress to show.
     """
+    check_model(model, members=DIVERGENCE_MEMBERS)
+    validation.progress(progress)
     tol = validation.real("tol", tol, low=0.0, high=1.0, high_open=True)
     if shift is not None:
         shift = validation.real("shift", shift, unit="N/m")
@@ -263,6 +271,6 @@ def _lowest(A, B, P, factor, tau: float, tol: float) -> tuple[float, np.ndarray]
     return float(vals[0]), vec if P is None else P @ vec
 
 
-def divergence_speed(model: TapeModel) -> float:
+def divergence_speed(model: TapeModel, *, progress: bool | None = None) -> float:
     """Divergence speed V_div = √((T + μ_min)/ρ), m/s (see :func:`divergence`)."""
-    return divergence(model).speed
+    return divergence(model, progress=progress).speed

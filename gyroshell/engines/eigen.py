@@ -53,7 +53,7 @@ from ..linalg.qep.spectrum import norm1
 from ..results.modes import GyroscopicModes, Modes
 from ..tape.grid import Grid
 from ..tape.mirror import mirror_split
-from ..tape.model import TapeModel
+from ..tape.model import TapeModel, check_model
 from ..tape.parameters import TapeParameters, check_velocity
 from .gyroscopic import gyroscopic_modes
 
@@ -177,7 +177,7 @@ MIRROR_HINT_MARGIN = 1
 
 def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
           sigma: complex | str = "auto", damping=None, start: Modes | None = None,
-          estimate: float | None = None, symmetry: bool = True,
+          estimate: float | None = None, symmetry: bool = True, progress: bool | None = None,
           options: SolverOptions | None = None, **tuning) -> Modes:
     """Lowest ``count`` frequencies and complex mode shapes of the tape at speed V.
 
@@ -205,6 +205,8 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     options : SolverOptions, optional
         The tuning knobs together; ``**tuning`` gives any of them (``tol``, ``ncv``,
         ``maxiter``, ``method``, ``factorization``) by name, replacing the one in ``options``.
+    progress : bool or None
+        As for every engine (True, False or None); one eigen-solve shows no progress.
 
     Returns
     -------
@@ -215,14 +217,12 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
     Raises
     ------
     ParameterError
-        Bad count, sigma, tol, ncv or damping.
+        Not a model, bad count, sigma, tol, ncv, damping or progress.
     ConvergenceError
         No convergence, or the residuals or the mode count failed.
     """
     opts = SolverOptions.of(options, **tuning)
-    velocity = check_speed(model, velocity)
-    check_count(count, model.unknowns)  # before any assembly: a refusal costs nothing
-    check_factorization(opts.factorization)
+    velocity = _check_modes(model, velocity, count, opts, progress)
     C = damping_operator(model, velocity, damping)
     estimate, shift, first = _checked_guesses(model, velocity, sigma, start, estimate)
     if check_flag("symmetry", symmetry) and C is None and shift is None:
@@ -235,6 +235,17 @@ def modes(model: TapeModel, velocity: float = 0.0, count: int = 6, *,
                               options=opts)
     return Modes(model.grid, velocity, result.eigenvalues, result.vectors, result.residuals,
                  result.supercritical, result.info, result.damped)
+
+
+def _check_modes(model, velocity: float, count: int, opts: SolverOptions, progress) -> float:
+    """The checks of :func:`modes`, before any assembly (a refusal costs nothing): the model
+    (:func:`gyroshell.tape.model.check_model`), speed, count, factorization and progress;
+    returns the speed, m/s."""
+    velocity = check_speed(check_model(model), velocity)
+    check_count(count, model.unknowns)
+    check_factorization(opts.factorization)
+    validation.progress(progress)
+    return velocity
 
 
 def check_flag(name: str, value) -> bool:
@@ -462,5 +473,6 @@ def _below_count_frequency(M, G, K, count: int, omega_bar: float, factor, start,
 
 def frequencies(model: TapeModel, velocity: float = 0.0, count: int = 6, **options
                 ) -> np.ndarray:
-    """The lowest ``count`` angular frequencies ω, rad/s, ascending (see :func:`modes`)."""
+    """The lowest ``count`` angular frequencies ω, rad/s, ascending (see :func:`modes`;
+    ``options`` include ``progress``)."""
     return modes(model, velocity, count, **options).omega

@@ -48,8 +48,9 @@ from ..results import layout
 from ..results.base import Result, dataset, from_json, get, put
 from ..results.frequency_response import FrequencyResponse
 from ..tape.damping import Damping, as_damping
-from ..tape.model import TapeModel
+from ..tape.model import TapeModel, check_model
 from ..tape.parameters import check_velocity
+from .divergence import DIVERGENCE_MEMBERS
 from .frequency_options import (  # noqa: F401 - the checks are public here too
     DEFAULT_TOL,
     ESTIMATE_ROUNDOFF,
@@ -151,6 +152,14 @@ class _Operators:
         return out
 
 
+#: What the frequency response reads from a model (the refusal above critical needs A, B).
+RESPONSE_MEMBERS = (*DIVERGENCE_MEMBERS, "force")
+
+
+def _check_model(model: object) -> TapeModel:
+    return check_model(model, members=RESPONSE_MEMBERS)
+
+
 def direct_response(model: TapeModel, velocity: float, omega, *,
                     damping: Damping | float | None = None, force: np.ndarray | None = None,
                     probes: Sequence[tuple[float, float]] = (), progress: bool | None = None
@@ -160,7 +169,8 @@ def direct_response(model: TapeModel, velocity: float, omega, *,
     Parameters as in :func:`frequency_response`.
     """
     velocity = check_velocity(velocity)
-    omega = check_frequencies(omega, density=model.params.density)
+    omega = check_frequencies(omega, density=_check_model(model).params.density)
+    progress = validation.progress(progress)
     damping = as_damping(damping)
     ops = _Operators(model, velocity, damping, _force(model, force))
     points, rows = response_rows(model, probes)
@@ -310,6 +320,7 @@ class ReducedModel(Result, kind="reduced_model"):
                  damping: Damping | float | None = None, force: np.ndarray | None = None,
                  probes: Sequence[tuple[float, float]] = (), moments: int = DEFAULT_MOMENTS):
         moments = validation.integer("moments", moments, low=2)
+        _check_model(model)
         self.velocity = check_velocity(velocity)
         self.damping = as_damping(damping)
         self.unknowns = model.unknowns
@@ -498,7 +509,8 @@ def frequency_response(model: TapeModel, velocity: float, omega, *,
         is fastest on a shared machine, where spinning BLAS workers compete for cores.
     """
     velocity = check_velocity(velocity)
-    omega = check_frequencies(omega, density=model.params.density)
+    omega = check_frequencies(omega, density=_check_model(model).params.density)
+    progress = validation.progress(progress)
     tol, max_points = check_options(method, tol, max_points)
     response_rows(model, probes), as_damping(damping), _force(model, force)  # checks first
     _check_subcritical(model, velocity)

@@ -79,7 +79,7 @@ from ..results.transient import Recorder, TransientResult
 from ..tape.damping import Damping, as_damping
 from ..tape.loads import TimeProfile, step
 from ..tape.mirror import SymmetricHalf, mirror_split
-from ..tape.model import TapeModel
+from ..tape.model import MODEL_MEMBERS, TapeModel, check_model
 from ..tape.moving_loads import MovingLoad, PreparedLoads, as_loads, check_contact_steps
 from ..tape.parameters import check_velocity
 
@@ -313,7 +313,7 @@ class Newmark:
                  beta: float = 0.25, gamma: float = 0.5,
                  damping: Damping | float | None = None, backend: str = "auto",
                  blas_threads: int | None = 1) -> None:
-        self.model = model
+        self.model = check_model(model, members=(*MODEL_MEMBERS, "force", "load_point_row"))
         self.velocity = check_velocity(velocity)
         self.beta = validation.positive("beta", beta)
         self.K = model.K(self.velocity)
@@ -554,7 +554,7 @@ class Newmark:
         :data:`TRIAL_FROM_STEPS` steps on, its time measured on :data:`TRIAL_STEPS` trial
         steps (on the half if the inputs known so far allow it); returns the run's progress
         (shorter runs are timed on their first steps)."""
-        grid = self.model.grid
+        grid, progress = self.model.grid, validation.progress(progress)
         loads = None if load is None else as_loads(load)
         if loads is not None:
             check_contact_steps(loads, self.dt)

@@ -15,12 +15,15 @@ from ..core import validation
 from ..core.errors import SupercriticalError
 from ..linalg.inertia import factor_inertia
 from ..results.static import StaticSolution
-from ..tape.model import TapeModel
-from .divergence import divergence_speed
+from ..tape.model import TapeModel, check_model
+from .divergence import DIVERGENCE_MEMBERS, divergence_speed
+
+#: What the static solver reads from a model (its critical speed needs A and B).
+STATIC_MEMBERS = (*DIVERGENCE_MEMBERS, "force", "load_point_row")
 
 
 def _check_model(model: object) -> TapeModel:
-    return validation.instance("model", model, TapeModel)
+    return check_model(model, members=STATIC_MEMBERS)
 
 
 def factor_definite(model: TapeModel, velocity: float):
@@ -55,7 +58,8 @@ def factor_definite(model: TapeModel, velocity: float):
 
 
 def solve_static(model: TapeModel, velocity: float = 0.0,
-                 force: np.ndarray | None = None) -> StaticSolution:
+                 force: np.ndarray | None = None, *,
+                 progress: bool | None = None) -> StaticSolution:
     """Static deflection K(V) w = F, m.
 
     Parameters
@@ -66,6 +70,9 @@ def solve_static(model: TapeModel, velocity: float = 0.0,
     force : numpy.ndarray, optional
         Nodal forces, N, a finite vector of length ``model.unknowns``; default the model's
         force (its Gaussian pressure, Eq. 17).
+    progress : bool or None
+        As for every engine (True, False or None); one factorization and one solve have
+        no progress to show.
 
     Raises
     ------
@@ -83,6 +90,7 @@ def solve_static(model: TapeModel, velocity: float = 0.0,
     True
     """
     velocity = _check_model(model).params.check_velocity(velocity)
+    validation.progress(progress)
     force = (model.force if force is None
              else validation.vector("force", force, model.unknowns, "N"))
     w = factor_definite(model, velocity).solve(force)

@@ -13,9 +13,10 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from ..core.errors import ParameterError
-from ..core.files import check_output_folder
+from ..core.files import check_output_folder, check_output_folder_with_files
 from ..core.parallel import check_process_count
 from ._common import Settings
+from ._files import FILES, output_files
 from ._runner import run_here, run_parallel, sharing, study_line
 
 #: Study names in the order ``all`` runs them.
@@ -43,7 +44,8 @@ def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None
         Study names (:data:`STUDIES`) or ``"all"``; a name given twice runs once (in the
         order of its first mention).
     out : str or path
-        Output folder (created if missing).
+        Output folder (created if missing; its parent must exist), refused before any
+        work if it could not take the studies' files (:data:`FILES`).
     settings : Settings, optional
     log : callable or None
         Called with one line per finished study: its time and CPU time, s, and its files.
@@ -60,6 +62,8 @@ def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None
             raise ParameterError(f"study must be one of {', '.join(STUDIES)}, all; "
                                  f"got {name!r}")
     workers = check_process_count("workers", workers)
+    if Path(out).is_dir():  # the files it could not take are refused before any work
+        check_output_folder_with_files(out, output_files(expanded), option="out")
     settings = settings or Settings()
     if workers > 1 and expanded:
         out = check_output_folder(out, option="out")
@@ -76,4 +80,4 @@ def run_studies(names: Iterable[str], out: str | Path, settings: Settings | None
     return written
 
 
-__all__ = ["STUDIES", "Settings", "run_studies", "run_study"]
+__all__ = ["FILES", "STUDIES", "Settings", "output_files", "run_studies", "run_study"]

@@ -41,6 +41,7 @@ from ..core.files import atomic_path
 from ..core.parallel import blas_threads, process_pool
 from ..core.progress import stage_progress
 from ._common import Settings
+from ._files import check_written
 
 #: CPU seconds of the parts (or studies without parts, key None) on the full settings,
 #: measured one after another in one process (``reproduce all``'s order, so that fig2 at
@@ -95,7 +96,7 @@ def run_here(name: str, out: Path, settings: Settings) -> list[Path]:
     transients sharing factorizations (with those of the studies before it, inside
     :func:`sharing`)."""
     with blas_threads(1), sharing():
-        return study_module(name).run(out, settings)
+        return check_written(name, study_module(name).run(out, settings))
 
 
 @contextmanager
@@ -256,7 +257,7 @@ def _collect(pool, pending: dict, studies: dict, staging: Path, settings: Settin
                         pending[pool.submit(_write_task, name, staging, settings,
                                             results)] = [(name, None, False)]
                     continue
-                study.files = list(value)
+                study.files = check_written(name, value)
                 if log is not None:
                     log(study_line(name, study.seconds, study.cpu, study.files))
 

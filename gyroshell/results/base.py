@@ -157,11 +157,18 @@ def from_dataset(ds, *, source: str = "the dataset"):
     ------
     InputFileError
         Naming ``source`` and what is wrong: an unknown kind, a newer version, broken
-        metadata, a missing variable, text where numbers belong, NaN, a value out of range.
+        metadata, a missing variable, text where numbers belong, NaN, a value out of range,
+        or what the kind refuses while rebuilding its object (a saved bearing model's
+        speed, head or air out of range).
     """
     cls = _result_class(ds.attrs, source)
     check_dataset(ds, cls.file_layout, source)
-    return cls.from_xarray(ds)
+    try:
+        return cls.from_xarray(ds)
+    except InputFileError:
+        raise
+    except ParameterError as exc:  # the stored settings rebuild no valid object
+        raise InputFileError(f"{source}: {exc}") from None
 
 
 def read(path: str | os.PathLike[str]):

@@ -304,8 +304,12 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     **options
         Passed to :func:`gyroshell.modes`.
     """
+    from ..engines.divergence import DIVERGENCE_MEMBERS
+    from ..tape.model import check_model
     from .sweep import check_velocities, check_workers, solve_speeds
 
+    check_model(model, **({"members": DIVERGENCE_MEMBERS} if critical_speed is True else {}))
+    progress = validation.progress(progress)
     velocities = check_velocities(velocities)
     if np.any(np.diff(velocities) <= 0):
         raise ParameterError("velocities must be strictly ascending (m/s)")

@@ -23,14 +23,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..core import budget
+from ..core import budget, validation
 from ..core.errors import ParameterError
 from ..core.parallel import check_process_count, process_pool
 from ..core.progress import stage_progress
 from ..engines.eigen import Modes, check_speed, modes, stiffness_floor, strip_frequency_estimate
 from ..linalg.qep.problem import check_count
 from ..results import base, layout
-from ..tape.model import TapeModel
+from ..tape.model import TapeModel, check_model
 from ..tape.parameters import TapeParameters, check_velocity
 from .branches import BranchTracker, Match, track
 
@@ -287,6 +287,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
     import pandas as pd
 
     velocities, workers = _check_sweep(model, velocities, min_correlation, workers)
+    progress = validation.progress(progress)
     results = solve_speeds(model, velocities, count, continuation=continuation,
                            workers=workers, options=options, progress=progress,
                            description="sweep")
@@ -303,6 +304,7 @@ def sweep(model: TapeModel, velocities: Sequence[float], count: int = 6, *,
 def _check_sweep(model, velocities, min_correlation: float, workers
                  ) -> tuple[list[float], int]:
     """The validated speeds (m/s) and number of processes; all refused before any work."""
+    check_model(model)
     velocities = check_velocities(velocities)
     if not 0.0 <= min_correlation <= 1.0:
         raise ParameterError(f"min_correlation must be in [0, 1], got {min_correlation!r}")

@@ -15,6 +15,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..core import validation
+from ..core.errors import ParameterError
 from . import operators
 from .grid import Grid
 from .loads import gaussian_load
@@ -143,3 +144,37 @@ class TapeModel:
     def load_point_row(self) -> np.ndarray:
         """Weights r with r @ w = w at the load centroid (bilinear interpolation)."""
         return self.grid.interpolation_row(*self.params.load_centroid)
+
+
+#: What the tape's engines read from a model. A TapeModel has them all; another object that
+#: has them (e.g. the tape restricted to an invariant subspace) stands in for one.
+MODEL_MEMBERS: tuple[str, ...] = ("params", "grid", "unknowns", "mass_diagonal", "M", "K", "G")
+
+
+def check_model(model: object, name: str = "model", *,
+                members: tuple[str, ...] = MODEL_MEMBERS) -> TapeModel:
+    """``model`` unchanged if it is a :class:`TapeModel` or has every one of ``members``
+    (the engine's needs, default :data:`MODEL_MEMBERS`); the check at every engine's door.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``, the expected type and the type received (and the first member
+        missing, for an object that has some of them).
+
+    Examples
+    --------
+    >>> check_model(None)
+    Traceback (most recent call last):
+    ...
+    gyroshell.ParameterError: model must be a TapeModel, got NoneType
+    """
+    if isinstance(model, TapeModel):
+        return model
+    missing = [m for m in members if not hasattr(model, m)]
+    if not missing:
+        return model
+    some = len(missing) < len(members)
+    raise ParameterError(
+        f"{name} must be a TapeModel, got {type(model).__name__}"
+        + (f" (it has no {missing[0]})" if some else ""))

@@ -104,6 +104,29 @@ def test_forged_metadata_is_refused_on_load(tmp_path, flying, change, message):
     assert str(path) in str(info.value)
 
 
+@pytest.mark.parametrize("change, message", [
+    (_set("model", "velocity", 0.0), "velocity must be nonzero"),
+    (_set("model", "span", -1.0), "span must be > 0 m, got -1"),
+    (_set("model", "head", {"kind": "flat", "modules": 99}),
+     "a flat head's modules must be a list of objects"),
+    (_set("air", "viscosity", -1.0), "viscosity must be in [1e-07, 1000] Pa*s, got -1"),
+    (_set("parameters", "tension", -1.0), "tension must be >= 0 N/m, got -1"),
+], ids=["speed 0", "span", "head", "viscosity", "tension"])
+@pytest.mark.parametrize("loader", ["gyroshell.load", "bearing.storage.load"])
+def test_a_tampered_file_is_named_once_with_what_is_wrong(tmp_path, flying, change, message,
+                                                            loader):
+    import gyroshell
+    from gyroshell.bearing import storage
+
+    path = _forged(tmp_path, flying, change)
+    load = gyroshell.load if loader == "gyroshell.load" else storage.load
+    with pytest.raises(ParameterError) as info:
+        load(path)
+    text = str(info.value)
+    assert text.startswith(f"{path}: ") and text.count(str(path)) == 1
+    assert message in text and "\n" not in text
+
+
 def test_forged_2d_count_is_refused_before_allocating(tmp_path):
     """A 2-D file claiming ny = 10**7 (59 GiB of operators) is refused from its sizes."""
     from gyroshell.bearing import storage
@@ -278,6 +301,21 @@ def test_a_2d_solve_reports_every_stage_and_iteration():
     assert any(line.startswith("start: solving the infinitely wide tape") for line in stages)
     newton_lines = [line for line in iterations if line.startswith("Newton ")]
     assert len(newton_lines) >= sol.info.iterations + 1   # the start's iterations too
+
+
+def test_progress_false_reports_nothing_as_in_every_engine(flying):
+    quiet = solve_steady(strip(), progress=False)
+    np.testing.assert_array_equal(quiet.u, flying.u)
+    np.testing.assert_array_equal(quiet.p, flying.p)
+
+
+def test_progress_false_on_a_2d_tape_whose_start_reports_stages(capsys):
+    model = BearingModel(TapeParameters(width=3e-3), velocity=4.0, wrap_angle=WRAP, nx=96,
+                         ny=24, span=2e-3)
+    iterations = []
+    sol = solve_steady(model, progress=False, iteration_log=iterations.append)
+    assert sol.info.iterations >= 1 and iterations     # the coarse start ran (and was quiet)
+    assert capsys.readouterr().err == ""
 
 
 # ----- through the CLI -------------------------------------------------------------------------

@@ -228,7 +228,9 @@ def test_profile_folder_and_short_profile_are_refused(tmp_path):
     (lambda: FlatHead((Module(1e-3, 3e-3),), DEG, DEG), r"land_length .* shorter than its "
                                                         "corner radii"),
     (lambda: FlatHead((Module(1e-3), Module(1e-3)), DEG, DEG, gaps=(-1e-4,)),
-     r"gaps\[0\] must be >= 0"),
+     r"gaps\[0\] must be > 0"),
+    (lambda: FlatHead((Module(1e-3), Module(1e-3)), DEG, DEG, gaps=(0.0,)),
+     r"gaps\[0\] must be > 0 m, got 0"),
     (lambda: FlatHead((Module(1e-3), Module(1e-3)), DEG, DEG), "gaps must hold 1"),
     (lambda: Module(1e-3, -1e-6), "corner_radius must be >= 0"),
     (lambda: Module(0.0), "land_length must be > 0"),

@@ -82,7 +82,8 @@ def test_the_arc_contact_key_and_option_state_the_models_option(tmp_path):
              "wrap_in": "2 deg", "arc_contact": "point"}
     design = design_from_table(table, where="head.toml: ")
     assert design.arc_contact == "point" and design.model_options() == {"arc_contact": "point"}
-    assert _design([*FLAT, "--arc-contact", "wrapped"]).arc_contact == "wrapped"
+    assert _design([*FLAT, "--corner-radius", "1e-4", "--arc-contact", "wrapped"]
+                   ).arc_contact == "wrapped"
     assert _design(["--arc-contact", "wrapped"], table, tmp_path / "head.toml"
                    ).model_options() == {"arc_contact": "wrapped"}
     assert _design(FLAT).model_options() == {}
@@ -130,7 +131,17 @@ tilt = "0.5 deg"
     (["--head", "flat", "--wrap-in", "2"], "a flat head needs its land length: give "
                                            "--land-length"),
     ([*FLAT, "--modules", "3"], "3 modules need the gap between them: give --module-gap"),
-    ([*FLAT, "--modules", "2", "--module-gap", "-1e-4"], "--module-gap must be >= 0 m"),
+    ([*FLAT, "--modules", "2", "--module-gap", "-1e-4"], "--module-gap must be > 0 m"),
+    ([*FLAT, "--modules", "2", "--module-gap", "0"], "--module-gap must be > 0 m, got 0"),
+    ([*FLAT, "--arc-contact", "point"],
+     "--arc-contact point sets how the tape meets rounded corners, and this head's corners "
+     "are all sharp (--corner-radius 0): drop --arc-contact or give --corner-radius > 0"),
+    ([*FLAT[:4], "--wrap-in", "20", "--wrap-out", "20"],
+     "--wrap-in must be below the flank angle 20 degrees (--flank-angle, its default), got "
+     "20: beyond the outer corners the head falls away along the flanks"),
+    ([*FLAT[:4], "--wrap-in", "2", "--wrap-out", "25", "--flank-angle", "25"],
+     "--wrap-out must be below the flank angle 25 degrees (--flank-angle), got 25"),
+    ([*FLAT, "--flank-angle", "90"], "--flank-angle must be in (0, 90) degrees, got 90"),
     ([*FLAT, "--module-gap", "1e-4"], "--module-gap is the gap between modules, and this "
                                       "head has one"),
     ([*FLAT, "--modules", "9", "--module-gap", "1e-4"], "--modules must be an integer in "
@@ -178,6 +189,14 @@ def test_bad_head_options_one_line_exit_2(cli, argv, message):
      "[head] arc_contact must be text, got 1"),
     ('arc_contact = "wrapped"',
      "[head] arc_contact is an option of a flat head, and this head is a cylinder"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\narc_contact = "point"',
+     "[head] arc_contact point sets how the tape meets rounded corners, and this head's "
+     "corners are all sharp ([head] corner_radius 0)"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\nflank_angle = "1 deg"',
+     "[head] wrap_in must be below the flank angle 0.01745 rad ([head] flank_angle), got "
+     "0.01745"),
+    ('kind = "flat"\nland_length = "1 mm"\nwrap_in = "1 deg"\nmodules = 2\n'
+     'module_gap = "0 mm"', "[head] module_gap must be > 0 m, got 0"),
 ])
 def test_bad_head_tables_name_the_file_and_key(cli, tmp_path, table, message):
     path = tmp_path / "bad.toml"
@@ -229,3 +248,88 @@ def test_a_profile_larger_than_memory_allows_is_refused(cli, tmp_path, monkeypat
     line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide",
                                 "--head", csv, "--wrap-in", "1"]))
     assert "huge.csv" in line and "more than the limit 1 kB" in line
+
+
+# ----- issue 32: the head options as the help states them, files named in every message ----
+def test_what_the_help_states_is_what_is_accepted():
+    """The wraps' help names the flank angle that bounds them, and the refusal's remedy
+    is an option the parser has; a steeper flank lets 20 degree wraps through."""
+    parser = build_parser()
+    bearing = parser._subparsers._group_actions[0].choices["bearing"]
+    helps = {a.option_strings[0]: a.help for a in bearing._actions if a.option_strings}
+    for flag in ("--wrap-in", "--wrap-out"):
+        assert "in [0, 45]" in helps[flag] and "below --flank-angle (default 20)" in helps[flag]
+    assert "(0, 90)" in helps["--flank-angle"] and "> 0" in helps["--module-gap"]
+    assert "refused on sharp ones" in helps["--arc-contact"]
+    design = _design([*FLAT[:4], "--wrap-in", "20", "--wrap-out", "20", "--flank-angle", "30"])
+    assert design.flank_angle == math.radians(30) and design.wrap_in == math.radians(20)
+    design.head()   # the contour accepts it too
+
+
+def test_a_fifo_as_the_profile_is_refused_instead_of_blocking(cli_process, tmp_path):
+    import os
+
+    fifo = tmp_path / "p.csv"
+    os.mkfifo(fifo)
+    run = cli_process(["bearing", "--velocity", "4", "--infinitely-wide", "--head", fifo,
+                       "--wrap-in", "1"], timeout=60)
+    assert run.code == 2 and run.err.strip() == (f"gyroshell: error: {fifo} is not a regular "
+                                                 "file, so not a profile CSV file")
+
+
+def _profile(tmp_path, text, name="head.csv", encoding="utf-8"):
+    path = tmp_path / name
+    path.write_text(text, encoding=encoding)
+    return path
+
+
+def test_a_row_of_another_width_names_the_file_and_line(cli, tmp_path):
+    rows = PROFILE_ROWS.splitlines(keepends=True)
+    rows[5] = rows[5].rstrip("\n") + ",0\n"     # line 6: a third column
+    csv = _profile(tmp_path, "".join(rows))
+    line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide", "--head",
+                                csv, "--wrap-in", "1"]))
+    assert line == (f"gyroshell: error: {csv}: line 6: row 5 has 3 values, but the rows "
+                    "before have 2: every row must be (x, z) or every row (x, y, z), m")
+
+
+def test_a_byte_order_mark_is_not_a_header(tmp_path):
+    from gyroshell.bearing.head import ProfileHead
+
+    rows = PROFILE_ROWS.split("\n", 1)[1]         # no header line
+    plain = ProfileHead.from_csv(_profile(tmp_path, rows), wrap_in=0.02, wrap_out=0.02)
+    marked = ProfileHead.from_csv(_profile(tmp_path, rows, "bom.csv", "utf-8-sig"),
+                                  wrap_in=0.02, wrap_out=0.02)
+    assert (tmp_path / "bom.csv").read_bytes()[:3] == b"\xef\xbb\xbf"
+    assert len(marked.x) == len(plain.x) == 21 and marked == plain
+
+
+def test_a_profile_too_short_for_the_wrap_names_the_file(cli, tmp_path):
+    short = "".join(f"{x * 1e-5:.6e},{-(x * 1e-5) ** 2 / 0.04:.6e}\n" for x in range(-3, 4))
+    csv = _profile(tmp_path, short)
+    line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide", "--head",
+                                csv, "--wrap-in", "1", "--wrap-out", "1"]))
+    assert line.startswith(f"gyroshell: error: {csv}: the profile does not contain the "
+                           "wrapped region")
+
+
+def test_a_profile_in_mm_names_the_file_and_the_unit_not_the_velocity(cli, tmp_path):
+    in_mm = "x_mm,z_mm\n" + "".join(f"{x * 1e-1:.6e},{-(x * 1e-1) ** 2 / 40:.6e}\n"
+                                     for x in range(-10, 11))   # 2 mm long, written in mm
+    csv = _profile(tmp_path, in_mm)
+    line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide", "--head",
+                                csv, "--wrap-in", "1", "--wrap-out", "1"]))
+    assert line == (f"gyroshell: error: {csv}: x spans 2 m, longer than any head (0.1 m): a "
+                    "profile is in m; are its numbers in mm or um?")
+    assert "velocity" not in line
+
+
+def test_overlapping_modules_of_a_head_table_name_the_file_and_tables(cli, tmp_path):
+    path = tmp_path / "bad.toml"
+    path.write_text('[tape]\nvelocity = "4 m/s"\n\n[head]\nkind = "flat"\n'
+                    'land_length = "1 mm"\nwrap_in = "1 deg"\nwrap_out = "1 deg"\n'
+                    'modules = 2\nmodule_gap = "0.1 mm"\n[[head.module]]\nheight = "0 um"\n'
+                    '[[head.module]]\nheight = "100 um"\n')
+    line = _one_error_line(cli(["bearing", "--config", path, "--infinitely-wide"]))
+    assert line.startswith(f"gyroshell: error: {path}: [head] module[1] overlaps [head] "
+                           "module[0]: with these heights, tilts and gaps")

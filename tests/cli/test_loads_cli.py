@@ -56,8 +56,8 @@ def test_intermittent_contact_from_the_command_line(tmp_path):
     (["--load-position", "0.01,0.003", "--load-velocity", "0,500"], "load path leaves the tape"),
     (["--contact-period", "1e-5", "--contact-duration", "2e-5"], "contact duration must be <="),
     (["--contact-period", "1e-5"], "--contact-period and --contact-duration go together"),
-    (["--damping", "-3"], "damping must be >= 0 N*s/m^3, got -"),
-    (["--rayleigh", "1,-1"], "stiffness_coefficient must be >= 0 s, got -1"),
+    (["--damping", "-3"], "--damping must be >= 0 N*s/m^3, got -"),
+    (["--rayleigh", "1,-1"], "--rayleigh B must be >= 0 s, got -1"),
     (["--load-velocity", "fast"], "expected two numbers"),
 ])
 def test_transient_load_errors_exit_2_with_one_line(tmp_path, capsys, extra, match):
@@ -92,7 +92,7 @@ def test_frf_json_csv_and_plot(tmp_path, capsys):
 @pytest.mark.parametrize(("extra", "match"), [
     (["--frequencies", "0:1e5:0"], "NUM must be an integer >= 1"),
     (["--frequencies", "1e5:0:10"], "START <= STOP"),
-    (["--frequencies", "0:1e5:10", "--damping", "-1"], "damping must be >= 0 N*s/m^3, got -"),
+    (["--frequencies", "0:1e5:10", "--damping", "-1"], "--damping must be >= 0 N*s/m^3, got -"),
     (["--frequencies", "0:1e5:10", "--probe", "5,5"], "must lie on the tape"),
     (["--frequencies", "0:1e5:10", "--velocity", "300"], "critical speed"),
     (["--frequencies", "0:1e5:10", "--plot", "x.svg"], "--plot must be a .png file"),

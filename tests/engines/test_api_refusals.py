@@ -8,7 +8,15 @@ import math
 import numpy as np
 import pytest
 
-from gyroshell import ContactWindows, MovingLoad, StraightPath, frequency_response, march
+import gyroshell as gs
+from gyroshell import (
+    ContactWindows,
+    MovingLoad,
+    StraightPath,
+    TapeParameters,
+    frequency_response,
+    march,
+)
 from gyroshell.core.errors import ParameterError
 from gyroshell.engines.frequency_response import ReducedModel
 from gyroshell.engines.newmark import Newmark
@@ -109,3 +117,56 @@ def test_frequency_response_refusals_name_the_argument(small, call, match):
 def test_frequency_at_the_top_of_the_range_answers(small):
     res = frequency_response(small, 0.0, [8e75], damping=100.0)
     assert np.all(np.isfinite(res.amplitude)) and res.amplitude[0, 0] > 0
+
+
+#: Every engine's door, called with a model (issue 32): (name, call(model, progress)).
+ENGINES = [
+    ("solve_static", lambda m, p: gs.solve_static(m, 1.0, progress=p)),
+    ("modes", lambda m, p: gs.modes(m, 1.0, 2, progress=p)),
+    ("frequencies", lambda m, p: gs.frequencies(m, 1.0, 2, progress=p)),
+    ("critical_speeds", lambda m, p: gs.critical_speeds(m, progress=p)),
+    ("critical_speed_eigen", lambda m, p: gs.critical_speed_eigen(m, progress=p)),
+    ("divergence_speed", lambda m, p: gs.divergence_speed(m, progress=p)),
+    ("divergence", lambda m, p: gs.divergence(m, progress=p)),
+    ("frequency_response", lambda m, p: gs.frequency_response(m, 1.0, [0.0, 1e4],
+                                                              progress=p)),
+    ("direct_response", lambda m, p: gs.direct_response(m, 1.0, [0.0, 1e4], progress=p)),
+    ("march", lambda m, p: gs.march(m, 1.0, dt=1e-6, steps=3, progress=p)),
+    ("sweep", lambda m, p: gs.sweep(m, [0.0, 1.0], 2, progress=p)),
+    ("campbell", lambda m, p: gs.campbell(m, [0.0, 1.0], 2, progress=p)),
+    ("campbell without critical speed",
+     lambda m, p: gs.campbell(m, [0.0, 1.0], 2, critical_speed=None, progress=p)),
+]
+
+
+@pytest.mark.parametrize(("name", "call"), ENGINES, ids=[e[0] for e in ENGINES])
+@pytest.mark.parametrize("model", [None, 3.0, "tape", TapeParameters()],
+                         ids=["None", "float", "str", "TapeParameters"])
+def test_every_engine_refuses_what_is_not_a_model(name, call, model):
+    with pytest.raises(ParameterError) as info:
+        call(model, False)
+    assert str(info.value) == f"model must be a TapeModel, got {type(model).__name__}"
+
+
+def test_a_model_missing_what_the_engine_reads_is_named(small):
+    class Partial:  # has some of a model's members, not the divergence solver's A and B
+        params, grid, unknowns = small.params, small.grid, small.unknowns
+        mass_diagonal, M, K, G = small.mass_diagonal, small.M, small.K, small.G
+
+    with pytest.raises(ParameterError, match=r"^model must be a TapeModel, got Partial "
+                                             r"\(it has no A\)$"):
+        gs.divergence_speed(Partial())
+    assert gs.frequencies(Partial(), 0.0, 2) == pytest.approx(gs.frequencies(small, 0.0, 2),
+                                                              rel=1e-9)
+
+
+@pytest.mark.parametrize(("name", "call"), ENGINES, ids=[e[0] for e in ENGINES])
+def test_every_engine_takes_progress_false_and_none_and_refuses_other_values(
+        small, capsys, name, call):
+    quiet = call(small, False)
+    assert capsys.readouterr().err == ""          # False: nothing on stderr
+    call(small, None)
+    with pytest.raises(ParameterError, match="^progress must be True, False or None, "
+                                             "got 'yes'$"):
+        call(small, "yes")
+    assert quiet is not None

@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 
 import gyroshell.reproduce as reproduce
+from gyroshell import ParameterError
 from gyroshell.reproduce import Settings, run_studies
 
 
@@ -58,3 +59,48 @@ def test_out_itself_is_created_when_its_parent_exists(cli, tmp_path, ran):
                "--out", tmp_path / "new"])
     assert run.code == 0, run.err
     assert (tmp_path / "new").is_dir() and ran == [("fig2", tmp_path / "new")]
+
+
+@pytest.mark.parametrize("workers", ["1", "2"])
+@pytest.mark.parametrize("blocker", ["folder", "read-only file"])
+def test_out_that_cannot_take_a_study_file_is_refused_before_any_work(cli, tmp_path, ran,
+                                                                        workers, blocker):
+    out = tmp_path / "r"
+    out.mkdir()
+    blocked = out / "heads_wraps.png"   # the last file of the last study of 'all'
+    if blocker == "folder":
+        blocked.mkdir()
+    else:
+        blocked.write_bytes(b"an earlier figure")
+        blocked.chmod(0o444)
+    run = cli(["reproduce", "all", "--quick", "--quiet", "--workers", workers, "--out", out])
+    assert run.code == 2 and len(run.error_lines) == 1, run.err
+    assert run.error_lines[0].startswith(f"gyroshell: error: --out {blocked}: ")
+    assert ran == []                    # no study started
+    assert sorted(p.name for p in out.iterdir()) == ["heads_wraps.png"]
+
+
+def test_run_studies_refuses_the_same_before_any_work(tmp_path, ran):
+    (tmp_path / "fig6_waterfall.png").mkdir()
+    with pytest.raises(ParameterError, match="fig6_waterfall.png: is a folder, not a file"):
+        run_studies(["fig5", "fig6"], tmp_path, Settings(quick=True, progress=False),
+                    log=None)
+    assert ran == []
+
+
+def test_every_study_lists_its_files():
+    assert list(reproduce.FILES) == list(reproduce.STUDIES)
+    assert reproduce.output_files(["fig6", "critical", "fig6"]) == (
+        "fig6_centerline.csv", "fig6_waterfall.png", "critical_speeds.csv",
+        "critical_speeds.md")
+    every = reproduce.output_files(["all"])
+    assert len(every) == len(set(every)) == sum(map(len, reproduce.FILES.values()))
+
+
+def test_a_study_writing_other_files_than_it_lists_is_a_bug_not_a_silent_change(tmp_path):
+    from gyroshell.reproduce._files import check_written
+
+    assert check_written("fig5", [tmp_path / "fig5_centerline.csv",
+                                  tmp_path / "fig5_waterfall.png"])
+    with pytest.raises(RuntimeError, match="study fig5 wrote"):
+        check_written("fig5", [tmp_path / "fig5_centerline.csv"])
