@@ -292,6 +292,8 @@ class ReducedModel(Result, kind="reduced_model"):
     as the saved one; it cannot :meth:`add_points` (that needs the tape's matrices).
     """
 
+    summary_units = {"interpolation_points": "rad/s", "points": "m"}
+
     def __init__(self, model: TapeModel, velocity: float = 0.0, *,
                  damping: Damping | float | None = None, force: np.ndarray | None = None,
                  probes: Sequence[tuple[float, float]] = (), moments: int = DEFAULT_MOMENTS):

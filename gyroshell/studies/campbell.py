@@ -128,6 +128,8 @@ class CampbellDiagram(base.Result, kind="campbell"):
         The tape.
     """
 
+    summary_units = {"unlinked": "m/s"}
+
     frame: pd.DataFrame
     crossings: pd.DataFrame
     veerings: pd.DataFrame
