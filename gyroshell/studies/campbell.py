@@ -26,6 +26,7 @@ with the tape; where a branch meets one, that speed excites the mode.
 
 from __future__ import annotations
 
+import time
 import warnings
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -336,8 +337,6 @@ class _Refinement:
             self.inserted += len(halves)
 
     def _check_time(self, more: int) -> None:
-        import time
-
         elapsed = time.perf_counter() - self._start
         per_speed = elapsed / self._solved
         check_time(elapsed + per_speed * more,
@@ -394,12 +393,10 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
              veering_gap: float = VEERING_GAP, critical_speed: float | bool | None = True,
              progress: bool | None = None, continuation: bool = False, workers: int = 1,
              min_step: float | None = None, **options) -> CampbellDiagram:
-    """Campbell diagram of the tape over ``velocities`` (m/s).
+    """Campbell diagram of the tape over ``velocities`` (m/s, ascending).
 
-    Where the MAC of a mode with its match at the neighbouring speed falls below
-    ``min_mac``, the step there is halved (the speed halfway solved and inserted), down to
-    ``min_step``; links still broken then are named in one
-    :class:`CampbellTrackingWarning`.
+    Where a mode's MAC with its match at the neighbouring speed falls below ``min_mac``,
+    the step there is halved (the speed halfway solved and inserted), down to ``min_step``.
 
     Parameters
     ----------
@@ -408,27 +405,21 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
         Speeds, m/s, ascending.
     count : int
         Modes per speed.
-    min_mac : float
-        Smallest MAC that continues a branch.
-    veering_gap : float
-        Largest relative gap at a veering.
+    min_mac, veering_gap : float
+        Smallest MAC that continues a branch; largest relative gap at a veering.
     critical_speed : True, float or None
-        True: compute it (:func:`gyroshell.critical_speeds`); a number: use it;
-        None/False: none.
+        True: compute it (:func:`gyroshell.critical_speeds`); a number: use it; None/False:
+        none.
     progress : bool or None
-        True: a progress bar on stderr, False: nothing; None: the bar on a terminal, else
-        one line per stage (:class:`gyroshell.core.progress.StageLines`).
+        True: a bar on stderr; False: nothing; None: a bar on a terminal, else stage lines.
     continuation : bool
-        Continue each solve from the previous speeds' modes, as :func:`gyroshell.sweep`
-        does (the same frequencies to round-off, in fewer Lanczos steps); False solves each
-        speed from scratch. Speeds inserted by refinement are solved from scratch.
+        Continue each given speed's solve from the previous ones, as :func:`gyroshell.sweep`
+        does (the same frequencies to round-off); inserted speeds are solved from scratch.
     workers : int
-        Local processes (>= 1), each solving a contiguous run of the speeds, as in
-        :func:`gyroshell.sweep`.
+        Local processes (>= 1), each solving a contiguous run of the speeds.
     min_step : float or None
-        Smallest speed step (m/s, > 0) that refinement makes; None: the largest step of
-        ``velocities`` / 2**:data:`REFINE_LEVELS`. A value at least half the largest step
-        turns refinement off.
+        Smallest step (m/s, > 0) refinement makes; None: the largest given step /
+        2**:data:`REFINE_LEVELS`.
     **options
         Passed to :func:`gyroshell.modes`.
 
@@ -437,12 +428,33 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     CampbellTrackingWarning
         One line naming the steps (m/s) where branches are still broken at ``min_step``.
     """
-    import time
-
-    from ..linalg.qep.problem import check_count, max_count
-    from .sweep import check_velocities, check_workers, solve_speeds
-
     started = time.perf_counter()
+    velocities, min_step, workers = _checked(velocities, min_mac, veering_gap, critical_speed,
+                                             min_step, workers)
+    refinement = _refined(model, velocities, count, min_mac, min_step, started, progress,
+                          continuation=continuation, workers=workers, options=options)
+    unlinked = refinement.run()
+    frame, (mac_min, mac_median) = _frame([refinement.modes[v] for v in refinement.speeds()],
+                                          refinement.count, min_mac)
+    info = {"min_mac": min_mac, "veering_gap": veering_gap, "count": refinement.count,
+            "continuation": bool(continuation), "workers": workers, "min_step": min_step,
+            "inserted": refinement.inserted, "mac_min": mac_min, "mac_median": mac_median,
+            "unlinked": [[a, b] for a, b in unlinked]}
+    if unlinked:
+        warnings.warn(_unlinked_message(unlinked, min_mac, min_step),
+                      CampbellTrackingWarning, stacklevel=2)
+    if critical_speed is True:
+        stage_line("campbell", "the critical speed (a few more eigen-solves)",
+                   progress=progress)
+    return CampbellDiagram(frame, *_crossings_and_veerings(frame, veering_gap),
+                           _critical_speed(model, critical_speed), info,
+                           getattr(model, "params", None))
+
+
+def _checked(velocities, min_mac, veering_gap, critical_speed, min_step, workers):
+    """The speeds, the smallest step (m/s) and the workers of :func:`campbell`, checked."""
+    from .sweep import check_velocities, check_workers
+
     velocities = check_velocities(velocities)
     if np.any(np.diff(velocities) <= 0):
         raise ParameterError("velocities must be strictly ascending (m/s)")
@@ -454,36 +466,27 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     if min_step is None:
         min_step = largest / 2**REFINE_LEVELS if largest else 1.0
     min_step = validation.positive("min_step", min_step, "m/s")
-    workers = check_workers(workers, len(velocities))
+    return velocities, min_step, check_workers(workers, len(velocities))
+
+
+def _refined(model, velocities, count, min_mac, min_step, started, progress, *,
+             continuation: bool, workers: int, options: dict) -> _Refinement:
+    """The modes at the given speeds (``count`` and :data:`GUARD_MODES` more), ready to be
+    refined."""
+    from ..linalg.qep.problem import check_count, max_count
+    from .sweep import solve_speeds
+
     count = check_count(count, model.unknowns)
     solved = min(count + GUARD_MODES, max_count(model.unknowns))
-    results = solve_speeds(model, velocities, solved, continuation=continuation,
-                           workers=workers, options=options, progress=progress,
-                           description="campbell", above=solved - count)
 
-    def solve(speeds):
-        return solve_speeds(model, speeds, solved, continuation=False,
+    def solve(speeds, description="campbell: refining", continued=False):
+        return solve_speeds(model, speeds, solved, continuation=continued,
                             workers=min(workers, len(speeds)), options=options,
-                            progress=progress, description="campbell: refining",
+                            progress=progress, description=description,
                             above=solved - count)
 
-    refinement = _Refinement(velocities, results, count, min_mac, min_step, solve, started)
-    unlinked = refinement.run()
-    frame, (mac_min, mac_median) = _frame([refinement.modes[v] for v in refinement.speeds()],
-                                          count, min_mac)
-    crossings, veerings = _crossings_and_veerings(frame, veering_gap)
-    info = {"min_mac": min_mac, "veering_gap": veering_gap, "count": int(count),
-            "continuation": bool(continuation), "workers": workers, "min_step": min_step,
-            "inserted": refinement.inserted, "mac_min": mac_min, "mac_median": mac_median,
-            "unlinked": [[a, b] for a, b in unlinked]}
-    if unlinked:
-        warnings.warn(_unlinked_message(unlinked, min_mac, min_step),
-                      CampbellTrackingWarning, stacklevel=2)
-    if critical_speed is True:
-        stage_line("campbell", "the critical speed (a few more eigen-solves)",
-                   progress=progress)
-    return CampbellDiagram(frame, crossings, veerings, _critical_speed(model, critical_speed),
-                           info, getattr(model, "params", None))
+    return _Refinement(velocities, solve(velocities, "campbell", continuation), count,
+                       min_mac, min_step, solve, started)
 
 
 def _critical_speed(model, critical_speed: float | bool | None) -> float | None:

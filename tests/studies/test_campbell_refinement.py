@@ -147,3 +147,16 @@ def test_min_step_is_refused_unless_positive():
     with pytest.raises(ParameterError, match="min_step must be > 0"):
         campbell(TapeModel(SMALL), [0.0, 10.0], 1, critical_speed=False, progress=False,
                  min_step=0.0)
+
+
+def test_the_time_limit_covers_the_speeds_refinement_inserts(monkeypatch):
+    from gyroshell.core.errors import ParameterError
+    from gyroshell.core.progress import TIME_LIMIT_VARIABLE
+
+    # two given speeds (the sweep's own check needs a third), 90 m/s apart: the MAC falls,
+    # and the halving is refused on the time per speed measured so far
+    monkeypatch.setenv(TIME_LIMIT_VARIABLE, "1e-6")
+    with pytest.raises(ParameterError, match=r"a Campbell diagram of 3 speeds \(1 inserted "
+                                             r"where the MAC fell\) would take about .* "
+                                             r"raise min_step \(--min-step\)"):
+        campbell(TapeModel(SMALL), [0.0, 90.0], COUNT, critical_speed=False, progress=False)
