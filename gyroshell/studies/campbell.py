@@ -351,9 +351,9 @@ def _unlinked_message(steps, min_mac: float, min_step: float) -> str:
     where = ", ".join(f"{a:.4g}-{b:.4g}" for a, b in steps[:5])
     more = f" and {len(steps) - 5} more" if len(steps) > 5 else ""
     return (f"branches left unlinked between V = {where}{more} m/s: the MAC of neighbouring "
-            f"speeds stays below min_mac = {min_mac:g} with the step refined to min_step = "
-            f"{min_step:.3g} m/s (a veering or close modes); lower min_step (--min-step), "
-            f"lower min_mac (--min-mac) or ask for more modes (--count)")
+            f"speeds stays below min_mac = {min_mac:g} down to the step min_step = "
+            f"{min_step:.3g} m/s; lower min_step (--min-step) or min_mac (--min-mac), or ask "
+            f"for more modes (--count)")
 
 
 def _pairs(frame):
