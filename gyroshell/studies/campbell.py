@@ -111,8 +111,9 @@ class CampbellDiagram(base.Result, kind="campbell"):
     ----------
     frame : pandas.DataFrame
         ``velocity`` (m/s), ``branch``, ``rank`` (position in ascending ω at that speed),
-        ``omega`` (rad/s), ``growth_rate`` (Re λ, 1/s), ``mac`` (with the branch's previous
-        point; NaN at a branch's first point).
+        ``omega`` (rad/s), ``growth_rate`` (Re λ, 1/s), ``mac`` (with the mode it continues
+        at the previous speed, which may be the one tracked just above the lowest ``count``;
+        NaN where a branch begins).
     crossings : pandas.DataFrame
         ``velocity`` (m/s, linear interpolation), ``branch_a``, ``branch_b``, ``omega``.
     veerings : pandas.DataFrame
