@@ -79,6 +79,22 @@ class BearingSolution(Result, kind="bearing"):
     info : NewtonInfo
     """
 
+    summary_units = {"minimum_x": "m", "minimum_y": "m", "central_pressure": "Pa",
+                     "wrap_pressure": "Pa", "air_force": "N", "contact_force": "N",
+                     "seconds": "s", "viscosity": "Pa*s", "ambient_pressure": "Pa",
+                     "mean_free_path": "m", "roughness": "m", "length": "m",
+                     "finest_x_spacing": "m", "finest_y_spacing": "m",
+                     "wrap_angle_degrees": "deg", "viscous_drag": "N", "friction_drag": "N",
+                     "drag": "N"}
+    headline = ("minimum_spacing", "central_spacing", "air_force", "contact_force",
+                "velocity", "wrap_angle", "tension_rise", "drag", "nx", "ny", "unknowns",
+                "newton_iterations")
+
+    def summary_unit(self, name: str) -> str | None:
+        """As :meth:`Result.summary_unit`; forces per unit width (N/m) if infinitely wide."""
+        unit = super().summary_unit(name)
+        return "N/m" if unit == "N" and self.model.infinitely_wide else unit
+
     model: BearingModel
     u: np.ndarray
     p: np.ndarray
@@ -392,6 +408,16 @@ class BearingTransient(Result, kind="bearing_transient"):
     final : BearingSolution
         The last state (velocity v and acceleration a not included).
     """
+
+    summary_units = {"end_time": "s", "smallest_minimum_spacing": "m",
+                     "largest_central_spacing": "m", "smallest_central_spacing": "m",
+                     "largest_contact_force": "N", "final_central_spacing": "m",
+                     "final_minimum_spacing": "m"}
+
+    def summary_unit(self, name: str) -> str | None:
+        """As :meth:`Result.summary_unit`; forces per unit width (N/m) if infinitely wide."""
+        unit = super().summary_unit(name)
+        return "N/m" if unit == "N" and self.final.model.infinitely_wide else unit
 
     t: np.ndarray
     central_spacing: np.ndarray

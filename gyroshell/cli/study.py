@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from pathlib import Path
 
 from ..core.errors import ParameterError
@@ -113,6 +114,10 @@ def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> 
                    help="modes per speed (default 6)")
     p.add_argument("--min-mac", type=real, default=None,
                    help="smallest MAC that continues a branch, in [0, 1] (default 0.5)")
+    p.add_argument("--min-step", type=real, default=None, metavar="M/S",
+                   help="smallest speed step, m/s, > 0, down to which the step is halved "
+                        "where the MAC falls below --min-mac (default: the largest step of "
+                        "--velocities / 64)")
     p.add_argument("--circumference", type=real, default=None,
                    help="roller/capstan circumference, m, > 0: the excitation lines and "
                         "the speeds where they meet a branch")
@@ -352,7 +357,7 @@ def study_text(result) -> str:
 
 
 def run_campbell(args: argparse.Namespace) -> int:
-    from ..studies.campbell import MIN_MAC, campbell
+    from ..studies.campbell import MIN_MAC
 
     params = parameters_from_args(args)
     orders = _campbell_orders(args)
@@ -366,8 +371,7 @@ def run_campbell(args: argparse.Namespace) -> int:
     from ..tape.model import TapeModel
 
     velocities = check_velocities(velocities)
-    d = campbell(TapeModel(params), velocities, args.count, min_mac=min_mac,
-                 progress=False if args.quiet else None, workers=args.workers)
+    d = _tracked_campbell(TapeModel(params), velocities, args, min_mac)
     from ..core.files import transaction
 
     with transaction():  # both files, or neither
@@ -380,6 +384,27 @@ def run_campbell(args: argparse.Namespace) -> int:
         return 0
     _report_campbell(args, d, orders)
     return 0
+
+
+def _tracked_campbell(model, velocities: list[float], args: argparse.Namespace,
+                      min_mac: float):
+    """The diagram; branches left unlinked are one ``gyroshell: warning:`` line."""
+    import warnings
+
+    from ..studies.campbell import CampbellTrackingWarning, campbell
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", CampbellTrackingWarning)
+        d = campbell(model, velocities, args.count, min_mac=min_mac,
+                     progress=False if args.quiet else None, workers=args.workers,
+                     min_step=args.min_step)
+    for warning in caught:
+        if issubclass(warning.category, CampbellTrackingWarning):
+            print(f"gyroshell: warning: {warning.message}", file=sys.stderr, flush=True)
+        else:
+            warnings.warn_explicit(warning.message, warning.category, warning.filename,
+                                   warning.lineno)
+    return d
 
 
 def _campbell_orders(args: argparse.Namespace) -> tuple[int, ...]:
@@ -409,6 +434,8 @@ def _check_campbell_numbers(args: argparse.Namespace, min_mac: float) -> None:
 
     if args.circumference is not None:
         validation.positive("--circumference", args.circumference, "m")
+    if args.min_step is not None:
+        validation.positive("--min-step", args.min_step, "m/s")
     validation.real("--min-mac", min_mac, low=0.0, high=1.0)
     check_process_count("--workers", args.workers)
 
@@ -428,9 +455,12 @@ def _campbell_json(d, circumference: float | None, orders: tuple[int, ...]) -> d
 def _report_campbell(args: argparse.Namespace, d, orders: list[int]) -> None:
     """Branches, MAC, critical speed, crossings, veerings and resonances, one per line."""
     summary = d.summary()
-    print(f"{summary['branches']} branches over {summary['speeds']} speeds; MAC of "
-          f"the links: min {summary['mac_min']:.3f}, median {summary['mac_median']:.3f}"
-          if summary["mac_min"] is not None else f"{summary['branches']} branches")
+    inserted = f" ({summary['inserted']} inserted where the MAC fell)" if summary[
+        "inserted"] else ""
+    macs = ("none (one speed)" if d.mac_min is None
+            else f"min {d.mac_min:.3f}, median {d.mac_median:.3f}")
+    print(f"{summary['branches']} branches over {summary['speeds']} speeds{inserted}; "
+          f"MAC of the matches: {macs}")
     print(f"critical speed: {d.critical_speed:.6g} m/s")
     for row in d.crossings.itertuples():
         print(f"crossing: branches {row.branch_a} and {row.branch_b} at V = "

@@ -315,6 +315,7 @@ class ReducedModel(Result, kind="reduced_model"):
              ("interpolation_point",), check=layout.nonnegative("interpolation_points"))},
         {"moments": layout.Attr(layout.count("moments", 2)),
          "basis_size": layout.Attr(layout.count("basis_size", 0)), "info": layout.INFO})
+    summary_units = {"interpolation_points": "rad/s", "points": "m"}
 
     def __init__(self, model: TapeModel, velocity: float = 0.0, *,
                  damping: Damping | float | None = None, force: np.ndarray | None = None,

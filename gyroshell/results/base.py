@@ -20,6 +20,12 @@ kind implements
 and inherits :meth:`Result.save` (NetCDF for every kind, CSV or Parquet for tables).
 :func:`read` opens a NetCDF file and returns the object of its stored kind.
 
+In a notebook a result shows its summary: ``repr`` is one line of at most
+:data:`REPR_LIMIT` characters (the kind, then the summary's numbers with their units,
+:attr:`Result.headline` first), ``_repr_html_`` a table of the whole summary. A kind states
+the units of its summary entries that :func:`gyroshell.core.units.unit_of` does not know in
+:attr:`Result.summary_units`.
+
 Metadata attributes of every file: ``gyroshell_type`` (the kind), ``gyroshell_version``,
 and JSON text ``parameters`` (the :class:`~gyroshell.TapeParameters` fields, when known),
 ``grid`` (the :class:`~gyroshell.Grid` fields) and ``info`` (the run's diagnostics).
@@ -38,6 +44,7 @@ NetCDF engine (h5netcdf, or netCDF4) are imported only when a NetCDF file is wri
 from __future__ import annotations
 
 import dataclasses
+import html
 import json
 import os
 from collections.abc import Mapping
@@ -58,6 +65,14 @@ TABLE_SUFFIXES = (".csv", ".parquet")
 #: The attribute naming a file's kind.
 KIND_ATTRIBUTE = "gyroshell_type"
 COMPLEX_CONVENTION = "complex z stored as z_real, z_imag (attributes complex_of, complex_part)"
+#: Longest ``repr`` of a result, characters.
+REPR_LIMIT = 1000
+#: Numbers of a list that a repr or an HTML cell shows before it elides the middle.
+SHOWN_ITEMS = 4
+#: Longest text of one HTML cell, characters (nested entries shortened to it).
+CELL_LIMIT = 120
+#: Summary entries named ``<quantity><suffix>`` have the quantity's unit.
+_UNIT_SUFFIXES = ("_min", "_max")
 
 
 class Result:
@@ -72,10 +87,18 @@ class Result:
     #: What the kind's file holds (:class:`~gyroshell.results.layout.Layout`), checked by
     #: :func:`from_dataset` before ``from_xarray`` reads it; None: only the metadata.
     file_layout: ClassVar[Layout | None] = None
+    #: SI units (ASCII, as in :data:`gyroshell.core.units.SI_UNITS`) of the summary entries
+    #: that :func:`~gyroshell.core.units.unit_of` does not know.
+    summary_units: ClassVar[dict[str, str]] = {}
+    #: Summary entries a ``repr`` shows first (the rest follow while they fit).
+    headline: ClassVar[tuple[str, ...]] = ()
     _kinds: ClassVar[dict[str, type[Result]]] = {}
 
     def __init_subclass__(cls, *, kind: str | None = None, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
+        if "__repr__" not in cls.__dict__:
+            # set before @dataclass runs, so that it keeps this one (not every array)
+            cls.__repr__ = Result.__repr__
         if kind is None:
             return
         known = Result._kinds.get(kind)
@@ -104,6 +127,53 @@ class Result:
         """Draw the result's usual figure on ``ax`` (a new figure if None); returns the Axes."""
         raise NotImplementedError(f"{type(self).__name__}.plot")
 
+    def summary_unit(self, name: str) -> str | None:
+        """The SI unit of the summary entry ``name`` (None: a count, text or no unit
+        known): :attr:`summary_units`, else :func:`~gyroshell.core.units.unit_of` of the
+        name or of the quantity it is the least or largest of (``velocity_max``)."""
+        unit = self.summary_units.get(name) or unit_of(name)
+        for suffix in _UNIT_SUFFIXES:
+            if unit is None and name.endswith(suffix):
+                unit = unit_of(name[: -len(suffix)])
+        return unit
+
+    def _summary_or_none(self) -> dict | None:
+        try:
+            return self.summary()
+        except Exception:  # noqa: BLE001 - showing a result must never fail
+            return None
+
+    def __repr__(self) -> str:
+        """One line of at most :data:`REPR_LIMIT` characters: the class and kind, then the
+        summary's numbers with their units (:attr:`headline` first; lists of numbers
+        shortened, nested entries left to :meth:`_repr_html_`)."""
+        head = f"{type(self).__name__}(kind={self.kind!r}"
+        summary = self._summary_or_none()
+        if summary is None:
+            return head + ")"
+        names = [n for n in self.headline if n in summary]
+        names += [n for n in summary if n not in names]
+        parts = [f"{n}={text}" for n in names
+                 if (text := _repr_value(summary[n], self.summary_unit(n))) is not None]
+        out = head
+        for k, part in enumerate(parts):
+            rest = f", ... {len(parts) - k} more)"
+            if len(out) + 2 + len(part) + len(rest) > REPR_LIMIT:
+                return out + rest
+            out += ", " + part
+        return out + ")"
+
+    def _repr_html_(self) -> str:
+        """The summary as an HTML table: entry, value, SI unit (notebooks show it)."""
+        caption = html.escape(f"{type(self).__name__} (kind {self.kind!r})")
+        summary = self._summary_or_none()
+        rows = "".join(
+            f"<tr><th>{html.escape(str(name))}</th><td>{html.escape(_cell(value))}</td>"
+            f"<td>{html.escape(self.summary_unit(name) or '')}</td></tr>"
+            for name, value in (summary or {}).items())
+        return (f"<table><caption>{caption}</caption><thead><tr><th>entry</th><th>value"
+                f"</th><th>unit</th></tr></thead><tbody>{rows}</tbody></table>")
+
     def to_frame(self):
         """The result as a :class:`pandas.DataFrame` (kinds that are tables)."""
         raise ParameterError(f"a {type(self).__name__} is not a table: save it as .nc")
@@ -130,6 +200,60 @@ class Result:
             raise ParameterError(f"unknown file type {path.suffix!r}: use one of "
                                  f"{', '.join(NETCDF_SUFFIXES + TABLE_SUFFIXES)}")
         return path
+
+
+def _number(value) -> str:
+    if isinstance(value, bool | np.bool_):
+        return str(bool(value))
+    if isinstance(value, int | np.integer):
+        return str(int(value))
+    return f"{float(value):.4g}"
+
+
+def _numbers(values: list) -> str | None:
+    """A list of numbers, its middle elided past :data:`SHOWN_ITEMS`; None otherwise."""
+    if not all(isinstance(v, int | float | np.number) and not isinstance(v, bool)
+               for v in values):
+        return None
+    if len(values) <= SHOWN_ITEMS:
+        return "[" + ", ".join(map(_number, values)) + "]"
+    return (f"[{', '.join(map(_number, values[:SHOWN_ITEMS - 1]))}, ..., "
+            f"{_number(values[-1])}] ({len(values)} values)")
+
+
+def _repr_value(value, unit: str | None) -> str | None:
+    """An entry as a repr shows it (None: left out: None, nested lists and dicts)."""
+    suffix = f" {unit}" if unit and unit != "1" else ""
+    if value is None or isinstance(value, dict):
+        return None
+    if isinstance(value, str):
+        return repr(value) if len(value) <= CELL_LIMIT else None
+    if isinstance(value, list | tuple | np.ndarray):
+        text = _numbers(list(value))
+        if text is None and all(isinstance(v, str) for v in value):  # names (a table's)
+            text = repr(list(value))
+            return text if len(text) <= CELL_LIMIT else None
+        return None if text is None else text + (suffix if len(value) else "")
+    if isinstance(value, int | float | np.number | bool | np.bool_):
+        return _number(value) + suffix
+    return None
+
+
+def _cell(value) -> str:
+    """An entry as an HTML cell shows it: numbers to 6 digits, lists shortened, nested
+    entries as JSON of at most :data:`CELL_LIMIT` characters."""
+    if value is None:
+        return ""
+    if isinstance(value, float | np.floating):
+        return f"{float(value):.6g}"
+    if isinstance(value, int | np.number | bool | np.bool_):
+        return _number(value)
+    if isinstance(value, list | tuple | np.ndarray):
+        text = _numbers(list(value))
+        if text is not None:
+            return text
+    text = value if isinstance(value, str) else to_json(value)
+    return text if len(text) <= CELL_LIMIT else text[:CELL_LIMIT - 3] + "..."
 
 
 def kinds() -> dict[str, type[Result]]:

@@ -49,6 +49,10 @@ class CriticalSpeeds(Result, kind="critical"):
         ``relative_difference`` |a − b| / b, ``mu`` (N/m).
     """
 
+    summary_units = {"string_speed": "m/s", "strip_speed": "m/s",
+                     "sundaram_benson_speed": "m/s", "paper_speed": "m/s",
+                     "critical_seconds": "s", "divergence_seconds": "s"}
+
     critical_speed: float
     divergence_speed: float
     string_speed: float

@@ -56,6 +56,10 @@ class FrequencyResponse(Result, kind="frequency_response"):
         ``damping`` and ``unknowns``.
     """
 
+    summary_units = {"amplitude": "m", "phase": "rad", "probes": "m", "probe_amplitude": "m",
+                     "probe_phase": "rad", "damping": "N*s/m^3"}
+    headline = ("velocity", "omega", "amplitude", "max_error_estimate", "unknowns")
+
     omega: np.ndarray
     response: np.ndarray
     points: np.ndarray

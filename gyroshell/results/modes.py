@@ -127,6 +127,8 @@ class GyroscopicModes(_EigenvalueProperties, Result, kind="gyroscopic_modes"):
         ``pair_defect``, ``max_residual`` and method details.
     """
 
+    summary_units = {"decay_rate": "1/s"}
+
     eigenvalues: np.ndarray
     vectors: np.ndarray
     residuals: np.ndarray
@@ -200,6 +202,10 @@ class Modes(_EigenvalueProperties, Result, kind="modes"):
     ``decay_rate`` (1/s), ``damping_ratio``, ``stability`` ("stable", "divergence",
     "flutter").
     """
+
+    summary_units = {"decay_rate": "1/s"}
+    headline = ("velocity", "omega", "frequency", "growth_rate", "stability", "nx", "ny",
+                "unknowns")
 
     grid: Grid
     velocity: float

@@ -35,6 +35,8 @@ class StaticSolution(Result, kind="static"):
         The tape it was computed for (set by :func:`~gyroshell.solve_static`), saved with it.
     """
 
+    summary_units = {"load_centroid": "m", "spacing_x": "m", "spacing_y": "m"}
+
     grid: Grid
     velocity: float
     w: np.ndarray

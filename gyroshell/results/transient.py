@@ -267,6 +267,11 @@ class TransientResult(Result, kind="transient"):
         (steps + 1, heads); ``load_point`` is then head 0's column.
     """
 
+    summary_units = {"dt": "s", "final_time": "s", "final_load_point_displacement": "m",
+                     "max_load_point_displacement": "m", "min_load_point_displacement": "m",
+                     "factor_time": "s", "loop_time": "s", "step_time": "s",
+                     "damping": "N*s/m^3"}
+
     times: np.ndarray
     load_point: np.ndarray
     snapshots: Snapshots

@@ -124,6 +124,8 @@ class StudyResult(results_base.Result, kind="study"):
         (:meth:`~gyroshell.studies.head_study.BearingStudy.spec`).
     """
 
+    summary_units = {"seconds": "s"}
+
     table: pd.DataFrame
     base: TapeParameters
     velocity: float

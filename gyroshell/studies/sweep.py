@@ -320,18 +320,20 @@ def check_workers(workers, speeds: int) -> int:
 
 def solve_speeds(model, velocities: list[float], count: int, *, continuation: bool,
                  workers: int, options: dict, progress: bool | None,
-                 description: str) -> list[Modes]:
+                 description: str, above: int = 0) -> list[Modes]:
     """The modes at each speed, in the order of ``velocities`` (validated, m/s).
 
     One process continues each speed from the previous ones (``continuation``); several
     ``workers`` each continue one contiguous run of the speeds. ``options`` go to
     :func:`gyroshell.modes`; the bar is labelled ``description``. ``count`` is checked
-    first (against the model's unknowns), before the progress starts.
+    first (against the model's unknowns), before the progress starts; ``above`` of the
+    ``count`` modes are solved only to be tracked (the start line says so).
     """
     count = check_count(count, model.unknowns)
     with stage_progress(len(velocities), description, progress=progress,
                         unit="speed") as bar:
-        bar.start(f"of {count} modes each, {model.unknowns} unknowns, "
+        extra = f" (and {above} above, tracked)" if above else ""
+        bar.start(f"of {count - above} modes each{extra}, {model.unknowns} unknowns, "
                   + ("in this process" if workers == 1 else f"on {workers} processes"))
         if workers == 1:
             check = _time_check(model, len(velocities), len(velocities), count, 1)

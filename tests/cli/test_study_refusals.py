@@ -270,7 +270,8 @@ PROGRESS = [
       "gyroshell: sweep: 3/4 speeds done (75 %) in ",
       "gyroshell: sweep: 4/4 speeds done in "]),
     ("campbell", ["campbell", *COARSE, "--velocities", "0,10", "--count", "1"],
-     ["gyroshell: campbell: 2 speeds of 1 modes each, 135 unknowns, in this process",
+     ["gyroshell: campbell: 2 speeds of 1 modes each (and 1 above, tracked), 135 unknowns, "
+      "in this process",
       "gyroshell: campbell: 1/2 speeds done (50 %) in ",
       "gyroshell: campbell: 2/2 speeds done in ",
       "gyroshell: campbell: the critical speed (a few more eigen-solves)"]),
