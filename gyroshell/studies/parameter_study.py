@@ -75,6 +75,7 @@ from .points import (
     VARIABLE_NAMES,
     canonical_name,
     check_points,
+    design_fields,
     grid_points,
     parameters_of,
     value_of,
@@ -173,14 +174,20 @@ class StudyResult(results_base.Result, kind="study"):
                 ds[name].attrs["units"] = unit
         return ds
 
-    def plot(self, ax=None, **options):
-        """Stability map (two varied parameters) or the quantity against one; see
-        :func:`gyroshell.plot.stability_map` and :func:`gyroshell.plot.study_lines`."""
+    def plot(self, ax=None, *, quantity: str | None = None, **options):
+        """Two varied parameters: a map of ``quantity`` (:func:`gyroshell.plot.study_map`),
+        or without one of a study that computed the stability, the stability map
+        (:func:`gyroshell.plot.stability_map`); one: the quantity against it
+        (:func:`gyroshell.plot.study_lines`). ``quantity`` defaults to
+        :func:`gyroshell.plot.study_maps.default_quantity` (a bearing study with
+        transducers: their minimum spacing). Angles are shown in degrees."""
         from .. import plot
 
-        if len(self.varied) == 2 and "stability" in self.table:
-            return plot.stability_map(self, ax=ax, **options)
-        return plot.study_lines(self, ax=ax, **options)
+        if len(self.varied) == 2:
+            if quantity is None and "stability" in self.table:
+                return plot.stability_map(self, ax=ax, **options)
+            return plot.study_map(self, quantity, ax=ax, **options)
+        return plot.study_lines(self, ax=ax, quantity=quantity, **options)
 
     def _persistence_attrs(self) -> dict:
         """The metadata of a study file (also used by the previous release's converter)."""
@@ -353,7 +360,7 @@ def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...]
     validation.instance("bearing", bearing, BearingStudy)
     if base.edges != "free" and not bearing.infinitely_wide:
         raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
-    check_design(bearing.head, varied=[n for n in varied if n in HEAD_VARIABLES])
+    check_design(bearing.head, varied=design_fields(varied))
     first = None
     for i, point in enumerate(pts):
         try:
