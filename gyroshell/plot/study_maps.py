@@ -163,21 +163,33 @@ def _edges(centres: np.ndarray) -> np.ndarray:
     return np.concatenate([[2 * centres[0] - mid[0]], mid, [2 * centres[-1] - mid[-1]]])
 
 
-def _transducer_columns(table) -> list[str]:
-    """The ``transducer_<i>_min_spacing`` columns of a bearing study's table."""
-    return [c for c in table.columns
+def _transducer_columns(columns) -> list[str]:
+    """The ``transducer_<i>_min_spacing`` among a bearing study's table's columns."""
+    return [c for c in columns
             if c.startswith("transducer_") and c.endswith("_min_spacing")
             and c[len("transducer_"):-len("_min_spacing")].isdigit()]
 
 
 def quantities(study) -> list[str]:
-    """The quantities a study can plot: its computed number columns, and
-    :data:`TRANSDUCER_MIN_SPACING` for a bearing study with transducers."""
-    table = _table(study)
-    varied = list(getattr(study, "varied", ()))
-    derived = [TRANSDUCER_MIN_SPACING] if _transducer_columns(table) else []
-    return derived + [c for c in _computed_columns(table, varied)
-                      if table[c].dtype.kind in "fiu"]
+    """The quantities a study can plot: :data:`TRANSDUCER_MIN_SPACING` for a bearing study
+    with transducers, then its computed number columns (:func:`plottable`)."""
+    return plottable(list(_table(study).columns), getattr(study, "varied", ()))
+
+
+def plottable(columns, varied) -> list[str]:
+    """The quantities of a study's table with these ``columns`` and ``varied``
+    parameters: :data:`TRANSDUCER_MIN_SPACING` if it has transducer lines, then each
+    computed number column (not ``point``, ``stability`` or ``error``).
+
+    Examples
+    --------
+    >>> plottable(["point", "wrap", "central_spacing", "transducer_1_min_spacing",
+    ...            "error"], ["wrap"])
+    ['transducer_min_spacing', 'central_spacing', 'transducer_1_min_spacing']
+    """
+    columns = list(columns)
+    derived = [TRANSDUCER_MIN_SPACING] if _transducer_columns(columns) else []
+    return derived + [c for c in columns if c not in varied and c not in _NOT_QUANTITIES]
 
 
 def default_quantity(study) -> str:
@@ -190,7 +202,7 @@ def default_quantity(study) -> str:
         If the study computed no number.
     """
     table = _table(study)
-    if _transducer_columns(table):
+    if _transducer_columns(table.columns):
         return TRANSDUCER_MIN_SPACING
     names = quantities(study) if getattr(study, "compute", ()) else []
     if not names:
@@ -208,8 +220,9 @@ def quantity_values(study, quantity: str) -> np.ndarray:
         For a quantity the study has not, listing those it has.
     """
     table = _table(study)
-    if quantity == TRANSDUCER_MIN_SPACING and _transducer_columns(table):
-        return table[_transducer_columns(table)].to_numpy(float).min(axis=1)
+    lines = _transducer_columns(table.columns)
+    if quantity == TRANSDUCER_MIN_SPACING and lines:
+        return table[lines].to_numpy(float).min(axis=1)
     if quantity not in table or quantity in getattr(study, "varied", ()):
         raise ParameterError(f"no quantity {quantity!r} in the study: choose one of "
                              f"{', '.join(quantities(study))}")

@@ -87,7 +87,8 @@ if TYPE_CHECKING:
 #: Frequencies per point of ``compute="modes"`` unless ``count`` says otherwise.
 DEFAULT_COUNT = 3
 
-__all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "BearingStudy", "StudyResult", "run_study"]
+__all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "BearingStudy", "StudyResult", "run_study",
+           "study_columns"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -271,6 +272,24 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     """
     return _run(_plan(base, vary, points, compute, velocity, count, bearing),
                 check_executor(workers, scheduler, chunk_size, connect_timeout), cache, progress)
+
+
+def study_columns(base: TapeParameters | None = None, *,
+                  vary: Mapping[str, Sequence] | None = None,
+                  points: Sequence[Mapping] | None = None,
+                  compute: str | Sequence[str] = "critical", velocity: float = 0.0,
+                  count: int | None = None, bearing: BearingStudy | None = None) -> list[str]:
+    """The columns of the table :func:`run_study` would return for these settings (checked
+    as it checks them), without computing any point: to refuse, before the work, an
+    option that names a column the study will not have.
+
+    Examples
+    --------
+    >>> study_columns(vary={"tension": [80.0, 90.0]}, compute="critical")
+    ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
+    """
+    plan = _plan(base, vary, points, compute, velocity, count, bearing)
+    return ["point", *plan.varied, *result_columns(plan.compute, plan.count, plan.bearing)]
 
 
 @dataclass(frozen=True)

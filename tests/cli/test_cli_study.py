@@ -96,7 +96,9 @@ def test_transient_save(tmp_path, capsys):
      "--out /nope/s.csv: folder /nope does not exist"),
     (["--vary", "tension=80", "--compute", "modes", "--out", "s.txt"], "--out: use a .csv"),
     (["--vary", "tension=80", "--vary", "velocity=1", "--compute", "critical", "--plot",
-      "m.png"], "add --compute modes"),
+      "m.png", "--quantity", "omega_1"],
+     "--quantity omega_1: this study has no such column; choose one of critical_speed, "
+     "divergence_speed"),
     (["--vary", "tension=80", "--compute", "modes", "--scheduler", "nowhere"],
      "tcp://HOST:PORT"),
     (["--vary", "tension=80", "--compute", "modes", "--config", "/nope.toml"],
