@@ -25,6 +25,7 @@ from pathlib import Path
 from .common import (
     TAPE_OVERRIDES,
     UserError,
+    add_out_dir_option,
     add_tape_overrides,
     positive_int,
     print_json,
@@ -35,7 +36,7 @@ from .heads import add_head_options, head_design
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
-#: The files ``--out DIR`` writes: the summary, the fields, and the readings' tables (the
+#: The files ``--out-dir DIR`` writes: the summary, the fields, and the readings' tables (the
 #: spacing across the width along each transducer line; each corner's contact and tents).
 OUT_FILES = ("summary.json", "fields.csv", "transducer_lines.csv", "corners.csv")
 #: The tape options of the bearing: those of the plate sub-commands but ``--load``.
@@ -81,11 +82,11 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     add_head_options(p)
     _add_bearing_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
-    p.add_argument("--out", metavar="DIR", default=None,
-                   help="write summary.json, the spacing/pressure fields (fields.csv), the "
-                        "spacing across the width along each transducer line "
-                        "(transducer_lines.csv) and each corner's contact force and tents "
-                        "(corners.csv) into DIR (created if missing; its parent must exist)")
+    add_out_dir_option(p, "write summary.json, the spacing/pressure fields (fields.csv), "
+                          "the spacing across the width along each transducer line "
+                          "(transducer_lines.csv) and each corner's contact force and tents "
+                          "(corners.csv) into DIR (created if missing; its parent must "
+                          "exist)")
     p.add_argument("--plot", metavar="FILE.png", default=None,
                    help="write a PNG of the spacing and pressure (over a flat or measured "
                         "head, or with --transducers: the head's contour, the spacing over "
@@ -313,7 +314,7 @@ def _check_outputs(args: argparse.Namespace) -> Path | None:
     check_outputs({"--plot": (args.plot, PLOT)})
     if args.out is None:
         return None
-    return check_output_folder_with_files(args.out, OUT_FILES, option="--out")
+    return check_output_folder_with_files(args.out, OUT_FILES, option="--out-dir")
 
 
 def _model(args: argparse.Namespace, params, air, velocity: float, head, options=None, *,
@@ -496,10 +497,10 @@ def _write_out(out: Path, sol, summary: dict) -> None:
     from ..results.base import write_table
 
     write_table(sol.to_frame().rename(columns=FIELD_COLUMNS), out / "fields.csv",
-                option="--out")
+                option="--out-dir")
     lines, corners = readings_tables(sol)
-    write_table(lines, out / "transducer_lines.csv", option="--out")
-    write_table(corners, out / "corners.csv", option="--out")
+    write_table(lines, out / "transducer_lines.csv", option="--out-dir")
+    write_table(corners, out / "corners.csv", option="--out-dir")
     write_atomic(out / "summary.json",
                  lambda tmp: tmp.write_text(json.dumps(summary, indent=1) + "\n"))
 

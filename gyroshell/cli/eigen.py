@@ -9,6 +9,7 @@ import numpy as np
 
 from ..core.files import PLOT, check_outputs, transaction
 from .common import (
+    RANGE_HELP,
     grid_of,
     parameters_from_args,
     parse_velocities,
@@ -49,10 +50,11 @@ def register(sub, common: argparse.ArgumentParser,
         help="frequencies against tape speed (CSV, plot)",
         description="Lowest frequencies (rad/s) at a list of tape speeds (m/s), tracked into "
                     "branches by mode-shape correlation.")
-    p.add_argument("--velocities", default="0:100:10",
-                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...', "
-                        "finite, >= 0, each once (in any order), at most 10000 of them "
-                        "(default 0:100:10)")
+    p.add_argument("--velocities", default="0:100:11", metavar="START:STOP:NUM",
+                   help=f"speeds, m/s: {RANGE_HELP}; finite, >= 0, each once (in any "
+                        "order), at most 10000 of them (default 0:100:11: every 10 m/s). "
+                        "Until release 0.3 the old START:STOP:STEP is still read where it "
+                        "gives other speeds (0:100:10: 11 speeds), with a notice")
     p.add_argument("--count", type=positive_int, default=6,
                    help="frequencies per speed, >= 1 (default 6)")
     p.add_argument("--workers", type=positive_int, default=1,

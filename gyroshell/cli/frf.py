@@ -6,7 +6,15 @@ import argparse
 import time
 from pathlib import Path
 
-from .common import UserError, grid_of, parameters_from_args, positive_int, print_json, real
+from .common import (
+    RANGE_HELP,
+    UserError,
+    grid_of,
+    parameters_from_args,
+    positive_int,
+    print_json,
+    real,
+)
 from .loading import add_damping_options, damping_from_args, pair
 
 
@@ -20,8 +28,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                     "Many frequencies use a reduced (rational Krylov) model whose error is "
                     "estimated; direct solves take over wherever it is above --tol.")
     p.add_argument("--frequencies", required=True, metavar="START:STOP:NUM",
-                   help="angular frequencies, rad/s: NUM points from START to STOP "
-                        "(both included), or a list 'w1,w2,...'")
+                   help=f"angular frequencies, rad/s: {RANGE_HELP}; START <= STOP")
     p.add_argument("--probe", metavar="X,Y", type=pair, action="append", default=[],
                    help="extra response point, m (repeatable)")
     p.add_argument("--method", choices=("auto", "direct", "reduced"), default="auto",

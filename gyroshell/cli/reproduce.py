@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from .common import positive_int
+from .common import UserError, add_out_dir_option, positive_int
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -16,15 +16,15 @@ def register(sub, common: argparse.ArgumentParser,
         "reproduce", help="reproduce the paper's Figs. 2-6 and the critical-speed and "
                           "period studies (PNG + CSV)",
         description="Run studies and write their tables (CSV, Markdown) and figures (PNG) "
-                    "into --out (every file of the run, or none if it fails). 'all' runs every "
+                    "into --out-dir (every file of the run, or none if it fails). 'all' runs every "
                     "study (under a minute on 2 cores). The "
                     "tape is the paper's Table 1 tape; --quick uses a coarse grid and short "
                     "records to preview in seconds (numbers are then not the paper's).")
     p.add_argument("studies", nargs="+", choices=(*STUDIES, "all"), metavar="STUDY",
                    help=f"one or more of: {', '.join(STUDIES)}, all (a study named twice "
                         "runs once)")
-    p.add_argument("--out", required=True,
-                   help="output folder (created if missing; its parent must exist)")
+    add_out_dir_option(p, "the folder the tables and figures go to (created if missing; "
+                          "its parent must exist; required)")
     p.add_argument("--quick", action="store_true",
                    help="coarse grid (12 intervals across) and short records")
     p.add_argument("--quiet", action="store_true", help="no progress bars or log lines")
@@ -47,7 +47,9 @@ def run(args: argparse.Namespace) -> int:
     from ..core.parallel import check_process_count
     from ..reproduce import Settings, run_studies
 
-    out = check_output_folder_with_files(args.out, option="--out")  # as bearing --out
+    if args.out is None:
+        raise UserError("reproduce needs --out-dir DIR: the folder its files go to")
+    out = check_output_folder_with_files(args.out, option="--out-dir")  # as bearing's
     workers = check_process_count("--workers", args.workers or default_workers())
     settings = Settings(quick=args.quick, progress=False if args.quiet else None)
     start = time.perf_counter()
@@ -63,12 +65,12 @@ def run(args: argparse.Namespace) -> int:
 
 def script(name: str, argv: list[str] | None = None) -> int:
     """Entry point of ``studies/<name>.py``: ``gyroshell reproduce <name>``, default
-    ``--out results``."""
+    ``--out-dir results``."""
     import sys
 
     from . import main
 
     args = list(sys.argv[1:] if argv is None else argv)
-    if "--out" not in args:
-        args += ["--out", "results"]
+    if "--out" not in args and "--out-dir" not in args:
+        args += ["--out-dir", "results"]
     return main(["reproduce", name, *args])

@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..core.errors import ParameterError
 from .common import (
+    RANGE_HELP,
     UserError,
     boolean,
     grid_of,
@@ -45,7 +46,8 @@ def register(sub, common: argparse.ArgumentParser,
                     "m/s; the head's angles in degrees.")
     p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
                    help="a parameter and its values: NAME=V1,V2,... or NAME=START:STOP:NUM "
-                        "(NUM evenly spaced values, both ends included); repeat for a grid. "
+                        "(NUM evenly spaced values from START to STOP, both included, as "
+                        "in every range option); repeat for a grid. "
                         "Values in SI, or with a unit as in a --config file (20um,30um). "
                         f"NAME: {', '.join(VARIABLE_NAMES)} (SI units; the head's "
                         "wrap_angle, wrap_in and wrap_out in degrees, or 0.03rad; wrap: "
@@ -118,9 +120,10 @@ def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> 
                     "with crossings, veerings, the critical speed and, for a roller or "
                     "capstan of circumference L (m), the excitation lines omega = n 2 pi V/L "
                     "and the speeds where they meet a branch.")
-    p.add_argument("--velocities", default="0:100:5",
-                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...' "
-                        "(default 0:100:5)")
+    p.add_argument("--velocities", default="0:100:21", metavar="START:STOP:NUM",
+                   help=f"speeds, m/s: {RANGE_HELP} (default 0:100:21: every 5 m/s; until "
+                        "release 0.3 the old START:STOP:STEP is still read where it gives "
+                        "other speeds, with a notice)")
     p.add_argument("--count", type=positive_int, default=6,
                    help="modes per speed (default 6)")
     p.add_argument("--min-mac", type=real, default=None,
@@ -150,8 +153,6 @@ def parse_values(name: str, text: str) -> list:
     """``V1,V2,...`` or ``START:STOP:NUM`` (numbers in SI, or values with a unit such as
     ``20um`` / ``"20 um"``; words for ``edges``, true/false, yes/no or 1/0 for the yes-or-no
     variables such as ``wrap_pressure``)."""
-    import numpy as np
-
     from ..core.budget import check_study_points
     from ..core.units import unit_of
     from ..studies.points import BOOLEAN_VARIABLES
@@ -166,20 +167,14 @@ def parse_values(name: str, text: str) -> list:
         except argparse.ArgumentTypeError as exc:
             raise UserError(f"--vary {name}: {exc}") from None
     if ":" in text:
-        parts = text.split(":")
-        if len(parts) != 3:
-            raise UserError(f"--vary {name}={text}: use START:STOP:NUM")
-        try:
-            start, stop = real(parts[0]), real(parts[1])
-            num = int(parts[2])
-        except (argparse.ArgumentTypeError, ValueError):
-            raise UserError(f"--vary {name}={text}: START and STOP must be numbers and NUM "
-                            "an integer") from None
-        if num < 1:
-            raise UserError(f"--vary {name}={text}: NUM must be >= 1")
-        check_study_points(num, what=f"--vary {name}={text}")
-        values = [float(v) for v in np.linspace(start, stop, num)]
-        degrees = name.replace("-", "_") in VARY_DEGREES
+        from ..core.ranges import parse_range
+
+        key = name.replace("-", "_")
+        unit = "degrees" if key in VARY_DEGREES else unit_of(key) or "SI"
+        values = [float(v) for v in parse_range(
+            text, f"--vary {name}", unit=unit,
+            limit=lambda n: check_study_points(n, what=f"--vary {name}={text}"))]
+        degrees = key in VARY_DEGREES
         return [math.radians(v) for v in values] if degrees else values
     items = [item.strip() for item in text.split(",")]
     if name.replace("-", "_") == "edges":
