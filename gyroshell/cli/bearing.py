@@ -33,6 +33,7 @@ from .common import (
     typed_overrides,
 )
 from .heads import add_head_options, head_design
+from .saving import add_save_option, check_save_path, save_result
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
@@ -91,6 +92,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                    help="write a PNG of the spacing and pressure (over a flat or measured "
                         "head, or with --transducers: the head's contour, the spacing over "
                         "its lands and corners and the transducer lines across the width)")
+    add_save_option(p, what="the steady state")
     p.add_argument("--error-estimate", action="store_true",
                    help="also solve on a grid with half the intervals each way and report "
                         "the differences of the spacings (central, minimum, each transducer "
@@ -183,6 +185,9 @@ def run(args: argparse.Namespace) -> int:
     head = design.head()   # the contour's checks: transducers on it, a profile file's
     air = _air(args)
     out = _check_outputs(args)
+    from ..bearing.results import BearingSolution
+
+    check_save_path(args.save, BearingSolution)
     options = design.model_options()
     model = _model(args, params, air, velocity, head, options)
     sol = _solve(model, None if args.quiet else _progress)
@@ -202,6 +207,7 @@ def run(args: argparse.Namespace) -> int:
     with transaction() if out is None else folder_transaction(out):
         if out is not None:
             _write_out(out, sol, summary)
+        save_result(args.save, sol, params)
         if args.plot is not None:
             from ..bearing.plots import head_overview, overview
             from ..reproduce._common import save_figure

@@ -8,10 +8,12 @@ from pathlib import Path
 
 from ..core.errors import ParameterError
 from .common import (
+    OLD_SPELLINGS_END,
     RANGE_HELP,
     UserError,
     boolean,
     grid_of,
+    notice,
     parameters_from_args,
     parse_velocities,
     positive_int,
@@ -136,8 +138,11 @@ def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> 
                         "(default 1,2,3; only with --circumference)")
     p.add_argument("--out", metavar="FILE.csv", default=None,
                    help="write the tracked branches (velocity, branch, rank, omega, "
-                        "growth_rate, mac)")
+                        "growth_rate, mac): CSV or Parquet (a .nc file: the old spelling "
+                        "of --save, with a notice)")
     p.add_argument("--plot", metavar="FILE.png", default=None, help="write the diagram")
+    add_save_option(p, what="the whole diagram (branches, MAC of every link, crossings, "
+                           "veerings)")
     p.add_argument("--workers", type=positive_int, default=1,
                    help="local processes, at most 4 per CPU, each solving a contiguous run "
                         "of the speeds (default 1)")
@@ -414,7 +419,12 @@ def run_campbell(args: argparse.Namespace) -> int:
     min_mac = MIN_MAC if args.min_mac is None else args.min_mac
     _check_campbell_numbers(args, min_mac)
     _check_outputs({"--out": (args.out, (".csv", ".parquet", ".nc")),
-                    "--plot": (args.plot, (".png", ".pdf", ".svg"))})
+                    "--plot": (args.plot, (".png", ".pdf", ".svg")),
+                    "--save": (args.save, (".nc",))})
+    if args.out and Path(args.out).suffix.lower() == ".nc":
+        notice(f"campbell --out FILE.nc is now --save FILE.nc (--out is the table, CSV or "
+               f"Parquet, in every sub-command); --out FILE.nc goes in release "
+               f"{OLD_SPELLINGS_END}")
     grid_of(params)  # its size, before the operators are assembled
     velocities = parse_velocities(args.velocities)  # the engines load from here on
     from ..studies.sweep import check_velocities
@@ -426,8 +436,9 @@ def run_campbell(args: argparse.Namespace) -> int:
     from ..core.files import transaction
 
     with transaction():  # both files, or neither
-        if args.out:
-            d.save(args.out, params=params)
+        for path in (args.out, args.save):
+            if path:
+                d.save(path, params=params)
         if args.plot:
             _save_plot(args.plot, d.plot(circumference=args.circumference, orders=orders))
     if args.json:
@@ -497,6 +508,6 @@ def _report_campbell(args: argparse.Namespace, d, orders: list[int]) -> None:
         for row in d.resonances(args.circumference, orders).itertuples():
             print(f"resonance: order {row.order} meets branch {row.branch} at V = "
                   f"{row.velocity:.4g} m/s (omega = {row.omega:.6g} rad/s)")
-    for path in (args.out, args.plot):
+    for path in (args.out, args.plot, args.save):
         if path:
             print(f"wrote {path}")

@@ -219,7 +219,7 @@ def test_out_with_a_missing_parent_is_refused_and_nothing_created(cli, tmp_path,
     calls = _spy_on_the_solve(monkeypatch)
     out = tmp_path / "missing" / "run"
     line = _one_error_line(cli([*TINY_1D, "--out-dir", out]))
-    assert line == (f"gyroshell: error: --out {out}: folder {tmp_path / 'missing'} "
+    assert line == (f"gyroshell: error: --out-dir {out}: folder {tmp_path / 'missing'} "
                     "does not exist")
     assert calls == [] and sorted(tmp_path.iterdir()) == []
 
