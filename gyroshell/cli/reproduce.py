@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 
-from .common import UserError, add_out_dir_option, positive_int
+from .common import UserError, add_out_dir_option, positive_int, print_json
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -28,6 +29,9 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--quick", action="store_true",
                    help="coarse grid (12 intervals across) and short records")
     p.add_argument("--quiet", action="store_true", help="no progress bars or log lines")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (the folder, the files each study wrote, "
+                        "seconds) instead of the last line; the log lines go to stderr")
     p.add_argument("--workers", type=positive_int, default=None, metavar="N",
                    help="local processes running the studies' independent parts at once, "
                         "one BLAS thread each, at most 4 per CPU (default: the machine's "
@@ -53,13 +57,19 @@ def run(args: argparse.Namespace) -> int:
     workers = check_process_count("--workers", args.workers or default_workers())
     settings = Settings(quick=args.quick, progress=False if args.quiet else None)
     start = time.perf_counter()
-    log = None if args.quiet else (lambda msg: print(msg, flush=True))
+    stream = sys.stderr if args.json else sys.stdout
+    log = None if args.quiet else (lambda msg: print(msg, file=stream, flush=True))
     with folder_transaction(out):  # every file of the run, or none (and no new folder)
         written = run_studies(args.studies, out, settings, log=log,
                               workers=workers)
-    if not args.quiet:
+    seconds = time.perf_counter() - start
+    if args.json:
+        print_json({"out_dir": str(out), "seconds": seconds,
+                    "files": {name: [path.name for path in paths]
+                              for name, paths in written.items()}})
+    elif not args.quiet:
         n = sum(len(v) for v in written.values())
-        print(f"wrote {n} files to {out} in {time.perf_counter() - start:.1f} s")
+        print(f"wrote {n} files to {out} in {seconds:.1f} s")
     return 0
 
 
