@@ -71,6 +71,7 @@ from .executors import (
 )
 from .head_study import BearingStudy, head_of_point, head_value
 from .points import (
+    BOTH_WRAPS,
     HEAD_VARIABLES,
     VARIABLE_NAMES,
     canonical_name,
@@ -379,6 +380,10 @@ def _bearing_plan(base: TapeParameters, pts: list[dict], varied: tuple[str, ...]
     validation.instance("bearing", bearing, BearingStudy)
     if base.edges != "free" and not bearing.infinitely_wide:
         raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
+    both = [name for name in ("wrap_in", "wrap_out") if name in varied]
+    if BOTH_WRAPS in varied and both:
+        raise ParameterError(f"{BOTH_WRAPS} sets both wrap_in and wrap_out: vary "
+                             f"{BOTH_WRAPS} or {' and '.join(both)}, not both")
     check_design(bearing.head, varied=design_fields(varied))
     first = None
     for i, point in enumerate(pts):
