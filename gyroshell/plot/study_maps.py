@@ -113,7 +113,8 @@ def study_lines(study, *, quantity: str | None = None, x: str | None = None, ax=
         label = None
         if others:
             key = key if isinstance(key, tuple) else (key,)
-            label = ", ".join(_value_text(study, n, k) for n, k in zip(others, key, strict=True))
+            label = ", ".join(_value_text(study, n, k, table[n])
+                              for n, k in zip(others, key, strict=True))
         ax.plot(xs_all[rows], ys_all[rows], "-o", ms=3, label=label)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
@@ -125,23 +126,18 @@ def study_lines(study, *, quantity: str | None = None, x: str | None = None, ax=
     return ax
 
 
-def _value_text(study, name: str, value) -> str:
-    """``name = value`` as a legend shows it (angles in degrees)."""
+def _value_text(study, name: str, value, column) -> str:
+    """``name = value`` as a legend shows it: in the unit the whole ``column`` is shown in
+    (angles in degrees)."""
     if not isinstance(value, (float, int, np.floating, np.integer)) or isinstance(value, bool):
         return f"{name} = {value}"
-    number, label = shown(study, name, [float(value)])
+    factor, label = display_scale(study, name, column)
     unit = label.rsplit(" (", 1)[1].rstrip(")") if " (" in label else ""
-    return f"{name} = {number[0]:g}{' ' + unit if unit else ''}"
+    return f"{name} = {factor * float(value):g}{' ' + unit if unit else ''}"
 
 
 #: Study columns that are neither varied nor computed numbers.
 _NOT_QUANTITIES = ("point", "stability", "error")
-
-
-def _computed_columns(table, varied) -> list[str]:
-    """The computed number columns of a study's table, in its order (a study's table holds
-    ``point``, the varied parameters, then what was computed)."""
-    return [c for c in table.columns if c not in varied and c not in _NOT_QUANTITIES]
 
 
 def _positions(column):
