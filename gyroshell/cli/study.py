@@ -226,10 +226,10 @@ def _check_outputs(outputs: dict[str, tuple[str | None, tuple[str, ...]]]) -> No
                    for flag, (path, _suffixes) in outputs.items()})
 
 
-def _save_plot(path: str, ax) -> None:
+def _save_plot(path: str, ax, *, option: str = "--plot") -> None:
     from ..plot import save_figure
 
-    save_figure(ax.figure, path, dpi=PLOT_DPI, option="--plot")
+    save_figure(ax.figure, path, dpi=PLOT_DPI, option=option)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -254,8 +254,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot and len(vary) > 2:
         raise UserError("--plot needs one or two varied parameters")
     _check_quantity(args, params, vary, compute, velocity, bearing)
-    if args.sketch:
-        _sketch(args.sketch, params, vary, bearing)
+    sketch = _sketch(params, vary, bearing) if args.sketch else None
     result = run_study(params, vary=vary, compute=compute, velocity=velocity,
                        count=args.count,
                        workers=args.workers, scheduler=args.scheduler,
@@ -269,6 +268,8 @@ def run(args: argparse.Namespace) -> int:
                 result.save(path)
         if args.plot:
             _save_plot(args.plot, result.plot(quantity=args.quantity))
+        if sketch is not None:
+            _save_plot(args.sketch, sketch, option="--sketch")
     _report_study(args, result)
     return 0
 
@@ -293,8 +294,9 @@ def _check_quantity(args: argparse.Namespace, params, vary: dict, compute: list[
                         f"choose one of {', '.join(names)}")
 
 
-def _sketch(path: str, params, vary: dict, bearing) -> None:
-    """--sketch: the head of the study's first point, drawn before the solves."""
+def _sketch(params, vary: dict, bearing):
+    """--sketch: the Axes of the head of the study's first point, drawn before the solves
+    (its head refused in one line if it cannot be built)."""
     if bearing is None:
         raise UserError("--sketch draws the head of --compute bearing: add it or drop "
                         "--sketch")
@@ -311,10 +313,7 @@ def _sketch(path: str, params, vary: dict, bearing) -> None:
     shown = ", ".join(f"{k} = {math.degrees(v):g} deg" if k in VARY_DEGREES
                       else f"{k} = {v:g} m" for k, v in first.items())
     title = f"{head.kind} head" + (f" of the first point ({shown})" if shown else "")
-    from ..plot import save_figure
-
-    ax = head_sketch(head, radius=params.radius, title=title)
-    save_figure(ax.figure, path, dpi=PLOT_DPI, option="--sketch")
+    return head_sketch(head, radius=params.radius, title=title)
 
 
 def _check_study_options(args: argparse.Namespace, typed: dict[str, str], vary: dict,
