@@ -307,7 +307,7 @@ ANNOUNCED_SWEEP = textwrap.dedent("""
 
 @pytest.mark.slow
 def test_sigterm_during_computation_exits_cleanly(tmp_path):
-    argv = ["sweep", *map(str, COARSE), "--velocities", "0:100:0.02", "--out", "s.csv",
+    argv = ["sweep", *map(str, COARSE), "--velocities", "0:100:5001", "--out", "s.csv",
             "--quiet"]
     proc = subprocess.Popen([sys.executable, "-c", ANNOUNCED_SWEEP, *argv], cwd=tmp_path,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
