@@ -1,7 +1,7 @@
 """Head-tape air bearing: spacing against speed, 2-D maps, cross-width profile, tension step.
 
-Run python studies/bearing.py [--out DIR] [--quick], the same as
-gyroshell reproduce bearing --out DIR (default DIR: results).
+Run python studies/bearing.py [--out-dir DIR] [--quick], the same as
+gyroshell reproduce bearing --out-dir DIR (default DIR: results).
 """
 
 from gyroshell.cli.reproduce import script

@@ -1,7 +1,7 @@
 """Critical-speed table: this model (free and simply supported edges, L_x/L_y = 4 and 19)
 
-Run python studies/critical.py [--out DIR] [--quick], the same as
-gyroshell reproduce critical --out DIR (default DIR: results).
+Run python studies/critical.py [--out-dir DIR] [--quick], the same as
+gyroshell reproduce critical --out-dir DIR (default DIR: results).
 """
 
 from gyroshell.cli.reproduce import script

@@ -1,7 +1,7 @@
 """Fig. 6: centre-line wave action after a step load, V = 100 m/s, L_x/L_y = 19.
 
-Run python studies/fig6.py [--out DIR] [--quick], the same as
-gyroshell reproduce fig6 --out DIR (default DIR: results).
+Run python studies/fig6.py [--out-dir DIR] [--quick], the same as
+gyroshell reproduce fig6 --out-dir DIR (default DIR: results).
 """
 
 from gyroshell.cli.reproduce import script

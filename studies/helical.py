@@ -1,7 +1,7 @@
 """Helical scan: a two-head drum crossing the tape obliquely with intermittent contact.
 
-Run python studies/helical.py [--out DIR] [--quick], the same as
-gyroshell reproduce helical --out DIR (default DIR: results).
+Run python studies/helical.py [--out-dir DIR] [--quick], the same as
+gyroshell reproduce helical --out-dir DIR (default DIR: results).
 """
 
 from gyroshell.cli.reproduce import script

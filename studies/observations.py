@@ -1,7 +1,7 @@
 """The paper's other observations, measured.
 
-Run python studies/observations.py [--out DIR] [--quick], the same as
-gyroshell reproduce observations --out DIR (default DIR: results).
+Run python studies/observations.py [--out-dir DIR] [--quick], the same as
+gyroshell reproduce observations --out-dir DIR (default DIR: results).
 """
 
 from gyroshell.cli.reproduce import script

@@ -1,7 +1,7 @@
 """Orthotropic tapes: critical speed, frequencies, profiles and bearing spacing against E_y/E_x.
 
-Run python studies/orthotropy.py [--out DIR] [--quick], the same as
-gyroshell reproduce orthotropy --out DIR (default DIR: results).
+Run python studies/orthotropy.py [--out-dir DIR] [--quick], the same as
+gyroshell reproduce orthotropy --out-dir DIR (default DIR: results).
 """
 
 from gyroshell.cli.reproduce import script

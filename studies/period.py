@@ -1,7 +1,7 @@
 """Dominant period of the load-point displacement against tape speed, L_x/L_y = 19.
 
-Run python studies/period.py [--out DIR] [--quick], the same as
-gyroshell reproduce period --out DIR (default DIR: results).
+Run python studies/period.py [--out-dir DIR] [--quick], the same as
+gyroshell reproduce period --out-dir DIR (default DIR: results).
 """
 
 from gyroshell.cli.reproduce import script

@@ -76,4 +76,4 @@ plt.show()  # opens the figures in windows when run as a script
 # Full-size: drop the ``spacing`` override (the default grid, 41 intervals across) and
 # use ``length_ratio=19``; from the shell, ``gyroshell critical --json`` (add
 # ``--edges simply-supported``, ``--tension 120`` or ``--length-ratio 19``), or
-# ``gyroshell reproduce critical --out results`` for the paper's whole table.
+# ``gyroshell reproduce critical --out-dir results`` for the paper's whole table.

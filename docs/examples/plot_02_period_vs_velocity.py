@@ -68,6 +68,6 @@ plt.show()  # opens the figures in windows when run as a script
 # %%
 # The full-size case
 # ------------------
-# Full-size: ``gyroshell reproduce period --out results`` (L_x/L_y = 19 on the default
+# Full-size: ``gyroshell reproduce period --out-dir results`` (L_x/L_y = 19 on the default
 # grid, 60 periods per record, speeds up to 100 m/s; about a minute). From Python, drop the
 # ``spacing`` override and use ``length_ratio=19``.

@@ -73,7 +73,7 @@ plt.show()  # opens the figures in windows when run as a script
 # %%
 # The full-size case
 # ------------------
-# Full-size: ``gyroshell reproduce fig2 --out results`` (the default grid, 41 intervals
+# Full-size: ``gyroshell reproduce fig2 --out-dir results`` (the default grid, 41 intervals
 # across, 1000 steps; ``reproduce fig3`` and ``fig4`` draw the wire-frames at 0 and 50 m/s), or
 # ``gyroshell transient --length-ratio 19 --velocity 50 --steps 1000 --dt 2e-6 --out h.csv``
 # for one speed. From Python, drop the ``spacing`` override and use ``steps=1000``.

@@ -86,7 +86,7 @@ plt.show()  # opens the figures in windows when run as a script
 # %%
 # The full-size case
 # ------------------
-# Full-size: ``gyroshell reproduce helical --out results`` (the default grid, two
+# Full-size: ``gyroshell reproduce helical --out-dir results`` (the default grid, two
 # revolutions). One head from the shell: ``gyroshell transient --velocity 10 --steps 500
 # --dt 2e-6 --load-position 0.005,0.003 --load-velocity 40,5 --contact-period 200e-6
 # --contact-duration 120e-6 --contact-ramp 10e-6 --damping 100 --out head.csv``.

@@ -53,6 +53,6 @@ plt.show()  # opens the figures in windows when run as a script
 # %%
 # The full-size case
 # ------------------
-# Full-size: ``gyroshell reproduce frf --out results`` (the default grid),
+# Full-size: ``gyroshell reproduce frf --out-dir results`` (the default grid),
 # or for one speed ``gyroshell frf --velocity 50 --frequencies 0:1.6e5:1000 --damping 30
 # --out frf.csv --plot frf.png``. From Python, drop the ``spacing`` override.

@@ -52,6 +52,6 @@ plt.show()  # opens the figures in windows when run as a script
 # The full-size case
 # ------------------
 # Full-size: drop the ``spacing`` override; from the shell, ``gyroshell campbell
-# --length-ratio 1.5 --edges simply-supported --velocities 0:80:5 --count 5
+# --length-ratio 1.5 --edges simply-supported --velocities 0:80:17 --count 5
 # --circumference 0.01 --plot campbell.png`` (``--workers 2`` solves the speeds on two
 # processes).

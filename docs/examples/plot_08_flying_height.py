@@ -82,7 +82,7 @@ plt.show()  # opens the figures in windows when run as a script
 # %%
 # The full-size case
 # ------------------
-# Full-size: ``gyroshell reproduce bearing --out results`` (eleven speeds, these three
+# Full-size: ``gyroshell reproduce bearing --out-dir results`` (eleven speeds, these three
 # films, finer grids, with the 2-D maps and a transient); for one speed
 # ``gyroshell bearing --velocity 4 --wrap-angle 15 --infinitely-wide --json``. From
 # Python, drop ``nx`` for the default grid.

@@ -58,4 +58,4 @@ plt.show()  # opens the figures in windows when run as a script
 # spacing is within a few tenths of a per cent of this small grid's, its minimum spacing,
 # at the edge by the exit corner, some per cent higher); from the shell,
 # ``gyroshell bearing --velocity 4 --wrap-angle 15 --json`` or
-# ``gyroshell reproduce bearing --out results``.
+# ``gyroshell reproduce bearing --out-dir results``.

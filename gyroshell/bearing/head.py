@@ -137,15 +137,23 @@ def _friction(value) -> float:
 
 
 def _check_transducers(head, transducers, radius=None) -> tuple[float, ...]:
-    """The transducer lines x_t (m), each on the wrapped region [x_first, x_last]."""
+    """The transducer lines x_t (m), each on the wrapped region [x_first, x_last] and on
+    one of the head's lands (not in a gap between two modules, where the spacing read is
+    the gap's depth)."""
     xs = _floats("transducers", transducers, "m")
     lo, hi = head.extent(radius)
     tol = GEOMETRY_TOLERANCE * (hi - lo)
+    lands = head.lands(radius)
     for i, xt in enumerate(xs):
         if not lo - tol <= xt <= hi + tol:
             raise ParameterError(
                 f"transducers[{i}] must lie on the head's wrapped region [{lo:.6g}, "
                 f"{hi:.6g}] m (head coordinates, from its middle), got {xt:g}")
+        if not any(a - tol <= xt <= b + tol for a, b in lands):
+            spans = ", ".join(f"[{a:.6g}, {b:.6g}]" for a, b in lands)
+            raise ParameterError(
+                f"transducers[{i}] must lie on a land of the head ({spans} m, from its "
+                f"middle), got {xt:g}: it is in a gap between modules")
     return xs
 
 

@@ -250,3 +250,69 @@ def head_overview(solution):
         transducer_cut(solution, fig.add_subplot(grid[2]))
     fig.tight_layout()
     return fig
+
+
+#: A head sketch shows the wrapped region and this fraction of its length beyond each end.
+SKETCH_MARGIN = 0.25
+#: Samples of a head sketch's contour along x.
+SKETCH_SAMPLES = 1601
+
+
+def head_sketch(head, ax=None, *, radius: float | None = None, title: str | None = None):
+    """Where a head's modules, gaps, corners and transducer lines sit: the contour z_h(x)
+    (µm, filled) and the dry tape over it (the tape's path with no air film) against x
+    (mm, from the head's middle), before any solve.
+
+    Parameters
+    ----------
+    head : gyroshell.bearing.head.Head
+        A cylinder, flat or measured head.
+    ax : matplotlib Axes, optional
+    radius : float, optional
+        A cylinder's radius, m, when the head has none of its own (the tape's R).
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+    """
+    plt = _plt()
+    ax = plt.subplots(figsize=(8, 3.2), constrained_layout=True)[1] if ax is None else ax
+    lo, hi = head.extent(radius)
+    margin = SKETCH_MARGIN * (hi - lo)
+    x = np.union1d(np.linspace(lo - margin, hi + margin, SKETCH_SAMPLES),
+                   np.asarray(head.corners(radius), dtype=float))
+    z = np.asarray(head.surface(x, radius=radius), dtype=float) * UM
+    tape = np.asarray(head.dry_tape(x, radius), dtype=float) * UM
+    inside = (x >= lo) & (x <= hi)
+    low = min(z[inside].min(), tape.min())
+    high = tape.max()
+    bottom = low - CONTOUR_MARGIN * (high - low)
+    xm = x * MM
+    ax.fill_between(xm, np.maximum(z, bottom), bottom, color="0.75", label="head")
+    ax.plot(xm, tape, color="C0", lw=1.2, label="dry tape (no air film)")
+    top = high + 2 * CONTOUR_MARGIN * (high - low)
+    lands = head.lands(radius)
+    for k, (a, b) in enumerate(lands, start=1):
+        on = (x >= a) & (x <= b)
+        ax.plot(xm[on], z[on], color="C1", lw=3, solid_capstyle="butt",
+                label="land" if k == 1 else None)
+        if len(lands) > 1:
+            ax.text(0.5 * (a + b) * MM, top, f"module {k}", ha="center", va="top",
+                    fontsize=8)
+    for (_, b), (a, _) in zip(lands[:-1], lands[1:], strict=True):
+        if a > b:
+            ax.text(0.5 * (a + b) * MM, bottom, f"gap\n{(a - b) * MM:.3g} mm",
+                    ha="center", va="bottom", fontsize=7)
+    for k, t in enumerate(head.transducers, start=1):
+        ax.axvline(t * MM, color="C2", lw=1.0, ls="--",
+                   label="transducer" if k == 1 else None)
+        ax.text(t * MM, 0.5 * (high + top), f" T{k}", color="C2", ha="left",
+                va="center", fontsize=8)
+    ax.set_xlim(xm[0], xm[-1])
+    ax.set_ylim(bottom, top + CONTOUR_MARGIN * (high - low))
+    ax.set_xlabel("x from the head's middle (mm), tape moves →")
+    ax.set_ylabel("z (µm)")
+    ax.legend(loc="lower left", fontsize=7, framealpha=0.9)
+    ax.set_title(title or f"{head.kind} head: wrap {np.degrees(head.wrap):.3g}°", fontsize=9)
+    return ax

@@ -25,6 +25,7 @@ from pathlib import Path
 from .common import (
     TAPE_OVERRIDES,
     UserError,
+    add_out_dir_option,
     add_tape_overrides,
     positive_int,
     print_json,
@@ -32,10 +33,11 @@ from .common import (
     typed_overrides,
 )
 from .heads import add_head_options, build_head_of, head_design
+from .saving import add_save_option, check_save_path, save_result
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
 FIELD_COLUMNS = {"x": "x_m", "y": "y_m", "spacing": "spacing_m", "pressure": "pressure_Pa"}
-#: The files ``--out DIR`` writes: the summary, the fields, and the readings' tables (the
+#: The files ``--out-dir DIR`` writes: the summary, the fields, and the readings' tables (the
 #: spacing across the width along each transducer line; each corner's contact and tents).
 OUT_FILES = ("summary.json", "fields.csv", "transducer_lines.csv", "corners.csv")
 #: The tape options of the bearing: those of the plate sub-commands but ``--load``.
@@ -81,15 +83,16 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     add_head_options(p)
     _add_bearing_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
-    p.add_argument("--out", metavar="DIR", default=None,
-                   help="write summary.json, the spacing/pressure fields (fields.csv), the "
-                        "spacing across the width along each transducer line "
-                        "(transducer_lines.csv) and each corner's contact force and tents "
-                        "(corners.csv) into DIR (created if missing; its parent must exist)")
+    add_out_dir_option(p, "write summary.json, the spacing/pressure fields (fields.csv), "
+                          "the spacing across the width along each transducer line "
+                          "(transducer_lines.csv) and each corner's contact force and tents "
+                          "(corners.csv) into DIR (created if missing; its parent must "
+                          "exist)")
     p.add_argument("--plot", metavar="FILE.png", default=None,
                    help="write a PNG of the spacing and pressure (over a flat or measured "
                         "head, or with --transducers: the head's contour, the spacing over "
                         "its lands and corners and the transducer lines across the width)")
+    add_save_option(p, what="the steady state")
     p.add_argument("--error-estimate", action="store_true",
                    help="also solve on a grid with half the intervals each way and report "
                         "the differences of the spacings (central, minimum, each transducer "
@@ -183,6 +186,9 @@ def run(args: argparse.Namespace) -> int:
     head = build_head_of(args, design, head_table, args.config)
     air = _air(args)
     out = _check_outputs(args)
+    from ..bearing.results import BearingSolution
+
+    check_save_path(args.save, BearingSolution)
     options = design.model_options()
     model = _model(args, params, air, velocity, head, options)
     sol = _solve(model, None if args.quiet else _progress)
@@ -202,6 +208,7 @@ def run(args: argparse.Namespace) -> int:
     with transaction() if out is None else folder_transaction(out):
         if out is not None:
             _write_out(out, sol, summary)
+        save_result(args.save, sol, params)
         if args.plot is not None:
             from ..bearing.plots import head_overview, overview
             from ..reproduce._common import save_figure
@@ -314,7 +321,7 @@ def _check_outputs(args: argparse.Namespace) -> Path | None:
     check_outputs({"--plot": (args.plot, PLOT)})
     if args.out is None:
         return None
-    return check_output_folder_with_files(args.out, OUT_FILES, option="--out")
+    return check_output_folder_with_files(args.out, OUT_FILES, option="--out-dir")
 
 
 def _model(args: argparse.Namespace, params, air, velocity: float, head, options=None, *,
@@ -495,10 +502,10 @@ def _write_out(out: Path, sol, summary: dict) -> None:
     from ..results.base import write_table
 
     write_table(sol.to_frame().rename(columns=FIELD_COLUMNS), out / "fields.csv",
-                option="--out")
+                option="--out-dir")
     lines, corners = readings_tables(sol)
-    write_table(lines, out / "transducer_lines.csv", option="--out")
-    write_table(corners, out / "corners.csv", option="--out")
+    write_table(lines, out / "transducer_lines.csv", option="--out-dir")
+    write_table(corners, out / "corners.csv", option="--out-dir")
     write_atomic(out / "summary.json",
                  lambda tmp: tmp.write_text(json.dumps(summary, indent=1) + "\n"))
 

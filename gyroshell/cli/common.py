@@ -38,6 +38,37 @@ class ArgumentParser(argparse.ArgumentParser):
         raise SystemExit(2)
 
 
+#: The release from which the old spellings of renamed options are no longer read.
+OLD_SPELLINGS_END = "0.3"
+
+
+class _OneFolder(argparse.Action):
+    """``--out-dir DIR``, or its old spelling ``--out DIR`` with a one-line notice on
+    stderr; both at once are refused."""
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        given = getattr(namespace, "out_dir_flag", None)
+        if given is not None and given != option_string:
+            parser.error(f"{given} and {option_string} both name the output folder: give "
+                         "--out-dir alone")
+        if option_string == "--out":
+            notice(f"{parser.prog} --out DIR is now --out-dir DIR (the folder of the "
+                   f"files); --out goes in release {OLD_SPELLINGS_END}")
+        namespace.out_dir_flag = option_string
+        setattr(namespace, self.dest, values)
+
+
+def add_out_dir_option(p: argparse.ArgumentParser, text: str) -> None:
+    """``--out-dir DIR`` (help ``text``; ``args.out``), and ``--out DIR``, its old
+    spelling, read until :data:`OLD_SPELLINGS_END` with a notice: ``--out`` names a file
+    in every sub-command (a table), ``--out-dir`` a folder."""
+    p.add_argument("--out-dir", dest="out", metavar="DIR", default=None, action=_OneFolder,
+                   help=text)
+    p.add_argument("--out", dest="out", metavar="DIR", default=None, action=_OneFolder,
+                   help=f"the old spelling of --out-dir, read with a notice until release "
+                        f"{OLD_SPELLINGS_END}")
+
+
 def real(text: str) -> float:
     """A finite real number."""
     try:
@@ -101,10 +132,21 @@ def stiffness_list(text: str) -> tuple[float, float, float, float]:
 
 
 def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
-    """Speeds, m/s, from an option's text: :func:`gyroshell.studies.sweep.parse_velocities`."""
+    """Speeds, m/s, from an option's text: :func:`gyroshell.studies.sweep.parse_velocities`
+    (the old START:STOP:STEP form with a one-line notice on stderr)."""
     from ..studies.sweep import parse_velocities as parse
 
-    return parse(text, option=option)
+    return parse(text, option=option, notice=notice)
+
+
+def notice(message: str) -> None:
+    """One ``gyroshell: notice:`` line on stderr (a deprecated form that still works)."""
+    print(f"gyroshell: notice: {message}", file=sys.stderr, flush=True)
+
+
+#: The help of every option that takes a range of values: one form everywhere.
+RANGE_HELP = ("START:STOP:NUM (NUM evenly spaced values from START to STOP, both "
+              "included) or a list V1,V2,...")
 
 
 #: (flag, TapeParameters field, help) for the physical overrides.

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..core.files import PLOT, check_outputs, transaction
 from .common import (
+    RANGE_HELP,
     grid_of,
     parameters_from_args,
     parse_velocities,
@@ -17,7 +18,14 @@ from .common import (
     tape_from_args,
 )
 from .loading import add_damping_options, damping_from_args
-from .saving import add_save_option, check_save_path, save_result
+from .saving import (
+    add_plot_option,
+    add_save_option,
+    check_plot_path,
+    check_save_path,
+    save_result,
+    write_plot,
+)
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -31,6 +39,7 @@ def register(sub, common: argparse.ArgumentParser,
     add_damping_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     add_save_option(p)
+    add_plot_option(p, "the first mode's shape (its real part, normalized)")
     p.set_defaults(func=run_modes)
 
     p = sub.add_parser(
@@ -42,6 +51,8 @@ def register(sub, common: argparse.ArgumentParser,
                     "sqrt((T + 2 sqrt(D k))/rho), Sundaram & Benson's 111 m/s and the paper's "
                     "'just above 100 m/s'.")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    add_save_option(p)
+    add_plot_option(p, "the critical speeds beside their context values (m/s)")
     p.set_defaults(func=run_critical)
 
     p = sub.add_parser(
@@ -49,10 +60,11 @@ def register(sub, common: argparse.ArgumentParser,
         help="frequencies against tape speed (CSV, plot)",
         description="Lowest frequencies (rad/s) at a list of tape speeds (m/s), tracked into "
                     "branches by mode-shape correlation.")
-    p.add_argument("--velocities", default="0:100:10",
-                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...', "
-                        "finite, >= 0, each once (in any order), at most 10000 of them "
-                        "(default 0:100:10)")
+    p.add_argument("--velocities", default="0:100:11", metavar="START:STOP:NUM",
+                   help=f"speeds, m/s: {RANGE_HELP}; finite, >= 0, each once (in any "
+                        "order), at most 10000 of them (default 0:100:11: every 10 m/s). "
+                        "Until release 0.3 the old START:STOP:STEP is still read where it "
+                        "gives other speeds (0:100:10: 11 speeds), with a notice")
     p.add_argument("--count", type=positive_int, default=6,
                    help="frequencies per speed, >= 1 (default 6)")
     p.add_argument("--workers", type=positive_int, default=1,
@@ -65,6 +77,9 @@ def register(sub, common: argparse.ArgumentParser,
     add_save_option(p)
     p.add_argument("--quiet", action="store_true",
                    help="no progress (a bar on a terminal, else one line per stage)")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (speeds, branches, speed range in m/s, the "
+                        "lowest omega in rad/s, stability classes) instead of the table")
     p.set_defaults(func=run_sweep)
 
 
@@ -73,6 +88,8 @@ def run_modes(args: argparse.Namespace) -> int:
     from ..results.modes import Modes
 
     check_save_path(args.save, Modes)
+    check_plot_path(args.plot)
+    check_outputs({"--save": (args.save, None), "--plot": (args.plot, PLOT)})
     from ..engines.eigen import modes
     from ..tape.model import TapeModel
 
@@ -81,7 +98,9 @@ def run_modes(args: argparse.Namespace) -> int:
     damping = damping_from_args(args)
     res = modes(model, velocity, args.count, damping=None if damping.is_zero else damping)
     elapsed = time.perf_counter() - t0
-    save_result(args.save, res, params)
+    with transaction():  # every output, or none
+        save_result(args.save, res, params)
+        write_plot(args.plot, res)
     g = model.grid
     out = {**res.summary(), "damping": damping.viscous,
            "rayleigh": [damping.mass_coefficient, damping.stiffness_coefficient],
@@ -130,6 +149,11 @@ def stability_sentence(res) -> str:
 
 def run_critical(args: argparse.Namespace) -> int:
     params = parameters_from_args(args)
+    from ..results.critical import CriticalSpeeds
+
+    check_save_path(args.save, CriticalSpeeds)
+    check_plot_path(args.plot)
+    check_outputs({"--save": (args.save, None), "--plot": (args.plot, PLOT)})
     grid = grid_of(params)
     from ..engines.critical import critical_speeds
     from ..tape.model import TapeModel
@@ -138,6 +162,9 @@ def run_critical(args: argparse.Namespace) -> int:
     t0 = time.perf_counter()
     c = critical_speeds(model)
     elapsed = time.perf_counter() - t0
+    with transaction():  # every output, or none
+        save_result(args.save, c, params)
+        write_plot(args.plot, c)
     out = dict(c.summary(), seconds=elapsed, length_ratio=params.length_ratio,
                edges=params.edges, unknowns=model.unknowns)
     if args.json:
@@ -179,7 +206,7 @@ def run_sweep(args: argparse.Namespace) -> int:
     model = TapeModel(params, grid)
     result = sweep(model, velocities, args.count, progress=False if args.quiet else None,
                    workers=args.workers)
-    text = None if args.out else _sweep_text(result.table)  # all that can fail, first
+    text = None if args.out or args.json else _sweep_text(result.table)  # what can fail
     with transaction():  # every output of the run, or none
         save_result(args.save, result, params)
         if args.out:
@@ -187,6 +214,10 @@ def run_sweep(args: argparse.Namespace) -> int:
         if args.plot:
             plot_sweep(result, args.plot,
                        title=f"L_x/L_y = {params.length_ratio:g}, {params.edges} edges")
+    if args.json:
+        print_json({**result.summary(), "out": args.out, "plot": args.plot,
+                    "save": args.save})
+        return 0
     if text is not None:
         print(text)
     else:

@@ -6,8 +6,17 @@ import argparse
 import time
 from pathlib import Path
 
-from .common import UserError, grid_of, parameters_from_args, positive_int, print_json, real
+from .common import (
+    RANGE_HELP,
+    UserError,
+    grid_of,
+    parameters_from_args,
+    positive_int,
+    print_json,
+    real,
+)
 from .loading import add_damping_options, damping_from_args, pair
+from .saving import add_save_option, check_save_path, save_result
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
@@ -20,8 +29,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                     "Many frequencies use a reduced (rational Krylov) model whose error is "
                     "estimated; direct solves take over wherever it is above --tol.")
     p.add_argument("--frequencies", required=True, metavar="START:STOP:NUM",
-                   help="angular frequencies, rad/s: NUM points from START to STOP "
-                        "(both included), or a list 'w1,w2,...'")
+                   help=f"angular frequencies, rad/s: {RANGE_HELP}; START <= STOP")
     p.add_argument("--probe", metavar="X,Y", type=pair, action="append", default=[],
                    help="extra response point, m (repeatable)")
     p.add_argument("--method", choices=("auto", "direct", "reduced"), default="auto",
@@ -41,18 +49,20 @@ def register(sub, common: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", metavar="FILE.png", default=None, help="write a Bode plot (PNG)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
+    add_save_option(p)
     add_damping_options(p)
     p.set_defaults(func=run)
 
 
-def _check_outputs(out: str | None, plot: str | None) -> None:
+def _check_outputs(out: str | None, plot: str | None, save: str | None = None) -> None:
     """Fail before computing if an output could never be written (or two are one file)."""
     from ..core.files import PLOT, check_outputs
     from ..results.base import TABLE_SUFFIXES
 
     if plot is not None and Path(plot).suffix.lower() != ".png":
         raise UserError(f"--plot must be a .png file, got {plot}")
-    check_outputs({"--out": (out, TABLE_SUFFIXES), "--plot": (plot, PLOT)})
+    check_outputs({"--out": (out, TABLE_SUFFIXES), "--plot": (plot, PLOT),
+                   "--save": (save, None)})
 
 
 def _reduced_options(args: argparse.Namespace) -> tuple[float, int]:
@@ -79,7 +89,10 @@ def run(args: argparse.Namespace) -> int:
     omega = check_frequencies(parse_frequencies(args.frequencies), density=params.density)
     tol, max_points = _reduced_options(args)
     damping = damping_from_args(args)
-    _check_outputs(args.out, args.plot)
+    _check_outputs(args.out, args.plot, args.save)
+    from ..results.frequency_response import FrequencyResponse
+
+    check_save_path(args.save, FrequencyResponse)
     grid = grid_of(params)
     for x, y in args.probe:  # every probe on the tape, before anything is assembled
         grid.interpolation_row(x, y)
@@ -94,7 +107,8 @@ def run(args: argparse.Namespace) -> int:
     elapsed = time.perf_counter() - start
     from ..core.files import transaction
 
-    with transaction():  # both files, or neither
+    with transaction():  # every file, or none
+        save_result(args.save, result, params)
         if args.out is not None:
             result.to_csv(args.out)
         if args.plot is not None:
@@ -102,7 +116,7 @@ def run(args: argparse.Namespace) -> int:
     info = result.info
     if args.json:  # the wall time and output paths are the command's, not the response's
         print_json({**result.summary(), "seconds": elapsed, "out": args.out,
-                    "plot": args.plot})
+                    "plot": args.plot, "save": args.save})
         return 0
     g = model.grid
     print(f"grid: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns; V = {velocity:g} m/s; "
@@ -119,7 +133,7 @@ def run(args: argparse.Namespace) -> int:
         for i in range(0, len(omega), step):
             print(f"{result.omega[i]:14.6g} {result.amplitude[i, 0]:14.6e} "
                   f"{result.phase[i, 0]:12.6f}")
-    for label, path in (("table", args.out), ("plot", args.plot)):
+    for label, path in (("table", args.out), ("plot", args.plot), ("saved", args.save)):
         if path is not None:
             print(f"{label}: {path}")
     return 0

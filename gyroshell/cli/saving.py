@@ -6,9 +6,9 @@ import argparse
 from pathlib import Path
 
 
-def add_save_option(parser: argparse.ArgumentParser) -> None:
+def add_save_option(parser: argparse.ArgumentParser, *, what: str = "the result") -> None:
     parser.add_argument("--save", metavar="FILE.nc", default=None,
-                        help="save the result with its parameters, grid and version "
+                        help=f"save {what} with its parameters, grid and version "
                              "(NetCDF; read it back with gyroshell.load)")
 
 
@@ -40,3 +40,36 @@ def save_result(path: str | None, result, params) -> None:
         from ..kinds import save
 
         save(result, path, params=params)
+
+
+#: The --plot files' formats and their resolution, dots per inch.
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+PLOT_DPI = 120
+
+
+def add_plot_option(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--plot FILE.png``: the result's figure (``what`` it shows, for the help)."""
+    parser.add_argument("--plot", metavar="FILE.png", default=None,
+                        help=f"write a figure of {what} (PNG, or PDF, SVG)")
+
+
+def check_plot_path(path: str | None) -> None:
+    """Fail before computing if the figure could never be written there."""
+    if path is None:
+        return
+    from ..core.files import PLOT, check_output
+    from .common import UserError
+
+    if Path(path).suffix.lower() not in PLOT_SUFFIXES:
+        raise UserError(f"--plot: use a {' or '.join(PLOT_SUFFIXES)} file, got {path}")
+    check_output(path, option="--plot", kind=PLOT)
+
+
+def write_plot(path: str | None, result) -> None:
+    """The figure of ``result.plot()`` into ``path`` (if given), whole or not at all."""
+    if path is None:
+        return
+    from ..plot import save_figure
+
+    ax = result.plot()
+    save_figure(ax.figure, path, dpi=PLOT_DPI, option="--plot")

@@ -5,7 +5,14 @@ from __future__ import annotations
 import argparse
 
 from .common import print_json, tape_from_args
-from .saving import add_save_option, check_save_path, save_result
+from .saving import (
+    add_plot_option,
+    add_save_option,
+    check_plot_path,
+    check_save_path,
+    save_result,
+    write_plot,
+)
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -17,6 +24,7 @@ def register(sub, common: argparse.ArgumentParser,
                     "deflections, m.")
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     add_save_option(p)
+    add_plot_option(p, "the deflection w(x, y), m")
     p.set_defaults(func=run)
 
 
@@ -25,12 +33,17 @@ def run(args: argparse.Namespace) -> int:
     from ..results.static import StaticSolution
 
     check_save_path(args.save, StaticSolution)  # not a table: .nc only, refused now
+    check_plot_path(args.plot)
     from ..engines.static import solve_static
     from ..tape.model import TapeModel
 
     model = TapeModel(params, grid)
     sol = solve_static(model, velocity)
-    save_result(args.save, sol, params)
+    from ..core.files import transaction
+
+    with transaction():  # every output, or none
+        save_result(args.save, sol, params)
+        write_plot(args.plot, sol)
     g = model.grid
     if args.json:
         print_json(sol.summary())
@@ -40,4 +53,6 @@ def run(args: argparse.Namespace) -> int:
         print(f"velocity:              {velocity:g} m/s")
         print(f"load-point deflection: {sol.load_point_deflection:.6e} m")
         print(f"maximum deflection:    {sol.max_deflection:.6e} m")
+        if args.plot:
+            print(f"wrote {args.plot}")
     return 0

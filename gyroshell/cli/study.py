@@ -9,9 +9,12 @@ from pathlib import Path
 
 from ..core.errors import ParameterError
 from .common import (
+    OLD_SPELLINGS_END,
+    RANGE_HELP,
     UserError,
     boolean,
     grid_of,
+    notice,
     parameters_from_args,
     parse_velocities,
     positive_int,
@@ -24,6 +27,8 @@ from .saving import add_save_option, check_save_path
 
 #: Resolution of the --plot files, dots per inch.
 PLOT_DPI = 120
+#: The --vary names given in degrees (the head's wraps, and ``wrap``: both of them).
+VARY_DEGREES = (*DEGREE_FIELDS, "wrap")
 
 
 def register(sub, common: argparse.ArgumentParser,
@@ -44,10 +49,12 @@ def register(sub, common: argparse.ArgumentParser,
                     "m/s; the head's angles in degrees.")
     p.add_argument("--vary", action="append", required=True, metavar="NAME=VALUES",
                    help="a parameter and its values: NAME=V1,V2,... or NAME=START:STOP:NUM "
-                        "(NUM evenly spaced values, both ends included); repeat for a grid. "
+                        "(NUM evenly spaced values from START to STOP, both included, as "
+                        "in every range option); repeat for a grid. "
                         "Values in SI, or with a unit as in a --config file (20um,30um). "
                         f"NAME: {', '.join(VARIABLE_NAMES)} (SI units; the head's "
-                        "wrap_angle, wrap_in and wrap_out in degrees, or 0.03rad), or for "
+                        "wrap_angle, wrap_in and wrap_out in degrees, or 0.03rad; wrap: "
+                        "both wrap_in and wrap_out, e.g. wrap=1:4:4), or for "
                         f"a layered tape (--config with [[layer]] tables) {LAYER_VARIABLES}, "
                         "layers counted from 1 at the bottom: layer2.thickness=4e-6:6e-6:5")
     p.add_argument("--compute", action="append", required=True, metavar="WHAT",
@@ -72,8 +79,17 @@ def register(sub, common: argparse.ArgumentParser,
                    help="write the table (CSV, or .parquet); one row per point")
     add_save_option(p)
     p.add_argument("--plot", metavar="FILE.png", default=None,
-                   help="stability map (two varied parameters) or the computed quantity "
-                        "against the varied parameter (one)")
+                   help="two varied parameters: a colour map of --quantity over them (or, "
+                        "without --quantity, of a study computing modes or period, the "
+                        "stability map); one: --quantity against it. Angles in degrees")
+    p.add_argument("--quantity", metavar="NAME", default=None,
+                   help="the computed column --plot draws (default: the transducers' "
+                        "minimum spacing, transducer_min_spacing, in a bearing study with "
+                        "--transducers, else the first computed column); an unknown name "
+                        "is refused with the list")
+    p.add_argument("--sketch", metavar="FILE.png", default=None,
+                   help="--compute bearing: draw the head of the first point (modules, "
+                        "gaps, corners, transducer lines and the dry tape) before solving")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (points, computed, cached, failed, seconds, "
@@ -107,9 +123,10 @@ def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> 
                     "with crossings, veerings, the critical speed and, for a roller or "
                     "capstan of circumference L (m), the excitation lines omega = n 2 pi V/L "
                     "and the speeds where they meet a branch.")
-    p.add_argument("--velocities", default="0:100:5",
-                   help="speeds, m/s: 'start:stop:step' (stop included) or 'v1,v2,...' "
-                        "(default 0:100:5)")
+    p.add_argument("--velocities", default="0:100:21", metavar="START:STOP:NUM",
+                   help=f"speeds, m/s: {RANGE_HELP} (default 0:100:21: every 5 m/s; until "
+                        "release 0.3 the old START:STOP:STEP is still read where it gives "
+                        "other speeds, with a notice)")
     p.add_argument("--count", type=positive_int, default=6,
                    help="modes per speed (default 6)")
     p.add_argument("--min-mac", type=real, default=None,
@@ -126,8 +143,11 @@ def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> 
                         "(default 1,2,3; only with --circumference)")
     p.add_argument("--out", metavar="FILE.csv", default=None,
                    help="write the tracked branches (velocity, branch, rank, omega, "
-                        "growth_rate, mac)")
+                        "growth_rate, mac): CSV or Parquet (a .nc file: the old spelling "
+                        "of --save, with a notice)")
     p.add_argument("--plot", metavar="FILE.png", default=None, help="write the diagram")
+    add_save_option(p, what="the whole diagram (branches, MAC of every link, crossings, "
+                           "veerings)")
     p.add_argument("--workers", type=positive_int, default=1,
                    help="local processes, at most 4 per CPU, each solving a contiguous run "
                         "of the speeds (default 1)")
@@ -143,8 +163,6 @@ def parse_values(name: str, text: str) -> list:
     """``V1,V2,...`` or ``START:STOP:NUM`` (numbers in SI, or values with a unit such as
     ``20um`` / ``"20 um"``; words for ``edges``, true/false, yes/no or 1/0 for the yes-or-no
     variables such as ``wrap_pressure``)."""
-    import numpy as np
-
     from ..core.budget import check_study_points
     from ..core.units import unit_of
     from ..studies.points import BOOLEAN_VARIABLES
@@ -159,20 +177,14 @@ def parse_values(name: str, text: str) -> list:
         except argparse.ArgumentTypeError as exc:
             raise UserError(f"--vary {name}: {exc}") from None
     if ":" in text:
-        parts = text.split(":")
-        if len(parts) != 3:
-            raise UserError(f"--vary {name}={text}: use START:STOP:NUM")
-        try:
-            start, stop = real(parts[0]), real(parts[1])
-            num = int(parts[2])
-        except (argparse.ArgumentTypeError, ValueError):
-            raise UserError(f"--vary {name}={text}: START and STOP must be numbers and NUM "
-                            "an integer") from None
-        if num < 1:
-            raise UserError(f"--vary {name}={text}: NUM must be >= 1")
-        check_study_points(num, what=f"--vary {name}={text}")
-        values = [float(v) for v in np.linspace(start, stop, num)]
-        degrees = name.replace("-", "_") in DEGREE_FIELDS
+        from ..core.ranges import parse_range
+
+        key = name.replace("-", "_")
+        unit = "degrees" if key in VARY_DEGREES else unit_of(key) or "SI"
+        values = [float(v) for v in parse_range(
+            text, f"--vary {name}", unit=unit,
+            limit=lambda n: check_study_points(n, what=f"--vary {name}={text}"))]
+        degrees = key in VARY_DEGREES
         return [math.radians(v) for v in values] if degrees else values
     items = [item.strip() for item in text.split(",")]
     if name.replace("-", "_") == "edges":
@@ -182,7 +194,7 @@ def parse_values(name: str, text: str) -> list:
     out = []
     for item in items:
         try:
-            out.append(math.radians(real(item)) if key in DEGREE_FIELDS else real(item))
+            out.append(math.radians(real(item)) if key in VARY_DEGREES else real(item))
         except argparse.ArgumentTypeError as exc:
             if si_unit is None or not item[:1].strip("+-.0123456789") == "":
                 raise UserError(f"--vary {name}: {exc}") from None
@@ -219,10 +231,10 @@ def _check_outputs(outputs: dict[str, tuple[str | None, tuple[str, ...]]]) -> No
                    for flag, (path, _suffixes) in outputs.items()})
 
 
-def _save_plot(path: str, ax) -> None:
+def _save_plot(path: str, ax, *, option: str = "--plot") -> None:
     from ..plot import save_figure
 
-    save_figure(ax.figure, path, dpi=PLOT_DPI, option="--plot")
+    save_figure(ax.figure, path, dpi=PLOT_DPI, option=option)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -240,13 +252,13 @@ def run(args: argparse.Namespace) -> int:
     check_save_path(args.save)
     _check_outputs({"--out": (args.out, (".csv", ".parquet")),
                     "--plot": (args.plot, (".png", ".pdf", ".svg")),
+                    "--sketch": (args.sketch, (".png", ".pdf", ".svg")),
                     "--cache": (args.cache, (".jsonl",)),
                     "--save": (args.save, NETCDF_SUFFIXES + TABLE_SUFFIXES)})
     if args.plot and len(vary) > 2:
         raise UserError("--plot needs one or two varied parameters")
-    if args.plot and len(vary) == 2 and not {"modes", "period"} & set(compute):
-        raise UserError("--plot with two varied parameters draws a stability map: add "
-                        "--compute modes (or period)")
+    _check_quantity(args, params, vary, compute, velocity, bearing)
+    sketch = _sketch(params, vary, bearing) if args.sketch else None
     result = run_study(params, vary=vary, compute=compute, velocity=velocity,
                        count=args.count,
                        workers=args.workers, scheduler=args.scheduler,
@@ -260,7 +272,9 @@ def run(args: argparse.Namespace) -> int:
             if path is not None:
                 result.save(path)
         if args.plot:
-            _save_plot(args.plot, result.plot())
+            _save_plot(args.plot, result.plot(quantity=args.quantity))
+        if sketch is not None:
+            _save_plot(args.sketch, sketch, option="--sketch")
     _report_study(args, result)
     return 0
 
@@ -270,6 +284,48 @@ def _study_velocity(velocity: float, compute: list[str]) -> float:
     from ..studies.points import check_speed
 
     return check_speed(velocity, signed=set(compute) == {"bearing"})
+
+
+def _check_quantity(args: argparse.Namespace, params, vary: dict, compute: list[str],
+                    velocity: float, bearing) -> None:
+    """Refuse, before any work, --quantity without --plot or naming no column of the
+    study (the message lists them)."""
+    if args.quantity is None:
+        return
+    if not args.plot:
+        raise UserError("--quantity chooses what --plot draws: add --plot or drop "
+                        "--quantity")
+    from ..plot.study_maps import plottable
+    from ..studies.parameter_study import study_columns
+
+    columns = study_columns(params, vary=vary, compute=compute, velocity=velocity,
+                            count=args.count, bearing=bearing)
+    names = plottable(columns, list(vary))
+    if args.quantity not in names:
+        raise UserError(f"--quantity {args.quantity}: this study has no such column; "
+                        f"choose one of {', '.join(names)}")
+
+
+def _sketch(params, vary: dict, bearing):
+    """--sketch: the Axes of the head of the study's first point, drawn before the solves
+    (its head refused in one line if it cannot be built)."""
+    if bearing is None:
+        raise UserError("--sketch draws the head of --compute bearing: add it or drop "
+                        "--sketch")
+    from ..bearing.plots import head_sketch
+    from ..studies.head_study import head_of_point
+    from ..studies.points import HEAD_VARIABLES, grid_points
+
+    first = {k: v for k, v in grid_points({k: v[:1] for k, v in vary.items()})[0].items()
+             if k in HEAD_VARIABLES}
+    try:
+        head = head_of_point(bearing, first).head()
+    except ParameterError as exc:
+        raise UserError(f"point 0 {first}: {exc}") from None
+    shown = ", ".join(f"{k} = {math.degrees(v):g} deg" if k in VARY_DEGREES
+                      else f"{k} = {v:g} m" for k, v in first.items())
+    title = f"{head.kind} head" + (f" of the first point ({shown})" if shown else "")
+    return head_sketch(head, radius=params.radius, title=title)
 
 
 def _check_study_options(args: argparse.Namespace, typed: dict[str, str], vary: dict,
@@ -300,13 +356,17 @@ def _bearing_setup(args: argparse.Namespace, vary: dict, compute: list[str]):
             raise UserError(f"{args.config}: its [head] table is the head of --compute "
                             "bearing: add it, or drop the table")
         return None
-    design = head_design(args, table, args.config, varied=tuple(vary))
+    from ..studies.points import design_fields
     from .heads import HEAD_FLAGS
 
+    design = head_design(args, table, args.config, varied=design_fields(vary))
+
     for name in vary:
-        if getattr(args, name, None) is not None and name in HEAD_FLAGS:
-            raise UserError(f"{HEAD_FLAGS[name]} and --vary {name} both set {name}: every "
-                            "point takes its value from --vary, so give one of them")
+        for field in design_fields([name]):
+            if getattr(args, field, None) is not None and field in HEAD_FLAGS:
+                raise UserError(f"{HEAD_FLAGS[field]} and --vary {name} both set {field}: "
+                                "every point takes its value from --vary, so give one of "
+                                "them")
     from ..studies.head_study import BearingStudy
 
     return BearingStudy(head=design, infinitely_wide=args.infinitely_wide, nx=args.nx,
@@ -334,26 +394,32 @@ def _report_study(args: argparse.Namespace, result) -> None:
     print(f"{summary['points']} points ({summary['computed']} computed, {summary['cached']} "
           f"from the cache, {summary['failed']} with errors) in {summary['seconds']:.2f} s "
           f"on {summary['executor']}")
-    for path in (args.out, args.save, args.plot):
+    for path in (args.out, args.save, args.plot, args.sketch):
         if path is not None:
             print(f"wrote {path}")
 
 
 def study_text(result) -> str:
     """The study's table as printed: the varied values in Python's shortest round-trip
-    form (what the user typed: 2.04e-05), the computed ones to 6 significant digits."""
+    form (what the user typed: 2.04e-05; the head's angles in degrees, as typed, in a
+    column ``<name>_deg``), the computed ones to 6 significant digits."""
     from pandas.api.types import is_float_dtype
 
     table = result.table.drop(columns=["point"])
-    formats = {}
+    formats, degrees = {}, {}
     for column in table.columns:
         if not is_float_dtype(table[column].dtype):
             continue
-        if column in result.varied:
+        if column in result.varied and column in VARY_DEGREES:
+            degrees[column] = f"{column}_deg"    # as typed: degrees, not the rad stored
+            formats[degrees[column]] = lambda x: f"{x:.12g}"
+        elif column in result.varied:
             formats[column] = lambda x: repr(float(x))
         else:
             formats[column] = lambda x: f"{x:.6g}"
-    return table.to_string(index=False, formatters=formats)
+    for column in degrees:
+        table[column] = table[column].map(math.degrees)
+    return table.rename(columns=degrees).to_string(index=False, formatters=formats)
 
 
 def run_campbell(args: argparse.Namespace) -> int:
@@ -364,7 +430,12 @@ def run_campbell(args: argparse.Namespace) -> int:
     min_mac = MIN_MAC if args.min_mac is None else args.min_mac
     _check_campbell_numbers(args, min_mac)
     _check_outputs({"--out": (args.out, (".csv", ".parquet", ".nc")),
-                    "--plot": (args.plot, (".png", ".pdf", ".svg"))})
+                    "--plot": (args.plot, (".png", ".pdf", ".svg")),
+                    "--save": (args.save, (".nc",))})
+    if args.out and Path(args.out).suffix.lower() == ".nc":
+        notice(f"campbell --out FILE.nc is now --save FILE.nc (--out is the table, CSV or "
+               f"Parquet, in every sub-command); --out FILE.nc goes in release "
+               f"{OLD_SPELLINGS_END}")
     grid_of(params)  # its size, before the operators are assembled
     velocities = parse_velocities(args.velocities)  # the engines load from here on
     from ..studies.sweep import check_velocities
@@ -375,8 +446,9 @@ def run_campbell(args: argparse.Namespace) -> int:
     from ..core.files import transaction
 
     with transaction():  # both files, or neither
-        if args.out:
-            d.save(args.out, params=params)
+        for path in (args.out, args.save):
+            if path:
+                d.save(path, params=params)
         if args.plot:
             _save_plot(args.plot, d.plot(circumference=args.circumference, orders=orders))
     if args.json:
@@ -472,6 +544,6 @@ def _report_campbell(args: argparse.Namespace, d, orders: list[int]) -> None:
         for row in d.resonances(args.circumference, orders).itertuples():
             print(f"resonance: order {row.order} meets branch {row.branch} at V = "
                   f"{row.velocity:.4g} m/s (omega = {row.omega:.6g} rad/s)")
-    for path in (args.out, args.plot):
+    for path in (args.out, args.plot, args.save):
         if path:
             print(f"wrote {path}")

@@ -8,7 +8,14 @@ import warnings
 
 from .common import UserError, parameters_from_args, positive_int, print_json, real
 from .loading import add_damping_options, add_load_options, damping_from_args, load_from_args
-from .saving import add_save_option, check_save_path, save_result
+from .saving import (
+    add_plot_option,
+    add_save_option,
+    check_plot_path,
+    check_save_path,
+    save_result,
+    write_plot,
+)
 
 #: --backend values: "auto" and the names of gyroshell.linalg.factorization.BACKENDS (not imported
 #: here, so that parsing and refusals do not load scipy).
@@ -44,6 +51,7 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print one JSON summary (SI units)")
     add_save_option(p)
+    add_plot_option(p, "the load-point displacement against time (m, s)")
     add_load_options(p)
     add_damping_options(p)
     p.set_defaults(func=run)
@@ -111,8 +119,10 @@ def run(args: argparse.Namespace) -> int:
     from ..results.transient import TransientResult
 
     files.check_outputs({"--out": (args.out, TABLE_SUFFIXES),
-                         "--snapshots": (args.snapshots, None), "--save": (args.save, None)})
+                         "--snapshots": (args.snapshots, None), "--save": (args.save, None),
+                         "--plot": (args.plot, files.PLOT)})
     check_save_path(args.save, TransientResult)
+    check_plot_path(args.plot)
     grid = Grid.from_parameters(params)
     load, damping = load_from_args(args, params, args.dt), damping_from_args(args)
     budget.check_transient(grid.nx, grid.ny, grid.edges, args.steps,
@@ -137,9 +147,11 @@ def run(args: argparse.Namespace) -> int:
         if args.snapshots is not None:
             result.save_snapshots(args.snapshots)
         save_result(args.save, result, params)
+        write_plot(args.plot, result)
     g, info, w = model.grid, result.info, result.load_point
     if args.json:  # the output paths are the command's, not the run's
-        print_json({**result.summary(), "out": args.out, "snapshots": args.snapshots})
+        print_json({**result.summary(), "out": args.out, "snapshots": args.snapshots,
+                    "plot": args.plot})
     else:
         print(f"grid: {g.nx} x {g.ny} intervals, {g.unknowns} unknowns; V = {result.velocity:g} "
               f"m/s, dt = {result.dt:g} s, {result.steps} steps, beta = {result.beta:g}, "
@@ -149,7 +161,8 @@ def run(args: argparse.Namespace) -> int:
         print(f"time: factor {info['factor_time']:.3g} s ({info['backend']}), march "
               f"{info['loop_time']:.3g} s ({1e3 * info['step_time']:.3g} ms/step) on "
               f"{_marched(info)}")
-        for label, path in (("history", args.out), ("snapshots", args.snapshots)):
+        for label, path in (("history", args.out), ("snapshots", args.snapshots),
+                            ("plot", args.plot)):
             if path is not None:
                 print(f"{label}: {path}")
     return 0

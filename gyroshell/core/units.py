@@ -32,7 +32,7 @@ SI_UNITS: dict[str, str] = {
     "omega": "rad/s", "frequency": "Hz", "period": "s", "load_point_deflection": "m",
     "max_deflection": "m",
     # heads (issue 19): their design parameters and what a bearing study reports
-    "wrap_angle": "rad", "wrap_in": "rad", "wrap_out": "rad", "land_length": "m",
+    "wrap_angle": "rad", "wrap_in": "rad", "wrap_out": "rad", "wrap": "rad", "land_length": "m",
     "corner_radius": "m", "module_gap": "m", "friction": "1", "central_spacing": "m",
     "minimum_spacing": "m", "tension_rise": "N/m",
     "tension_ratio": "1",
@@ -81,10 +81,15 @@ def unit_of(name: str) -> str | None:
     return SI_UNITS.get(name)
 
 
+def display_unit(unit: str) -> str:
+    """How an ASCII SI unit is printed on a figure (``kg/m^2`` as ``kg/m²``)."""
+    return _DISPLAY.get(unit, unit)
+
+
 def axis_label(name: str) -> str:
     """``"<name> (<unit>)"`` with underscores as spaces; no unit for dimensionless ones."""
     unit = unit_of(name)
     text = name.replace("_", " ")
     if unit is None or unit == "1":
         return text
-    return f"{text} ({_DISPLAY.get(unit, unit)})"
+    return f"{text} ({display_unit(unit)})"

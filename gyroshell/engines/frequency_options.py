@@ -73,6 +73,12 @@ def check_frequencies(omega, *, density: float | None = None) -> np.ndarray:
     return out
 
 
+def _check_count(count: int) -> None:
+    """Refuse a range of more than a million frequencies before making it."""
+    if count > 10**6:
+        raise ParameterError(f"frequencies: NUM must be <= 1000000, got {count}")
+
+
 def parse_frequencies(text: str) -> np.ndarray:
     """'START:STOP:NUM' (NUM points, both ends included) or 'w1,w2,...', rad/s.
 
@@ -87,19 +93,18 @@ def parse_frequencies(text: str) -> np.ndarray:
     """
     try:
         if ":" in text:
-            start, stop, num = text.split(":")
-            count = float(num)
-            if not math.isfinite(count) or count != int(count) or count < 1:
-                raise ParameterError(f"frequencies: NUM must be an integer >= 1, got {num!r}")
-            a, b = float(start), float(stop)
-            if not (math.isfinite(a) and math.isfinite(b)) or b < a:
-                raise ParameterError(f"frequencies: need finite START <= STOP, got {text!r}")
-            if count == 1 and b != a:
-                raise ParameterError(f"frequencies: NUM = 1 gives START alone; use "
-                                     f"START = STOP or NUM >= 2, got {text!r}")
-            if int(count) > 10**6:
-                raise ParameterError(f"frequencies: NUM must be <= 1000000, got {num}")
-            return check_frequencies(np.linspace(a, b, int(count)))
+            from ..core.ranges import parse_range
+
+            if len(text.split(":")) == 3:
+                try:
+                    a, b = (float(t) for t in text.split(":")[:2])
+                except ValueError:
+                    a = b = math.nan
+                if math.isfinite(a) and math.isfinite(b) and b < a:
+                    raise ParameterError(f"frequencies: need finite START <= STOP, got "
+                                         f"{text!r}")
+            return check_frequencies(parse_range(text, "frequencies", unit="rad/s",
+                                                 limit=_check_count))
         return check_frequencies([float(s) for s in text.split(",") if s.strip()])
     except ValueError as exc:
         if isinstance(exc, ParameterError):

@@ -7,6 +7,7 @@
   excitation lines ω = n·2πV/ℓ and the critical speed;
 * :func:`sweep` - frequencies against speed with the branches a sweep tracked;
 * :func:`stability_map` - stable / divergence / flutter over two varied parameters;
+* :func:`study_map` - a computed quantity over two varied parameters (a colour map);
 * :func:`study_lines` - a computed quantity against one varied parameter;
 * :func:`load_point_history`, :func:`head_histories`, :func:`wireframe`,
   :func:`waterfall`, :func:`period_vs_velocity`, :func:`spectra`, :func:`bode` - the
@@ -36,10 +37,10 @@ from .reproductions import (
 )
 from .spectrum import critical_speeds, eigenvalues
 from .speed import campbell, sweep
-from .study_maps import STABILITY_COLOURS, stability_map, study_lines
+from .study_maps import STABILITY_COLOURS, stability_map, study_lines, study_map
 
 __all__ = ["STABILITY_COLOURS", "animate_mode", "animate_transient", "bode", "campbell",
            "critical_speeds", "edge_reflection", "eigenvalues", "field", "head_histories",
            "load_point_history", "mode_shape", "mode_shape_parts", "period_vs_velocity", "pyplot",
-           "save_figure", "spectra", "stability_map", "study_lines", "sweep", "waterfall",
-           "wave_fronts", "wireframe"]
+           "save_figure", "spectra", "stability_map", "study_lines", "study_map", "sweep",
+           "waterfall", "wave_fronts", "wireframe"]

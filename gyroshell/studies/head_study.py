@@ -2,10 +2,10 @@
 
 A point may change the tape (its fields, ``velocity``) and the head
 (:data:`~gyroshell.studies.points.HEAD_VARIABLES`: the cylinder's ``wrap_angle``, the
-wraps ``wrap_in`` and ``wrap_out``, ``land_length``, ``corner_radius``, ``module_gap``; in
-SI units, angles in rad). Each point solves the steady flying state
-(:func:`gyroshell.bearing.steady.solve_steady`) of the tape over the point's head and
-reports, per point:
+wraps ``wrap_in`` and ``wrap_out`` (or ``wrap``, both at once), ``land_length``,
+``corner_radius``, ``module_gap``; in SI units, angles in rad). Each point solves the
+steady flying state (:func:`gyroshell.bearing.steady.solve_steady`) of the tape over the
+point's head and reports, per point:
 
 ``central_spacing``, ``minimum_spacing``
     m (:class:`~gyroshell.bearing.results.BearingSolution`).
@@ -47,7 +47,7 @@ from ..bearing.head_config import (
 from ..core import validation
 from ..core.errors import ParameterError
 from ..tape.parameters import TapeParameters
-from .points import HEAD_VARIABLES, parameters_of
+from .points import BOTH_WRAPS, HEAD_VARIABLES, parameters_of
 
 __all__ = ["BearingStudy", "bearing_row", "head_of_point", "head_value"]
 
@@ -193,9 +193,20 @@ def head_of_point(setup: BearingStudy, point: Mapping) -> HeadDesign:
     """The point's head design: the base head with the point's head variables, checked
     whole (:func:`~gyroshell.bearing.head_config.check_design`: a flat head with both
     wraps 0 is refused here, even when the base head left them to the points); a variable
-    the head's kind has not is refused, naming it."""
+    the head's kind has not is refused, naming it. ``wrap``
+    (:data:`~gyroshell.studies.points.BOTH_WRAPS`) sets ``wrap_in`` and ``wrap_out``."""
     changes = {k: v for k, v in point.items() if k in HEAD_VARIABLES}
     kind = setup.head.kind
+    if BOTH_WRAPS in changes:
+        both = [name for name in ("wrap_in", "wrap_out") if name in changes]
+        if both:
+            raise ParameterError(f"{BOTH_WRAPS} sets both wrap_in and wrap_out: vary "
+                                 f"{BOTH_WRAPS} or {' and '.join(both)}, not both")
+        if "wrap_in" not in kind_fields(kind):
+            raise ParameterError(f"{BOTH_WRAPS} (wrap_in and wrap_out) is not a parameter "
+                                 f"of a {kind} head")
+        wrap = changes.pop(BOTH_WRAPS)
+        changes.update(wrap_in=wrap, wrap_out=wrap)
     for name in changes:
         if name not in kind_fields(kind):
             raise ParameterError(f"{name} is not a parameter of a {kind} head")
@@ -205,7 +216,11 @@ def head_of_point(setup: BearingStudy, point: Mapping) -> HeadDesign:
 def head_value(design: HeadDesign, name: str) -> float:
     """The value of the head variable ``name`` (:data:`HEAD_VARIABLES`) the head of
     ``design`` is built with: 0 for a wrap or corner radius not given, the default wrap
-    angle, NaN for a gap a single module has not."""
+    angle, NaN for a gap a single module has not; ``wrap``: both wraps, NaN if they
+    differ."""
+    if name == BOTH_WRAPS:
+        wraps = head_value(design, "wrap_in"), head_value(design, "wrap_out")
+        return wraps[0] if wraps[0] == wraps[1] else math.nan
     value = getattr(design, name)
     if value is not None:
         return value

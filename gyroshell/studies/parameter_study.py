@@ -75,11 +75,13 @@ from .executors import (
 )
 from .head_study import BearingStudy, head_of_point, head_value, point_model
 from .points import (
+    BOTH_WRAPS,
     HEAD_VARIABLES,
     VARIABLE_NAMES,
     canonical_name,
     check_points,
     check_speed,
+    design_fields,
     grid_points,
     parameters_of,
     value_of,
@@ -91,7 +93,8 @@ if TYPE_CHECKING:
 #: Frequencies per point of ``compute="modes"`` unless ``count`` says otherwise.
 DEFAULT_COUNT = 3
 
-__all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "BearingStudy", "StudyResult", "run_study"]
+__all__ = ["COMPUTE_CHOICES", "VARIABLE_NAMES", "BearingStudy", "StudyResult", "run_study",
+           "study_columns"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -191,14 +194,20 @@ class StudyResult(results_base.Result, kind="study"):
                 ds[name].attrs["units"] = unit
         return ds
 
-    def plot(self, ax=None, **options):
-        """Stability map (two varied parameters) or the quantity against one; see
-        :func:`gyroshell.plot.stability_map` and :func:`gyroshell.plot.study_lines`."""
+    def plot(self, ax=None, *, quantity: str | None = None, **options):
+        """Two varied parameters: a map of ``quantity`` (:func:`gyroshell.plot.study_map`),
+        or without one of a study that computed the stability, the stability map
+        (:func:`gyroshell.plot.stability_map`); one: the quantity against it
+        (:func:`gyroshell.plot.study_lines`). ``quantity`` defaults to
+        :func:`gyroshell.plot.study_maps.default_quantity` (a bearing study with
+        transducers: their minimum spacing). Angles are shown in degrees."""
         from .. import plot
 
-        if len(self.varied) == 2 and "stability" in self.table:
-            return plot.stability_map(self, ax=ax, **options)
-        return plot.study_lines(self, ax=ax, **options)
+        if len(self.varied) == 2:
+            if quantity is None and "stability" in self.table:
+                return plot.stability_map(self, ax=ax, **options)
+            return plot.study_map(self, quantity, ax=ax, **options)
+        return plot.study_lines(self, ax=ax, quantity=quantity, **options)
 
     def _persistence_attrs(self) -> dict:
         """The metadata of a study file (also used by the previous release's converter)."""
@@ -302,6 +311,24 @@ def run_study(base: TapeParameters | None = None, *, vary: Mapping[str, Sequence
     """
     return _run(_plan(base, vary, points, compute, velocity, count, bearing, inputs),
                 check_executor(workers, scheduler, chunk_size, connect_timeout), cache, progress)
+
+
+def study_columns(base: TapeParameters | None = None, *,
+                  vary: Mapping[str, Sequence] | None = None,
+                  points: Sequence[Mapping] | None = None,
+                  compute: str | Sequence[str] = "critical", velocity: float = 0.0,
+                  count: int | None = None, bearing: BearingStudy | None = None) -> list[str]:
+    """The columns of the table :func:`run_study` would return for these settings (checked
+    as it checks them), without computing any point: to refuse, before the work, an
+    option that names a column the study will not have.
+
+    Examples
+    --------
+    >>> study_columns(vary={"tension": [80.0, 90.0]}, compute="critical")
+    ['point', 'tension', 'critical_speed', 'divergence_speed', 'error']
+    """
+    plan = _plan(base, vary, points, compute, velocity, count, bearing)
+    return ["point", *plan.varied, *result_columns(plan.compute, plan.count, plan.bearing)]
 
 
 @dataclass(frozen=True)
@@ -413,7 +440,11 @@ def _bearing_plan(base: TapeParameters, velocity: float, pts: list[dict],
     validation.instance("bearing", bearing, BearingStudy)
     if base.edges != "free" and not bearing.infinitely_wide:
         raise ParameterError(f"the bearing's tape has free edges, got edges = {base.edges!r}")
-    check_design(bearing.head, varied=[n for n in varied if n in HEAD_VARIABLES])
+    both = [name for name in ("wrap_in", "wrap_out") if name in varied]
+    if BOTH_WRAPS in varied and both:
+        raise ParameterError(f"{BOTH_WRAPS} sets both wrap_in and wrap_out: vary "
+                             f"{BOTH_WRAPS} or {' and '.join(both)}, not both")
+    check_design(bearing.head, varied=design_fields(varied))
     for i, point in enumerate(pts):
         try:
             head_of_point(bearing, point).head()   # the contour's own checks too

@@ -24,13 +24,17 @@ from ..core.errors import ParameterError
 from ..core.units import LAYER_NAME, LAYER_UNITS
 from ..tape.parameters import TapeParameters, check_velocity
 
-__all__ = ["BOOLEAN_VARIABLES", "HEAD_VARIABLES", "LAYER_VARIABLES", "VARIABLE_NAMES",
-           "canonical_name", "check_points", "grid_points", "parameters_of"]
+__all__ = ["BOOLEAN_VARIABLES", "BOTH_WRAPS", "HEAD_VARIABLES", "LAYER_VARIABLES", "VARIABLE_NAMES",
+           "canonical_name", "check_points", "design_fields", "grid_points",
+           "parameters_of"]
 
+#: The head variable that sets both wraps of a flat or measured head, ``wrap_in`` and
+#: ``wrap_out``, to one value (rad): ``vary={"wrap": [...]}``.
+BOTH_WRAPS = "wrap"
 #: Parameters of the head a bearing study (``compute="bearing"``) can vary, SI (angles in
-#: rad): :class:`gyroshell.bearing.head_config.HeadDesign` fields.
+#: rad): :class:`gyroshell.bearing.head_config.HeadDesign` fields, and :data:`BOTH_WRAPS`.
 HEAD_VARIABLES: tuple[str, ...] = ("wrap_angle", "wrap_in", "wrap_out", "land_length",
-                                   "corner_radius", "module_gap")
+                                   "corner_radius", "module_gap", BOTH_WRAPS)
 #: TapeParameters fields that are not one number: a study varies a layer's quantities one by
 #: one (:data:`LAYER_VARIABLES`), and not the four bending stiffnesses.
 NOT_SCALAR = ("bending_stiffness", "layers")
@@ -44,6 +48,24 @@ BOOLEAN_VARIABLES: tuple[str, ...] = tuple(
     f.name for f in dataclasses.fields(TapeParameters) if f.type in (bool, "bool"))
 #: How the quantities of a layered tape's layers are named (see the module docstring).
 LAYER_VARIABLES = f"layer<N>.<key> (key: {', '.join(LAYER_UNITS)})"
+
+
+def design_fields(names) -> tuple[str, ...]:
+    """The :class:`~gyroshell.bearing.head_config.HeadDesign` fields the head variables
+    among ``names`` set (:data:`BOTH_WRAPS` sets ``wrap_in`` and ``wrap_out``).
+
+    Examples
+    --------
+    >>> design_fields(["tension", "wrap", "land_length"])
+    ('wrap_in', 'wrap_out', 'land_length')
+    """
+    out: list[str] = []
+    for name in names:
+        if name == BOTH_WRAPS:
+            out += ["wrap_in", "wrap_out"]
+        elif name in HEAD_VARIABLES:
+            out.append(name)
+    return tuple(dict.fromkeys(out))
 
 
 def canonical_name(name: str) -> str:

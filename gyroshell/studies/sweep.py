@@ -164,45 +164,55 @@ class SweepResult(base.Result, kind="sweep"):
         return key in self._as_table(" (in)")
 
 
-def parse_velocities(text: str, *, option: str = "velocities") -> list[float]:
-    """Speeds, m/s, from ``"start:stop:step"`` (stop included) or ``"v1,v2,..."``.
+def parse_velocities(text: str, *, option: str = "velocities", notice=None) -> list[float]:
+    """Speeds, m/s, from ``"START:STOP:NUM"`` (NUM speeds from START to STOP, both
+    included, as every range option reads it: :mod:`gyroshell.core.ranges`) or
+    ``"v1,v2,..."``.
 
-    The number of speeds is checked against :data:`gyroshell.core.budget.MAX_SWEEP_SPEEDS`
-    before the list is built, so ``0:100:1e-12`` is refused at once.
+    The old ``START:STOP:STEP`` form is read until
+    :data:`~gyroshell.core.ranges.STEP_FORM_ENDS` where it gives other speeds than NUM
+    would (:func:`~gyroshell.core.ranges.old_step_range`: ``0:100:10`` is 11 speeds,
+    ``0:1:0.25`` 5), with a one-line notice passed to ``notice`` (default: a
+    :class:`FutureWarning`). The number of speeds is checked against
+    :data:`gyroshell.core.budget.MAX_SWEEP_SPEEDS` before the list is built, so
+    ``0:100:1e-12`` is refused at once.
 
     Raises
     ------
     ParameterError
-        For a malformed, empty or non-finite entry, a step <= 0, stop < start, a negative
-        speed, or too many speeds.
+        For a malformed, empty or non-finite entry, NUM not a whole number >= 1, a
+        negative speed, or too many speeds.
     """
+    from ..core.ranges import old_step_range, parse_range
+
     text = text.strip()
-    form = f"{option} must be 'start:stop:step' or 'v1,v2,...' in m/s, got {text!r}"
-    parts = text.split(":") if ":" in text else text.split(",")
-    if text and ":" not in text and not all(t.strip() for t in parts):
+    if ":" in text:
+        old = old_step_range(text, option, unit="m/s")
+        if old is None:
+            values = parse_range(text, option, unit="m/s", limit=lambda n: budget.
+                                 check_sweep_length(n, what=f"{option} {text!r}"))
+            return [check_velocity(float(v)) for v in values]
+        start, step, count, message = old
+        budget.check_sweep_length(count, what=f"{option} {text!r}")
+        if notice is None:
+            warnings.warn(message, FutureWarning, stacklevel=2)
+        else:
+            notice(message)
+        return [check_velocity(start + i * step) for i in range(count)]
+    parts = text.split(",")
+    if text and not all(t.strip() for t in parts):
         raise ParameterError(f"{option} {text!r}: an empty entry; give speeds in m/s "
                              "separated by single commas")
     try:
         numbers = [float(t) for t in parts]
     except ValueError:
-        raise ParameterError(form) from None
-    if not numbers or (":" in text and len(numbers) != 3):
-        raise ParameterError(form)
+        raise ParameterError(f"{option} must be 'START:STOP:NUM' or 'v1,v2,...' in m/s, "
+                             f"got {text!r}") from None
     for number in numbers:
         if not math.isfinite(number):
             raise ParameterError(f"{option} {text!r}: every number must be finite (m/s)")
-    if ":" not in text:
-        budget.check_sweep_length(len(numbers), what=f"{option} {text[:40]!r}")
-        velocities = numbers
-    else:
-        start, stop, step = numbers
-        if not step > 0 or stop < start:
-            raise ParameterError(f"{option} {text!r}: need step > 0 and stop >= start (m/s)")
-        count = math.floor((stop - start) / step + 1e-9) + 1 \
-            if math.isfinite((stop - start) / step) else math.inf
-        budget.check_sweep_length(count, what=f"{option} {text!r}")
-        velocities = [start + i * step for i in range(int(count))]
-    return [check_velocity(v) for v in velocities]
+    budget.check_sweep_length(len(numbers), what=f"{option} {text[:40]!r}")
+    return [check_velocity(v) for v in numbers]
 
 
 def check_velocities(velocities: Iterable[float], *, name: str = "velocities"

@@ -41,7 +41,7 @@ def test_touch_down_reported_in_json(capsys):
 def test_two_dimensional_json_files_and_plot(capsys, tmp_path):
     png = tmp_path / "b.png"
     out = _json(capsys, ["bearing", "--velocity", "4", "--wrap-angle", "15", "--nx", "80",
-                         "--ny", "10", "--json", "--out", str(tmp_path / "run"),
+                         "--ny", "10", "--json", "--out-dir", str(tmp_path / "run"),
                          "--plot", str(png)])
     assert out["ny"] == 10 and out["minimum_y"] is not None
     assert out["minimum_spacing"] < out["central_spacing"]
@@ -155,7 +155,7 @@ def test_unreachable_state_reports_each_stage_before_the_error(capsys, monkeypat
 def test_out_that_is_a_file_is_refused_before_solving(capsys, tmp_path):
     afile = tmp_path / "afile"
     afile.write_text("mine")
-    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--out", str(afile)]) == 2
+    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--out-dir", str(afile)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "is a file, not a folder" in err[0]
     assert afile.read_text() == "mine"
@@ -169,7 +169,7 @@ def test_failing_plot_leaves_no_out_folder(capsys, tmp_path, monkeypatch):
 
     monkeypatch.setattr(matplotlib.figure.Figure, "savefig", disk_full)
     out, png = tmp_path / "run", tmp_path / "b.png"
-    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--out", str(out),
+    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--out-dir", str(out),
                  "--plot", str(png)]) == 2
     assert "cannot write" in capsys.readouterr().err
     assert sorted(p.name for p in tmp_path.iterdir()) == []

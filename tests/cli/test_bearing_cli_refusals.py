@@ -155,7 +155,7 @@ def test_option_unused_in_its_mode_is_refused_before_the_solve(cli, tmp_path, mo
     calls = _spy_on_the_solve(monkeypatch)
     png = tmp_path / "never.png"
     line = _one_error_line(cli(["bearing", "--velocity", "4", "--nx", "40", *extra,
-                                "--plot", png, "--out", tmp_path / "run"]))
+                                "--plot", png, "--out-dir", tmp_path / "run"]))
     assert message in line
     assert calls == [] and sorted(tmp_path.iterdir()) == []
 
@@ -177,7 +177,7 @@ def test_simply_supported_edges_in_a_config_file_are_refused_in_2d(cli, tmp_path
 def test_plot_and_out_with_json_are_all_written(cli, tmp_path):
     """--plot and --out are honoured with --json (stdout stays the one JSON object)."""
     png, out = tmp_path / "b.png", tmp_path / "run"
-    run = cli([*TINY_1D, "--json", "--quiet", "--plot", png, "--out", out])
+    run = cli([*TINY_1D, "--json", "--quiet", "--plot", png, "--out-dir", out])
     assert run.code == 0, run.err
     assert json.loads(run.out)["nx"] == 40
     assert png.stat().st_size > 0
@@ -200,8 +200,8 @@ def test_read_only_file_inside_out_is_refused_before_the_solve(cli, tmp_path, mo
     out = _existing_run_folder(tmp_path)
     (out / name).chmod(0o444)
     before = {p.name: (p.read_text(), stat.S_IMODE(p.stat().st_mode)) for p in out.iterdir()}
-    line = _one_error_line(cli([*TINY_1D, "--out", out]))
-    assert f"--out {out / name}: exists and is read-only; not replaced" in line
+    line = _one_error_line(cli([*TINY_1D, "--out-dir", out]))
+    assert f"--out-dir {out / name}: exists and is read-only; not replaced" in line
     assert calls == []
     after = {p.name: (p.read_text(), stat.S_IMODE(p.stat().st_mode)) for p in out.iterdir()}
     assert after == before                     # no file touched, no temporary file left
@@ -210,7 +210,7 @@ def test_read_only_file_inside_out_is_refused_before_the_solve(cli, tmp_path, mo
 def test_folder_in_place_of_an_out_file_is_refused(cli, tmp_path):
     out = tmp_path / "run"
     (out / "fields.csv").mkdir(parents=True)
-    line = _one_error_line(cli([*TINY_1D, "--out", out]))
+    line = _one_error_line(cli([*TINY_1D, "--out-dir", out]))
     assert "fields.csv: is a folder, not a file" in line
 
 
@@ -218,15 +218,15 @@ def test_out_with_a_missing_parent_is_refused_and_nothing_created(cli, tmp_path,
                                                                   monkeypatch):
     calls = _spy_on_the_solve(monkeypatch)
     out = tmp_path / "missing" / "run"
-    line = _one_error_line(cli([*TINY_1D, "--out", out]))
-    assert line == (f"gyroshell: error: --out {out}: folder {tmp_path / 'missing'} "
+    line = _one_error_line(cli([*TINY_1D, "--out-dir", out]))
+    assert line == (f"gyroshell: error: --out-dir {out}: folder {tmp_path / 'missing'} "
                     "does not exist")
     assert calls == [] and sorted(tmp_path.iterdir()) == []
 
 
 def test_out_folder_itself_is_created(cli, tmp_path):
     out = tmp_path / "run"
-    run = cli([*TINY_1D, "--quiet", "--out", out])
+    run = cli([*TINY_1D, "--quiet", "--out-dir", out])
     assert run.code == 0, run.err
     saved = json.loads((out / "summary.json").read_text())
     assert saved["nx"] == 40 and (out / "fields.csv").stat().st_size > 0
@@ -234,7 +234,7 @@ def test_out_folder_itself_is_created(cli, tmp_path):
 
 def test_existing_out_files_are_replaced_whole(cli, tmp_path):
     out = _existing_run_folder(tmp_path)
-    run = cli([*TINY_1D, "--quiet", "--out", out])
+    run = cli([*TINY_1D, "--quiet", "--out-dir", out])
     assert run.code == 0, run.err
     assert json.loads((out / "summary.json").read_text())["nx"] == 40
     assert sorted(p.name for p in out.iterdir()) == sorted(bearing_cli.OUT_FILES)

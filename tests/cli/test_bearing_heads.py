@@ -68,7 +68,7 @@ def test_the_toml_head_flies_as_the_options(cli, tmp_path):
 
 
 def test_out_tables_hold_the_readings_of_the_json(cli, tmp_path):
-    out = _json(cli, [*FLAT_1D, "--transducers", "-2e-4,0", "--out", tmp_path / "run"])
+    out = _json(cli, [*FLAT_1D, "--transducers", "-2e-4,0", "--out-dir", tmp_path / "run"])
     lines = read_csv_exact(tmp_path / "run" / "transducer_lines.csv")
     corners = read_csv_exact(tmp_path / "run" / "corners.csv")
     assert lines.x_m.tolist() == [line["x"] for line in out["transducer_lines"]]
@@ -124,7 +124,7 @@ def test_text_output_names_the_readings(cli):
 def test_two_dimensional_flat_head_reads_its_line_across_the_width(cli, tmp_path):
     argv = ["bearing", "--head", "flat", "--land-length", "1e-3", "--wrap-in", "2",
             "--wrap-out", "2", "--transducers", "0", "--velocity", "4", "--nx", "60", "--ny",
-            "24", "--quiet", "--out", tmp_path / "run"]
+            "24", "--quiet", "--out-dir", tmp_path / "run"]
     out = _json(cli, argv)
     (line,) = out["transducer_lines"]
     across = read_csv_exact(tmp_path / "run" / "transducer_lines.csv")

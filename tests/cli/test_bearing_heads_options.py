@@ -236,7 +236,7 @@ def test_contour_refusals_before_the_solve(cli, tmp_path, argv, contents, messag
     out = tmp_path / "never"
     argv = [a.replace("{csv}", str(csv)) for a in argv]
     line = _one_error_line(cli(["bearing", "--velocity", "4", "--infinitely-wide", *argv,
-                                "--out", out]))
+                                "--out-dir", out]))
     assert message in line
     assert not out.exists()
 

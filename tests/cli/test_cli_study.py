@@ -96,7 +96,9 @@ def test_transient_save(tmp_path, capsys):
      "--out /nope/s.csv: folder /nope does not exist"),
     (["--vary", "tension=80", "--compute", "modes", "--out", "s.txt"], "--out: use a .csv"),
     (["--vary", "tension=80", "--vary", "velocity=1", "--compute", "critical", "--plot",
-      "m.png"], "add --compute modes"),
+      "m.png", "--quantity", "omega_1"],
+     "--quantity omega_1: this study has no such column; choose one of critical_speed, "
+     "divergence_speed"),
     (["--vary", "tension=80", "--compute", "modes", "--scheduler", "nowhere"],
      "tcp://HOST:PORT"),
     (["--vary", "tension=80", "--compute", "modes", "--config", "/nope.toml"],
@@ -135,7 +137,7 @@ def test_campbell_command(tmp_path, capsys):
     out, png = tmp_path / "c.csv", tmp_path / "c.png"
     assert main(["campbell", "--length-ratio", "1.5", "--spacing", str(6.35e-3 / 10),
                  "--edges", "simply-supported", "--foundation-stiffness", "0",
-                 "--velocities", "0:75:5", "--count", "5", "--circumference", "0.01",
+                 "--velocities", "0:75:16", "--count", "5", "--circumference", "0.01",
                  "--out", str(out), "--plot", str(png)]) == 0
     text = capsys.readouterr().out
     assert "crossing: branches" in text and "resonance: order 1" in text
@@ -160,7 +162,7 @@ def test_study_and_campbell_json_print_the_results_summary(tmp_path, capsys):
     assert out.keys() == expected.keys() and out.pop("seconds") > 0
     assert out == {k: v for k, v in expected.items() if k != "seconds"}
     assert out["failed"] == 1  # static above critical
-    assert main(["campbell", *COARSE, "--velocities", "0:10:5", "--count", "2", "--quiet",
+    assert main(["campbell", *COARSE, "--velocities", "0:10:3", "--count", "2", "--quiet",
                  "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out == campbell(TapeModel(BASE), [0.0, 5.0, 10.0], 2).summary()
@@ -172,7 +174,7 @@ def test_campbell_saves_the_whole_diagram_and_runs_on_workers(tmp_path, capsys):
     from gyroshell.results.base import read
 
     nc = tmp_path / "c.nc"
-    base_argv = ["campbell", *COARSE, "--velocities", "0:30:10", "--count", "2", "--quiet"]
+    base_argv = ["campbell", *COARSE, "--velocities", "0:30:4", "--count", "2", "--quiet"]
     assert main([*base_argv, "--out", str(nc)]) == 0
     one = read(nc)
     assert one.params == BASE and one.info["workers"] == 1

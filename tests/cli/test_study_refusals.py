@@ -247,7 +247,7 @@ def test_ignored_or_nonsense_options_are_refused(cli, tmp_path, monkeypatch, cas
 
 
 def test_campbell_json_with_a_circumference_lists_the_resonances(cli):
-    run = cli(["campbell", *COARSE, "--velocities", "0:80:40", "--count", "2", "--quiet",
+    run = cli(["campbell", *COARSE, "--velocities", "0:80:3", "--count", "2", "--quiet",
                "--circumference", "1e-3", "--orders", "1", "--json"])
     assert run.code == 0, run.err
     out = json.loads(run.out)

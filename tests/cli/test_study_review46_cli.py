@@ -114,10 +114,10 @@ TIMED = {
               "1", *TINY],
     "study on processes": ["study", "--vary", "velocity=0:100:8", "--compute", "critical",
                            "--workers", "2", *TINY],
-    "sweep": ["sweep", "--velocities", "0:100:10", "--count", "2", *TINY],
-    "sweep on processes": ["sweep", "--velocities", "0:100:10", "--count", "2",
+    "sweep": ["sweep", "--velocities", "0:100:11", "--count", "2", *TINY],
+    "sweep on processes": ["sweep", "--velocities", "0:100:11", "--count", "2",
                            "--workers", "2", *TINY],
-    "campbell": ["campbell", "--velocities", "0:100:10", "--count", "2", *TINY],
+    "campbell": ["campbell", "--velocities", "0:100:11", "--count", "2", *TINY],
 }
 
 

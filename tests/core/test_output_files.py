@@ -73,10 +73,10 @@ BAD_OUTPUTS = [
     ("study cache parent is a file",
      ["study", *COARSE, "--vary", "tension=80,90", "--compute", "modes", "--cache",
       "afile/c.jsonl"], "afile is a file"),
-    ("reproduce into a file", ["reproduce", "fig2", "--quick", "--out", "afile"],
-     "--out afile: is a file, not a folder"),
-    ("reproduce into a read-only folder", ["reproduce", "fig2", "--quick", "--out", "ro/r"],
-     "read-only"),
+    ("reproduce into a file", ["reproduce", "fig2", "--quick", "--out-dir", "afile"],
+     "--out-dir afile: is a file, not a folder"),
+    ("reproduce into a read-only folder",
+     ["reproduce", "fig2", "--quick", "--out-dir", "ro/r"], "read-only"),
 ]
 
 
@@ -307,7 +307,7 @@ ANNOUNCED_SWEEP = textwrap.dedent("""
 
 @pytest.mark.slow
 def test_sigterm_during_computation_exits_cleanly(tmp_path):
-    argv = ["sweep", *map(str, COARSE), "--velocities", "0:100:0.02", "--out", "s.csv",
+    argv = ["sweep", *map(str, COARSE), "--velocities", "0:100:5001", "--out", "s.csv",
             "--quiet"]
     proc = subprocess.Popen([sys.executable, "-c", ANNOUNCED_SWEEP, *argv], cwd=tmp_path,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -347,9 +347,9 @@ def test_reproduce_run_whose_last_study_fails_leaves_none_of_its_files(cli, tmp_
         raise OSError(28, "No space left on device")
 
     monkeypatch.setattr(fig3, "run", disk_full)
-    out = tmp_path / "today"  # its parent must exist (as for bearing --out)
+    out = tmp_path / "today"  # its parent must exist (as for bearing --out-dir)
     run = cli(["reproduce", "critical", "fig3", "--quick", "--quiet", "--workers", "1",
-               "--out", out])
+               "--out-dir", out])
     assert run.code == 2 and "No space left on device" in run.err
     assert len(run.error_lines) == 1
     assert listing(tmp_path) == []  # critical's files and the folder made for them are gone

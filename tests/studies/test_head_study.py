@@ -167,3 +167,35 @@ def test_study_head_options_refused_in_one_line(cli, argv, message):
     run = cli(["study", *argv, "--workers", "1", "--quiet"])
     assert run.code == 2 and len(run.error_lines) == 1, run.err
     assert message in run.error_lines[0]
+
+
+def test_wrap_varies_both_wraps_at_once():
+    """``wrap`` is wrap_in = wrap_out: each row is the direct solve of the head built with
+    both wraps at that angle."""
+    setup = BearingStudy(head=HeadDesign(kind="flat", land_length=1e-3,
+                                         transducers=(-2e-4, 0.0), friction=0.2),
+                         infinitely_wide=True, nx=NX)
+    wraps = [math.radians(1.5), math.radians(2.5)]
+    study = run_study(TapeParameters(), vary={"wrap": wraps}, compute="bearing",
+                      velocity=4.0, workers=1, bearing=setup, progress=False)
+    assert study.failed.empty and study.table.wrap.tolist() == wraps
+    for row in study.table.itertuples():
+        head = FlatHead((Module(1e-3),), row.wrap, row.wrap, transducers=(-2e-4, 0.0),
+                        friction=0.2)
+        sol = solve_steady(BearingModel(TapeParameters(), AirParameters(), velocity=4.0,
+                                        head=head, infinitely_wide=True, nx=NX))
+        assert row.central_spacing == sol.central_spacing
+        assert row.transducer_1_min_spacing == sol.transducer_lines[0].minimum
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"vary": {"wrap": [0.03], "wrap_in": [0.02]}},
+     "wrap sets both wrap_in and wrap_out: vary wrap or wrap_in, not both"),
+    ({"vary": {"wrap": [0.03]}, "bearing": BearingStudy()},
+     "wrap (wrap_in and wrap_out) is not a parameter of a cylinder head"),
+])
+def test_wrap_is_refused_beside_a_wrap_or_on_a_cylinder(kwargs, message):
+    kwargs = {"bearing": SETUP, **kwargs}
+    with pytest.raises(ParameterError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        run_study(TapeParameters(), compute="bearing", velocity=4.0, workers=1,
+                  progress=False, **kwargs)

@@ -38,25 +38,25 @@ def test_a_study_named_twice_runs_once_in_the_order_first_named(tmp_path, ran, w
 
 def test_the_cli_runs_a_repeated_study_once(cli, tmp_path, ran):
     run = cli(["reproduce", "fig2", "fig2", "--quick", "--quiet", "--workers", "1",
-               "--out", tmp_path / "r2"])
+               "--out-dir", tmp_path / "r2"])
     assert run.code == 0, run.err
     assert [name for name, _out in ran] == ["fig2"]
 
 
 def test_out_with_a_missing_parent_is_refused_like_bearing_out(cli, tmp_path, ran):
     deep = tmp_path / "missing" / "deep" / "x"
-    run = cli(["reproduce", "fig2", "--quick", "--quiet", "--out", deep])
+    run = cli(["reproduce", "fig2", "--quick", "--quiet", "--out-dir", deep])
     assert run.code == 2
     assert run.err.count("\n") == 1, run.err
-    assert "--out" in run.err and "does not exist" in run.err
+    assert "--out-dir" in run.err and "does not exist" in run.err
     assert ran == [] and list(tmp_path.iterdir()) == []
-    bearing = cli(["bearing", "--velocity", "4", "--infinitely-wide", "--quiet", "--out", deep])
+    bearing = cli(["bearing", "--velocity", "4", "--infinitely-wide", "--quiet", "--out-dir", deep])
     assert bearing.code == 2 and bearing.err.split(": ", 2)[2] == run.err.split(": ", 2)[2]
 
 
 def test_out_itself_is_created_when_its_parent_exists(cli, tmp_path, ran):
     run = cli(["reproduce", "fig2", "--quick", "--quiet", "--workers", "1",
-               "--out", tmp_path / "new"])
+               "--out-dir", tmp_path / "new"])
     assert run.code == 0, run.err
     assert (tmp_path / "new").is_dir() and ran == [("fig2", tmp_path / "new")]
 

@@ -26,7 +26,7 @@ def listing(folder):
 def test_two_workers_write_the_same_files_as_one(tmp_path):
     one, two = tmp_path / "one", tmp_path / "two"
     assert main(["reproduce", *STUDY_SET, "--quick", "--quiet", "--workers", "1",
-                 "--out", str(one)]) == 0
+                 "--out-dir", str(one)]) == 0
     lines = []
     written = run_studies(STUDY_SET, two, Settings(quick=True, progress=False), workers=2,
                           log=lines.append)
@@ -48,7 +48,7 @@ def test_parallel_run_that_fails_leaves_none_of_its_files(tmp_path, capsys):
     blocked.write_bytes(b"an earlier figure")
     blocked.chmod(0o444)
     assert main(["reproduce", "fig5", "fig6", "--quick", "--quiet", "--workers", "2",
-                 "--out", str(out)]) == 2
+                 "--out-dir", str(out)]) == 2
     err = capsys.readouterr().err
     assert "fig6_waterfall.png" in err and "read-only" in err
     assert listing(out) == ["fig6_waterfall.png"]  # fig5's files gone, no staging folder

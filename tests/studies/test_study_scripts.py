@@ -23,7 +23,7 @@ ROOT = Path(__file__).resolve().parents[2]
 @pytest.fixture(scope="module")
 def quick_results(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("quick")
-    assert main(["reproduce", "all", "--out", str(out), "--quick", "--quiet"]) == 0
+    assert main(["reproduce", "all", "--out-dir", str(out), "--quick", "--quiet"]) == 0
     return out
 
 
@@ -133,13 +133,13 @@ def test_orthotropy_table_holds_the_plane_stress_stiffnesses(quick_results):
 
 def test_unknown_study_is_a_user_error(capsys, tmp_path):
     with pytest.raises(SystemExit) as info:
-        main(["reproduce", "fig9", "--out", str(tmp_path)])
+        main(["reproduce", "fig9", "--out-dir", str(tmp_path)])
     assert info.value.code == 2
     assert "invalid choice" in capsys.readouterr().err
 
 
 def test_study_script_runs_as_a_program(tmp_path):
-    proc = subprocess.run([sys.executable, str(ROOT / "studies" / "fig3.py"), "--out",
+    proc = subprocess.run([sys.executable, str(ROOT / "studies" / "fig3.py"), "--out-dir",
                            str(tmp_path), "--quick", "--quiet"],
                           capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr
@@ -147,6 +147,6 @@ def test_study_script_runs_as_a_program(tmp_path):
 
 
 def test_full_reproduction_of_fig2(tmp_path):
-    assert main(["reproduce", "fig2", "--out", str(tmp_path), "--quiet"]) == 0
+    assert main(["reproduce", "fig2", "--out-dir", str(tmp_path), "--quiet"]) == 0
     steady = pd.read_csv(tmp_path / "fig2_steady_state.csv")
     assert steady["rel_difference"].max() < 1e-6

@@ -28,7 +28,7 @@ def test_two_processes_give_the_one_process_sweep():
 @pytest.mark.slow
 def test_cli_sweep_workers(cli, tmp_path):
     out1, out2 = tmp_path / "one.csv", tmp_path / "two.csv"
-    base = ["sweep", "--length-ratio", "2", "--velocities", "0:60:20", "--count", "3"]
+    base = ["sweep", "--length-ratio", "2", "--velocities", "0,20,40,60", "--count", "3"]
     assert cli(base + ["--out", str(out1)]).code == 0
     assert cli(base + ["--out", str(out2), "--workers", "2"]).code == 0
     a, b = pd.read_csv(out1), pd.read_csv(out2)
