@@ -425,12 +425,7 @@ class BearingModel:
         self.params = validation.instance("params", params, TapeParameters)
         self.air = validation.instance("air", AirParameters() if air is None else air,
                                        AirParameters)
-        self.contact, self.air = _resolved_contact(contact, self.air)
-        #: Whether contact is a smooth law of the spacing (asperities, a measured curve)
-        #: acting wherever the tape is near the head, rather than a hard wall
-        self.smooth_contact = self.contact.law != "hard"
-        #: The smooth law (``pressure(h) -> (p_c, dp_c/dh)``, Pa and Pa/m) or None
-        self.contact_law = self.contact.law_object if self.smooth_contact else None
+        self._set_contact(contact)
         self.dry = validation.boolean("dry", dry)
         self.velocity = _checked_velocity(velocity, self.dry)
         self.head = _resolved_head(wrap_angle, head)
@@ -448,14 +443,7 @@ class BearingModel:
         h_foil, l_film = (0.0, 0.0) if self.dry else (h_foil, l_film)
         self.film_length, self.bending_length = l_film, l_bend
         self._warn_small_wrap()
-        self.arc_contact = validation.choice("arc_contact", arc_contact, ARC_CONTACTS)
-        if self.smooth_contact and self.arc_contact == "point":
-            raise ParameterError(
-                "arc_contact='point' applies to the hard wall (contact law 'hard') only: a "
-                f"smooth contact law ({self.contact.law!r}) acts on every node of a rounded "
-                "corner's arc; use arc_contact='auto' (or 'wrapped')")
-        self.wrapped_corners = wrapped_corners(
-            self.head, l_bend, "wrapped" if self.smooth_contact else self.arc_contact)
+        self._set_arcs(arc_contact, l_bend)
         self.h_guess = _FOIL_GUESS * h_foil
         self.span = self._checked_span(span, l_film, l_bend)
         self.adapt_contacts = validation.boolean("adapt_contacts", adapt_contacts)
@@ -483,6 +471,28 @@ class BearingModel:
             self._build_y_line(ny, y_line)
             self.tape = PlateOperators(tape_params, self.x, self.y)
         self._couple_film_and_loads()
+
+    def _set_contact(self, contact) -> None:
+        """:attr:`contact`, :attr:`smooth_contact` and :attr:`contact_law` of the
+        constructor's ``contact`` (the air's roughness set to the contact's)."""
+        self.contact, self.air = _resolved_contact(contact, self.air)
+        #: Whether contact is a smooth law of the spacing (asperities, a measured curve)
+        #: acting wherever the tape is near the head, rather than a hard wall
+        self.smooth_contact = self.contact.law != "hard"
+        #: The smooth law (``pressure(h) -> (p_c, dp_c/dh)``, Pa and Pa/m) or None
+        self.contact_law = self.contact.law_object if self.smooth_contact else None
+
+    def _set_arcs(self, arc_contact: str, l_bend: float) -> None:
+        """:attr:`arc_contact` and :attr:`wrapped_corners`: under a smooth contact law
+        every rounded corner's arc is resolved by the grid (its law acts on every node)."""
+        self.arc_contact = validation.choice("arc_contact", arc_contact, ARC_CONTACTS)
+        if self.smooth_contact and self.arc_contact == "point":
+            raise ParameterError(
+                "arc_contact='point' applies to the hard wall (contact law 'hard') only: a "
+                f"smooth contact law ({self.contact.law!r}) acts on every node of a rounded "
+                "corner's arc; use arc_contact='auto' (or 'wrapped')")
+        self.wrapped_corners = wrapped_corners(
+            self.head, l_bend, "wrapped" if self.smooth_contact else self.arc_contact)
 
     @cached_property
     def jacobian_patterns(self) -> dict:

@@ -24,7 +24,6 @@ onto their asperities at low speed (contact recording).
 from __future__ import annotations
 
 import copy
-import math
 import time
 from dataclasses import dataclass
 
@@ -36,7 +35,7 @@ from ..linalg.continuation import StepController, continuation
 from ..linalg.newton import NewtonOptions, NewtonReport, newton
 from .film import DryFilm
 from .model import BearingModel
-from .problem import SteadyProblem
+from .problem import SteadyProblem, check_cavitation
 from .results import BearingSolution, NewtonInfo
 
 
@@ -166,11 +165,12 @@ def dry_state(model: BearingModel, budget: _Budget, tension=None) -> np.ndarray:
                         tension=tension)
 
 
-def hard_wall_state(model: BearingModel, tension, progress) -> np.ndarray:
+def hard_wall_state(model: BearingModel, tension, progress, solve_steady,
+                    interpolated_state) -> np.ndarray:
     """[u, p] of the hard wall at the roughness σ_s on ``model``'s grid (every rounded
-    arc resolved, as the smooth law needs), interpolated if its grid differs."""
+    arc resolved, as the smooth law needs) by ``solve_steady``, interpolated by
+    ``interpolated_state`` if its grid differs."""
     from .contact import ContactParameters
-    from .steady import interpolated_state, solve_steady
 
     hard = model.rebuilt(contact=ContactParameters(law="hard",
                                                    roughness=model.air.roughness),
@@ -183,9 +183,10 @@ def hard_wall_state(model: BearingModel, tension, progress) -> np.ndarray:
     return interpolated_state(model, sol)
 
 
-def _law_path(model, budget, tension, progress) -> np.ndarray:
-    """Path 2: the hard wall's state, then the law's scale from ``law_scale`` to 1."""
-    z = hard_wall_state(model, tension, progress)
+def _law_path(model, budget, tension, progress, hard) -> np.ndarray:
+    """Path 2: the hard wall's state (``hard``: the hard wall's solve and interpolation),
+    then the law's scale from ``law_scale`` to 1."""
+    z = hard_wall_state(model, tension, progress, *hard)
 
     def at(scale, state):
         if progress is not None:
@@ -220,18 +221,19 @@ def _speed_path(model, budget, tension, progress) -> np.ndarray:
 
 
 def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
-                 options: SolverOptions | None = None) -> BearingSolution:
+                 options: SolverOptions | None = None, *, hard_solve,
+                 interpolate) -> BearingSolution:
     """The steady state under the model's smooth contact law (see the module notes):
     Newton from ``z0`` (default :func:`flying_start`), then the law's and the speed's
-    continuations, within ``options.budget`` Newton iterations.
+    continuations, within ``options.budget`` Newton iterations. ``hard_solve`` and
+    ``interpolate``: the hard wall's steady solve and the interpolation of a state onto
+    another grid (:func:`.steady.solve_steady`, :func:`.steady.interpolated_state`).
 
     Raises
     ------
     ConvergenceError
         Naming each path's failure and what to try.
     """
-    from .steady import check_cavitation
-
     options = SolverOptions() if options is None else options
     start = time.perf_counter()
     info = NewtonInfo()
@@ -242,7 +244,8 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
                                              else z0, options.max_iterations,
                                              tension=tension)),
              ("the law's scale from the hard wall",
-              lambda: _law_path(model, budget, tension, progress)),
+              lambda: _law_path(model, budget, tension, progress,
+                                (hard_solve, interpolate))),
              ("the speed from the dry tape",
               lambda: _speed_path(model, budget, tension, progress)))
     for name, path in paths:

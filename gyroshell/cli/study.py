@@ -75,6 +75,29 @@ def register(sub, common: argparse.ArgumentParser,
                         "connection fails at once)")
     p.add_argument("--cache", metavar="FILE.jsonl", default=None,
                    help="keep finished points here; running the same study again resumes")
+    _add_output_options(p)
+    _add_bearing_options(p)
+    p.set_defaults(func=run, config_tables=("head",))
+    register_campbell(sub, common_without_velocity)
+
+
+def _add_bearing_options(p: argparse.ArgumentParser) -> None:
+    """The head and grid of --compute bearing."""
+    add_head_options(p, title="head of --compute bearing")
+    g = p.add_argument_group("air bearing grid of --compute bearing")
+    g.add_argument("--infinitely-wide", action="store_true",
+                   help="the 1-D infinitely wide tape (per unit width) instead of the 2-D "
+                        "tape with free edges")
+    g.add_argument("--nx", type=positive_int, default=None,
+                   help="intervals along x (default: the bearing's default grid)")
+    g.add_argument("--ny", type=positive_int, default=None,
+                   help="intervals across the width, even, 2-D only (default: the "
+                        "bearing's default grid)")
+
+
+def _add_output_options(p: argparse.ArgumentParser) -> None:
+    """What a study writes and shows: --out, --save, --plot, --quantity, --sketch,
+    --quiet, --json."""
     p.add_argument("--out", metavar="FILE.csv", default=None,
                    help="write the table (CSV, or .parquet); one row per point")
     add_save_option(p)
@@ -94,23 +117,6 @@ def register(sub, common: argparse.ArgumentParser,
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (points, computed, cached, failed, seconds, "
                         "executor) instead of the table")
-    _add_bearing_options(p)
-    p.set_defaults(func=run, config_tables=("head",))
-    register_campbell(sub, common_without_velocity)
-
-
-def _add_bearing_options(p: argparse.ArgumentParser) -> None:
-    """The head and grid of --compute bearing."""
-    add_head_options(p, title="head of --compute bearing")
-    g = p.add_argument_group("air bearing grid of --compute bearing")
-    g.add_argument("--infinitely-wide", action="store_true",
-                   help="the 1-D infinitely wide tape (per unit width) instead of the 2-D "
-                        "tape with free edges")
-    g.add_argument("--nx", type=positive_int, default=None,
-                   help="intervals along x (default: the bearing's default grid)")
-    g.add_argument("--ny", type=positive_int, default=None,
-                   help="intervals across the width, even, 2-D only (default: the "
-                        "bearing's default grid)")
 
 
 def register_campbell(sub, common_without_velocity: argparse.ArgumentParser) -> None:

@@ -286,13 +286,8 @@ def study_map(study, quantity: str | None = None, *, x: str | None = None,
 
     Returns
     -------
-    matplotlib.axes.Axes
-
-    Raises
-    ------
-    ParameterError
-        Without two varied parameters, for an unknown quantity (listing the study's), or
-        if two points share the same varied values.
+    matplotlib.axes.Axes (a ParameterError without two varied parameters, for an unknown
+    quantity, listing the study's, or if two points share the same varied values)
     """
     table = _table(study)
     varied = list(getattr(study, "varied", ()))
@@ -320,21 +315,30 @@ def study_map(study, quantity: str | None = None, *, x: str | None = None,
     mesh = ax.pcolormesh(_edges(xs_shown), _edges(ys_shown), np.ma.masked_invalid(shown_grid),
                          cmap=colours, shading="flat", edgecolors="w", linewidth=0.3)
     ax.figure.colorbar(mesh, ax=ax, label=label)
-    for centres, ticks, set_ticks in ((xs_shown, xticks, ax.set_xticks),
-                                      (ys_shown, yticks, ax.set_yticks)):
-        if ticks is not None:
-            set_ticks(centres, ticks)
-        elif len(centres) <= MAX_TICKED:
-            set_ticks(centres, [f"{c:.4g}" for c in centres])
+    _ticks(ax, (xs_shown, xticks), (ys_shown, yticks))
     if shown_grid.size <= MAX_ANNOTATED:
         _annotate(ax, mesh, xs_shown, ys_shown, shown_grid)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    failed = int(np.isnan(values).sum())
-    ax.set_title(title or (label.split(" (")[0][:1].upper() + label.split(" (")[0][1:]
-                           + (f"; {failed} failed point{'s' * (failed > 1)} grey"
-                              if failed else "")))
+    ax.set_title(title or _title(label, int(np.isnan(values).sum())))
     return ax
+
+
+def _title(label: str, failed: int) -> str:
+    """The map's default title: its quantity, and how many failed points are grey."""
+    name = label.split(" (")[0]
+    return (name[:1].upper() + name[1:]
+            + (f"; {failed} failed point{'s' * (failed > 1)} grey" if failed else ""))
+
+
+def _ticks(ax, x_axis, y_axis) -> None:
+    """Ticks at the cells' centres: the given labels (degrees, choices), or the values
+    where there are at most MAX_TICKED of them."""
+    for (centres, ticks), set_ticks in ((x_axis, ax.set_xticks), (y_axis, ax.set_yticks)):
+        if ticks is not None:
+            set_ticks(centres, ticks)
+        elif len(centres) <= MAX_TICKED:
+            set_ticks(centres, [f"{c:.4g}" for c in centres])
 
 
 def _annotate(ax, mesh, xs: np.ndarray, ys: np.ndarray, grid: np.ndarray) -> None:

@@ -437,12 +437,7 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     CampbellTrackingWarning
         One line naming the steps (m/s) where branches are still broken at ``min_step``.
     """
-    from ..engines.divergence import DIVERGENCE_MEMBERS
-    from ..tape.model import check_model
-
-    check_model(model, **({"members": DIVERGENCE_MEMBERS} if critical_speed is True else {}))
-    progress = validation.progress(progress)
-    started = time.perf_counter()
+    progress, started = _checked_model(model, critical_speed, progress), time.perf_counter()
     velocities, min_step, workers = _checked(velocities, min_mac, veering_gap, critical_speed,
                                              min_step, workers)
     refinement = _refined(model, velocities, count, min_mac, min_step, started, progress,
@@ -463,6 +458,16 @@ def campbell(model, velocities, count: int = 6, *, min_mac: float = MIN_MAC,
     return CampbellDiagram(frame, *_crossings_and_veerings(frame, veering_gap),
                            _critical_speed(model, critical_speed), info,
                            getattr(model, "params", None))
+
+
+def _checked_model(model, critical_speed, progress):
+    """Refuse a non-model (with what the critical speed needs, if asked); the checked
+    ``progress``."""
+    from ..engines.divergence import DIVERGENCE_MEMBERS
+    from ..tape.model import check_model
+
+    check_model(model, **({"members": DIVERGENCE_MEMBERS} if critical_speed is True else {}))
+    return validation.progress(progress)
 
 
 def _checked(velocities, min_mac, veering_gap, critical_speed, min_step, workers):

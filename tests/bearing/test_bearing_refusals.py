@@ -330,7 +330,7 @@ def test_progress_false_on_a_2d_tape_whose_start_reports_stages(capsys):
 ])
 def test_cli_refuses_in_one_line(cli, tmp_path, argv, message):
     out = tmp_path / "out"
-    run = cli(["bearing", "--velocity", "4", *argv, "--out", out])
+    run = cli(["bearing", "--velocity", "4", *argv, "--out-dir", out])
     assert run.code == 2
     assert len(run.error_lines) == 1 and run.error_lines[0].startswith("gyroshell: error:")
     assert message in run.error_lines[0] and "Traceback" not in run.err

@@ -14,7 +14,7 @@ import pytest
 import scipy.sparse as sp
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel, steady
+from gyroshell.bearing import AirParameters, BearingModel, problem, steady
 from gyroshell.bearing.jacobian import JacobianPattern
 from gyroshell.linalg import factorization as fz
 
@@ -111,8 +111,8 @@ def test_the_model_keeps_its_pattern_until_the_tape_rows_change(rng, monkeypatch
     tape rows with the same pattern form no digest; tape rows of another pattern (an
     entry added) get their own pattern, which assembles their folded Jacobian."""
     digests = []
-    original = steady._pattern_digest
-    monkeypatch.setattr(steady, "_pattern_digest",
+    original = problem._pattern_digest
+    monkeypatch.setattr(problem, "_pattern_digest",
                         lambda *a: digests.append(1) or original(*a))
     model = _model()
     kind = steady._jacobian_lu(model)

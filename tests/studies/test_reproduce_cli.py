@@ -73,9 +73,9 @@ def test_out_that_cannot_take_a_study_file_is_refused_before_any_work(cli, tmp_p
     else:
         blocked.write_bytes(b"an earlier figure")
         blocked.chmod(0o444)
-    run = cli(["reproduce", "all", "--quick", "--quiet", "--workers", workers, "--out", out])
+    run = cli(["reproduce", "all", "--quick", "--quiet", "--workers", workers, "--out-dir", out])
     assert run.code == 2 and len(run.error_lines) == 1, run.err
-    assert run.error_lines[0].startswith(f"gyroshell: error: --out {blocked}: ")
+    assert run.error_lines[0].startswith(f"gyroshell: error: --out-dir {blocked}: ")
     assert ran == []                    # no study started
     assert sorted(p.name for p in out.iterdir()) == ["heads_wraps.png"]
 
