@@ -27,6 +27,10 @@ AIR_VISCOSITY = 1.81e-5
 AMBIENT_PRESSURE = 101325.0
 #: Mean free path of air molecules at 20 °C and one atmosphere, m.
 MEAN_FREE_PATH = 64.0e-9
+#: The film's rarefaction model (:mod:`.rarefaction`) and roughness flow factors
+#: (:mod:`.flow_factors`) by default.
+RAREFACTION = "first-order"
+FLOW_FACTORS = "none"
 #: Combined surface roughness below which tape and head touch, m.
 ROUGHNESS = 20.0e-9
 
@@ -71,8 +75,8 @@ class AirParameters:
     mean_free_path: float = MEAN_FREE_PATH
     compressible: bool = True
     roughness: float = ROUGHNESS
-    rarefaction: str = "first-order"
-    flow_factors: str = "none"
+    rarefaction: str = RAREFACTION
+    flow_factors: str = FLOW_FACTORS
 
     def __post_init__(self) -> None:
         put = object.__setattr__
@@ -90,3 +94,49 @@ class AirParameters:
     def replace(self, **changes: object) -> AirParameters:
         """A copy with some fields changed (validated again)."""
         return replace(self, **changes)
+
+
+#: The numbers of an ``[air]`` table and their SI units.
+_AIR_UNITS = {"viscosity": "Pa*s", "ambient_pressure": "Pa", "mean_free_path": "m"}
+_AIR_CHOICES = {"rarefaction": RAREFACTION_MODELS, "flow_factors": FLOW_FACTOR_MODELS}
+
+
+def air_changes_from_table(table, where: str = "") -> dict:
+    """The :class:`AirParameters` fields of a TOML file's ``[air]`` table, checked::
+
+        [air]
+        viscosity = "1.81e-5 Pa*s"      # numbers without a unit are SI
+        ambient_pressure = "101.325 kPa"
+        mean_free_path = "64 nm"
+        compressible = true
+        rarefaction = "fukui-kaneko"    # or first-order, second-order, none
+        flow_factors = "patir-cheng"    # or none
+
+    ``where`` names the file in messages (``"run.toml: "``). Raises ParameterError in one
+    line naming the file and the key (an unknown key lists the allowed ones)."""
+    from collections.abc import Mapping
+
+    from ..core.errors import ParameterError
+    from ..tape.config import parse_quantity
+
+    prefix = f"{where}[air] "
+    if not isinstance(table, Mapping):
+        raise ParameterError(f"{prefix.rstrip()} must be a table")
+    allowed = (*_AIR_UNITS, "compressible", *_AIR_CHOICES)
+    out = {}
+    for key, value in table.items():
+        if key in _AIR_UNITS:
+            out[key] = parse_quantity(key, value, prefix, unit=_AIR_UNITS[key])
+        elif key == "compressible":
+            if not isinstance(value, bool):
+                raise ParameterError(f"{prefix}compressible must be true or false, got "
+                                     f"{value!r}")
+            out[key] = value
+        elif key in _AIR_CHOICES:
+            if value not in _AIR_CHOICES[key]:
+                raise ParameterError(f"{prefix}{key} must be one of "
+                                     f"{', '.join(_AIR_CHOICES[key])}, got {value!r}")
+            out[key] = value
+        else:
+            raise ParameterError(f"{prefix}has no key {key!r}; allowed: {', '.join(allowed)}")
+    return out

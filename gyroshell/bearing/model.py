@@ -26,7 +26,7 @@ from ..core.errors import ParameterError
 from ..linalg.factorization import check_pattern_lu
 from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
-from .air import AIR_VISCOSITY, AirParameters
+from .air import AIR_VISCOSITY, ROUGHNESS_RANGE, AirParameters
 from .contact import ContactParameters
 from .film import DryFilm, Film
 from .head import (
@@ -165,9 +165,21 @@ def _resolved_contact(contact, air: AirParameters):
     if contact is None:
         return ContactParameters(law="hard", roughness=air.roughness), air
     contact = validation.instance("contact", contact, ContactParameters)
-    if contact.roughness != air.roughness:
-        air = air.replace(roughness=contact.roughness)
+    scale = contact_length(contact)
+    if scale != air.roughness:
+        air = air.replace(roughness=scale)
     return contact, air
+
+
+def contact_length(contact: ContactParameters) -> float:
+    """The length the contact acts over, m: the wall's gap, the summits' σ_s, or for a
+    measured curve a quarter of its separations' span (within the roughness range): the
+    grid's corner refinement, the film's floor and Newton's steps are sized by it."""
+    if contact.roughness is not None:
+        return contact.roughness
+    curve = contact.compliance
+    low, high = ROUGHNESS_RANGE
+    return float(min(max(0.25 * (curve.separations[-1] - curve.separations[0]), low), high))
 
 
 #: The contact floor of the rounded arcs' nodes other than the contact node, m: far below
@@ -919,7 +931,7 @@ class BearingModel:
         film = DryFilm if self.dry else Film
         self.film = film(self.nx, self.nc, np.diff(self.x),
                          None if self.infinitely_wide else np.diff(self.y), self.air,
-                         self.velocity)
+                         self.velocity, roughness=self.air.roughness)
         self.n_u = self.tape.n
         self.n_p = self.film.size
         x, r = self.x_head, self.head_radius

@@ -25,6 +25,7 @@ from ..results import layout
 from ..results.base import Result, dataset, from_json, params_from
 from . import readings
 from .air import AirParameters
+from .contact import ContactParameters
 from .head import FlatHead, head_from_dict
 from .mesh import Grading
 from .model import BearingGridWarning, BearingModel
@@ -186,6 +187,24 @@ class BearingSolution(Result, kind="bearing"):
         or below the roughness σ (then :attr:`minimum_spacing` is σ, not a flying height)."""
         return self.contact_nodes > 0 or self.minimum_spacing <= self.model.air.roughness
 
+    @property
+    def range_warnings(self) -> list[str]:
+        """One line per model used outside its range here: the rarefaction model beyond
+        its Knudsen numbers, the hard wall below 3 gaps (:mod:`.validity`)."""
+        from .validity import range_warnings
+
+        return range_warnings(self)
+
+    def magnetic_spacings(self, recession: float) -> list[dict]:
+        """Each transducer line's magnetic spacing, m: its spacing (to the mean plane of
+        the tape's summits) plus ``recession``, the head's recession and overcoats (m,
+        >= 0): the centre's, the minimum's and the mean's."""
+        recession = validation.nonnegative("recession", recession, "m")
+        return [{"x": line.x, "magnetic_spacing": line.centre + recession,
+                 "magnetic_spacing_minimum": line.minimum + recession,
+                 "magnetic_spacing_mean": line.mean + recession}
+                for line in self.transducer_lines]
+
     # ----- what the head designer reads (gyroshell.bearing.readings) -------------------------
     @cached_property
     def _layout(self) -> dict:
@@ -331,6 +350,11 @@ class BearingSolution(Result, kind="bearing"):
             "mean_free_path": m.air.mean_free_path,
             "compressible": m.air.compressible,
             "roughness": m.air.roughness,
+            "rarefaction": m.air.rarefaction,
+            "flow_factors": m.air.flow_factors,
+            "contact_law": m.contact.law,
+            "contact_parameters": m.contact.to_dict(),
+            "warnings": self.range_warnings,
             "length": m.length,
             "nx": m.nx,
             "ny": m.ny,
@@ -593,13 +617,15 @@ def _settings(model: BearingModel) -> dict:
         out["corner_contacts"] = list(model.corner_contacts)
     if model.arc_contact != "auto":
         out["arc_contact"] = model.arc_contact
+    out["contact"] = model.contact.to_dict()
     return out
 
 
-#: The keys of a file's ``model`` attribute (``grading``, ``head`` and ``dry`` may be
-#: absent: older files, whose head is the cylinder of ``wrap_angle``, flying).
+#: The keys of a file's ``model`` attribute (``grading``, ``head``, ``dry`` and
+#: ``contact`` may be absent: older files, whose head is the cylinder of ``wrap_angle``,
+#: flying, its contact the hard wall at the air's roughness).
 _SETTINGS = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny")
-_OPTIONAL_SETTINGS = ("grading", "head", "dry", "corner_contacts", "arc_contact")
+_OPTIONAL_SETTINGS = ("grading", "head", "dry", "corner_contacts", "arc_contact", "contact")
 
 
 def _stored_dict(attrs, name: str, allowed, required=()) -> dict:
@@ -657,6 +683,11 @@ def _model_from(ds, prefix: str = "") -> BearingModel:
     if "head" in settings:      # the head rebuilds the wrap
         settings["head"] = head_from_dict(settings["head"])
         del settings["wrap_angle"]
+    if "contact" in settings:
+        if not isinstance(settings["contact"], dict):
+            raise ParameterError(f"the file's contact must be an object, got "
+                                 f"{settings['contact']!r}")
+        settings["contact"] = ContactParameters.from_dict(settings["contact"])
     air = _stored_dict(a, "air", [f.name for f in dataclasses.fields(AirParameters)])
     with warnings.catch_warnings():   # the grid was the saver's choice: no warning on load
         warnings.simplefilter("ignore", BearingGridWarning)

@@ -94,6 +94,11 @@ class _Budget:
               ) -> np.ndarray:
         """Newton on ``model`` from z0, at most ``limit`` iterations (and what is left);
         each iteration recorded in the NewtonInfo."""
+        return self.solve_reporting(model, z0, limit, tension=tension)[0]
+
+    def solve_reporting(self, model: BearingModel, z0: np.ndarray, limit: int, *,
+                        tension=None) -> tuple[np.ndarray, NewtonReport]:
+        """:meth:`solve` and its Newton report (a continuation stage's)."""
         limit = min(limit, self.left)
         if limit < 1:
             raise ConvergenceError(f"the budget of {self.options.budget} Newton iterations "
@@ -105,7 +110,7 @@ class _Budget:
                                report=report, log=self.log)
         finally:
             self._record(model, report)
-        return z
+        return z, report
 
     def _record(self, model: BearingModel, report: NewtonReport) -> None:
         info = self.info
@@ -132,7 +137,7 @@ def without_film(model: BearingModel) -> BearingModel:
     out = copy.copy(model)
     out.film = DryFilm(model.nx, model.nc, np.diff(model.x),
                        None if model.infinitely_wide else np.diff(model.y), model.air,
-                       model.velocity)
+                       model.velocity, roughness=model.air.roughness)
     out.dry = True
     return out
 
@@ -191,8 +196,8 @@ def _law_path(model, budget, tension, progress, hard) -> np.ndarray:
     def at(scale, state):
         if progress is not None:
             progress(f"contact law scaled by {scale:.3g}")
-        return budget.solve(scaled_law(model, scale), state,
-                            budget.options.stage_iterations, tension=tension), None
+        return budget.solve_reporting(scaled_law(model, scale), state,
+                                      budget.options.stage_iterations, tension=tension)
 
     z, stages = continuation(at, budget.options.law_scale, 1.0, z,
                              controller=StepController(initial=10.0, growth=1.0,
@@ -209,8 +214,8 @@ def _speed_path(model, budget, tension, progress) -> np.ndarray:
         if progress is not None:
             progress(f"continuation in V: {v:.4g} m/s")
         stage = model if v == model.velocity else model.at_velocity(v)
-        return budget.solve(stage, state, budget.options.stage_iterations,
-                            tension=tension), None
+        return budget.solve_reporting(stage, state, budget.options.stage_iterations,
+                                      tension=tension)
 
     v0 = model.velocity * budget.options.speed_fraction
     z, stages = continuation(at, v0, model.velocity, z,
@@ -243,11 +248,11 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
     paths = (("direct", lambda: budget.solve(model, flying_start(model) if z0 is None
                                              else z0, options.max_iterations,
                                              tension=tension)),
+             ("the speed from the dry tape",
+              lambda: _speed_path(model, budget, tension, progress)),
              ("the law's scale from the hard wall",
               lambda: _law_path(model, budget, tension, progress,
-                                (hard_solve, interpolate))),
-             ("the speed from the dry tape",
-              lambda: _speed_path(model, budget, tension, progress)))
+                                (hard_solve, interpolate))))
     for name, path in paths:
         if budget.left < 1:
             break

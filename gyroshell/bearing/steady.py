@@ -27,11 +27,11 @@ from ..core.errors import ConvergenceError, ParameterError
 from ..tape.parameters import MIN_INTERVALS_ACROSS
 from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel
 from .problem import (  # noqa: F401  (the residual's pieces, also reached through here)
+    _PATTERNS,
     JACOBIAN_ORDERING,
     SINGLE_LU,
     SPACING_GROWTH,
     SPACING_KEEP,
-    _PATTERNS,
     Linearization,
     _jacobian_lu,
     _model_pattern,

@@ -33,6 +33,12 @@ from .common import (
     typed_overrides,
 )
 from .heads import add_head_options, build_head_of, head_design
+from .interface import (
+    add_interface_options,
+    check_recession,
+    contact_of,
+    refuse_film_options_when_dry,
+)
 from .saving import add_save_option, check_save_path, save_result
 
 #: Columns of ``fields.csv``: the solution's table with its units in the names.
@@ -82,6 +88,7 @@ def register(sub, common: argparse.ArgumentParser) -> None:
                     "and the plate load --load do not exist here.")
     add_head_options(p)
     _add_bearing_options(p)
+    add_interface_options(p)
     p.add_argument("--json", action="store_true", help="print one JSON object (SI units)")
     add_out_dir_option(p, "write summary.json, the spacing/pressure fields (fields.csv), "
                           "the spacing across the width along each transducer line "
@@ -134,16 +141,15 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
     from ..bearing import air as a
 
     g = p.add_argument_group("air bearing (SI units)")
-    g.add_argument("--viscosity", type=real, default=a.AIR_VISCOSITY,
-                   help=f"air viscosity, Pa*s (default {a.AIR_VISCOSITY:g}, air at 20 C)")
-    g.add_argument("--ambient-pressure", type=real, default=a.AMBIENT_PRESSURE,
-                   help=f"ambient pressure p_a, Pa (default {a.AMBIENT_PRESSURE:g})")
-    g.add_argument("--mean-free-path", type=real, default=a.MEAN_FREE_PATH,
-                   help=f"mean free path at p_a, m; 0 turns slip off "
-                        f"(default {a.MEAN_FREE_PATH:g})")
-    g.add_argument("--roughness", type=real, default=a.ROUGHNESS,
-                   help=f"combined roughness: the smallest spacing, m "
-                        f"(default {a.ROUGHNESS:g})")
+    g.add_argument("--viscosity", type=real, default=None,
+                   help=f"air viscosity, Pa*s (default: the file's [air] table, else "
+                        f"{a.AIR_VISCOSITY:g}, air at 20 C)")
+    g.add_argument("--ambient-pressure", type=real, default=None,
+                   help=f"ambient pressure p_a, Pa (default: the file's [air] table, else "
+                        f"{a.AMBIENT_PRESSURE:g})")
+    g.add_argument("--mean-free-path", type=real, default=None,
+                   help=f"mean free path at p_a, m; 0 turns rarefaction off (default: the "
+                        f"file's [air] table, else {a.MEAN_FREE_PATH:g})")
     g.add_argument("--incompressible", action="store_true",
                    help="incompressible film (p h -> h) instead of the compressible one")
     g.add_argument("--infinitely-wide", action="store_true",
@@ -180,19 +186,24 @@ def run(args: argparse.Namespace) -> int:
     from ..core.files import folder_transaction, transaction
 
     _refuse_unused_in_mode(args)
-    params, velocity, head_table = _tape(args)
+    refuse_film_options_when_dry(args)
+    params, velocity, tables = _tape(args)
+    head_table = tables.get("head")
     design = head_design(args, head_table, args.config)
     # the contour's checks: transducers on it, a profile file's
     head = build_head_of(args, design, head_table, args.config)
-    air = _air(args)
+    air = _air(args, tables.get("air"))
+    contact = contact_of(args, tables.get("contact"), args.config)
+    recession = check_recession(args)
     out = _check_outputs(args)
     from ..bearing.results import BearingSolution
 
     check_save_path(args.save, BearingSolution)
-    options = design.model_options()
+    options = {**design.model_options(), "contact": contact, "dry": args.dry}
     model = _model(args, params, air, velocity, head, options)
     sol = _solve(model, None if args.quiet else _progress)
     summary = sol.summary()
+    add_interface_readings(summary, sol, recession, quiet=args.json)
     if design.kind == "flat":
         summary["arc_contact"] = sol.model.arc_contact
         summary["corner_arc_models"] = corner_arc_models(sol.model)
@@ -218,8 +229,19 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(summary)
     else:
-        _print_text(sol, summary.get("grid_error"))
+        _print_text(sol, summary.get("grid_error"), summary.get("magnetic_spacings"))
     return 0
+
+
+def add_interface_readings(summary: dict, sol, recession: float | None, *,
+                           quiet: bool = False) -> None:
+    """The summary's magnetic spacings (with --recession), and its range warnings, each
+    also one ``gyroshell: warning:`` line on stderr."""
+    if recession is not None:
+        summary["recession"] = recession
+        summary["magnetic_spacings"] = sol.magnetic_spacings(recession)
+    for text in summary.get("warnings", ()):
+        print(f"gyroshell: warning: {text}", file=sys.stderr, flush=True)
 
 
 def _refuse_unused_in_mode(args: argparse.Namespace) -> None:
@@ -246,12 +268,13 @@ def _tape(args: argparse.Namespace):
     from ..tape.parameters import TapeParameters
 
     typed = typed_overrides(args, TAPE_OPTIONS)
-    base, velocity, head_table = TapeParameters(), args.velocity, None
+    base, velocity, tables = TapeParameters(), args.velocity, {}
     if args.config is not None:
         from ..tape.config import load_config
 
-        cfg = load_config(args.config, adjust=_without_plate_fields, tables=("head",))
-        base, head_table = cfg.params, cfg.tables.get("head")
+        cfg = load_config(args.config, adjust=_without_plate_fields,
+                          tables=("head", "air", "contact"))
+        base, tables = cfg.params, cfg.tables
         velocity = cfg.velocity if velocity is None else velocity
         if base.edges != "free" and not args.infinitely_wide:
             raise UserError(f"{args.config}: edges = {base.edges!r}: the bearing's tape has "
@@ -260,14 +283,17 @@ def _tape(args: argparse.Namespace):
     params = base.replace(**typed, edges="free", length_ratio=4.0,
                           spacing=width / PLATE_INTERVALS, load=0.0, load_x=None, load_y=None)
     _refuse_unused_material(args, params)
+    dry = getattr(args, "dry", False)
+    if velocity is None and dry:
+        velocity = 0.0
     if velocity is None:
         raise UserError("velocity must be nonzero for an air bearing: give --velocity "
                         "(e.g. --velocity 4, or -4 for the tape running backwards) or "
-                        "velocity in the --config file")
-    if velocity == 0.0:
+                        "velocity in the --config file (or --dry for the tape at rest)")
+    if velocity == 0.0 and not dry:
         raise UserError("velocity must be nonzero for an air bearing (e.g. --velocity 4, or "
-                        "-4 for the tape running backwards), got 0")
-    return params, math.copysign(params.check_velocity(abs(velocity)), velocity), head_table
+                        "-4 for the tape running backwards), got 0; --dry: the tape at rest")
+    return params, math.copysign(params.check_velocity(abs(velocity)), velocity), tables
 
 
 def _without_plate_fields(fields: dict) -> dict:
@@ -302,13 +328,20 @@ def _refuse_unused_material(args: argparse.Namespace, params) -> None:
                             "--membrane-stiffness, or the --config file): drop it")
 
 
-def _air(args: argparse.Namespace):
-    """The AirParameters of the arguments."""
+def _air(args: argparse.Namespace, table: dict | None = None):
+    """The AirParameters of the arguments over the file's ``[air]`` table."""
     from ..bearing import AirParameters
+    from ..bearing.air import air_changes_from_table
 
-    return AirParameters(viscosity=args.viscosity, ambient_pressure=args.ambient_pressure,
-                         mean_free_path=args.mean_free_path, roughness=args.roughness,
-                         compressible=not args.incompressible)
+    fields = air_changes_from_table(table, f"{args.config}: ") if table else {}
+    typed = {"viscosity": args.viscosity, "ambient_pressure": args.ambient_pressure,
+             "mean_free_path": args.mean_free_path,
+             "rarefaction": getattr(args, "rarefaction", None),
+             "flow_factors": getattr(args, "flow_factors", None)}
+    fields.update({k: v for k, v in typed.items() if v is not None})
+    if args.incompressible:
+        fields["compressible"] = False
+    return AirParameters(**fields)
 
 
 def _check_outputs(args: argparse.Namespace) -> Path | None:
@@ -464,20 +497,27 @@ def _solve(model, progress):
     return sol
 
 
-def _print_text(sol, grid_error: dict | None = None) -> None:
-    """The headline numbers as text."""
+def _print_text(sol, grid_error: dict | None = None, summary_magnetic=None) -> None:
+    """The headline numbers as text (``summary_magnetic``: the transducer lines'
+    magnetic spacings, if --recession was given)."""
     model = sol.model
     force_unit = "N/m" if model.infinitely_wide else "N"
     x_min, y_min = sol.minimum_location
     where = f"x = {x_min:.4e} m" + ("" if y_min is None else f", y = {y_min:.4e} m")
     print(f"model:            {model!r}")
+    print(f"interface:        {model.air.rarefaction} rarefaction, flow factors "
+          f"{model.air.flow_factors}, {'dry, ' if model.dry else ''}contact "
+          f"{model.contact.law} (spacings to the mean plane of the tape's summits)")
     print(f"central spacing:  {sol.central_spacing:.6e} m")
     print(f"minimum spacing:  {sol.minimum_spacing:.6e} m at {where}")
     print(f"air force:        {sol.air_force:.6e} {force_unit}")
     print(f"contact force:    {sol.contact_force:.6e} {force_unit} ({sol.contact_nodes} nodes)")
+    magnetic = {m["x"]: m for m in summary_magnetic} if summary_magnetic else {}
     for line in sol.transducer_lines:
+        extra = (f", magnetic spacing {magnetic[line.x]['magnetic_spacing']:.6e} m"
+                 if line.x in magnetic else "")
         print(f"transducer line:  x = {line.x:.4e} m: minimum {line.minimum:.6e} m, "
-              f"mean {line.mean:.6e} m")
+              f"mean {line.mean:.6e} m{extra}")
     for share in sol.corner_forces:
         print(f"corner:           x = {share.where[0]:.4e} m: contact force "
               f"{share.force:.6e} {force_unit}")

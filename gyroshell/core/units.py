@@ -63,6 +63,8 @@ ACCEPTED: dict[str, dict[str, float]] = {
     "N*m": {"N*m": 1.0, "N m": 1.0, "N·m": 1.0, "Nm": 1.0},
     "N/m^3": {"N/m^3": 1.0, "Pa/m": 1.0, "MPa/m": 1e6, "GPa/m": 1e9},
     "m/s": {"m/s": 1.0, "mm/s": 1e-3, "km/h": 1 / 3.6, "in/s": 0.0254},
+    "Pa*s": {"Pa*s": 1.0, "Pa s": 1.0, "Pa·s": 1.0, "mPa*s": 1e-3, "cP": 1e-3,
+             "uPa*s": 1e-6, "µPa*s": 1e-6},
     "1": {"": 1.0, "1": 1.0},
     "rad": {"rad": 1.0, "mrad": 1e-3, "deg": math.pi / 180.0, "°": math.pi / 180.0},
 }
