@@ -39,6 +39,14 @@ from .problem import SteadyProblem, check_cavitation
 from .results import BearingSolution, NewtonInfo
 
 
+#: A state whose scaled residual is at its round-off floor has converged once its full
+#: step is below this fraction of the spacing scale (σ_s, or the foil spacing): 1 % of
+#: σ_s is 0.06 nm, far below any reading's accuracy, while the plate's rows on the
+#: corners' fine cells turn round-off into steps of 1e-3 σ_s and more (measured on the dry
+#: tape over a 2.9 mm land: steps of 2e-4 to 1e-2 σ_s at a residual of 0.2 of its floor).
+ROUND_OFF_STEP = 1e-2
+
+
 @dataclass(frozen=True)
 class SolverOptions:
     """The one set of options of the steady solve under a smooth contact law.
@@ -104,7 +112,8 @@ class _Budget:
             raise ConvergenceError(f"the budget of {self.options.budget} Newton iterations "
                                    "is spent")
         report = NewtonReport()
-        options = NewtonOptions(tol=self.options.tol, max_iterations=limit)
+        options = NewtonOptions(tol=self.options.tol, max_iterations=limit,
+                                round_off_step=ROUND_OFF_STEP)
         try:
             z, report = newton(SteadyProblem(model, tension=tension), z0, options,
                                report=report, log=self.log)

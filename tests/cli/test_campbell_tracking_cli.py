@@ -17,7 +17,7 @@ SMALL = ["--spacing", str(6.35e-3 / 12), "--velocities", "0:90:10", "--count", "
 @pytest.mark.slow
 def test_a_floor_at_the_given_step_leaves_branches_broken_with_one_warning_line(cli, tmp_path):
     nc = tmp_path / "c.nc"
-    run = cli(["campbell", *SMALL, "--min-step", "10", "--quiet", "--out", nc])
+    run = cli(["campbell", *SMALL, "--min-step", "10", "--quiet", "--save", nc])
     assert run.code == 0, run.err
     warnings = [line for line in run.err.splitlines() if line.strip()]
     assert len(warnings) == 1 and warnings[0].startswith(
@@ -33,7 +33,7 @@ def test_a_floor_at_the_given_step_leaves_branches_broken_with_one_warning_line(
 @pytest.mark.slow
 def test_the_default_step_is_halved_where_the_mac_fell_and_json_says_so(cli, tmp_path):
     nc = tmp_path / "c.nc"
-    run = cli(["campbell", *SMALL, "--quiet", "--json", "--out", nc])
+    run = cli(["campbell", *SMALL, "--quiet", "--json", "--save", nc])
     assert run.code == 0 and run.err == ""
     out = json.loads(run.out)
     assert out["branches"] <= 8 and out["unlinked"] == [] and out["inserted"] > 0
