@@ -163,12 +163,17 @@ def _resolved_contact(contact, air: AirParameters):
     at the air's ``roughness``) and the air with its ``roughness`` set to the contact's
     σ_s (the one roughness the grid, the starts and the film's floor are sized by)."""
     if contact is None:
-        return ContactParameters(law="hard", roughness=air.roughness), air
+        return default_contact(air), air
     contact = validation.instance("contact", contact, ContactParameters)
     scale = contact_length(contact)
     if scale != air.roughness:
         air = air.replace(roughness=scale)
     return contact, air
+
+
+def default_contact(air: AirParameters) -> ContactParameters:
+    """The contact of ``contact=None``: the hard wall at the air's ``roughness``."""
+    return ContactParameters(law="hard", roughness=air.roughness)
 
 
 def contact_length(contact: ContactParameters) -> float:

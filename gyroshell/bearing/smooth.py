@@ -38,7 +38,6 @@ from .model import BearingModel
 from .problem import SteadyProblem, check_cavitation
 from .results import BearingSolution, NewtonInfo
 
-
 #: A state whose scaled residual is at its round-off floor has converged once its full
 #: step is below this fraction of the spacing scale (σ_s, or the foil spacing): 1 % of
 #: σ_s is 0.06 nm, far below any reading's accuracy, while the plate's rows on the

@@ -35,6 +35,7 @@ from .common import (
 from .heads import add_head_options, build_head_of, head_design
 from .interface import (
     add_interface_options,
+    air_of,
     check_recession,
     contact_of,
     refuse_film_options_when_dry,
@@ -331,17 +332,9 @@ def _refuse_unused_material(args: argparse.Namespace, params) -> None:
 def _air(args: argparse.Namespace, table: dict | None = None):
     """The AirParameters of the arguments over the file's ``[air]`` table."""
     from ..bearing import AirParameters
-    from ..bearing.air import air_changes_from_table
 
-    fields = air_changes_from_table(table, f"{args.config}: ") if table else {}
-    typed = {"viscosity": args.viscosity, "ambient_pressure": args.ambient_pressure,
-             "mean_free_path": args.mean_free_path,
-             "rarefaction": getattr(args, "rarefaction", None),
-             "flow_factors": getattr(args, "flow_factors", None)}
-    fields.update({k: v for k, v in typed.items() if v is not None})
-    if args.incompressible:
-        fields["compressible"] = False
-    return AirParameters(**fields)
+    air = air_of(args, table, args.config)
+    return AirParameters() if air is None else air
 
 
 def _check_outputs(args: argparse.Namespace) -> Path | None:

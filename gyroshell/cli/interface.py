@@ -28,24 +28,23 @@ FILM_OPTIONS = {"rarefaction": "--rarefaction", "flow_factors": "--flow-factors"
                 "mean_free_path": "--mean-free-path"}
 
 
-def add_interface_options(p: argparse.ArgumentParser, *, film: bool = True) -> None:
-    """The film models (``film``: also --rarefaction and --flow-factors) and the contact
-    options."""
+def add_interface_options(p: argparse.ArgumentParser, *, single: bool = True) -> None:
+    """The film models and the contact options; ``single`` (the single bearing command,
+    not a study): also --dry and --recession."""
     from ..bearing.contact import CONTACT_LAWS
     from ..bearing.flow_factors import FLOW_FACTOR_MODELS
     from ..bearing.rarefaction import RAREFACTION_MODELS
 
-    if film:
-        g = p.add_argument_group("air film models")
-        g.add_argument("--rarefaction", choices=RAREFACTION_MODELS, default=None,
-                       help="Poiseuille flow factor of the rarefied film: fukui-kaneko (the "
-                            "linearized Boltzmann flow rate, Fukui & Kaneko 1990), "
-                            "first-order (slip, 1 + 6 Kn), second-order (1 + 6 Kn + 6 Kn^2) "
-                            "or none (default: the file's [air] table, else first-order)")
-        g.add_argument("--flow-factors", choices=FLOW_FACTOR_MODELS, default=None,
-                       help="roughness in the film: patir-cheng (pressure and shear flow "
-                            "factors of the summits' roughness, Patir & Cheng 1978/79) or "
-                            "none (default: the file's [air] table, else none)")
+    g = p.add_argument_group("air film models")
+    g.add_argument("--rarefaction", choices=RAREFACTION_MODELS, default=None,
+                   help="Poiseuille flow factor of the rarefied film: fukui-kaneko (the "
+                        "linearized Boltzmann flow rate, Fukui & Kaneko 1990), "
+                        "first-order (slip, 1 + 6 Kn), second-order (1 + 6 Kn + 6 Kn^2) "
+                        "or none (default: the file's [air] table, else first-order)")
+    g.add_argument("--flow-factors", choices=FLOW_FACTOR_MODELS, default=None,
+                   help="roughness in the film: patir-cheng (pressure and shear flow "
+                        "factors of the summits' roughness, Patir & Cheng 1978/79) or "
+                        "none (default: the file's [air] table, else none)")
     g = p.add_argument_group("contact (SI units; spacings are reported to the mean plane "
                              "of the tape's summits)")
     g.add_argument("--contact", choices=tuple(c for c in CONTACT_LAWS if c != "compliance"),
@@ -66,6 +65,8 @@ def add_interface_options(p: argparse.ArgumentParser, *, film: bool = True) -> N
     g.add_argument("--compliance", metavar="FILE.csv", default=None,
                    help="a measured compliance curve: CSV with the header "
                         "separation_m,pressure_Pa, pressure falling with separation")
+    if not single:
+        return
     g.add_argument("--dry", action="store_true",
                    help="no air film: the tape resting on the head through its contact "
                         "alone, at any speed including 0 (it enters through T - rho V^2)")
@@ -112,7 +113,7 @@ def check_recession(args: argparse.Namespace) -> float | None:
     """--recession, m (>= 0), or None."""
     from ..core import validation
 
-    if args.recession is None:
+    if getattr(args, "recession", None) is None:
         return None
     return validation.nonnegative("--recession", args.recession, "m")
 
@@ -125,3 +126,27 @@ def refuse_film_options_when_dry(args: argparse.Namespace) -> None:
         if getattr(args, field, None) not in (None, False):
             raise UserError(f"{option} sets the air film, which --dry does not have: drop "
                             f"{option} or --dry")
+
+
+def interface_given(args: argparse.Namespace) -> list[str]:
+    """The interface options given (for a refusal where they do not apply)."""
+    names = {"rarefaction": "--rarefaction", "flow_factors": "--flow-factors",
+             "contact": "--contact", "compliance": "--compliance", **CONTACT_FIELDS}
+    return [option for field, option in names.items()
+            if getattr(args, field, None) is not None]
+
+
+def air_of(args: argparse.Namespace, table: dict | None = None, config=None):
+    """The AirParameters of the film options over the file's ``[air]`` table (None if
+    neither sets anything: the bearing's default air)."""
+    from ..bearing import AirParameters
+    from ..bearing.air import air_changes_from_table
+
+    fields = air_changes_from_table(table, f"{os.fspath(config)}: ") if table else {}
+    typed = {name: getattr(args, name, None) for name in
+             ("viscosity", "ambient_pressure", "mean_free_path", "rarefaction",
+              "flow_factors")}
+    fields.update({k: v for k, v in typed.items() if v is not None})
+    if getattr(args, "incompressible", False):
+        fields["compressible"] = False
+    return AirParameters(**fields) if fields else None

@@ -23,6 +23,7 @@ from .common import (
     typed_tape_options,
 )
 from .heads import DEGREE_FIELDS, add_head_options, head_design, typed_head_options
+from .interface import add_interface_options, air_of, contact_of, interface_given
 from .saving import add_save_option, check_save_path
 
 #: Resolution of the --plot files, dots per inch.
@@ -77,7 +78,7 @@ def register(sub, common: argparse.ArgumentParser,
                    help="keep finished points here; running the same study again resumes")
     _add_output_options(p)
     _add_bearing_options(p)
-    p.set_defaults(func=run, config_tables=("head",))
+    p.set_defaults(func=run, config_tables=("head", "air", "contact"))
     register_campbell(sub, common_without_velocity)
 
 
@@ -93,6 +94,7 @@ def _add_bearing_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--ny", type=positive_int, default=None,
                    help="intervals across the width, even, 2-D only (default: the "
                         "bearing's default grid)")
+    add_interface_options(p, single=False)
 
 
 def _add_output_options(p: argparse.ArgumentParser) -> None:
@@ -171,12 +173,19 @@ def parse_values(name: str, text: str) -> list:
     variables such as ``wrap_pressure``)."""
     from ..core.budget import check_study_points
     from ..core.units import unit_of
-    from ..studies.points import BOOLEAN_VARIABLES
+    from ..studies.points import BOOLEAN_VARIABLES, CHOICE_VARIABLES
     from ..tape.config import parse_quantity
 
     text = text.strip()
     if not text:
         raise UserError(f"--vary {name}: no values")
+    if name.replace("-", "_") in CHOICE_VARIABLES:
+        words = CHOICE_VARIABLES[name.replace("-", "_")]
+        items = [item.strip() for item in text.split(",")]
+        for item in items:
+            if item not in words:
+                raise UserError(f"--vary {name}: {item!r} is not one of {', '.join(words)}")
+        return items
     if name.replace("-", "_") in BOOLEAN_VARIABLES:
         try:
             return [boolean(item) for item in text.split(",")]
@@ -354,13 +363,15 @@ def _bearing_setup(args: argparse.Namespace, vary: dict, compute: list[str]):
     grid = [flag for flag, given in (("--infinitely-wide", args.infinitely_wide),
                                      ("--nx", args.nx is not None),
                                      ("--ny", args.ny is not None)) if given]
+    tables = getattr(args, "tables", {})
     if "bearing" not in compute:
-        typed = typed_head_options(args) + grid
+        typed = typed_head_options(args) + grid + interface_given(args)
         if typed:
             raise UserError(f"{typed[0]} sets up --compute bearing: add it or drop {typed[0]}")
-        if table is not None:
-            raise UserError(f"{args.config}: its [head] table is the head of --compute "
-                            "bearing: add it, or drop the table")
+        for name in ("head", "air", "contact"):
+            if tables.get(name) is not None:
+                raise UserError(f"{args.config}: its [{name}] table sets up --compute "
+                                "bearing: add it, or drop the table")
         return None
     from ..studies.points import design_fields
     from .heads import HEAD_FLAGS
@@ -375,7 +386,10 @@ def _bearing_setup(args: argparse.Namespace, vary: dict, compute: list[str]):
                                 "them")
     from ..studies.head_study import BearingStudy
 
-    return BearingStudy(head=design, infinitely_wide=args.infinitely_wide, nx=args.nx,
+    contact = (contact_of(args, tables.get("contact"), args.config)
+               if interface_given(args) or tables.get("contact") else None)
+    return BearingStudy(head=design, air=air_of(args, tables.get("air"), args.config),
+                        contact=contact, infinitely_wide=args.infinitely_wide, nx=args.nx,
                         ny=args.ny)
 
 

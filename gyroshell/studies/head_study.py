@@ -37,6 +37,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from ..bearing.air import AirParameters
+from ..bearing.contact import ContactParameters
 from ..bearing.head_config import (
     DEFAULT_WRAP_ANGLE,
     HeadDesign,
@@ -47,7 +48,13 @@ from ..bearing.head_config import (
 from ..core import validation
 from ..core.errors import ParameterError
 from ..tape.parameters import TapeParameters
-from .points import BOTH_WRAPS, HEAD_VARIABLES, parameters_of
+from .points import (
+    BEARING_VARIABLES,
+    BOTH_WRAPS,
+    HEAD_VARIABLES,
+    INTERFACE_VARIABLES,
+    parameters_of,
+)
 
 __all__ = ["BearingStudy", "bearing_row", "head_of_point", "head_value"]
 
@@ -65,6 +72,8 @@ NUMBER_RANGES = {"spacing": (0.0, "m"), "tent_height": (-math.inf, "m"),
                  "newton_iterations": (0.0, "1")}
 #: The keys of :meth:`BearingStudy.spec` (a saved study's ``bearing`` attribute).
 SPEC_KEYS = ("head", "air", "infinitely_wide", "nx", "ny")
+#: Keys a spec may hold beside them (absent in studies saved before contact laws).
+OPTIONAL_SPEC_KEYS = ("contact",)
 #: HeadDesign fields that hold tuples (JSON lists in a spec).
 _TUPLE_FIELDS = ("corner_radius", "module_gap", "transducers")
 
@@ -83,6 +92,9 @@ class BearingStudy:
         head whole (:func:`head_of_point`).
     air : AirParameters or None
         The air film (None: air at 20 °C).
+    contact : ContactParameters or None
+        How the tape touches the head (None: the bearing's default,
+        :class:`gyroshell.bearing.model.BearingModel`'s ``contact=None``).
     infinitely_wide : bool
         Solve the 1-D infinitely wide tape (per unit width) instead of the 2-D tape.
     nx, ny : int or None
@@ -94,6 +106,7 @@ class BearingStudy:
 
     head: HeadDesign = dataclasses.field(default_factory=HeadDesign)
     air: AirParameters | None = None
+    contact: ContactParameters | None = None
     infinitely_wide: bool = False
     nx: int | None = None
     ny: int | None = None
@@ -102,6 +115,7 @@ class BearingStudy:
     def __post_init__(self) -> None:
         validation.instance("head", self.head, HeadDesign)
         validation.instance("air", self.air, AirParameters, optional=True)
+        validation.instance("contact", self.contact, ContactParameters, optional=True)
         validation.boolean("infinitely_wide", self.infinitely_wide)
         validation.integer("nx", self.nx, low=1, optional=True)
         validation.integer("ny", self.ny, low=1, optional=True)
@@ -116,6 +130,7 @@ class BearingStudy:
         return json.loads(json.dumps({
             "head": dataclasses.asdict(self.head),
             "air": None if self.air is None else dataclasses.asdict(self.air),
+            "contact": None if self.contact is None else self.contact.to_dict(),
             "infinitely_wide": self.infinitely_wide, "nx": self.nx, "ny": self.ny}))
 
     @classmethod
@@ -151,7 +166,7 @@ class BearingStudy:
 
 def _fields_of_spec(spec: object) -> dict:
     """The BearingStudy fields of a :meth:`~BearingStudy.spec`, their keys checked."""
-    _check_keys("the setup", spec, SPEC_KEYS, required=SPEC_KEYS)
+    _check_keys("the setup", spec, SPEC_KEYS + OPTIONAL_SPEC_KEYS, required=SPEC_KEYS)
     head = dict(_check_keys("head", spec["head"],
                             [f.name for f in dataclasses.fields(HeadDesign)]))
     shapes = head.get("module_shapes", [])
@@ -165,7 +180,12 @@ def _fields_of_spec(spec: object) -> dict:
     if air is not None:
         air = AirParameters(**_check_keys("air", air, [
             f.name for f in dataclasses.fields(AirParameters)]))
-    return {"head": HeadDesign(**_tuples(head)), "air": air,
+    contact = spec.get("contact")
+    if contact is not None:
+        if not isinstance(contact, dict):
+            raise ParameterError(f"contact must be a JSON object, got {contact!r}")
+        contact = ContactParameters.from_dict(contact)
+    return {"head": HeadDesign(**_tuples(head)), "air": air, "contact": contact,
             "infinitely_wide": spec["infinitely_wide"], "nx": spec["nx"], "ny": spec["ny"]}
 
 
@@ -241,15 +261,55 @@ def point_model(base: dict, velocity: float, point: dict, setup: BearingStudy):
     """
     from ..bearing import BearingModel
 
-    tape = {k: v for k, v in point.items() if k not in HEAD_VARIABLES}
+    tape = {k: v for k, v in point.items() if k not in BEARING_VARIABLES}
     params, v = parameters_of(TapeParameters(**base), velocity, tape, signed=True)
     if v == 0.0:
         raise ParameterError("velocity must be nonzero for an air bearing (either sign: "
                              "the tape running along +x or -x, e.g. 4 or -4 m/s), got 0")
     design = head_of_point(setup, point)
-    return BearingModel(params, setup.air, velocity=v, head=design.head(),
+    air, contact = interface_of_point(setup, point)
+    return BearingModel(params, air, velocity=v, head=design.head(),
                         infinitely_wide=setup.infinitely_wide, nx=setup.nx, ny=setup.ny,
-                        **design.model_options())
+                        contact=contact, **design.model_options())
+
+
+def interface_of_point(setup: BearingStudy, point: Mapping):
+    """(AirParameters, ContactParameters or None) of the point: the setup's, with the
+    point's interface variables (:data:`~gyroshell.studies.points.INTERFACE_VARIABLES`;
+    ``contact`` names the law, which starts from its own defaults)."""
+    air = setup.air
+    film = {k: point[k] for k in ("rarefaction", "flow_factors") if k in point}
+    if film:
+        air = (AirParameters() if air is None else air).replace(**film)
+    fields = {k: point[k] for k in INTERFACE_VARIABLES
+              if k in point and k not in ("rarefaction", "flow_factors", "contact")}
+    contact = setup.contact
+    if "contact" in point or fields:
+        if contact is None:
+            from ..bearing.model import default_contact
+
+            contact = default_contact(AirParameters() if air is None else air)
+        if "contact" in point:
+            contact = contact.replace(law=point["contact"])
+        contact = contact.replace(**fields) if fields else contact
+    return air, contact
+
+
+def interface_value(setup: BearingStudy | None, name: str):
+    """The value of the interface variable ``name`` a point that does not set it runs
+    with (the setup's, or the default)."""
+    air = AirParameters() if setup is None or setup.air is None else setup.air
+    if name in ("rarefaction", "flow_factors"):
+        return getattr(air, name)
+    contact = None if setup is None else setup.contact
+    if contact is None:
+        from ..bearing.model import default_contact
+
+        contact = default_contact(air)
+    if name == "contact":
+        return contact.law
+    value = getattr(contact, name)
+    return math.nan if value is None else value
 
 
 def bearing_row(base: dict, velocity: float, point: dict, setup: BearingStudy) -> dict:

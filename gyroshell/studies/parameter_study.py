@@ -73,10 +73,18 @@ from .executors import (
     connected,
     execute,
 )
-from .head_study import BearingStudy, head_of_point, head_value, point_model
+from .head_study import (
+    BearingStudy,
+    head_of_point,
+    head_value,
+    interface_value,
+    point_model,
+)
 from .points import (
+    BEARING_VARIABLES,
     BOTH_WRAPS,
     HEAD_VARIABLES,
+    INTERFACE_VARIABLES,
     VARIABLE_NAMES,
     canonical_name,
     check_points,
@@ -418,6 +426,7 @@ def _cells(base: TapeParameters, velocity: float, point: dict, varied: tuple[str
     params, v = parameters_of(base, velocity, point, signed=True)   # checked before
     design = None if bearing is None else head_of_point(bearing, point)
     used = {name: head_value(design, name) if name in HEAD_VARIABLES
+            else interface_value(bearing, name) if name in INTERFACE_VARIABLES
             else value_of(params, v, name) for name in missing}
     return {name: point[name] if name in point else used[name] for name in varied}
 
@@ -428,10 +437,10 @@ def _bearing_plan(base: TapeParameters, velocity: float, pts: list[dict],
     """The bearing setup with its columns, every point's head checked; None without
     ``bearing`` in ``compute`` (then no head variable may vary and no setup be given)."""
     if "bearing" not in compute:
-        heads = [name for name in varied if name in HEAD_VARIABLES]
+        heads = [name for name in varied if name in BEARING_VARIABLES]
         if heads:
-            raise ParameterError(f"{', '.join(heads)}: a head's parameters vary in a bearing "
-                                 "study: add compute='bearing'")
+            raise ParameterError(f"{', '.join(heads)}: a head's or the interface's parameters "
+                                 "vary in a bearing study: add compute='bearing'")
         if bearing is not None:
             raise ParameterError("bearing sets up compute='bearing': add it to compute or "
                                  "drop bearing")

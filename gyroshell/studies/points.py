@@ -24,7 +24,8 @@ from ..core.errors import ParameterError
 from ..core.units import LAYER_NAME, LAYER_UNITS
 from ..tape.parameters import TapeParameters, check_velocity
 
-__all__ = ["BOOLEAN_VARIABLES", "BOTH_WRAPS", "HEAD_VARIABLES", "LAYER_VARIABLES", "VARIABLE_NAMES",
+__all__ = ["BEARING_VARIABLES", "BOOLEAN_VARIABLES", "BOTH_WRAPS", "CHOICE_VARIABLES",
+           "HEAD_VARIABLES", "INTERFACE_VARIABLES", "LAYER_VARIABLES", "VARIABLE_NAMES",
            "canonical_name", "check_points", "design_fields", "grid_points",
            "parameters_of"]
 
@@ -35,6 +36,21 @@ BOTH_WRAPS = "wrap"
 #: rad): :class:`gyroshell.bearing.head_config.HeadDesign` fields, and :data:`BOTH_WRAPS`.
 HEAD_VARIABLES: tuple[str, ...] = ("wrap_angle", "wrap_in", "wrap_out", "land_length",
                                    "corner_radius", "module_gap", BOTH_WRAPS)
+#: Parameters of the head–tape interface a bearing study can vary: the film's models
+#: (:class:`gyroshell.bearing.air.AirParameters` ``rarefaction``, ``flow_factors``) and
+#: the contact's (:class:`gyroshell.bearing.contact.ContactParameters`: ``contact`` is its
+#: law; the others its fields, SI).
+INTERFACE_VARIABLES: tuple[str, ...] = ("rarefaction", "flow_factors", "contact",
+                                        "roughness", "asperity_density", "asperity_radius",
+                                        "contact_modulus")
+#: The interface variables whose values are words, and the words each takes.
+CHOICE_VARIABLES: dict[str, tuple[str, ...]] = {
+    "rarefaction": ("fukui-kaneko", "first-order", "second-order", "none"),
+    "flow_factors": ("patir-cheng", "none"),
+    "contact": ("asperity", "hard"),
+}
+#: The variables that set the bearing, not the tape.
+BEARING_VARIABLES: tuple[str, ...] = HEAD_VARIABLES + INTERFACE_VARIABLES
 #: TapeParameters fields that are not one number: a study varies a layer's quantities one by
 #: one (:data:`LAYER_VARIABLES`), and not the four bending stiffnesses.
 NOT_SCALAR = ("bending_stiffness", "layers")
@@ -42,7 +58,7 @@ NOT_SCALAR = ("bending_stiffness", "layers")
 #: the head's parameters.
 VARIABLE_NAMES: tuple[str, ...] = ("velocity",) + tuple(
     f.name for f in dataclasses.fields(TapeParameters) if f.name not in NOT_SCALAR
-) + HEAD_VARIABLES
+) + BEARING_VARIABLES
 #: The variables that are yes or no (True or False), not numbers.
 BOOLEAN_VARIABLES: tuple[str, ...] = tuple(
     f.name for f in dataclasses.fields(TapeParameters) if f.type in (bool, "bool"))
@@ -214,7 +230,7 @@ def check_points(base: TapeParameters, velocity: float, points: Sequence[Mapping
             params, v = parameters_of(base, velocity, clean, signed=signed)
         except ParameterError as exc:
             raise ParameterError(f"point {i} {clean}: {exc}") from None
-        clean = {k: clean[k] if k in HEAD_VARIABLES else value_of(params, v, k)
+        clean = {k: clean[k] if k in BEARING_VARIABLES else value_of(params, v, k)
                  for k in clean}
         out.append(clean)
     if not out:
@@ -229,7 +245,7 @@ def parameters_of(base: TapeParameters, velocity: float, point: Mapping, *,
     ``velocity`` (of either sign if ``signed``, :func:`check_speed`); the head's variables
     are not the tape's (:func:`gyroshell.studies.head_study.head_of_point`)."""
     changes = {k: v for k, v in point.items()
-               if k != "velocity" and layer_of(k) is None and k not in HEAD_VARIABLES}
+               if k != "velocity" and layer_of(k) is None and k not in BEARING_VARIABLES}
     v = check_speed(point.get("velocity", velocity), signed=signed)
     params = base
     layer_changes = {k: v for k, v in point.items() if layer_of(k) is not None}
