@@ -260,17 +260,26 @@ class _Residual:
         film_rows = sp.hstack([m.film_tape_block(lin.J_h, lin.free), lin.J_p], format="csr")
         return sp.vstack([rows_u, film_rows], format=format)
 
-    def factor(self, lin: Linearization):
+    def factor(self, lin: Linearization, pressure_scale: np.ndarray | None = None):
         """A solver res ↦ −J⁻¹ res of the linearization ``lin``, by the model's
         ``factorization``. A 2-D tape, symmetric about its centre line, is solved on half
         the width (the step stays symmetric: P δ_half, P the mirror). The matrix is
         assembled into its grid's fixed pattern (:mod:`.jacobian`), in the elimination
-        order of a nested dissection ("grid", "metis")."""
+        order of a nested dissection ("grid", "metis"). ``pressure_scale``: the pressure
+        columns multiplied by it (J diag(1, s): the unknowns s-scaled, e.g. ln p with
+        s = p)."""
         kind = _jacobian_lu(self.model)
         if kind == "colamd":
-            return self._factor_pivoted(lin)
+            return self._factor_pivoted(lin, pressure_scale)
         pattern = self._pattern(kind, lin)
-        J = pattern.matrix(self.tape_rows.data, lin.active, self.c, lin.J_h, lin.J_p,
+        tape_values, J_p = self.tape_rows.data, lin.J_p
+        if pressure_scale is not None:
+            n_u = self.model.n_u
+            scale = np.concatenate([np.ones(n_u), pressure_scale])
+            tape_values = tape_values * scale[self.tape_rows.indices]
+            J_p = J_p.copy()
+            J_p.data = J_p.data * pressure_scale[J_p.indices]
+        J = pattern.matrix(tape_values, lin.active, self.c, lin.J_h, J_p,
                            None if lin.free.dtype == bool and lin.free.all() else lin.free,
                            lin.diagonal)
         try:
@@ -285,7 +294,7 @@ class _Residual:
         take, put = pattern.input, pattern.output      # compiled by the assembly
         return lambda res: -lu.solve(res[take])[put]
 
-    def _factor_pivoted(self, lin: Linearization):
+    def _factor_pivoted(self, lin: Linearization, pressure_scale=None):
         """:meth:`factor` by SuperLU's partial pivoting after COLAMD (the infinitely wide
         tape's banded Jacobian, or ``factorization="colamd"``), on the matrix as it
         always was: the stacked blocks without explicit zeros (COLAMD orders the pattern
@@ -293,6 +302,8 @@ class _Residual:
         round-off), folded by the mirror on a symmetric 2-D tape."""
         m = self.model
         J = self.jacobian(lin, format="csc")
+        if pressure_scale is not None:
+            J = (J @ sp.diags(np.concatenate([np.ones(m.n_u), pressure_scale]))).tocsc()
         fold = m.mirror
         if fold is not None:
             P, rows = fold
@@ -447,8 +458,10 @@ def _wrapped_at_speed(model: BearingModel) -> bool:
             == wrapped_corners(model.head, model.bending_length, "auto"))
 
 
-#: A step may shrink a compressible film's pressure to no less than this fraction of it.
+#: A step may shrink a compressible film's pressure to no less than this fraction of it,
+#: or, with the film's unknowns ln p, change ln p by at most this.
 PRESSURE_KEEP = 0.2
+LOG_PRESSURE_STEP = 2.0
 
 
 def check_cavitation(model: BearingModel, p: np.ndarray, when: str = "") -> None:
@@ -490,6 +503,10 @@ class SteadyProblem:
             floor = model.contact_floor
             bound = np.where(floor > 0.0, floor - model.dry_field[1:-1, :].ravel(), -np.inf)
             self.lower = np.concatenate([bound, np.full(n_p, -np.inf)])
+        #: the film's unknowns are q = ln(p/p_a) (a smooth contact law's solve): Newton
+        #: then keeps p > 0 and crosses the decades of a tent's sub-ambient pressure in
+        #: a few steps, where steps in p were cut to a fifth of p each
+        self.log_pressure = model.smooth_contact and model.air.compressible and not model.dry
         self.row_scale = self.F.row_scale.copy()
         if model.smooth_contact and not model.dry:
             # the film rows by the Couette flux through each node's own dry gap (plus the
@@ -499,12 +516,28 @@ class SteadyProblem:
             gap = model.dry_field[film.interior] + self.F.h_scale
             self.row_scale[n_u:] *= self.F.h_scale / gap
         self.variable_scale = np.concatenate([np.full(n_u, self.F.h_scale),
-                                              np.full(n_p, self.F.t_scale)])
+                                              np.full(n_p, 1.0 if self.log_pressure
+                                                      else self.F.t_scale)])
 
     def split(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(u, p) of a state z."""
+        """(u, p) of a state z (its unknowns: q = ln(p/p_a) with :attr:`log_pressure`)."""
         n_u = self.model.n_u
+        if self.log_pressure:
+            return z[:n_u], self.model.air.ambient_pressure * np.exp(z[n_u:])
         return z[:n_u], z[n_u:]
+
+    def unknowns(self, state: np.ndarray) -> np.ndarray:
+        """The problem's unknowns of a state [u (m), p (Pa)]."""
+        if not self.log_pressure:
+            return np.array(state, dtype=float)
+        n_u = self.model.n_u
+        p = np.maximum(state[n_u:], 1e-12 * self.model.air.ambient_pressure)
+        return np.concatenate([state[:n_u], np.log(p / self.model.air.ambient_pressure)])
+
+    def state(self, z: np.ndarray) -> np.ndarray:
+        """The state [u (m), p (Pa)] of the problem's unknowns z."""
+        u, p = self.split(z)
+        return np.concatenate([u, p])
 
     def residual(self, z: np.ndarray) -> np.ndarray:
         """[r_u, r_p]: the tape rows (N, N/m per unit width) with the smooth law's force,
@@ -517,8 +550,9 @@ class SteadyProblem:
     def linearize(self, z: np.ndarray, active: np.ndarray):
         """A solver rhs ↦ J⁻¹ rhs of the Jacobian at z with the rows of ``active`` (tape
         nodes at the wall) replaced by the identity (their right-hand side is 0)."""
-        lin = self.F.linearize(z, active[:self.model.n_u])
-        solve = self.F.factor(lin)           # res ↦ −J⁻¹ res
+        u, p = self.split(z)
+        lin = self.F.linearize(np.concatenate([u, p]), active[:self.model.n_u])
+        solve = self.F.factor(lin, p if self.log_pressure else None)   # res ↦ −J⁻¹ res
         return lambda rhs: -solve(rhs)
 
     def step_limit(self, z: np.ndarray, dz: np.ndarray) -> float:
@@ -526,8 +560,9 @@ class SteadyProblem:
         each way; under a smooth law, down by 2 σ_s at least) and a compressible film's
         pressure above PRESSURE_KEEP of itself."""
         m, F = self.model, self.F
+        n_u = m.n_u
         u, p = self.split(z)
-        du, dp = self.split(dz)
+        du, dp = dz[:n_u], dz[n_u:]
         h = u + m.dry_field[1:-1, :].ravel()
         if m.smooth_contact:
             alpha = _smooth_step_limit(h, du, F.sigma)
@@ -536,7 +571,11 @@ class SteadyProblem:
         else:
             at_wall = h <= F.floor
             alpha = _step_limit(h, du, at_wall, F.sigma, F.floor)
-        if m.air.compressible and not m.dry:
+        if self.log_pressure:
+            big = np.abs(dp) > LOG_PRESSURE_STEP
+            if big.any():
+                alpha = min(alpha, float(np.min(LOG_PRESSURE_STEP / np.abs(dp[big]))))
+        elif m.air.compressible and not m.dry:
             shrink = (dp < -(1 - PRESSURE_KEEP) * p) & (p > 0.0)
             if shrink.any():
                 alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink]
@@ -556,5 +595,5 @@ class SteadyProblem:
         return float(np.linalg.norm(F.noise_rows * self.row_scale))
 
     def contact_forces(self, z: np.ndarray, active: np.ndarray) -> np.ndarray:
-        """The head's force on each tape node at z, N (N/m per unit width)."""
-        return self.F.contact_forces(z, active[:self.model.n_u])
+        """The head's force on each tape node at the unknowns z, N (N/m per unit width)."""
+        return self.F.contact_forces(self.state(z), active[:self.model.n_u])

@@ -113,12 +113,17 @@ class _Budget:
         report = NewtonReport()
         options = NewtonOptions(tol=self.options.tol, max_iterations=limit,
                                 round_off_step=ROUND_OFF_STEP)
+        problem = SteadyProblem(model, tension=tension)
         try:
-            z, report = newton(SteadyProblem(model, tension=tension), z0, options,
-                               report=report, log=self.log)
+            z, report = newton(problem, problem.unknowns(z0), options, report=report,
+                               log=self.log)
+        except ConvergenceError as exc:
+            if getattr(exc, "state", None) is not None:
+                exc.state = problem.state(exc.state)
+            raise
         finally:
             self._record(model, report)
-        return z, report
+        return problem.state(z), report
 
     def _record(self, model: BearingModel, report: NewtonReport) -> None:
         info = self.info
@@ -279,6 +284,6 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
               "contact='hard'")
     info.seconds = time.perf_counter() - start
     check_cavitation(model, z[model.n_u:])
-    lam = SteadyProblem(model, tension=tension).contact_forces(
-        z, np.zeros(z.size, dtype=bool))
+    lam = SteadyProblem(model, tension=tension).F.contact_forces(
+        z, np.zeros(model.n_u, dtype=bool))
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)
