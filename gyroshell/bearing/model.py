@@ -1221,7 +1221,15 @@ class BearingModel:
         a fixed pattern (:mod:`.jacobian`); ``free`` is False at the unknowns whose
         spacing was floored (r_p does not depend on them there). Without ``jacobian``
         the blocks are None."""
-        H = self.spacing_field(u)
+        Hf, free = self.film_spacing(self.spacing_field(u))
+        r, J_p, J_h = self.film_residual_fields(self.pressure_field(p), Hf, phi_old=phi_old,
+                                                dt=dt, jacobian=jacobian)
+        return r, J_p, J_h, free
+
+    def film_spacing(self, H: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(h_f, free): the spacing the film sees on every node (m), floored at
+        :attr:`film_floor`, and for the tape's unknowns ∂h_f/∂h (a smooth law's smooth
+        floor) or whether h was above the floor (the hard wall's clip)."""
         floor = self.film_floor
         if self.smooth_contact:
             # a smooth floor (C∞): under a smooth law the tape presses through it at the
@@ -1232,9 +1240,13 @@ class BearingModel:
             clipped = H < floor
             Hf = np.where(clipped, floor, H)
             free = ~clipped[1:-1, :].ravel()
-        r, J_p, J_h = self.film_residual_fields(self.pressure_field(p), Hf, phi_old=phi_old,
-                                                dt=dt, jacobian=jacobian)
-        return r, J_p, J_h, free
+        return Hf, free
+
+    def transported(self, u: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """The film's transported φ (p h_f, Pa·m, or h_f, m) of the state (u, p) on every
+        node, with the spacing the film sees (:meth:`film_spacing`)."""
+        return self.film.transported(self.pressure_field(p),
+                                     self.film_spacing(self.spacing_field(u))[0])
 
     @property
     def film_floor(self) -> float:

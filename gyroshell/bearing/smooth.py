@@ -133,6 +133,18 @@ class _Budget:
         info.contact_nodes += [0] * report.iterations
 
 
+def newton_step(model: BearingModel, z0: np.ndarray, *, tension=None, transient=None,
+                max_iterations: int = 40) -> tuple[np.ndarray, np.ndarray, int]:
+    """One Newton solve of ``model``'s equations under its smooth law from the state z0
+    ([u (m), p (Pa)]), with a time step's ``transient`` terms (a march's step):
+    (state, contact forces in N or N/m, iterations). Raises ConvergenceError."""
+    problem = SteadyProblem(model, tension=tension, transient=transient)
+    options = NewtonOptions(max_iterations=max_iterations, round_off_step=ROUND_OFF_STEP)
+    z, report = newton(problem, problem.unknowns(z0), options)
+    z = problem.state(z)
+    return z, problem.F.contact_forces(z, np.zeros(model.n_u, dtype=bool)), report.iterations
+
+
 def flying_start(model: BearingModel) -> np.ndarray:
     """The model's own start (:meth:`BearingModel.initial_state`) with u tapered to 0
     over the outer half of each span (C¹): u = 0 at the pinned ends, where the start's

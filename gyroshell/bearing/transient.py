@@ -176,7 +176,7 @@ def march(start: BearingSolution, *, dt: float, steps: int,
     G = model.tape.G(model.velocity)
     u, p = start.u.copy(), start.p.copy()
     v, a = np.zeros_like(u), np.zeros_like(u)   # at rest, an equilibrium at T(0)
-    phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
+    phi = model.transported(u, p)
     record = _Record(model)
     sol = record(0.0, u, p, start.contact, 0, _tension_at(T, 0.0, floor))
     state = _State(u, p, v, a, phi)
@@ -224,12 +224,21 @@ class _Stepper:
         v_tilde = s.v + (1.0 - gamma) * dt * s.a
         force = _moving_force(self.moving_load, t, model.n_u)
         terms = _StepTerms(model, self.G, dt, beta, gamma, u_tilde, v_tilde, s.phi, force)
-        z, lam, _, info = newton(model, np.concatenate([s.u, s.p]), tension=_tension_at(
-            self.T, t, self.floor), transient=terms, info=NewtonInfo(), active_set=active_set)
+        tension = _tension_at(self.T, t, self.floor)
+        if model.smooth_contact:        # the same physics and Newton as the steady state
+            from .smooth import newton_step
+
+            z, lam, iterations = newton_step(model, np.concatenate([s.u, s.p]),
+                                             tension=tension, transient=terms)
+        else:
+            z, lam, _, info = newton(model, np.concatenate([s.u, s.p]), tension=tension,
+                                     transient=terms, info=NewtonInfo(),
+                                     active_set=active_set)
+            iterations = info.iterations
         u, p = z[:model.n_u], z[model.n_u:]
         a, v = terms.kinematics(u)
-        phi = model.film.transported(model.pressure_field(p), model.spacing_field(u))
-        return _State(u, p, v, a, phi), lam, info.iterations
+        phi = model.transported(u, p)
+        return _State(u, p, v, a, phi), lam, iterations
 
     def advance(self, s: _State, t0: float, dt: float, halvings: int = 0):
         """The state at t0 + dt (s): one step, or, if its Newton fails, two half steps

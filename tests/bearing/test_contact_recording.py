@@ -1,0 +1,155 @@
+"""The head–tape interface at today's spacings: rarefaction, asperity contact and the
+roughness flow factors in the coupled model, against closed forms and independent
+quadratures, and the paths that must not move (the classical film, the hard wall)."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+from gyroshell import TapeParameters
+from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.contact import ComplianceCurve, ContactParameters
+from gyroshell.bearing.head import FlatHead, Module
+from gyroshell.bearing.steady import solve_steady
+from gyroshell.bearing.transient import march
+
+DEG = math.pi / 180.0
+#: Table 1's tape without its hoop stiffness: dry on a cylinder of its own radius it is
+#: pressed on with the wrap pressure T/R and nothing else
+BARE = TapeParameters(foundation_stiffness=0.0)
+ASPERITY = ContactParameters()
+FLAT = FlatHead((Module(1e-3),), 2 * DEG, 2 * DEG, transducers=(0.0,), friction=0.3)
+
+
+def gw_pressure(d: float, contact: ContactParameters) -> float:
+    """Greenwood–Williamson's nominal pressure at the separation d (m), by quadrature of
+    its defining integral over the Gaussian summit heights (Pa)."""
+    s = contact.roughness
+    scale = (4.0 / 3.0) * contact.contact_modulus * contact.asperity_density * math.sqrt(
+        contact.asperity_radius)
+    density = lambda z: math.exp(-0.5 * (z / s) ** 2) / (s * math.sqrt(2.0 * math.pi))  # noqa: E731
+    return scale * quad(lambda z: (z - d) ** 1.5 * density(z), d, d + 40.0 * s,
+                        epsabs=0.0, epsrel=1e-12, limit=200)[0]
+
+
+def _dry_cylinder(contact, nx=None):
+    return BearingModel(BARE, AirParameters(), velocity=0.0, dry=True,
+                        wrap_angle=15 * DEG, infinitely_wide=True, contact=contact, nx=nx)
+
+
+def test_dry_tape_on_its_own_radius_rests_where_the_asperities_carry_the_wrap_pressure():
+    """V = 0, k = 0: the wrapped tape presses on its summits with T/R; in the middle of
+    the wrap, far from the bending layers, p_GW(d) = T/R (quadrature, Brent)."""
+    sol = solve_steady(_dry_cylinder(ASPERITY))
+    target = BARE.tension / BARE.radius
+    d = brentq(lambda x: gw_pressure(x, ASPERITY) - target, -10 * ASPERITY.roughness,
+               20 * ASPERITY.roughness, xtol=1e-18, rtol=1e-14)
+    assert sol.central_spacing == pytest.approx(d, rel=1e-6)
+    wrap = np.abs(sol.x) < 0.25 * BARE.radius * 15 * DEG
+    assert np.allclose(sol.spacing[wrap, 0], d, rtol=1e-5)
+    # the asperities carry the whole wrap load, T θ in the shallow shell, N/m (to the
+    # bending layers' share at the wrap's ends, well under 1 %)
+    assert sol.contact_force == pytest.approx(BARE.tension * 15 * DEG, rel=1e-2)
+
+
+def test_dry_tape_on_a_measured_compliance_curve_rests_at_the_wrap_pressure_point():
+    """The same with a measured curve holding the point (10 nm, T/R): the middle of the
+    wrap rests exactly there, whatever the interpolation does between the points."""
+    target = BARE.tension / BARE.radius
+    curve = ComplianceCurve([0.0, 4e-9, 10e-9, 16e-9, 30e-9],
+                            [2e6, 1e5, target, 300.0, 0.0])
+    sol = solve_steady(_dry_cylinder(ContactParameters(law="compliance", compliance=curve)))
+    assert sol.central_spacing == pytest.approx(10e-9, rel=1e-6)
+
+
+def test_a_vanishing_roughness_tends_to_the_hard_wall():
+    """σ_s → 0 at a fixed pressure scale (4/3) E* η √β σ_s^{3/2}: the dry wrap's spacing
+    d → 0 like σ_s (the summits become a wall at d = 0), its contact force unchanged."""
+    spacings = []
+    for sigma in (8e-9, 4e-9, 2e-9):
+        scale = 6e6 / ((4 / 3) * 5e9 * math.sqrt(10e-6) * sigma**1.5)
+        contact = ContactParameters(roughness=sigma, asperity_density=scale)
+        sol = solve_steady(_dry_cylinder(contact))
+        spacings.append(sol.central_spacing / sigma)
+    # d/σ_s is the same t with p_s F_{3/2}(t) = T/R: d itself halves with σ_s
+    assert spacings[0] == pytest.approx(spacings[1], rel=1e-4)
+    assert spacings[1] == pytest.approx(spacings[2], rel=1e-4)
+
+
+def test_first_order_slip_and_the_hard_wall_are_todays_bearing_bit_for_bit():
+    """--rarefaction first-order --contact hard: the model built before this work (no
+    contact given) to the last bit, over a flat head and a cylinder."""
+    air = AirParameters(rarefaction="first-order", flow_factors="none")
+    hard = ContactParameters(law="hard", roughness=air.roughness)
+    for kw in (dict(head=FLAT), dict(wrap_angle=15 * DEG)):
+        old = solve_steady(BearingModel(TapeParameters(), air, velocity=4.0,
+                                        infinitely_wide=True, **kw))
+        new = solve_steady(BearingModel(TapeParameters(), air, velocity=4.0,
+                                        infinitely_wide=True, contact=hard, **kw))
+        assert np.array_equal(old.u, new.u) and np.array_equal(old.p, new.p)
+
+
+def test_boltzmann_flow_moves_the_cylinder_at_micrometres_by_under_a_percent():
+    """At h ≈ 3 µm (Kn ≈ 0.02) the linearized Boltzmann flow factor is first-order slip
+    with a kinetic slip coefficient (1 + 6.88 Kn): the spacing changes by far less than
+    1 %."""
+    out = {}
+    for model in ("first-order", "fukui-kaneko"):
+        m = BearingModel(TapeParameters(), AirParameters(rarefaction=model), velocity=4.0,
+                         wrap_angle=15 * DEG, infinitely_wide=True)
+        out[model] = solve_steady(m).central_spacing
+    change = out["fukui-kaneko"] / out["first-order"] - 1.0
+    assert 0.0 < abs(change) < 0.01
+
+
+def _flying_flat(**kw):
+    return BearingModel(TapeParameters(), AirParameters(rarefaction="fukui-kaneko",
+                                                        flow_factors="patir-cheng"),
+                        velocity=4.0, head=FLAT, infinitely_wide=True, contact=ASPERITY,
+                        **kw)
+
+
+def test_a_flat_land_rests_on_its_asperities_under_the_sub_ambient_film():
+    """Contact recording: the land's film is sub-ambient and the summits carry it (d a
+    few σ_s); the sharp corners are pressed below the summits' mean plane; the head's
+    friction acts on the asperity force, wherever it is."""
+    sol = solve_steady(_flying_flat())
+    land = np.abs(sol.x) < 0.3e-3
+    assert np.all(sol.pressure[land, 0] < AirParameters().ambient_pressure)
+    d = sol.transducer_lines[0].centre / ASPERITY.roughness
+    assert 1.0 < d < 4.0
+    assert sol.minimum_spacing < 0.0            # the corners: summits compressed past d = 0
+    assert sol.contact_force > 0.0
+    assert sol.friction_drag == pytest.approx(0.3 * sol.contact_force, rel=1e-12)
+    assert sol.range_warnings == []
+
+
+def test_warnings_name_the_models_used_out_of_their_range(cli):
+    """The default hard wall with first-order slip over a flat land: both models out of
+    range, each one warning line and in the JSON's ``warnings``."""
+    run = cli(["bearing", "--head", "flat", "--land-length", "1e-3", "--wrap-in", "2",
+               "--wrap-out", "2", "--transducers", "0", "--velocity", "4",
+               "--infinitely-wide", "--json", "--quiet", "--recession", "1.5e-8"])
+    assert run.code == 0, run.err
+    out = json.loads(run.out)
+    assert len(out["warnings"]) == 2
+    assert "first-order slip" in out["warnings"][0] and "hard wall" in out["warnings"][1]
+    assert sum(line.startswith("gyroshell: warning:") for line in run.err.splitlines()) == 2
+    line = out["magnetic_spacings"][0]
+    assert line["magnetic_spacing"] == pytest.approx(
+        out["transducer_lines"][0]["centre"] + 1.5e-8, rel=1e-12)
+
+
+def test_a_march_from_a_steady_state_on_asperities_stays_there():
+    """The transient runs on the same physics: its steady state is the steady solver's."""
+    sol = solve_steady(_flying_flat())
+    record = march(sol, dt=1e-6, steps=3, progress=False)
+    assert np.allclose(record.final.spacing, sol.spacing, rtol=1e-6,
+                       atol=1e-4 * ASPERITY.roughness)
+    assert np.allclose(record.contact_force, sol.contact_force, rtol=1e-6)
