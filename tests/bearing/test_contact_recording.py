@@ -153,3 +153,17 @@ def test_a_march_from_a_steady_state_on_asperities_stays_there():
     assert np.allclose(record.final.spacing, sol.spacing, rtol=1e-6,
                        atol=1e-4 * ASPERITY.roughness)
     assert np.allclose(record.contact_force, sol.contact_force, rtol=1e-6)
+
+
+def test_a_flat_heads_spacing_follows_the_four_measured_trends():
+    """IBM's measurements over a flat module: the spacing falls with the leading wrap and
+    with the tension, does not depend on the trailing wrap, rises with speed. The
+    Boltzmann film over asperities, its gap the mean gap of the rough tape, gives all four
+    signs; the hard wall with first-order slip gets the leading wrap, the tension and the
+    speed wrong (what the mean gap's leak through the pressed corners changes)."""
+    from gyroshell.bearing.trends import spacing_trends
+
+    trends = spacing_trends()
+    assert [t.sign for t in trends] == [t.measured for t in trends] == [-1, 0, -1, 1]
+    hard = spacing_trends(AirParameters(), None)
+    assert [t.sign for t in hard] == [1, 0, 1, -1]
