@@ -22,6 +22,9 @@ them wrong.
 # %%
 # The four sweeps, under both models
 # ----------------------------------
+# Each sweep solves four designs of the infinitely wide tape on their default grids (about
+# 0.1 s each under the asperities).
+# Full-size: these sweeps are the full case (every point on its default grid).
 import matplotlib.pyplot as plt
 
 from gyroshell.bearing import AirParameters
