@@ -81,7 +81,6 @@ from .head_study import (
     point_model,
 )
 from .points import (
-    BEARING_VARIABLES,
     BOTH_WRAPS,
     HEAD_VARIABLES,
     INTERFACE_VARIABLES,
@@ -437,10 +436,12 @@ def _bearing_plan(base: TapeParameters, velocity: float, pts: list[dict],
     """The bearing setup with its columns, every point's head checked; None without
     ``bearing`` in ``compute`` (then no head variable may vary and no setup be given)."""
     if "bearing" not in compute:
-        heads = [name for name in varied if name in BEARING_VARIABLES]
-        if heads:
-            raise ParameterError(f"{', '.join(heads)}: a head's or the interface's parameters "
-                                 "vary in a bearing study: add compute='bearing'")
+        for group, what in ((HEAD_VARIABLES, "a head's"),
+                            (INTERFACE_VARIABLES, "the head-tape interface's")):
+            names = [name for name in varied if name in group]
+            if names:
+                raise ParameterError(f"{', '.join(names)}: {what} parameters vary in a "
+                                     "bearing study: add compute='bearing'")
         if bearing is not None:
             raise ParameterError("bearing sets up compute='bearing': add it to compute or "
                                  "drop bearing")
