@@ -127,6 +127,17 @@ def _slip_fluxes(pl, pr, hl, hr, spacing, velocity, air) -> FaceFluxes:
         return FaceFluxes(flux, g, -g, d_h)
     p = 0.5 * (pl + pr)
     gamma = p * h**3 + 6.0 * lam * pa * h**2
+    dgamma_dp = 0.5 * h**3
+    dgamma_dh = 0.5 * (3.0 * p * h**2 + 12.0 * lam * pa * h)
+    return _fitted_fluxes(pl, pr, spacing, gamma, c, dgamma_dp, dgamma_dh,
+                          3.0 * mu * velocity)
+
+
+def _fitted_fluxes(pl, pr, spacing, gamma, c, dgamma_dp, dgamma_dh, dc_dh) -> FaceFluxes:
+    """The compressible film's Scharfetter–Gummel face flux (module notes) of the face
+    coefficients Γ and c, and its derivatives from theirs by the face's mean p and h
+    (∂Γ/∂p_L = ∂Γ/∂p_R = ``dgamma_dp``, by either nodal h ``dgamma_dh``; c's by either
+    nodal h ``dc_dh``)."""
     peclet = c * spacing / gamma
     b_plus, db_plus = bernoulli(peclet)
     b_minus, db_minus = bernoulli(-peclet)
@@ -134,11 +145,9 @@ def _slip_fluxes(pl, pr, hl, hr, spacing, velocity, air) -> FaceFluxes:
     flux = g * (b_minus * pl - b_plus * pr)
     f_gamma = ((b_minus + peclet * db_minus) * pl - (b_plus - peclet * db_plus) * pr) / spacing
     f_c = -db_minus * pl - db_plus * pr
-    dgamma_dp = 0.5 * h**3
-    dgamma_dh = 0.5 * (3.0 * p * h**2 + 12.0 * lam * pa * h)
     d_pl = g * b_minus + f_gamma * dgamma_dp
     d_pr = -g * b_plus + f_gamma * dgamma_dp
-    d_h = f_gamma * dgamma_dh + f_c * 3.0 * mu * velocity
+    d_h = f_gamma * dgamma_dh + f_c * dc_dh
     return FaceFluxes(flux, d_pl, d_pr, d_h)
 
 
@@ -171,20 +180,10 @@ def _model_fluxes(pl, pr, hl, hr, spacing, velocity, air, sigma) -> FaceFluxes:
     kn = lam * pa / (p * h) if air.rarefaction != "none" else np.zeros_like(p * h)
     q, dq = poiseuille_flow_factor(air.rarefaction, kn)
     gamma = p * h**3 * q * phi
-    peclet = c * spacing / gamma
-    b_plus, db_plus = bernoulli(peclet)
-    b_minus, db_minus = bernoulli(-peclet)
-    g = gamma / spacing
-    flux = g * (b_minus * pl - b_plus * pr)
-    f_gamma = ((b_minus + peclet * db_minus) * pl - (b_plus - peclet * db_plus) * pr) / spacing
-    f_c = -db_minus * pl - db_plus * pr
     # dKn/dp̄ = −Kn/p̄, dKn/dh̄ = −Kn/h̄; each nodal p or h moves p̄ or h̄ by one half
     dgamma_dp = 0.5 * h**3 * (q - dq * kn) * phi
     dgamma_dh = 0.5 * (p * h**2 * (3.0 * q - dq * kn) * phi + p * h**3 * q * dphi)
-    d_pl = g * b_minus + f_gamma * dgamma_dp
-    d_pr = -g * b_plus + f_gamma * dgamma_dp
-    d_h = f_gamma * dgamma_dh + f_c * dc_dh
-    return FaceFluxes(flux, d_pl, d_pr, d_h)
+    return _fitted_fluxes(pl, pr, spacing, gamma, c, dgamma_dp, dgamma_dh, dc_dh)
 
 
 def scatter_map(rows: np.ndarray, cols: np.ndarray, shape: tuple[int, int]

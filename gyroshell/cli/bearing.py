@@ -31,6 +31,7 @@ from .common import (
     print_json,
     real,
     typed_overrides,
+    warnings_as_lines,
 )
 from .heads import add_head_options, build_head_of, head_design
 from .interface import (
@@ -356,13 +357,11 @@ def _model(args: argparse.Namespace, params, air, velocity: float, head, options
     the head design's model ``options`` (``arc_contact``); a grid coarse enough to be off
     (BearingGridWarning) is one ``gyroshell: warning:`` line. ``nx``, ``ny``: other
     intervals than the arguments'."""
-    import warnings
 
     from ..bearing import BearingModel
     from ..bearing.model import BearingGridWarning
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", BearingGridWarning)
+    with warnings_as_lines(BearingGridWarning):
         model = BearingModel(params, air, velocity=velocity,
                              head=head,
                              infinitely_wide=args.infinitely_wide, span=args.span,
@@ -371,12 +370,6 @@ def _model(args: argparse.Namespace, params, air, velocity: float, head, options
                              grading="uniform" if args.uniform else None,
                              factorization=getattr(args, "factorization", "auto"),
                              **(options or {}))
-    for warning in caught:
-        if issubclass(warning.category, BearingGridWarning):
-            print(f"gyroshell: warning: {warning.message}", file=sys.stderr, flush=True)
-        else:
-            warnings.warn_explicit(warning.message, warning.category, warning.filename,
-                                   warning.lineno)
     return model
 
 

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import re
 import sys
+import warnings
 
 from ..tape.parameters import EDGE_CHOICES, TapeParameters
 
@@ -137,6 +139,21 @@ def parse_velocities(text: str, *, option: str = "--velocities") -> list[float]:
     from ..studies.sweep import parse_velocities as parse
 
     return parse(text, option=option, notice=notice)
+
+
+@contextlib.contextmanager
+def warnings_as_lines(category: type[Warning]):
+    """Within it, warnings of ``category`` become one ``gyroshell: warning:`` line each on
+    stderr (as they are raised, once the block ends); any other warning is raised again."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", category)
+        yield
+    for warning in caught:
+        if issubclass(warning.category, category):
+            print(f"gyroshell: warning: {warning.message}", file=sys.stderr, flush=True)
+        else:
+            warnings.warn_explicit(warning.message, warning.category, warning.filename,
+                                   warning.lineno)
 
 
 def notice(message: str) -> None:

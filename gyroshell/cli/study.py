@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 from pathlib import Path
 
 from ..core.errors import ParameterError
@@ -21,6 +20,7 @@ from .common import (
     print_json,
     real,
     typed_tape_options,
+    warnings_as_lines,
 )
 from .heads import DEGREE_FIELDS, add_head_options, head_design, typed_head_options
 from .interface import add_interface_options, air_of, contact_of, interface_given
@@ -481,21 +481,13 @@ def run_campbell(args: argparse.Namespace) -> int:
 def _tracked_campbell(model, velocities: list[float], args: argparse.Namespace,
                       min_mac: float):
     """The diagram; branches left unlinked are one ``gyroshell: warning:`` line."""
-    import warnings
 
     from ..studies.campbell import CampbellTrackingWarning, campbell
 
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", CampbellTrackingWarning)
+    with warnings_as_lines(CampbellTrackingWarning):
         d = campbell(model, velocities, args.count, min_mac=min_mac,
                      progress=False if args.quiet else None, workers=args.workers,
                      min_step=args.min_step)
-    for warning in caught:
-        if issubclass(warning.category, CampbellTrackingWarning):
-            print(f"gyroshell: warning: {warning.message}", file=sys.stderr, flush=True)
-        else:
-            warnings.warn_explicit(warning.message, warning.category, warning.filename,
-                                   warning.lineno)
     return d
 
 
