@@ -9,16 +9,18 @@ iterations (:class:`SolverOptions`), every iteration counted in the solution's
 
 1. **Direct**: Newton from the flying start (:func:`flying_start`: the flexible-foil or
    corner start, tapered to the pinned ends).
-2. **The law's scale**: the hard wall's state at the roughness σ_s on the same grid
-   (:func:`hard_wall_state`; the law's limit σ_s → 0) continued along the law scaled by
-   s, s p_c(h), from s = 100 (a stiff wall a few σ_s above) down to s = 1
-   (:func:`gyroshell.linalg.continuation.continuation`).
-3. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
+2. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
    without the film), continued in V up from a thousandth of the speed.
+3. **The law's scale**: the hard wall's state at the roughness σ_s (:func:`hard_wall_state`,
+   the law's limit σ_s → 0, solved by the same Newton with the wall as bounds) continued
+   along the law scaled by s, s p_c(h), from s = 100 (a stiff wall a few σ_s above) down
+   to s = 1 (:func:`gyroshell.linalg.continuation.continuation`).
 
-The first two are cheap where they work (tens of iterations); the third follows the
-tape's own path as the film builds up under it, through the collapse of the land's tents
-onto their asperities at low speed (contact recording).
+The first is cheap where it works (tens of iterations); the second follows the tape's own
+path as the film builds up under it, through the collapse of the land's tents onto their
+asperities at low speed (contact recording); the third starts from where the wall puts the
+tape. Every path is bounded by the budget: a design none of them reaches stops with a
+ConvergenceError naming each path's failure.
 """
 
 from __future__ import annotations
@@ -145,10 +147,27 @@ def newton_step(model: BearingModel, z0: np.ndarray, *, tension=None, transient=
     return z, problem.F.contact_forces(z, np.zeros(model.n_u, dtype=bool)), report.iterations
 
 
+def resting_start(model: BearingModel) -> np.ndarray:
+    """[u, p_a]: the dry string lifted to h_eq wherever it is nearer the head, h_eq the
+    spacing at which the law carries the wrap pressure (T − ρV²)/R_c of the sharpest
+    corner's radius R_c (m): the tape resting on its summits as over a cylinder."""
+    from scipy.optimize import brentq
+
+    law, sigma = model.contact_law, model.air.roughness
+    target = model.effective_tension() / model.scale_radius
+    h_eq = brentq(lambda h: law.pressure(h)[0] - target, -50.0 * sigma, 60.0 * sigma,
+                  xtol=1e-3 * sigma)
+    w0 = model.dry_field[1:-1, :].ravel()
+    u = np.maximum(w0, h_eq) - w0
+    return np.concatenate([u, np.full(model.n_p, model.air.ambient_pressure)])
+
+
 def flying_start(model: BearingModel) -> np.ndarray:
     """The model's own start (:meth:`BearingModel.initial_state`) with u tapered to 0
     over the outer half of each span (C¹): u = 0 at the pinned ends, where the start's
-    spacing above the dry gap would otherwise kink the tape."""
+    spacing above the dry gap would otherwise kink the tape; dry, :func:`resting_start`."""
+    if model.dry:
+        return resting_start(model)
     z = np.array(model.initial_state(), dtype=float)
     x = model.x[1:-1]
     t = np.clip(np.minimum(x, model.length - x) / (0.5 * model.span), 0.0, 1.0)
@@ -189,34 +208,44 @@ def scaled_law(model: BearingModel, scale: float) -> BearingModel:
 
 def dry_state(model: BearingModel, budget: _Budget, tension=None) -> np.ndarray:
     """[u, p_a]: the tape at rest on its asperities on ``model``'s grid, by Newton from
-    the dry start with the sharp corners held at σ_s (:meth:`BearingModel.dry_start`)."""
+    the dry start with the sharp corners held at σ_s (:meth:`BearingModel.dry_start`),
+    else from :func:`resting_start`."""
     dry = without_film(model)
-    return budget.solve(dry, dry.dry_start(), budget.options.max_iterations,
-                        tension=tension)
+    try:
+        return budget.solve(dry, dry.dry_start(), budget.options.max_iterations,
+                            tension=tension)
+    except ConvergenceError:
+        return budget.solve(dry, resting_start(dry), budget.options.max_iterations,
+                            tension=tension)
 
 
-def hard_wall_state(model: BearingModel, tension, progress, solve_steady,
+def hard_wall_state(model: BearingModel, budget: _Budget, tension,
                     interpolated_state) -> np.ndarray:
-    """[u, p] of the hard wall at the roughness σ_s on ``model``'s grid (every rounded
-    arc resolved, as the smooth law needs) by ``solve_steady``, interpolated by
-    ``interpolated_state`` if its grid differs."""
+    """[u, p] of the hard wall at the roughness σ_s on ``model``'s head (every rounded arc
+    resolved, as the smooth law needs), by the same generic Newton with the wall as
+    bounds (:class:`.problem.SteadyProblem`), from its flying start; interpolated onto
+    ``model``'s grid by ``interpolated_state`` if its grid differs."""
     from .contact import ContactParameters
+    from .results import BearingSolution
 
     hard = model.rebuilt(contact=ContactParameters(law="hard",
                                                    roughness=model.air.roughness),
                          arc_contact="wrapped")
-    if progress is not None:
-        progress("start: the hard wall at the roughness on the same grid")
-    sol = solve_steady(hard, tension=tension)
+    z = budget.solve(hard, flying_start(hard), budget.options.max_iterations,
+                     tension=tension)
     if np.array_equal(hard.x, model.x) and hard.nc == model.nc:
-        return np.concatenate([sol.u, sol.p])
+        return z
+    sol = BearingSolution(hard, z[:hard.n_u], z[hard.n_u:], np.zeros(hard.n_u),
+                          NewtonInfo())
     return interpolated_state(model, sol)
 
 
-def _law_path(model, budget, tension, progress, hard) -> np.ndarray:
-    """Path 2: the hard wall's state (``hard``: the hard wall's solve and interpolation),
-    then the law's scale from ``law_scale`` to 1."""
-    z = hard_wall_state(model, tension, progress, *hard)
+def _law_path(model, budget, tension, progress, interpolate) -> np.ndarray:
+    """Path 3: the hard wall's state (``interpolate``: a state onto another grid), then
+    the law's scale from ``law_scale`` to 1."""
+    if progress is not None:
+        progress("start: the hard wall at the roughness")
+    z = hard_wall_state(model, budget, tension, interpolate)
 
     def at(scale, state):
         if progress is not None:
@@ -251,13 +280,12 @@ def _speed_path(model, budget, tension, progress) -> np.ndarray:
 
 
 def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
-                 options: SolverOptions | None = None, *, hard_solve,
+                 options: SolverOptions | None = None, *,
                  interpolate) -> BearingSolution:
     """The steady state under the model's smooth contact law (see the module notes):
     Newton from ``z0`` (default :func:`flying_start`), then the law's and the speed's
-    continuations, within ``options.budget`` Newton iterations. ``hard_solve`` and
-    ``interpolate``: the hard wall's steady solve and the interpolation of a state onto
-    another grid (:func:`.steady.solve_steady`, :func:`.steady.interpolated_state`).
+    continuations, within ``options.budget`` Newton iterations. ``interpolate``: the
+    interpolation of a state onto another grid (:func:`.steady.interpolated_state`).
 
     Raises
     ------
@@ -276,8 +304,7 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
              ("the speed from the dry tape",
               lambda: _speed_path(model, budget, tension, progress)),
              ("the law's scale from the hard wall",
-              lambda: _law_path(model, budget, tension, progress,
-                                (hard_solve, interpolate))))
+              lambda: _law_path(model, budget, tension, progress, interpolate)))
     for name, path in paths:
         if budget.left < 1:
             break

@@ -495,7 +495,7 @@ def solve_steady(model: BearingModel, *, z0: np.ndarray | None = None,
         from .smooth import solve_smooth
 
         return solve_smooth(model, z0, tension, progress, iteration_log,
-                            hard_solve=solve_steady, interpolate=interpolated_state)
+                            interpolate=interpolated_state)
     if model.adapt_contacts and model.corner_contacts:   # rounded corners: see .corners
         from .corners import solve_adapting_contacts
 
