@@ -8,7 +8,9 @@ iterations (:class:`SolverOptions`), every iteration counted in the solution's
 :class:`~.results.NewtonInfo`:
 
 1. **Direct**: Newton from the flying start (:func:`flying_start`: the flexible-foil or
-   corner start, tapered to the pinned ends).
+   corner start, tapered to the pinned ends), then from the tape resting on its summits
+   (:func:`resting_start`: over rounded corners, whose arcs the tape lies on, the flying
+   start's film is far from the state).
 2. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
    without the film), continued in V up from a thousandth of the speed.
 3. **The law's scale**: the hard wall's state at the roughness σ_s (:func:`hard_wall_state`,
@@ -58,7 +60,9 @@ class SolverOptions:
         Relative Newton step at which a solve has converged (of the spacing scale, m,
         and the wrap pressure, Pa).
     max_iterations : int
-        Newton iterations of the direct path.
+        Newton iterations of the direct path from the flying start.
+    resting_iterations : int
+        Newton iterations from the resting start (measured: 11-43 over rounded corners).
     stage_iterations : int
         Newton iterations of one continuation stage.
     budget : int
@@ -72,15 +76,16 @@ class SolverOptions:
 
     tol: float = 1e-8
     max_iterations: int = 40
+    resting_iterations: int = 60
     stage_iterations: int = 25
-    budget: int = 400
+    budget: int = 500
     law_scale: float = 100.0
     speed_fraction: float = 1e-3
 
     def __post_init__(self) -> None:
         put = object.__setattr__
         put(self, "tol", validation.real("tol", self.tol, low=0.0, high=1.0, low_open=True))
-        for name in ("max_iterations", "stage_iterations", "budget"):
+        for name in ("max_iterations", "resting_iterations", "stage_iterations", "budget"):
             put(self, name, validation.integer(name, getattr(self, name), low=1))
         put(self, "law_scale", validation.real("law_scale", self.law_scale, low=1.0,
                                                low_open=True))
@@ -301,6 +306,9 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
     paths = (("direct", lambda: budget.solve(model, flying_start(model) if z0 is None
                                              else z0, options.max_iterations,
                                              tension=tension)),
+             ("Newton from the tape resting on its summits",
+              lambda: budget.solve(model, resting_start(model),
+                                   options.resting_iterations, tension=tension)),
              ("the speed from the dry tape",
               lambda: _speed_path(model, budget, tension, progress)),
              ("the law's scale from the hard wall",
