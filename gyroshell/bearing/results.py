@@ -42,13 +42,15 @@ COORDINATE_TOLERANCE = 1e-12
 
 @dataclass
 class NewtonInfo:
-    """What a Newton solve did: iterations, step and residual norms per iteration, the
-    number of nodes in contact per iteration, the wall time (s), the pseudo-time steps
+    """What a Newton solve did: iterations, step and residual norms per iteration, and more.
+
+    The number of nodes in contact per iteration, the wall time (s), the pseudo-time steps
     taken (dimensionless, :func:`pseudo_transient`; empty if Newton reached the state
-    directly), the continuation path (speeds in m/s, empty if none was needed) and, over
-    rounded corners touched at a point (:func:`gyroshell.bearing.corners.
-    solve_adapting_contacts`), the passes that adapted the contacts and how far, in cells,
-    they moved on the last (0 and 0.0 where none were adapted)."""
+    directly), the continuation path (speeds in m/s, empty if none was needed), over
+    rounded corners touched at a point
+    (:func:`gyroshell.bearing.corners.solve_adapting_contacts`) the passes that adapted
+    the contacts and how far, in cells, they moved on the last (0 and 0.0 where none were
+    adapted), and under a smooth contact law the scales of the law's continuation."""
 
     iterations: int = 0
     step_norms: list = field(default_factory=list)
