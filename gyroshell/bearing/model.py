@@ -564,9 +564,12 @@ class BearingModel:
         length = l_bend if self.dry else resolution_length(l_film, l_bend)
         if isinstance(self.head, FlatHead):      # lands, gaps and the wrapped arcs
             radii, turns = self.head.corner_radii(), self.head.corner_turns()
+            # under a smooth law a short arc the tape touches at about a point is
+            # resolved by the corner grading about its centre, not by the whole grid
+            short = self.touching_arcs if self.smooth_contact else ()
             feature = min([self.head.shortest_land()] + [
                 radii[k] * turns[k] for k in self.wrapped_corners
-                if turns[k] >= CORNER_FRACTION * self.wrap_angle])
+                if turns[k] >= CORNER_FRACTION * self.wrap_angle and k not in short])
             length = min(length, FEATURE_RESOLUTION * feature)
         elif not self.cylindrical:
             length = min(length, FEATURE_RESOLUTION
