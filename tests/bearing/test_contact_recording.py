@@ -167,3 +167,24 @@ def test_a_flat_heads_spacing_follows_the_four_measured_trends():
     assert [t.sign for t in trends] == [t.measured for t in trends] == [-1, 0, -1, 1]
     hard = spacing_trends(AirParameters(), None)
     assert [t.sign for t in hard] == [1, 0, 1, -1]
+
+
+def test_the_one_newton_with_the_wall_as_bounds_finds_the_hard_walls_state():
+    """The hard wall as lower bounds h >= σ on the generic Newton (reduced-space active
+    set) reaches the state of the hard wall's own solver: the same complementarity
+    solution, on the same grid, to Newton's tolerance."""
+    from gyroshell.bearing.problem import SteadyProblem
+    from gyroshell.bearing.smooth import flying_start
+    from gyroshell.linalg.newton import NewtonOptions, newton
+
+    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=FLAT,
+                         infinitely_wide=True)
+    legacy = solve_steady(model)
+    problem = SteadyProblem(model)
+    z, report = newton(problem, problem.unknowns(flying_start(model)),
+                       NewtonOptions(max_iterations=40, round_off_step=1e-2))
+    spacing = model.spacing_field(z[:model.n_u])
+    assert report.active_counts[-1] == 2            # the two corners at the wall
+    assert np.allclose(spacing, legacy.spacing, rtol=1e-6, atol=1e-6 * model.air.roughness)
+    assert np.allclose(z[model.n_u:], legacy.p, rtol=0.0,
+                       atol=1e-6 * model.air.ambient_pressure)
