@@ -7,13 +7,14 @@ from __future__ import annotations
 
 import math
 import sys
+import warnings
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from ..bearing import AirParameters, BearingModel
-from ..bearing.model import foil_length_scales
+from ..bearing.model import BearingModelWarning, foil_length_scales
 from ..bearing.steady import solve_steady
 from ..bearing.transient import march, tension_step
 from ..tape.parameters import TapeParameters
@@ -42,15 +43,21 @@ def sweep_rows(settings: Settings, v: float) -> list[dict]:
              "flexible (D, k -> 0), incompressible": (flexible, incompressible)}
     rows = []
     for name, (params, air) in cases.items():
-        model = BearingModel(params, air, velocity=v, wrap_angle=WRAP,
-                             infinitely_wide=True,
-                             nx=settings.pick(1600 if params is flexible else None, 400))
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", BearingModelWarning)
+            model = BearingModel(params, air, velocity=v, wrap_angle=WRAP,
+                                 infinitely_wide=True,
+                                 nx=settings.pick(1600 if params is flexible else None, 400))
         sol = solve_steady(model)
         rows.append(dict(velocity=v, film=name, central_spacing=sol.central_spacing,
                          minimum_spacing=sol.minimum_spacing,
                          foil_law=FOIL_CONSTANT * foil_length_scales(tape, air, v)[0],
                          contact_force=sol.contact_force,
-                         newton_iterations=sol.info.iterations))
+                         newton_iterations=sol.info.iterations,
+                         # the wrap below the smallest the shell's spans allow at this V
+                         # (BearingModel.smallest_valid_wrap): the spacing comes out low
+                         below_valid_wrap=any(issubclass(w.category, BearingModelWarning)
+                                              for w in caught)))
     return rows
 
 
