@@ -37,7 +37,7 @@ LAND = 1e-3
 SWEEPS = (("wrap_in", (1.0, 2.0, 3.0, 4.0), -1), ("wrap_out", (1.0, 2.0, 3.0, 4.0), 0),
           ("tension", (40.0, 60.0, 90.0, 120.0), -1), ("velocity", (2.0, 4.0, 6.0, 8.0), 1))
 #: A change below this fraction of the spacing (0.01 nm here) counts as "does not
-#: depend": the trailing wrap moves it by 1e-4, the speed by 8e-3.
+#: depend": the trailing wrap moves it by 3e-5, the speed by 3e-2.
 INDEPENDENT = 1e-3
 #: The film and contact of the default physics.
 AIR = AirParameters(rarefaction="fukui-kaneko", flow_factors="patir-cheng")

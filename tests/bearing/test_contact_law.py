@@ -390,7 +390,9 @@ def test_replace_keeps_or_restarts_from_the_law_defaults():
 
 
 def test_toml_table_with_units_and_a_curve_beside_the_file(tmp_path):
-    import tomllib
+    from gyroshell.tape.config import _tomllib
+
+    tomllib = _tomllib()      # the standard library's, or tomli on Python 3.10
 
     rows = "\n".join(f"{d!r},{p!r}" for d, p in zip(D_TABLE.tolist(), P_TABLE.tolist(),
                                                     strict=True))

@@ -188,3 +188,18 @@ def test_the_one_newton_with_the_wall_as_bounds_finds_the_hard_walls_state():
     assert np.allclose(spacing, legacy.spacing, rtol=1e-6, atol=1e-6 * model.air.roughness)
     assert np.allclose(z[model.n_u:], legacy.p, rtol=0.0,
                        atol=1e-6 * model.air.ambient_pressure)
+
+
+def test_contact_recording_readings_converge_as_the_grid_is_refined():
+    """The transducer's spacing and the land's pressure on 1, 2 and 4 times the default
+    intervals: the changes shrink (first order: the pressed corners' leak is metered over
+    a few tens of nm, which the corner grading resolves) and are small on the default."""
+    base = _flying_flat()
+    readings = []
+    for factor in (1, 2, 4):
+        sol = solve_steady(base if factor == 1 else base.rebuilt(nx=base.nx * factor))
+        land = np.abs(sol.x) < 0.3e-3
+        readings.append((sol.transducer_lines[0].centre, sol.pressure[land, 0].mean()))
+    h, p = np.array(readings).T
+    assert abs(h[1] - h[2]) < 0.7 * abs(h[0] - h[1])
+    assert abs(h[0] / h[2] - 1.0) < 2e-3 and abs(p[0] / p[2] - 1.0) < 3e-2
