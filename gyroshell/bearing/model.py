@@ -762,11 +762,19 @@ class BearingModel:
         breaks = () if self.cylindrical else self._internal(
             self.head.sharp_corners(self.head_radius) + self.corner_contacts)
         try:
-            return piecewise_line_nodes(self.length, self.nx, x_line, breaks,
-                                        fewest=FEWEST_BETWEEN_CORNERS)
+            x = piecewise_line_nodes(self.length, self.nx, x_line, breaks,
+                                     fewest=FEWEST_BETWEEN_CORNERS)
         except ValueError as exc:
             raise ParameterError(f"nx = {self.nx} is too small for the head: {exc}; use a "
                                  "larger nx (or the default)") from None
+        if not np.all(np.diff(x) > 0.0):
+            # the graded pieces between the head's corners overlap: too few intervals
+            # for the grading (measured: 0.01 deg wraps over a 1 mm land, nx = 1532 of
+            # the default 3064, the coarse start's grid)
+            raise ParameterError(f"nx = {self.nx} is too small for the head's graded grid "
+                                 "(its nodes would not increase along x); use a larger nx "
+                                 "(or the default)")
+        return x
 
     def _checked_span(self, span: float | None, l_film: float, l_bend: float) -> float:
         """The span, m: given (checked) or the default, within [MIN_SPAN_LENGTHS times

@@ -513,7 +513,7 @@ class SteadyProblem:
             # spacing scale): in the spans, tens of µm wide, the Poiseuille terms' round-off
             # would otherwise dwarf a flux sized by the nm spacings of the contact zones
             film = model.film
-            gap = model.dry_field[film.interior] + self.F.h_scale
+            gap = np.maximum(model.dry_field[film.interior], 0.0) + self.F.h_scale
             self.row_scale[n_u:] *= self.F.h_scale / gap
         self.variable_scale = np.concatenate([np.full(n_u, self.F.h_scale),
                                               np.full(n_p, 1.0 if self.log_pressure

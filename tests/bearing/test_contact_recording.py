@@ -203,3 +203,17 @@ def test_contact_recording_readings_converge_as_the_grid_is_refined():
     h, p = np.array(readings).T
     assert abs(h[1] - h[2]) < 0.7 * abs(h[0] - h[1])
     assert abs(h[0] / h[2] - 1.0) < 2e-3 and abs(p[0] / p[2] - 1.0) < 3e-2
+
+
+def test_a_graded_grid_whose_nodes_would_not_increase_is_refused():
+    """0.01° wraps over a 1 mm land, the 2-D grading on too few intervals: the graded
+    pieces between the corners overlap. Refused in one line naming nx (before, the model
+    was built on nodes that went backwards along x, and a coarse start on such a grid
+    gave negative control widths)."""
+    from gyroshell import ParameterError
+    from gyroshell.bearing.model import DEFAULT_GRADING
+
+    head = FlatHead((Module(1e-3),), 0.01 * DEG, 0.01 * DEG)
+    with pytest.raises(ParameterError, match=r"nx = 764 is too small for the head's graded"):
+        BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=head,
+                     infinitely_wide=True, grading=DEFAULT_GRADING, nx=764)
