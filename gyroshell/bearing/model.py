@@ -877,13 +877,17 @@ class BearingModel:
         if self.wrap_angle >= limit:
             return
         share = HOOP_SPAN_SHARE * limit / self.wrap_angle
+        below = (f"below {math.degrees(limit):.3g} deg" if limit <= 0.5 * math.pi
+                 else "below every wrap a cylinder allows (90 deg at most)")
         warnings.warn(
-            f"a wrap of {math.degrees(self.wrap_angle):.3g} deg is below "
-            f"{math.degrees(limit):.3g} deg, where this model stops holding: it keeps the "
+            f"a wrap of {math.degrees(self.wrap_angle):.3g} deg is {below}, where this "
+            f"model stops holding: it keeps the "
             f"wrapped shell's hoop stiffness k = {self.params.k:.3g} N/m^3 on the straight "
             f"spans, which then hold the tape up with up to {share:.2g} times the wrap load "
-            "(T - rho V^2) theta, so the spacing comes out too low; use a larger wrap "
-            "(or a flat or profile head, whose spans have no hoop stiffness)",
+            "(T - rho V^2) theta, so the spacing comes out too low; "
+            + ("use a larger wrap (or a flat or profile head, whose spans have no hoop "
+               "stiffness)" if limit <= 0.5 * math.pi else
+               "use a flat or profile head, whose spans have no hoop stiffness"),
             BearingModelWarning, stacklevel=3)
 
     def _warn_unresolved_profile(self) -> None:
