@@ -26,7 +26,7 @@ from ..core.errors import ParameterError
 from ..linalg.factorization import check_pattern_lu
 from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
-from .air import AIR_VISCOSITY, ROUGHNESS_RANGE, AirParameters
+from .air import AIR_VISCOSITY, ROUGHNESS_RANGE, AirParameters, flow_factors_for
 from .contact import ContactParameters
 from .film import DryFilm, Film
 from .head import (
@@ -188,21 +188,25 @@ def smooth_floor(h: np.ndarray, floor: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _resolved_contact(contact, air: AirParameters):
-    """(contact, air) of the constructor: the contact parameters (default: the hard wall
-    at the air's ``roughness``) and the air with its ``roughness`` set to the contact's
-    σ_s (the one roughness the grid, the starts and the film's floor are sized by)."""
-    if contact is None:
-        return default_contact(air), air
+    """(contact, air) of the constructor: the contact parameters (default
+    :func:`default_contact`) and the air with its ``roughness`` set to the contact's
+    length (the one roughness the grid, the starts and the film's floor are sized by) and
+    its ``"auto"`` flow factors resolved (Patir–Cheng's under the asperity law)."""
+    contact = default_contact(air) if contact is None else contact
     contact = validation.instance("contact", contact, ContactParameters)
     scale = contact_length(contact)
     if scale != air.roughness:
         air = air.replace(roughness=scale)
-    return contact, air
+    return contact, flow_factors_for(air, contact.law == "asperity")
 
 
 def default_contact(air: AirParameters) -> ContactParameters:
-    """The contact of ``contact=None``: the hard wall at the air's ``roughness``."""
-    return ContactParameters(law="hard", roughness=air.roughness)
+    """The contact of ``contact=None``: Greenwood–Williamson asperities of a modern data
+    tape (:class:`~.contact.ContactParameters`' defaults), with σ_s the air's
+    ``roughness`` if given."""
+    if air.roughness is None:
+        return ContactParameters(law="asperity")
+    return ContactParameters(law="asperity", roughness=air.roughness)
 
 
 def contact_length(contact: ContactParameters) -> float:

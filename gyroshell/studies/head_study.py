@@ -63,8 +63,10 @@ LEADING = ("central_spacing", "minimum_spacing")
 #: ... and after them.
 TRAILING = ("contact_force", "viscous_drag", "friction_drag", "drag", "tension_rise",
             "tension_ratio", "newton_iterations")
-#: The values each bearing column may take: (lowest, unit) (NaN is always allowed).
-NUMBER_RANGES = {"spacing": (0.0, "m"), "tent_height": (-math.inf, "m"),
+#: The values each bearing column may take: (lowest, unit) (NaN is always allowed). A
+#: spacing is measured to the mean plane of the tape's summits: under asperity contact a
+#: pressed corner takes it below zero.
+NUMBER_RANGES = {"spacing": (-math.inf, "m"), "tent_height": (-math.inf, "m"),
                  "tent_x": (-math.inf, "m"), "force": (0.0, "N or N/m"),
                  "contact_force": (0.0, "N or N/m"), "viscous_drag": (-math.inf, "N or N/m"),
                  "friction_drag": (0.0, "N or N/m"), "drag": (-math.inf, "N or N/m"),

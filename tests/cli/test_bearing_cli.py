@@ -7,6 +7,7 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
+from bearing_cases import LEGACY_CLI
 
 from gyroshell.cli import main
 
@@ -56,7 +57,7 @@ def test_two_dimensional_json_files_and_plot(capsys, tmp_path):
 
 
 def test_uniform_grid_option(capsys):
-    out = _json(capsys, ["bearing", "--velocity", "4", "--nx", "80", "--ny", "10",
+    out = _json(capsys, ["bearing", *LEGACY_CLI, "--velocity", "4", "--nx", "80", "--ny", "10",
                          "--uniform", "--json"])
     assert not out["graded"]
     assert out["finest_y_spacing"] == pytest.approx(6.35e-3 / 10, rel=1e-12)
@@ -127,7 +128,7 @@ def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
         raise ConvergenceError("Newton did not converge in 60 iterations")
 
     monkeypatch.setattr(steady, "newton", failing)
-    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40",
+    assert main(["bearing", *LEGACY_CLI, "--velocity", "4", "--infinitely-wide", "--nx", "40",
                  "--quiet"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no steady flying state" in err[0]
@@ -143,7 +144,7 @@ def test_unreachable_state_reports_each_stage_before_the_error(capsys, monkeypat
         raise ConvergenceError("Newton did not converge in 60 iterations")
 
     monkeypatch.setattr(steady, "newton", failing)
-    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
+    assert main(["bearing", *LEGACY_CLI, "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert all(line.startswith("gyroshell bearing: ") for line in err[:-1])
     assert "unknowns; estimated" in err[0]
