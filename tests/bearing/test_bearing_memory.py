@@ -31,19 +31,22 @@ PEAK = r"""
 import json, math, re, sys
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel, budget
+from gyroshell.bearing.contact import ContactParameters
 from gyroshell.bearing.steady import solve_steady
 case = json.loads(sys.argv[1])
+air, hard = AirParameters(rarefaction="first-order"), ContactParameters(law="hard")
 wrap = math.radians(15.0)
-solve_steady(BearingModel(TapeParameters(), velocity=4.0, wrap_angle=wrap, nx=60,
-                          infinitely_wide=True))
+solve_steady(BearingModel(TapeParameters(), air, velocity=4.0, wrap_angle=wrap, nx=60,
+                          infinitely_wide=True, contact=hard))
 def status(key):
     with open("/proc/self/status") as f:
         return 1024.0 * int(re.search(key + r":\s+(\d+)", f.read()).group(1))
 with open("/proc/self/clear_refs", "w") as f:
     f.write("5")
 base = status("VmRSS")
-model = BearingModel(TapeParameters(width=case["width"]), AirParameters(), velocity=4.0,
-                     wrap_angle=wrap, nx=case["nx"], ny=case["ny"], span=case["span"])
+model = BearingModel(TapeParameters(width=case["width"]), air, velocity=4.0,
+                     wrap_angle=wrap, nx=case["nx"], ny=case["ny"], span=case["span"],
+                     contact=hard)
 solve_steady(model)
 print(json.dumps({"measured": status("VmHWM") - base,
                   "estimate": budget.steady_bytes(model.nx, model.ny, model.factorization)}))
