@@ -264,13 +264,17 @@ class BearingSolution(Result, kind="bearing"):
     def shear_stress(self) -> np.ndarray:
         """The air's shear stress on the tape, Pa, on every node, shape (nx + 1, nc);
         > 0 resists the tape's motion, whichever way it runs: sign(V) (μV/(h + 2λ_e) +
-        (h/2) ∂p/∂x) with first-order slip
+        (h/2) ∂p/∂x) with the rarefaction model's slip length, h the gap the film sees
+        (under the asperity law the mean gap)
         (:func:`gyroshell.bearing.readings.shear_stress`); 0 for a dry model (no air
         film)."""
         m = self.model
         if m.dry:
             return np.zeros_like(self.spacing)
-        h = np.maximum(self.spacing, _FILM_FLOOR * m.air.roughness)   # as the film does
+        if m.smooth_contact:
+            h = m.film_spacing(self.spacing)[0]
+        else:
+            h = np.maximum(self.spacing, _FILM_FLOOR * m.air.roughness)  # as the film does
         return readings.shear_stress(self.x, h, self.pressure, m.velocity, m.air)
 
     @cached_property

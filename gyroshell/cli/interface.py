@@ -31,8 +31,8 @@ FILM_OPTIONS = {"rarefaction": "--rarefaction", "flow_factors": "--flow-factors"
 def add_interface_options(p: argparse.ArgumentParser, *, single: bool = True) -> None:
     """The film models and the contact options; ``single`` (the single bearing command,
     not a study): also --dry and --recession."""
-    from ..bearing.contact import CONTACT_LAWS
     from ..bearing.air import FLOW_FACTOR_CHOICES
+    from ..bearing.contact import CONTACT_LAWS
     from ..bearing.rarefaction import RAREFACTION_MODELS
 
     g = p.add_argument_group("air film models")

@@ -102,6 +102,25 @@ def test_shear_resists_a_reversed_tape_from_the_same_slip_profile(gradient):
         assert np.allclose(tau, MU * V / (h + 2 * lam), rtol=1e-12, atol=0)
 
 
+@pytest.mark.parametrize("rarefaction", ["none", "first-order", "second-order",
+                                         "fukui-kaneko"])
+def test_couette_shear_slips_by_the_rarefaction_models_own_slip_length(rarefaction):
+    """The Couette shear μV/(h + 2ζλ) takes the slip length ζλ whose Poiseuille flow is
+    the model's first-order term: ζ = (Q − 1)/(6 Kn) as Kn → 0, read off the model's Q
+    (Richardson-extrapolated from Kn = 1e-4, 2e-4): 0 without slip, 1 for Maxwell's slip,
+    1.147 for the Boltzmann flow rate."""
+    from gyroshell.bearing.rarefaction import poiseuille_flow_factor
+
+    slope = [(poiseuille_flow_factor(rarefaction, kn)[0] - 1.0) / (6.0 * kn)
+             for kn in (1e-4, 2e-4)]
+    zeta = float(2.0 * slope[0] - slope[1])
+    h, lam = 0.15e-6, 64e-9
+    air = AirParameters(mean_free_path=lam, compressible=False, rarefaction=rarefaction)
+    x = np.linspace(0.0, 4e-6, 5)
+    tau = readings.shear_stress(x, np.full((5, 1), h), np.full((5, 1), PA), V, air)
+    assert np.allclose(tau, MU * V / (h + 2.0 * zeta * lam), rtol=1e-6, atol=0)
+
+
 def test_plane_poiseuille_part_with_a_linear_pressure():
     x = _graded(2e-3, 48)
     h0, g = 0.3e-6, -2e8                  # Pa/m: pressure falling along the motion
