@@ -35,6 +35,9 @@ RAREFACTION = "fukui-kaneko"
 FLOW_FACTORS = "auto"
 #: The film's flow-factor choices: ``"auto"`` and the models of :mod:`.flow_factors`.
 FLOW_FACTOR_CHOICES = ("auto", *FLOW_FACTOR_MODELS)
+#: The film of a result written before the rarefaction and flow-factor models (its air
+#: without those keys): first-order slip, no flow factors, as it was computed.
+LEGACY_AIR = {"rarefaction": "first-order", "flow_factors": "none"}
 #: The hard wall's gap of the legacy contact (``ContactParameters(law="hard")``), m.
 ROUGHNESS = 20.0e-9
 

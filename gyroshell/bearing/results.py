@@ -24,7 +24,7 @@ from ..core.errors import ParameterError
 from ..results import layout
 from ..results.base import Result, dataset, from_json, params_from
 from . import readings
-from .air import AirParameters
+from .air import LEGACY_AIR, AirParameters
 from .contact import ContactParameters
 from .head import FlatHead, head_from_dict
 from .mesh import Grading
@@ -630,6 +630,7 @@ def _settings(model: BearingModel) -> dict:
 #: The keys of a file's ``model`` attribute (``grading``, ``head``, ``dry`` and
 #: ``contact`` may be absent: older files, whose head is the cylinder of ``wrap_angle``,
 #: flying, its contact the hard wall at the air's roughness).
+
 _SETTINGS = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny")
 _OPTIONAL_SETTINGS = ("grading", "head", "dry", "corner_contacts", "arc_contact", "contact")
 
@@ -689,12 +690,15 @@ def _model_from(ds, prefix: str = "") -> BearingModel:
     if "head" in settings:      # the head rebuilds the wrap
         settings["head"] = head_from_dict(settings["head"])
         del settings["wrap_angle"]
+    air = {**LEGACY_AIR, **_stored_dict(a, "air",
+                                        [f.name for f in dataclasses.fields(AirParameters)])}
     if "contact" in settings:
         if not isinstance(settings["contact"], dict):
             raise ParameterError(f"the file's contact must be an object, got "
                                  f"{settings['contact']!r}")
         settings["contact"] = ContactParameters.from_dict(settings["contact"])
-    air = _stored_dict(a, "air", [f.name for f in dataclasses.fields(AirParameters)])
+    else:     # written before contact laws: the hard wall at the stored roughness
+        settings["contact"] = ContactParameters(law="hard", roughness=air.get("roughness"))
     with warnings.catch_warnings():   # the grid was the saver's choice: no warning on load
         warnings.simplefilter("ignore", BearingGridWarning)
         model = BearingModel(params_from(a), AirParameters(**air), **settings)
