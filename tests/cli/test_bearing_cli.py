@@ -30,7 +30,8 @@ def test_infinitely_wide_json(capsys):
 def test_touch_down_reported_in_json(capsys):
     """A slow 3 mm tape touches down: the JSON reports the contact force and nodes, the
     minimum at the roughness height, and that Newton reached it directly."""
-    out = _json(capsys, ["bearing", "--velocity", "0.2", "--wrap-angle", "15", "--width",
+    out = _json(capsys, ["bearing", *LEGACY_CLI, "--velocity", "0.2", "--wrap-angle", "15",
+                         "--width",
                          "3e-3", "--nx", "160", "--ny", "48", "--json"])
     assert out["contact_force"] > 0.0 and out["contact_nodes"] > 0
     assert out["minimum_spacing"] == pytest.approx(out["roughness"], rel=1e-9)

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from bearing_cases import FIRST_ORDER, HARD
+from bearing_cases import FIRST_ORDER, HARD, LEGACY_CLI
 from convergence import observed_order
 
 from gyroshell import TapeParameters
@@ -120,7 +120,8 @@ def test_rounded_corners_tend_to_the_sharp_corner_as_the_radius_vanishes(study):
 @pytest.mark.slow
 def test_the_command_line_study_gives_the_same_rows(cli, tmp_path, study):
     out = tmp_path / "radii.csv"
-    run = cli(["study", "--compute", "bearing", "--head", "flat", "--land-length", "1e-3",
+    run = cli(["study", "--compute", "bearing", *LEGACY_CLI, "--head", "flat", "--land-length",
+               "1e-3",
                "--wrap-in", "2", "--wrap-out", "2", "--transducers", "0",
                "--infinitely-wide", "--vary", "corner_radius=" + ",".join(map(str, RADII)),
                "--velocity", VELOCITY, "--workers", "1", "--out", out, "--quiet"])
