@@ -10,18 +10,28 @@ from scipy.optimize import brentq
 
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing.contact import ContactParameters
+
+#: The head–tape interface the solver had before the contact-recording models (and the
+#: tests of its mechanisms: contact sets, point contacts on rounded corners, the foil
+#: bearing's closed forms): first-order slip (flow factors "auto" resolve to none under
+#: the hard wall) and a hard wall at a 20 nm gap.
+FIRST_ORDER = AirParameters(rarefaction="first-order")
+HARD = ContactParameters(law="hard")
+#: The same on the command line.
+LEGACY_CLI = ["--rarefaction", "first-order", "--contact", "hard"]
 
 #: A perfectly flexible tape: D so small that the bending length √(D/T) is 0.1 µm.
 FLEXIBLE = TapeParameters(bending_rigidity=1e-12, foundation_stiffness=0.0)
 #: Incompressible film without slip: the classical foil-bearing film.
-CLASSICAL_AIR = AirParameters(compressible=False, mean_free_path=0.0)
+CLASSICAL_AIR = AirParameters(compressible=False, mean_free_path=0.0, rarefaction="first-order")
 WRAP = math.radians(15.0)
 
 
 def flexible_model(nx: int = 1600, *, velocity: float = 4.0, air=CLASSICAL_AIR,
                    params=FLEXIBLE, wrap_angle: float = WRAP) -> BearingModel:
     return BearingModel(params, air, velocity=velocity, wrap_angle=wrap_angle,
-                        infinitely_wide=True, nx=nx)
+                        infinitely_wide=True, nx=nx, contact=HARD)
 
 
 def foil_scale(model: BearingModel) -> float:
@@ -81,3 +91,4 @@ def flux_spread_1d(sol) -> tuple[float, float, float]:
     h, p = 0.5 * (H[1:] + H[:-1]), 0.5 * (P[1:] + P[:-1])
     terms = (p * h**3 + 6 * air.mean_free_path * air.ambient_pressure * h**2) * p / np.diff(m.x)
     return float(np.max(np.abs(flux - flux[0]))), float(terms.max()), float(abs(flux[0]))
+

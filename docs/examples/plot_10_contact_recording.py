@@ -28,10 +28,12 @@ them wrong.
 import matplotlib.pyplot as plt
 
 from gyroshell.bearing import AirParameters
+from gyroshell.bearing.contact import ContactParameters
 from gyroshell.bearing.trends import spacing_trends
 
-models = {"Boltzmann film, asperities": spacing_trends(),
-          "first-order slip, hard wall at 20 nm": spacing_trends(AirParameters(), None)}
+legacy = (AirParameters(rarefaction="first-order"), ContactParameters(law="hard"))
+models = {"Boltzmann film, asperities (the defaults)": spacing_trends(),
+          "first-order slip, hard wall at 20 nm": spacing_trends(*legacy)}
 units = {"wrap_in": "leading wrap (deg)", "wrap_out": "trailing wrap (deg)",
          "tension": "tension (N/m)", "velocity": "speed (m/s)"}
 words = {-1: "falls", 0: "does not depend", 1: "rises"}

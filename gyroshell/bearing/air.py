@@ -28,10 +28,17 @@ AMBIENT_PRESSURE = 101325.0
 #: Mean free path of air molecules at 20 °C and one atmosphere, m.
 MEAN_FREE_PATH = 64.0e-9
 #: The film's rarefaction model (:mod:`.rarefaction`) and roughness flow factors
-#: (:mod:`.flow_factors`) by default.
-RAREFACTION = "first-order"
-FLOW_FACTORS = "none"
-#: Combined surface roughness below which tape and head touch, m.
+#: (:mod:`.flow_factors`) by default: the Boltzmann flow rate, valid at every Knudsen
+#: number, and ``"auto"`` flow factors, Patir–Cheng's wherever the film knows the
+#: summits' roughness σ_s (asperity contact), none otherwise (:func:`flow_factors_for`).
+RAREFACTION = "fukui-kaneko"
+FLOW_FACTORS = "auto"
+#: The film's flow-factor choices: ``"auto"`` and the models of :mod:`.flow_factors`.
+FLOW_FACTOR_CHOICES = ("auto", *FLOW_FACTOR_MODELS)
+#: The film of a result written before the rarefaction and flow-factor models (its air
+#: without those keys): first-order slip, no flow factors, as it was computed.
+LEGACY_AIR = {"rarefaction": "first-order", "flow_factors": "none"}
+#: The hard wall's gap of the legacy contact (``ContactParameters(law="hard")``), m.
 ROUGHNESS = 20.0e-9
 
 
@@ -52,10 +59,11 @@ class AirParameters:
     compressible : bool
         Compressible (isothermal ideal gas, p h transported) or incompressible Reynolds
         equation (p h → h in the flux and the sources).
-    roughness : float
-        Combined surface roughness σ, m (> 0), in [1e-12, 1e-4]: the spacing never drops
-        below it; where it would, the tape touches the head and a contact force holds it
-        at h = σ.
+    roughness : float or None
+        The contact's length scale σ, m, in [1e-12, 1e-4], or None (the default): the
+        contact law's. A :class:`~.model.BearingModel` sets it from its contact
+        (:class:`~.contact.ContactParameters`): the summits' σ_s of the asperity law, the
+        hard wall's gap. Given with ``contact=None``, it is the asperity law's σ_s.
     rarefaction : str
         The Poiseuille flow factor Q(Kn) multiplying the pressure-driven flux
         (:mod:`.rarefaction`): ``"first-order"`` slip, Q = 1 + 6 Kn (Burgdorfer 1959; good
@@ -67,14 +75,16 @@ class AirParameters:
         (Patir & Cheng 1978, 1979; isotropic roughness, the pressure flow factor φ_x(h/σ)
         and the shear flow factor Φ_s(h/σ), fitted for h/σ > 0.5 and mattering below
         h/σ ≈ 4; the film then needs its roughness σ, see :class:`.film.Film`) or
-        ``"none"`` (φ_x = 1, Φ_s = 0).
+        ``"none"`` (φ_x = 1, Φ_s = 0); ``"auto"`` (the default): Patir–Cheng's under
+        the asperity contact law, whose σ_s the film then uses, none under the hard wall
+        or a measured compliance curve (:func:`flow_factors_for`).
     """
 
     viscosity: float = AIR_VISCOSITY
     ambient_pressure: float = AMBIENT_PRESSURE
     mean_free_path: float = MEAN_FREE_PATH
     compressible: bool = True
-    roughness: float = ROUGHNESS
+    roughness: float | None = None
     rarefaction: str = RAREFACTION
     flow_factors: str = FLOW_FACTORS
 
@@ -83,22 +93,33 @@ class AirParameters:
         for name, (low, high), unit in (("viscosity", VISCOSITY_RANGE, "Pa*s"),
                                         ("ambient_pressure", AMBIENT_PRESSURE_RANGE, "Pa"),
                                         ("roughness", ROUGHNESS_RANGE, "m")):
+            if name == "roughness" and self.roughness is None:
+                continue
             put(self, name, validation.real(name, getattr(self, name), low=low, high=high,
                                             unit=unit))
         put(self, "mean_free_path", validation.real(
             "mean_free_path", self.mean_free_path, low=0.0, high=MEAN_FREE_PATH_MAX, unit="m"))
         put(self, "compressible", validation.boolean("compressible", self.compressible))
         validation.choice("rarefaction", self.rarefaction, RAREFACTION_MODELS)
-        validation.choice("flow_factors", self.flow_factors, FLOW_FACTOR_MODELS)
+        validation.choice("flow_factors", self.flow_factors, FLOW_FACTOR_CHOICES)
 
     def replace(self, **changes: object) -> AirParameters:
         """A copy with some fields changed (validated again)."""
         return replace(self, **changes)
 
 
+def flow_factors_for(air: AirParameters, summits: bool) -> AirParameters:
+    """``air`` with ``"auto"`` flow factors resolved: ``"patir-cheng"`` if the film knows
+    the summits' roughness σ_s (``summits``: asperity contact, or a film given its
+    roughness), else ``"none"``; any other choice unchanged."""
+    if air.flow_factors != "auto":
+        return air
+    return air.replace(flow_factors="patir-cheng" if summits else "none")
+
+
 #: The numbers of an ``[air]`` table and their SI units.
 _AIR_UNITS = {"viscosity": "Pa*s", "ambient_pressure": "Pa", "mean_free_path": "m"}
-_AIR_CHOICES = {"rarefaction": RAREFACTION_MODELS, "flow_factors": FLOW_FACTOR_MODELS}
+_AIR_CHOICES = {"rarefaction": RAREFACTION_MODELS, "flow_factors": FLOW_FACTOR_CHOICES}
 
 
 def air_changes_from_table(table, where: str = "") -> dict:
@@ -110,7 +131,7 @@ def air_changes_from_table(table, where: str = "") -> dict:
         mean_free_path = "64 nm"
         compressible = true
         rarefaction = "fukui-kaneko"    # or first-order, second-order, none
-        flow_factors = "patir-cheng"    # or none
+        flow_factors = "patir-cheng"    # or none, auto
 
     ``where`` names the file in messages (``"run.toml: "``). Raises ParameterError in one
     line naming the file and the key (an unknown key lists the allowed ones)."""

@@ -43,7 +43,7 @@ import scipy.sparse as sp
 
 from ..core import validation
 from ..core.errors import ParameterError
-from .air import ROUGHNESS_RANGE, AirParameters
+from .air import ROUGHNESS_RANGE, AirParameters, flow_factors_for
 from .flow_factors import pressure_flow_factor, shear_flow_factor
 from .rarefaction import poiseuille_flow_factor
 
@@ -95,6 +95,7 @@ def face_fluxes(pl, pr, hl, hr, spacing: float, velocity: float, air: AirParamet
     ``"patir-cheng"`` (ignored otherwise). Pressures (Pa) must be positive in the
     compressible film unless the model is first-order slip without flow factors.
     """
+    air = flow_factors_for(air, roughness is not None)
     if air.rarefaction == "first-order" and air.flow_factors == "none":
         return _slip_fluxes(pl, pr, hl, hr, spacing, velocity, air)
     return _model_fluxes(pl, pr, hl, hr, spacing, velocity, air,
@@ -241,6 +242,7 @@ class Film:
     def __init__(self, nx: int, nc: int, hx: float, hy: float | None, air: AirParameters,
                  velocity: float, *, roughness: float | None = None) -> None:
         self.nx, self.nc = nx, nc
+        air = flow_factors_for(air, roughness is not None)
         self.roughness = _flow_roughness(air, roughness)
         self.hx = np.broadcast_to(np.asarray(hx, dtype=float), (nx,)).copy()
         self.hy = (None if hy is None

@@ -13,6 +13,7 @@ assembled exactly: K, the coupling −W, and the film's ∂r_p/∂p, ∂r_p/∂h
 
 from __future__ import annotations
 
+import contextvars
 import math
 import warnings
 from dataclasses import replace
@@ -26,7 +27,7 @@ from ..core.errors import ParameterError
 from ..linalg.factorization import check_pattern_lu
 from ..tape.parameters import MIN_INTERVALS_ACROSS, TapeParameters
 from . import budget
-from .air import AIR_VISCOSITY, ROUGHNESS_RANGE, AirParameters
+from .air import AIR_VISCOSITY, ROUGHNESS_RANGE, AirParameters, flow_factors_for
 from .contact import ContactParameters
 from .film import DryFilm, Film
 from .head import (
@@ -188,21 +189,25 @@ def smooth_floor(h: np.ndarray, floor: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _resolved_contact(contact, air: AirParameters):
-    """(contact, air) of the constructor: the contact parameters (default: the hard wall
-    at the air's ``roughness``) and the air with its ``roughness`` set to the contact's
-    σ_s (the one roughness the grid, the starts and the film's floor are sized by)."""
-    if contact is None:
-        return default_contact(air), air
+    """(contact, air) of the constructor: the contact parameters (default
+    :func:`default_contact`) and the air with its ``roughness`` set to the contact's
+    length (the one roughness the grid, the starts and the film's floor are sized by) and
+    its ``"auto"`` flow factors resolved (Patir–Cheng's under the asperity law)."""
+    contact = default_contact(air) if contact is None else contact
     contact = validation.instance("contact", contact, ContactParameters)
     scale = contact_length(contact)
     if scale != air.roughness:
         air = air.replace(roughness=scale)
-    return contact, air
+    return contact, flow_factors_for(air, contact.law == "asperity")
 
 
 def default_contact(air: AirParameters) -> ContactParameters:
-    """The contact of ``contact=None``: the hard wall at the air's ``roughness``."""
-    return ContactParameters(law="hard", roughness=air.roughness)
+    """The contact of ``contact=None``: Greenwood–Williamson asperities of a modern data
+    tape (:class:`~.contact.ContactParameters`' defaults), with σ_s the air's
+    ``roughness`` if given."""
+    if air.roughness is None:
+        return ContactParameters(law="asperity")
+    return ContactParameters(law="asperity", roughness=air.roughness)
 
 
 def contact_length(contact: ContactParameters) -> float:
@@ -219,6 +224,11 @@ def contact_length(contact: ContactParameters) -> float:
 #: The contact floor of the rounded arcs' nodes other than the contact node, m: far below
 #: any spacing (they never enter the contact set; :attr:`BearingModel.contact_floor`).
 NO_CONTACT_FLOOR = -1.0
+
+
+#: Set while :meth:`BearingModel.at_velocity` builds a continuation stage.
+_CONTINUATION_STAGE: contextvars.ContextVar[bool] = contextvars.ContextVar(
+    "continuation_stage", default=False)
 
 
 class BearingGridWarning(UserWarning):
@@ -841,8 +851,10 @@ class BearingModel:
         """Refuse an x-grid coarser than MAX_FILM_SPACING film lengths within a film length
         of the wrap's corners, the film's entrance and exit (see :data:`MAX_FILM_SPACING`;
         the plateau between them may be coarser). A tape whose flexible-foil spacing is
-        below the roughness lies on the head: it has no film to resolve."""
-        if self.dry or self.h_guess / _FOIL_GUESS < self.air.roughness:
+        below the roughness lies on the head: it has no film to resolve; a continuation
+        stage's grid is the final speed's (:meth:`at_velocity`)."""
+        if (self.dry or self.h_guess / _FOIL_GUESS < self.air.roughness
+                or _CONTINUATION_STAGE.get()):
             return
         mid = 0.5 * (self.x[1:] + self.x[:-1])
         corners = np.array(self._internal(self.head.corners(self.head_radius)))
@@ -1136,8 +1148,14 @@ class BearingModel:
         return sp.block_diag(blocks, format="csr"), np.concatenate(rows)
 
     def at_velocity(self, velocity: float) -> BearingModel:
-        """The same tape, head and grid at another speed V, m/s (for continuation)."""
-        return self.rebuilt(velocity=velocity)
+        """The same tape, head and grid at another speed V, m/s (for continuation): a
+        stage on the way to this model's speed, so its grid is not refused for a film
+        too short for it at that speed (the check is the final speed's)."""
+        token = _CONTINUATION_STAGE.set(True)
+        try:
+            return self.rebuilt(velocity=velocity)
+        finally:
+            _CONTINUATION_STAGE.reset(token)
 
     def rebuilt(self, **changes) -> BearingModel:
         """The same model with some constructor arguments changed (velocity, nx, ny,

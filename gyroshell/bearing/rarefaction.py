@@ -61,6 +61,13 @@ BLEND_HALF_WIDTH = 0.1
 KNUDSEN_LIMITS = {"first-order": 0.5, "second-order": 1.0, "none": 0.05}
 
 _SQRT_PI = math.sqrt(math.pi)
+#: The velocity-slip length of each model at the walls, in (local) mean free paths: ζ of
+#: the small-Kn limit Q ≈ 1 + 6 ζ Kn, the slip u_s = ζ λ ∂u/∂z whose Poiseuille flow that
+#: term is. The readings' Couette shear μV/(h + 2ζλ) uses it (:func:`.readings.
+#: shear_stress`): Maxwell's ζ = 1 for the slip models, the kinetic slip coefficient
+#: 1.0162 · 2/√π = 1.147 for the Boltzmann flow rate (its large-D limit), 0 without slip.
+SLIP_COEFFICIENTS = {"first-order": 1.0, "second-order": 1.0,
+                     "fukui-kaneko": FUKUI_KANEKO_FIT[0][1][1] * 2.0 / _SQRT_PI, "none": 0.0}
 #: Breaks of the fit in x = 1/D, increasing.
 _BREAKS = tuple(1.0 / low for low, _ in FUKUI_KANEKO_FIT)
 

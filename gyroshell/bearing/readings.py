@@ -418,7 +418,11 @@ def shear_stress(x, spacing, pressure, velocity: float, air) -> np.ndarray:
     """The air's shear stress on the tape against its motion, Pa, on every node (> 0
     resists the motion, whichever way the tape runs): sign(V) (μV/(h + 2λ_e) +
     (h/2) ∂p/∂x) (module notes; sign 1 at V = 0), ∂p/∂x by the three-point difference of
-    the graded grid (second order, one-sided at the domain's ends).
+    the graded grid (second order, one-sided at the domain's ends). The slip length λ_e
+    is the local mean free path times the rarefaction model's slip coefficient
+    (:data:`.rarefaction.SLIP_COEFFICIENTS`: 1 for first- and second-order slip, 1.147 for
+    the Boltzmann flow rate, 0 without slip); the roughness's shear-stress factors
+    (Patir & Cheng) are not applied: the mean gap h stands for the rough film.
 
     Parameters
     ----------
@@ -437,7 +441,10 @@ def shear_stress(x, spacing, pressure, velocity: float, air) -> np.ndarray:
     if np.any(h <= 0.0) or (air.compressible and np.any(p <= 0.0)):
         raise ParameterError("shear_stress needs positive spacings (and pressures for the "
                              "compressible film)")
-    slip = air.mean_free_path * (air.ambient_pressure / p if air.compressible else 1.0)
+    from .rarefaction import SLIP_COEFFICIENTS
+
+    slip = (SLIP_COEFFICIENTS[air.rarefaction] * air.mean_free_path
+            * (air.ambient_pressure / p if air.compressible else 1.0))
     dpdx = np.gradient(p, x, axis=0, edge_order=2)
     direction = -1.0 if velocity < 0.0 else 1.0
     return direction * (air.viscosity * velocity / (h + 2.0 * slip) + 0.5 * h * dpdx)

@@ -24,7 +24,7 @@ from ..core.errors import ParameterError
 from ..results import layout
 from ..results.base import Result, dataset, from_json, params_from
 from . import readings
-from .air import AirParameters
+from .air import LEGACY_AIR, AirParameters
 from .contact import ContactParameters
 from .head import FlatHead, head_from_dict
 from .mesh import Grading
@@ -264,13 +264,17 @@ class BearingSolution(Result, kind="bearing"):
     def shear_stress(self) -> np.ndarray:
         """The air's shear stress on the tape, Pa, on every node, shape (nx + 1, nc);
         > 0 resists the tape's motion, whichever way it runs: sign(V) (μV/(h + 2λ_e) +
-        (h/2) ∂p/∂x) with first-order slip
+        (h/2) ∂p/∂x) with the rarefaction model's slip length, h the gap the film sees
+        (under the asperity law the mean gap)
         (:func:`gyroshell.bearing.readings.shear_stress`); 0 for a dry model (no air
         film)."""
         m = self.model
         if m.dry:
             return np.zeros_like(self.spacing)
-        h = np.maximum(self.spacing, _FILM_FLOOR * m.air.roughness)   # as the film does
+        if m.smooth_contact:
+            h = m.film_spacing(self.spacing)[0]
+        else:
+            h = np.maximum(self.spacing, _FILM_FLOOR * m.air.roughness)  # as the film does
         return readings.shear_stress(self.x, h, self.pressure, m.velocity, m.air)
 
     @cached_property
@@ -626,6 +630,7 @@ def _settings(model: BearingModel) -> dict:
 #: The keys of a file's ``model`` attribute (``grading``, ``head``, ``dry`` and
 #: ``contact`` may be absent: older files, whose head is the cylinder of ``wrap_angle``,
 #: flying, its contact the hard wall at the air's roughness).
+
 _SETTINGS = ("velocity", "wrap_angle", "infinitely_wide", "span", "nx", "ny")
 _OPTIONAL_SETTINGS = ("grading", "head", "dry", "corner_contacts", "arc_contact", "contact")
 
@@ -685,12 +690,15 @@ def _model_from(ds, prefix: str = "") -> BearingModel:
     if "head" in settings:      # the head rebuilds the wrap
         settings["head"] = head_from_dict(settings["head"])
         del settings["wrap_angle"]
+    air = {**LEGACY_AIR, **_stored_dict(a, "air",
+                                        [f.name for f in dataclasses.fields(AirParameters)])}
     if "contact" in settings:
         if not isinstance(settings["contact"], dict):
             raise ParameterError(f"the file's contact must be an object, got "
                                  f"{settings['contact']!r}")
         settings["contact"] = ContactParameters.from_dict(settings["contact"])
-    air = _stored_dict(a, "air", [f.name for f in dataclasses.fields(AirParameters)])
+    else:     # written before contact laws: the hard wall at the stored roughness
+        settings["contact"] = ContactParameters(law="hard", roughness=air.get("roughness"))
     with warnings.catch_warnings():   # the grid was the saver's choice: no warning on load
         warnings.simplefilter("ignore", BearingGridWarning)
         model = BearingModel(params_from(a), AirParameters(**air), **settings)

@@ -188,6 +188,7 @@ def without_film(model: BearingModel) -> BearingModel:
                        None if model.infinitely_wide else np.diff(model.y), model.air,
                        model.velocity, roughness=model.air.roughness)
     out.dry = True
+    out.jacobian_patterns = {}   # its film blocks are empty: not the film model's pattern
     return out
 
 

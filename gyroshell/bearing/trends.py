@@ -39,8 +39,9 @@ SWEEPS = (("wrap_in", (1.0, 2.0, 3.0, 4.0), -1), ("wrap_out", (1.0, 2.0, 3.0, 4.
 #: A change below this fraction of the spacing (0.01 nm here) counts as "does not
 #: depend": the trailing wrap moves it by 3e-5, the speed by 3e-2.
 INDEPENDENT = 1e-3
-#: The film and contact of the default physics.
-AIR = AirParameters(rarefaction="fukui-kaneko", flow_factors="patir-cheng")
+#: The film and contact of the default physics (the Boltzmann film, Patir–Cheng's flow
+#: factors, Greenwood–Williamson asperities).
+AIR = AirParameters()
 CONTACT = ContactParameters()
 
 
@@ -85,7 +86,7 @@ def spacing_at(air: AirParameters = AIR, contact: ContactParameters | None = CON
 def spacing_trends(air: AirParameters = AIR, contact: ContactParameters | None = CONTACT,
                    sweeps=SWEEPS) -> list[Trend]:
     """Each sweep of ``sweeps`` about :data:`BASE` with the film ``air`` and the contact
-    ``contact`` (None: the hard wall at the air's roughness)."""
+    ``contact`` (None: the model's default, :func:`.model.default_contact`)."""
     out = []
     for name, values, measured in sweeps:
         h = tuple(spacing_at(air, contact, **{name: v}) for v in values)

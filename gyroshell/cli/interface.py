@@ -16,7 +16,7 @@ from pathlib import Path
 from .common import UserError, real
 
 #: The contact law when neither an option nor the file's [contact] table names one.
-DEFAULT_CONTACT = "hard"
+DEFAULT_CONTACT = "asperity"
 
 #: The contact options and the ContactParameters field each sets.
 CONTACT_FIELDS = {"roughness": "--roughness", "asperity_density": "--asperity-density",
@@ -31,8 +31,8 @@ FILM_OPTIONS = {"rarefaction": "--rarefaction", "flow_factors": "--flow-factors"
 def add_interface_options(p: argparse.ArgumentParser, *, single: bool = True) -> None:
     """The film models and the contact options; ``single`` (the single bearing command,
     not a study): also --dry and --recession."""
+    from ..bearing.air import FLOW_FACTOR_CHOICES
     from ..bearing.contact import CONTACT_LAWS
-    from ..bearing.flow_factors import FLOW_FACTOR_MODELS
     from ..bearing.rarefaction import RAREFACTION_MODELS
 
     g = p.add_argument_group("air film models")
@@ -40,11 +40,13 @@ def add_interface_options(p: argparse.ArgumentParser, *, single: bool = True) ->
                    help="Poiseuille flow factor of the rarefied film: fukui-kaneko (the "
                         "linearized Boltzmann flow rate, Fukui & Kaneko 1990), "
                         "first-order (slip, 1 + 6 Kn), second-order (1 + 6 Kn + 6 Kn^2) "
-                        "or none (default: the file's [air] table, else first-order)")
-    g.add_argument("--flow-factors", choices=FLOW_FACTOR_MODELS, default=None,
+                        "or none (default: the file's [air] table, else fukui-kaneko)")
+    g.add_argument("--flow-factors", choices=FLOW_FACTOR_CHOICES, default=None,
                    help="roughness in the film: patir-cheng (pressure and shear flow "
-                        "factors of the summits' roughness, Patir & Cheng 1978/79) or "
-                        "none (default: the file's [air] table, else none)")
+                        "factors of the summits' roughness, Patir & Cheng 1978/79), none, "
+                        "or auto: patir-cheng under --contact asperity, none under the "
+                        "hard wall or a compliance curve (default: the file's [air] "
+                        "table, else auto)")
     g = p.add_argument_group("contact (SI units; spacings are reported to the mean plane "
                              "of the tape's summits)")
     g.add_argument("--contact", choices=tuple(c for c in CONTACT_LAWS if c != "compliance"),

@@ -139,10 +139,10 @@ def width_speeds(settings: Settings) -> tuple[float, ...]:
 def width_rows(settings: Settings, v: float) -> list[dict]:
     """(b) at one speed V (m/s): the read line's spacing across the 2-D tape."""
     head = one_module().head()
-    if settings.quick:
-        nx, ny = 60, 24
+    default = BearingModel(TapeParameters(), AirParameters(), velocity=v, head=head)
+    if settings.quick:     # the default intervals along (the corners' refinement), few across
+        nx, ny = default.nx, 24
     else:
-        default = BearingModel(TapeParameters(), AirParameters(), velocity=v, head=head)
         nx, ny = 4 * (default.nx // 8), 2 * (default.ny // 4)
     model = BearingModel(TapeParameters(), AirParameters(), velocity=v, head=head,
                          nx=nx, ny=ny)
@@ -238,7 +238,7 @@ def write(out: Path, settings: Settings, results: list) -> list[Path]:
     written += [save_figure(plot_modules(table, sol), out / "heads_modules.png"),
                 save_figure(plot_width(width, settings.pick(
                     "half the default 2-D grids' intervals",
-                    "--quick: coarse 60 x 24 grids")),
+                    "--quick: 24 intervals across")),
                     out / "heads_width.png"),
                 save_figure(plot_wraps(wraps, settings.pick(
                     "default grid", "--quick: a coarse 400-interval grid")),

@@ -36,8 +36,8 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from ..bearing.air import AirParameters
-from ..bearing.contact import ContactParameters
+from ..bearing.air import LEGACY_AIR, AirParameters
+from ..bearing.contact import HARD_WALL_GAP, ContactParameters
 from ..bearing.head_config import (
     DEFAULT_WRAP_ANGLE,
     HeadDesign,
@@ -63,8 +63,10 @@ LEADING = ("central_spacing", "minimum_spacing")
 #: ... and after them.
 TRAILING = ("contact_force", "viscous_drag", "friction_drag", "drag", "tension_rise",
             "tension_ratio", "newton_iterations")
-#: The values each bearing column may take: (lowest, unit) (NaN is always allowed).
-NUMBER_RANGES = {"spacing": (0.0, "m"), "tent_height": (-math.inf, "m"),
+#: The values each bearing column may take: (lowest, unit) (NaN is always allowed). A
+#: spacing is measured to the mean plane of the tape's summits: under asperity contact a
+#: pressed corner takes it below zero.
+NUMBER_RANGES = {"spacing": (-math.inf, "m"), "tent_height": (-math.inf, "m"),
                  "tent_x": (-math.inf, "m"), "force": (0.0, "N or N/m"),
                  "contact_force": (0.0, "N or N/m"), "viscous_drag": (-math.inf, "N or N/m"),
                  "friction_drag": (0.0, "N or N/m"), "drag": (-math.inf, "N or N/m"),
@@ -126,11 +128,16 @@ class BearingStudy:
 
     def spec(self) -> dict:
         """The setup as plain JSON values, lists for tuples (a cache key's part, a saved
-        study's metadata: it reads back equal)."""
+        study's metadata: it reads back equal). The air and the contact are written out
+        (the defaults' values for None), so that a cache keyed by it never serves rows of
+        other defaults."""
+        from ..bearing.model import default_contact
+
+        air = AirParameters() if self.air is None else self.air
+        contact = default_contact(air) if self.contact is None else self.contact
         return json.loads(json.dumps({
-            "head": dataclasses.asdict(self.head),
-            "air": None if self.air is None else dataclasses.asdict(self.air),
-            "contact": None if self.contact is None else self.contact.to_dict(),
+            "head": dataclasses.asdict(self.head), "air": dataclasses.asdict(air),
+            "contact": contact.to_dict(),
             "infinitely_wide": self.infinitely_wide, "nx": self.nx, "ny": self.ny}))
 
     @classmethod
@@ -177,11 +184,14 @@ def _fields_of_spec(spec: object) -> dict:
         ModuleShape(**_tuples(_check_keys(f"head: module_shapes[{i}]", shape, shape_fields)))
         for i, shape in enumerate(shapes))
     air = spec["air"]
-    if air is not None:
-        air = AirParameters(**_check_keys("air", air, [
-            f.name for f in dataclasses.fields(AirParameters)]))
-    contact = spec.get("contact")
-    if contact is not None:
+    legacy = "contact" not in spec      # written before contact laws: their interface
+    if air is not None or legacy:
+        air = _check_keys("air", {} if air is None else air,
+                          [f.name for f in dataclasses.fields(AirParameters)])
+        air = AirParameters(**({**LEGACY_AIR, **air} if legacy else air))
+    contact = (ContactParameters(law="hard", roughness=air.roughness or HARD_WALL_GAP)
+               if legacy else spec.get("contact"))
+    if contact is not None and not isinstance(contact, ContactParameters):
         if not isinstance(contact, dict):
             raise ParameterError(f"contact must be a JSON object, got {contact!r}")
         contact = ContactParameters.from_dict(contact)

@@ -8,10 +8,11 @@ import math
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 from convergence import observed_order
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.steady import solve_steady
 
 # Slow as a whole: 2-D bearing states on refined graded grids (about 20 s of module fixtures).
@@ -23,8 +24,9 @@ SPAN = 2e-3
 
 def _solve(width=None, nx=100, ny=None, grading=None, **tape):
     params = TapeParameters(**({} if width is None else {"width": width}), **tape)
-    model = BearingModel(params, AirParameters(), velocity=4.0, wrap_angle=WRAP, nx=nx,
-                         ny=ny, span=SPAN, infinitely_wide=width is None, grading=grading)
+    model = BearingModel(params, FIRST_ORDER, velocity=4.0, wrap_angle=WRAP, nx=nx,
+                         ny=ny, span=SPAN, infinitely_wide=width is None, grading=grading,
+                         contact=HARD)
     return solve_steady(model)
 
 
@@ -75,8 +77,8 @@ def test_coarse_grid_start_reaches_the_same_state_in_fewer_iterations():
     from gyroshell.bearing.steady import initial_state
 
     def solve(threshold):
-        model = BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
-                             wrap_angle=WRAP, nx=100, ny=60, span=SPAN)
+        model = BearingModel(TapeParameters(width=3e-3), FIRST_ORDER, velocity=4.0,
+                             wrap_angle=WRAP, nx=100, ny=60, span=SPAN, contact=HARD)
         return solve_steady(model, z0=initial_state(model, coarse_min_unknowns=threshold))
 
     extruded, coarse = solve(10**9), solve(0)

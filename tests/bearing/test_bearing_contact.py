@@ -9,10 +9,11 @@ import math
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 from convergence import observed_order
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.steady import newton, pseudo_transient, solve_steady
 from gyroshell.core.errors import ConvergenceError
 
@@ -27,8 +28,8 @@ WIDTH, SLOW = 3e-3, 0.2
 
 def _model(nx, ny, velocity=SLOW, width=WIDTH):
     params = TapeParameters(width=width) if width else TapeParameters()
-    return BearingModel(params, AirParameters(), velocity=velocity, wrap_angle=WRAP,
-                        nx=nx, ny=ny, infinitely_wide=width is None)
+    return BearingModel(params, FIRST_ORDER, velocity=velocity, wrap_angle=WRAP,
+                        nx=nx, ny=ny, infinitely_wide=width is None, contact=HARD)
 
 
 @pytest.fixture(scope="module")
@@ -42,7 +43,7 @@ def test_edges_touch_down_and_newton_settles_the_contact_set_directly(touch_down
     finer grids directly (no pseudo-time, no continuation, <= 20 iterations), on the
     coarsest through the pseudo-time march; contact only at the free edges, none in the
     middle, λ >= 0 and h >= σ everywhere, λ = 0 off contact (complementarity)."""
-    sigma = AirParameters().roughness
+    sigma = HARD.roughness
     for k, sol in enumerate(touch_down):
         assert sol.info.continuation == []
         if k > 0:

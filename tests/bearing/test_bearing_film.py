@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from bearing_cases import flexible_model
+from bearing_cases import FIRST_ORDER, HARD, flexible_model
 from scipy.sparse.linalg import spsolve
 
 from gyroshell import ParameterError, TapeParameters
@@ -25,9 +25,9 @@ from gyroshell.bearing.steady import _Residual, solve_steady
 pytestmark = pytest.mark.filterwarnings("ignore::gyroshell.bearing.model.BearingGridWarning")
 
 AIRS = {
-    "compressible-slip": AirParameters(),
-    "compressible": AirParameters(mean_free_path=0.0),
-    "incompressible-slip": AirParameters(compressible=False),
+    "compressible-slip": FIRST_ORDER,
+    "compressible": AirParameters(mean_free_path=0.0, rarefaction="first-order"),
+    "incompressible-slip": AirParameters(compressible=False, rarefaction="first-order"),
 }
 
 
@@ -56,7 +56,7 @@ def test_bernoulli_beyond_the_clip():
 def _model(air, infinitely_wide, nx=60, ny=8, grading=None):
     return BearingModel(TapeParameters(), air, velocity=4.0, wrap_angle=math.radians(15),
                         infinitely_wide=infinitely_wide, nx=nx,
-                        ny=None if infinitely_wide else ny, grading=grading)
+                        ny=None if infinitely_wide else ny, grading=grading, contact=HARD)
 
 
 GRADED = Grading(x_ratio=4.0, y_ratio=6.0, y_width=0.4e-3)
@@ -156,7 +156,7 @@ def test_fluxes_balance_to_round_off_2d(grading, rng):
     """Conservation: the node balances of any fields sum to the net outflow through the
     film's boundary (every inner face flux cancels), on uniform and graded grids alike;
     in the steady state what enters at x = 0 leaves at x = L_x or through the edges."""
-    model = _model(AirParameters(), False, nx=80, ny=12, grading=grading)
+    model = _model(FIRST_ORDER, False, nx=80, ny=12, grading=grading)
     assert model.graded == (grading is None)
     sol = solve_steady(model)
     for P, H in ((sol.pressure, sol.spacing),
@@ -177,7 +177,7 @@ def test_fluxes_balance_to_round_off_2d(grading, rng):
 def test_central_plateau_balances_the_wrap():
     """On the wrap, p − p_a = (T − ρV²)/R + k h for a flexible tape."""
     params = TapeParameters(bending_rigidity=1e-12)
-    model = flexible_model(1600, params=params, air=AirParameters(), velocity=12.0)
+    model = flexible_model(1600, params=params, air=FIRST_ORDER, velocity=12.0)
     sol = solve_steady(model)
     expected = model.effective_tension() / params.radius + params.k * sol.central_spacing
     assert sol.central_pressure == pytest.approx(expected, rel=1e-4)
@@ -192,7 +192,7 @@ def test_air_force_is_tension_turn_plus_end_reactions_1d():
     (T − ρV²)(u₁ + u_n)/Δx."""
     model = flexible_model(1600, params=TapeParameters(bending_rigidity=1e-12,
                                                        foundation_stiffness=0.0),
-                           air=AirParameters())
+                           air=FIRST_ORDER)
     sol = solve_steady(model)
     assert sol.contact_force == 0.0
     turn = float(np.sum(model.W * model.kappa_nodes))
@@ -243,15 +243,15 @@ def test_film_jacobian_every_model(rarefaction, flow, compressible, nc, rng):
         assert np.allclose(exact, fd, rtol=1e-6, atol=1e-8 * np.abs(fd).max())
 
 
-def test_default_models_keep_the_first_order_slip_fluxes_bit_for_bit(rng):
-    """rarefaction="first-order" with flow_factors="none" (the defaults) gives exactly the
+def test_first_order_slip_without_flow_factors_keeps_its_fluxes_bit_for_bit(rng):
+    """rarefaction="first-order" with flow_factors="none" (the legacy film) gives exactly the
     fluxes of Γ = p h³ + 6 λ p_a h² (h³ + 6 λ h²) and Couette 6μV h̄."""
     pl, pr = 1e5 * (0.5 + rng.random((2, 50)))
     hl, hr = 1e-7 * (0.2 + rng.random((2, 50)))
     dx, V = 3e-6, 7.0
     for compressible in (True, False):
-        air = AirParameters(compressible=compressible)
-        assert (air.rarefaction, air.flow_factors) == ("first-order", "none")
+        air = AirParameters(compressible=compressible, rarefaction="first-order",
+                            flow_factors="none")
         got = face_fluxes(pl, pr, hl, hr, dx, V, air, roughness=SIGMA)
         mu, lam, pa = air.viscosity, air.mean_free_path, air.ambient_pressure
         h = 0.5 * (hl + hr)
@@ -276,7 +276,7 @@ def test_general_path_meets_the_first_order_path(compressible, rng):
     pl, pr = 1e5 * (0.5 + rng.random((2, 40)))
     hl, hr = 1e-7 * (0.5 + rng.random((2, 40)))
     args = (pl, pr, hl, hr, 2e-6, 5.0)
-    base = AirParameters(compressible=compressible)
+    base = AirParameters(compressible=compressible, rarefaction="first-order")
     ref = face_fluxes(*args, base)
     smooth = face_fluxes(*args, base.replace(flow_factors="patir-cheng"), roughness=1e-12)
     still = [face_fluxes(*args, base.replace(mean_free_path=0.0, rarefaction=m))
@@ -288,7 +288,7 @@ def test_general_path_meets_the_first_order_path(compressible, rng):
 
 
 def test_flow_factors_need_the_roughness():
-    air = AirParameters(flow_factors="patir-cheng")
+    air = AirParameters(flow_factors="patir-cheng", rarefaction="first-order")
     with pytest.raises(ParameterError,
                        match=r"roughness must be given \(in \[1e-12, 0.0001\] m\) with flow_f"):
         Film(8, 1, 1e-6, None, air, 1.0)
@@ -297,7 +297,7 @@ def test_flow_factors_need_the_roughness():
     with pytest.raises(ParameterError, match="rarefaction must be one of"):
         AirParameters(rarefaction="boltzmann")
     with pytest.raises(ParameterError, match="flow_factors must be one of"):
-        AirParameters(flow_factors="christensen")
+        AirParameters(flow_factors="christensen", rarefaction="first-order")
 
 
 def _slider_exact(air, sigma, V, L, h0, h1, xs):

@@ -12,10 +12,11 @@ import subprocess
 import sys
 
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 
 import gyroshell.linalg.factorization as factorization
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel, budget
+from gyroshell.bearing import BearingModel, budget
 from gyroshell.bearing.steady import solve_steady
 from gyroshell.core import budget as core_budget
 from gyroshell.core.errors import ParameterError
@@ -30,19 +31,22 @@ PEAK = r"""
 import json, math, re, sys
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel, budget
+from gyroshell.bearing.contact import ContactParameters
 from gyroshell.bearing.steady import solve_steady
 case = json.loads(sys.argv[1])
+air, hard = AirParameters(rarefaction="first-order"), ContactParameters(law="hard")
 wrap = math.radians(15.0)
-solve_steady(BearingModel(TapeParameters(), velocity=4.0, wrap_angle=wrap, nx=60,
-                          infinitely_wide=True))
+solve_steady(BearingModel(TapeParameters(), air, velocity=4.0, wrap_angle=wrap, nx=60,
+                          infinitely_wide=True, contact=hard))
 def status(key):
     with open("/proc/self/status") as f:
         return 1024.0 * int(re.search(key + r":\s+(\d+)", f.read()).group(1))
 with open("/proc/self/clear_refs", "w") as f:
     f.write("5")
 base = status("VmRSS")
-model = BearingModel(TapeParameters(width=case["width"]), AirParameters(), velocity=4.0,
-                     wrap_angle=wrap, nx=case["nx"], ny=case["ny"], span=case["span"])
+model = BearingModel(TapeParameters(width=case["width"]), air, velocity=4.0,
+                     wrap_angle=wrap, nx=case["nx"], ny=case["ny"], span=case["span"],
+                     contact=hard)
 solve_steady(model)
 print(json.dumps({"measured": status("VmHWM") - base,
                   "estimate": budget.steady_bytes(model.nx, model.ny, model.factorization)}))
@@ -66,8 +70,8 @@ def test_factor_entries_are_those_of_the_grid_dissection_to_thirty_percent(monke
         return lu
 
     monkeypatch.setattr(factorization, "splu", counting)
-    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, wrap_angle=WRAP,
-                         nx=194, ny=74)
+    model = BearingModel(TapeParameters(), FIRST_ORDER, velocity=4.0, wrap_angle=WRAP,
+                         nx=194, ny=74, contact=HARD)
     solve_steady(model)
     ratio = budget.factor_entries(model.nx, model.ny, model.factorization) / max(counted)
     assert 1.0 <= ratio <= 1.3
@@ -95,8 +99,8 @@ def _default_grid(monkeypatch, width: float) -> tuple[int, int]:
 
     monkeypatch.setattr(budget, "check_steady", sized)
     with pytest.raises(_Sized) as stop:
-        BearingModel(TapeParameters(width=width), AirParameters(), velocity=4.0,
-                     wrap_angle=WRAP)
+        BearingModel(TapeParameters(width=width), FIRST_ORDER, velocity=4.0,
+                     wrap_angle=WRAP, contact=HARD)
     monkeypatch.undo()
     nx, ny, kind = stop.value.args
     assert kind == "auto"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from bearing_cases import flexible_model
+from bearing_cases import FIRST_ORDER, flexible_model
 
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters
@@ -20,8 +20,10 @@ def _spacing(air, **kw):
 def test_compressible_tends_to_incompressible_as_ambient_pressure_grows():
     """The film's compressibility number falls like 1/p_a: the gap to the incompressible
     spacing shrinks by the same factor."""
-    incompressible = _spacing(AirParameters(compressible=False, mean_free_path=0.0))
-    gaps = [abs(_spacing(AirParameters(ambient_pressure=pa, mean_free_path=0.0))
+    incompressible = _spacing(AirParameters(compressible=False, mean_free_path=0.0,
+                                            rarefaction="first-order"))
+    gaps = [abs(_spacing(AirParameters(ambient_pressure=pa, mean_free_path=0.0,
+                                       rarefaction="first-order"))
                 - incompressible) / incompressible for pa in (1e5, 1e6, 1e7)]
     assert gaps[0] > gaps[1] > gaps[2]
     assert gaps[2] < 1e-3
@@ -33,7 +35,8 @@ def test_compressible_tends_to_incompressible_as_ambient_pressure_grows():
 def test_slip_lowers_the_spacing(compressible):
     """Slip lets more Poiseuille flow escape the wedge at the same pressure gradient, so
     the film must be thinner to carry the wrap load; the effect vanishes as λ → 0."""
-    spacings = [_spacing(AirParameters(compressible=compressible, mean_free_path=lam))
+    spacings = [_spacing(AirParameters(compressible=compressible, mean_free_path=lam,
+                                       rarefaction="first-order"))
                 for lam in (0.0, 16e-9, 64e-9, 256e-9)]
     assert spacings[0] > spacings[1] > spacings[2] > spacings[3]
     drops = spacings[0] - np.array(spacings[1:])
@@ -42,17 +45,17 @@ def test_slip_lowers_the_spacing(compressible):
 
 @pytest.mark.slow
 def test_faster_tape_flies_higher_and_heavier_tension_lower():
-    base = _spacing(AirParameters())
-    assert _spacing(AirParameters(), velocity=8.0) > base
+    base = _spacing(FIRST_ORDER)
+    assert _spacing(FIRST_ORDER, velocity=8.0) > base
     tense = solve_steady(flexible_model(800, params=TAPE.replace(tension=180.0),
-                                        air=AirParameters())).central_spacing
+                                        air=FIRST_ORDER)).central_spacing
     assert tense < base
 
 
 def test_tape_at_rest_lies_on_the_head():
     """V → 0: no film; the wrap is in contact at h = σ and the head carries the tension's
     turn (T − ρV²) θ (per unit width), less what the pinned spans take."""
-    model = flexible_model(400, params=TAPE, air=AirParameters(), velocity=1e-6)
+    model = flexible_model(400, params=TAPE, air=FIRST_ORDER, velocity=1e-6)
     sol = solve_steady(model)
     wrap = np.abs(sol.x) < 0.45 * model.params.radius * model.wrap_angle
     assert np.allclose(sol.spacing[wrap, 0], model.air.roughness)

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import ParameterError, TapeParameters
 from gyroshell.bearing import (
@@ -27,8 +28,8 @@ WRAP = math.radians(15.0)
 def strip(**kw) -> BearingModel:
     """The Table 1 tape, infinitely wide, at 4 m/s on a coarse but film-resolving grid."""
     kw.setdefault("nx", 60)
-    return BearingModel(TapeParameters(), AirParameters(), velocity=4.0, wrap_angle=WRAP,
-                        infinitely_wide=True, **kw)
+    return BearingModel(TapeParameters(), FIRST_ORDER, velocity=4.0, wrap_angle=WRAP,
+                        infinitely_wide=True, **kw, contact=HARD)
 
 
 @pytest.fixture(scope="module")
@@ -43,7 +44,7 @@ def flying():
 ])
 def test_grid_beyond_the_solver_is_refused_before_allocating(tape, kw, message):
     with pytest.raises(ParameterError, match=message):
-        BearingModel(tape, velocity=4.0, wrap_angle=WRAP, **kw)
+        BearingModel(tape, velocity=4.0, wrap_angle=WRAP, **kw, contact=HARD, air=FIRST_ORDER)
 
 
 def test_grid_beyond_the_memory_limit_names_estimate_and_limit(monkeypatch):
@@ -132,7 +133,7 @@ def test_forged_2d_count_is_refused_before_allocating(tmp_path):
     from gyroshell.bearing import storage
 
     model = BearingModel(TapeParameters(width=3e-3), velocity=4.0, wrap_angle=WRAP, nx=48,
-                         ny=16, span=2e-3)
+                         ny=16, span=2e-3, contact=HARD, air=FIRST_ORDER)
     sol = solve_steady(model)
     path = _forged(tmp_path, sol, _set("model", "ny", 10**7))
     with pytest.raises(ParameterError, match="y dimension has 17 nodes, but its grid "
@@ -147,15 +148,17 @@ def _bad_load(t):
 
 @pytest.mark.parametrize("call, message", [
     (lambda: BearingModel(TapeParameters(), {"viscosity": 1e-5}, velocity=4.0,
-                          wrap_angle=WRAP), "air must be a AirParameters, got dict"),
-    (lambda: BearingModel(None, velocity=4.0, wrap_angle=WRAP),
+                          wrap_angle=WRAP, contact=HARD), "air must be a AirParameters, got dict"),
+    (lambda: BearingModel(None, velocity=4.0, wrap_angle=WRAP, contact=HARD, air=FIRST_ORDER),
      "params must be a TapeParameters, got NoneType"),
     (lambda: strip(nx=60.5), "nx must be an integer, got 60.5"),
     (lambda: strip(nx=10**6), r"nx must be an integer in \[8, 50000\]"),
     (lambda: BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP,
-                          infinitely_wide="yes"), "infinitely_wide must be True or False"),
+                          infinitely_wide="yes", contact=HARD, air=FIRST_ORDER),
+     "infinitely_wide must be True or False"),
     (lambda: strip(ny=9), "ny applies to the 2-D tape only"),
-    (lambda: BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP, ny="8"),
+    (lambda: BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP, ny="8", contact=HARD,
+                          air=FIRST_ORDER),
      "ny must be an integer"),
     (lambda: solve_steady(None), "model must be a BearingModel, got NoneType"),
     (lambda: solve_steady(strip(), z0=np.zeros(5)), "z0 must be a vector of length 118"),
@@ -228,20 +231,21 @@ def test_own_tension_history_is_checked_as_the_march_reaches_it(flying):
 
 # ----- 6. messages name the real cause -------------------------------------------------------
 @pytest.mark.parametrize("tape, air, kw, message", [
-    (TapeParameters(), AirParameters(), {"span": 5.0}, r"span must be in \[0.00101, 0.02\] m"),
-    (TapeParameters(), AirParameters(viscosity=1000.0), {},
+    (TapeParameters(), FIRST_ORDER, {"span": 5.0}, r"span must be in \[0.00101, 0.02\] m"),
+    (TapeParameters(), AirParameters(viscosity=1000.0, rarefaction="first-order"), {},
      "the viscosity 1000 Pa.s makes the film thick"),
-    (TapeParameters(thickness=1e-3), AirParameters(), {}, "the tape is too stiff to wrap"),
+    (TapeParameters(thickness=1e-3), FIRST_ORDER, {}, "the tape is too stiff to wrap"),
 ])
 def test_message_names_the_cause_not_the_velocity(tape, air, kw, message):
     with pytest.raises(ParameterError, match=message) as info:
-        BearingModel(tape, air, velocity=4.0, wrap_angle=WRAP, **kw)
+        BearingModel(tape, air, velocity=4.0, wrap_angle=WRAP, **kw, contact=HARD)
     assert "use a higher velocity" not in str(info.value)
 
 
 def test_very_low_speed_still_blames_the_velocity():
     with pytest.raises(ParameterError, match="velocity 1e-09 m/s gives a film only"):
-        BearingModel(TapeParameters(), velocity=1e-9, wrap_angle=WRAP, infinitely_wide=True)
+        BearingModel(TapeParameters(), velocity=1e-9, wrap_angle=WRAP, infinitely_wide=True,
+                     contact=HARD, air=FIRST_ORDER)
 
 
 def test_flexible_foil_gets_a_default_grid_that_resolves_its_film():
@@ -251,7 +255,7 @@ def test_flexible_foil_gets_a_default_grid_that_resolves_its_film():
     from gyroshell.bearing.model import foil_length_scales
 
     tape = TapeParameters(bending_rigidity=1e-10)
-    model = BearingModel(tape, velocity=4.0, wrap_angle=WRAP)
+    model = BearingModel(tape, velocity=4.0, wrap_angle=WRAP, contact=HARD, air=FIRST_ORDER)
     _, l_film, l_bend = foil_length_scales(tape, model.air, 4.0)
     assert l_bend < 0.01 * l_film
     assert np.diff(model.x).min() == pytest.approx(l_film / 30, rel=0.1)
@@ -268,21 +272,24 @@ def test_span_that_cannot_hold_the_film_is_refused():
 def test_grid_too_coarse_for_the_film_gives_the_minimum_nx():
     with pytest.raises(ParameterError, match=r"nx = 8 is too coarse for the film: .* use "
                                              r"nx >= 16"):
-        BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP, nx=8, ny=8)
-    BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP, nx=16, ny=32)
+        BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP, nx=8, ny=8, contact=HARD,
+                     air=FIRST_ORDER)
+    BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP, nx=16, ny=32, contact=HARD,
+                 air=FIRST_ORDER)
 
 
 def test_coarse_free_edges_warn_with_the_measured_error():
     with pytest.warns(BearingGridWarning, match=r"ny = 8 leaves 231 um at the free edges.*"
                                                 r"off by 20-90 %"):
-        BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP, nx=16, ny=8)
+        BearingModel(TapeParameters(), velocity=4.0, wrap_angle=WRAP, nx=16, ny=8, contact=HARD,
+                     air=FIRST_ORDER)
 
 
 def test_a_tape_on_the_head_is_reported_in_contact():
     from bearing_cases import flexible_model
 
     sol = solve_steady(flexible_model(400, params=TapeParameters(foundation_stiffness=0.0),
-                                      air=AirParameters(), velocity=1e-6))
+                                      air=FIRST_ORDER, velocity=1e-6))
     assert sol.minimum_spacing == pytest.approx(sol.model.air.roughness)
     assert sol.in_contact and sol.summary()["in_contact"] is True
 
@@ -295,7 +302,7 @@ def test_a_flying_tape_is_not_in_contact(flying):
 # ----- progress --------------------------------------------------------------------------------
 def test_a_2d_solve_reports_every_stage_and_iteration():
     model = BearingModel(TapeParameters(width=3e-3), velocity=4.0, wrap_angle=WRAP, nx=96,
-                         ny=24, span=2e-3)
+                         ny=24, span=2e-3, contact=HARD, air=FIRST_ORDER)
     stages, iterations = [], []
     sol = solve_steady(model, progress=stages.append, iteration_log=iterations.append)
     assert any(line.startswith("start: solving the infinitely wide tape") for line in stages)
@@ -311,7 +318,7 @@ def test_progress_false_reports_nothing_as_in_every_engine(flying):
 
 def test_progress_false_on_a_2d_tape_whose_start_reports_stages(capsys):
     model = BearingModel(TapeParameters(width=3e-3), velocity=4.0, wrap_angle=WRAP, nx=96,
-                         ny=24, span=2e-3)
+                         ny=24, span=2e-3, contact=HARD, air=FIRST_ORDER)
     iterations = []
     sol = solve_steady(model, progress=False, iteration_log=iterations.append)
     assert sol.info.iterations >= 1 and iterations     # the coarse start ran (and was quiet)

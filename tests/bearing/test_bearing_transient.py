@@ -7,9 +7,10 @@ import math
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.steady import BearingSolution, solve_steady
 from gyroshell.bearing.transient import march, tension_harmonic, tension_step
 from gyroshell.core.errors import ParameterError
@@ -20,8 +21,8 @@ DAMPED = {"beta": 0.3025, "gamma": 0.6}
 
 @pytest.fixture(scope="module")
 def model():
-    return BearingModel(TapeParameters(), AirParameters(), velocity=4.0,
-                        wrap_angle=math.radians(15), infinitely_wide=True, nx=160)
+    return BearingModel(TapeParameters(), FIRST_ORDER, velocity=4.0,
+                        wrap_angle=math.radians(15), infinitely_wide=True, nx=160, contact=HARD)
 
 
 @pytest.mark.slow
@@ -113,9 +114,9 @@ def test_disturbed_2d_tape_settles_back_onto_the_2d_steady_state(grading):
     the 2-D steady state, spacing, pressure and contact. On the coarse uniform grid the
     edge rows rest on the head at the roughness height, so the contact set rides along;
     on the graded grid (finer at the edges) they fly."""
-    model = BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
+    model = BearingModel(TapeParameters(width=3e-3), FIRST_ORDER, velocity=4.0,
                          wrap_angle=math.radians(15), nx=60, ny=16, span=2e-3,
-                         grading=grading)
+                         grading=grading, contact=HARD)
     assert model.graded == (grading is None)
     steady = solve_steady(model)
     assert (steady.contact_nodes > 0) == (grading == "uniform")

@@ -83,16 +83,33 @@ def test_a_vanishing_roughness_tends_to_the_hard_wall():
 
 
 def test_first_order_slip_and_the_hard_wall_are_todays_bearing_bit_for_bit():
-    """--rarefaction first-order --contact hard: the model built before this work (no
-    contact given) to the last bit, over a flat head and a cylinder."""
-    air = AirParameters(rarefaction="first-order", flow_factors="none")
-    hard = ContactParameters(law="hard", roughness=air.roughness)
+    """--rarefaction first-order --contact hard: the hard wall given by its gap and the
+    legacy film (first-order slip; "auto" flow factors resolve to none under the wall) are
+    the film of the explicit "none" to the last bit, over a flat head and a cylinder; the
+    hard-wall tests (classical foil bearing, dry lands and wraps, contact sets) anchor it
+    to closed forms."""
+    auto = AirParameters(rarefaction="first-order")
+    none = AirParameters(rarefaction="first-order", flow_factors="none")
+    hard = ContactParameters(law="hard", roughness=20e-9)
     for kw in (dict(head=FLAT), dict(wrap_angle=15 * DEG)):
-        old = solve_steady(BearingModel(TapeParameters(), air, velocity=4.0,
-                                        infinitely_wide=True, **kw))
-        new = solve_steady(BearingModel(TapeParameters(), air, velocity=4.0,
-                                        infinitely_wide=True, contact=hard, **kw))
-        assert np.array_equal(old.u, new.u) and np.array_equal(old.p, new.p)
+        a, b = (solve_steady(BearingModel(TapeParameters(), air, velocity=4.0,
+                                          infinitely_wide=True, contact=hard, **kw))
+                for air in (auto, none))
+        assert a.model.air == b.model.air == none.replace(roughness=20e-9)
+        assert np.array_equal(a.u, b.u) and np.array_equal(a.p, b.p)
+
+
+def test_the_defaults_are_the_boltzmann_film_over_asperities():
+    """No interface given: Fukui-Kaneko's flow rate, Patir-Cheng's flow factors on the
+    summits' σ_s, Greenwood-Williamson asperities with the data-tape defaults; an air
+    roughness given alone is the summits' σ_s."""
+    model = BearingModel(TapeParameters(), velocity=4.0, head=FLAT, infinitely_wide=True)
+    assert model.contact == ContactParameters(law="asperity")
+    assert (model.air.rarefaction, model.air.flow_factors) == ("fukui-kaneko", "patir-cheng")
+    assert model.air.roughness == ContactParameters(law="asperity").roughness
+    rough = BearingModel(TapeParameters(), AirParameters(roughness=9e-9), velocity=4.0,
+                         head=FLAT, infinitely_wide=True)
+    assert rough.contact == ContactParameters(law="asperity", roughness=9e-9)
 
 
 def test_boltzmann_flow_moves_the_cylinder_at_micrometres_by_under_a_percent():
@@ -131,9 +148,10 @@ def test_a_flat_land_rests_on_its_asperities_under_the_sub_ambient_film():
 
 
 def test_warnings_name_the_models_used_out_of_their_range(cli):
-    """The default hard wall with first-order slip over a flat land: both models out of
-    range, each one warning line and in the JSON's ``warnings``."""
-    run = cli(["bearing", "--head", "flat", "--land-length", "1e-3", "--wrap-in", "2",
+    """The hard wall with first-order slip over a flat land: both models out of range,
+    each one warning line and in the JSON's ``warnings``."""
+    run = cli(["bearing", "--rarefaction", "first-order", "--contact", "hard", "--head", "flat",
+               "--land-length", "1e-3", "--wrap-in", "2",
                "--wrap-out", "2", "--transducers", "0", "--velocity", "4",
                "--infinitely-wide", "--json", "--quiet", "--recession", "1.5e-8"])
     assert run.code == 0, run.err
@@ -165,7 +183,8 @@ def test_a_flat_heads_spacing_follows_the_four_measured_trends():
 
     trends = spacing_trends()
     assert [t.sign for t in trends] == [t.measured for t in trends] == [-1, 0, -1, 1]
-    hard = spacing_trends(AirParameters(), None)
+    hard = spacing_trends(AirParameters(rarefaction="first-order"),
+                          ContactParameters(law="hard", roughness=20e-9))
     assert [t.sign for t in hard] == [1, 0, 1, -1]
 
 
@@ -177,8 +196,9 @@ def test_the_one_newton_with_the_wall_as_bounds_finds_the_hard_walls_state():
     from gyroshell.bearing.smooth import flying_start
     from gyroshell.linalg.newton import NewtonOptions, newton
 
-    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=FLAT,
-                         infinitely_wide=True)
+    model = BearingModel(TapeParameters(), AirParameters(rarefaction="first-order"),
+                         velocity=4.0, head=FLAT, infinitely_wide=True,
+                         contact=ContactParameters(law="hard", roughness=20e-9))
     legacy = solve_steady(model)
     problem = SteadyProblem(model)
     z, report = newton(problem, problem.unknowns(flying_start(model)),

@@ -15,14 +15,15 @@ import warnings
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel, steady
+from gyroshell.bearing import BearingModel, steady
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.model import BearingGridWarning
 
 DEG = math.pi / 180.0
-AIR = AirParameters()
+AIR = FIRST_ORDER
 #: Two modules, the second raised: a 2 mm tape touches down on the second land.
 TWO = FlatHead((Module(0.8e-3), Module(0.5e-3, height=0.3e-6)), 1.5 * DEG, 3 * DEG,
                gaps=(0.2e-3,))
@@ -34,7 +35,7 @@ def _model(nx=96, ny=16):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
         return BearingModel(TapeParameters(width=2e-3), AIR, velocity=4.0, head=TWO,
-                            nx=nx, ny=ny)
+                            nx=nx, ny=ny, contact=HARD)
 
 
 @pytest.fixture(scope="module")
@@ -54,7 +55,7 @@ def test_land_touchdown_converges_in_few_newton_iterations(solved):
 def test_contact_conditions_hold_exactly(solved):
     """h − σ >= 0 to round-off, λ >= 0, λ = 0 where h > σ (beyond round-off)."""
     model, sol = solved
-    sigma = AIR.roughness
+    sigma = HARD.roughness
     h = sol.spacing[1:-1, :].ravel()
     lam = sol.contact
     floor = 1e-12 * sigma
@@ -74,6 +75,6 @@ def test_same_state_as_the_previous_strategy(solved, monkeypatch):
     old = steady.solve_steady(model)
     assert old.info.iterations > 3 * sol.info.iterations
     np.testing.assert_array_equal(old.contact > 0.0, sol.contact > 0.0)
-    h_tol = steady.STEP_TOLERANCE * max(model.h_guess, AIR.roughness)
+    h_tol = steady.STEP_TOLERANCE * max(model.h_guess, HARD.roughness)
     np.testing.assert_allclose(old.spacing, sol.spacing, rtol=0, atol=10 * h_tol)
     np.testing.assert_allclose(old.pressure, sol.pressure, rtol=1e-8, atol=0)

@@ -19,14 +19,15 @@ import warnings
 import numpy as np
 import pytest
 import scipy.sparse as sp
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import ParameterError, TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel, steady
+from gyroshell.bearing import BearingModel, steady
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.model import BearingGridWarning
 from gyroshell.linalg import factorization as fz
 
-AIR = AirParameters()
+AIR = FIRST_ORDER
 #: Two modules, the second raised by 0.3 µm: a 2 mm tape touches down on the second land.
 TWO = FlatHead((Module(0.8e-3), Module(0.5e-3, height=0.3e-6)), math.radians(1.5),
                math.radians(3.0), gaps=(0.2e-3,))
@@ -41,7 +42,7 @@ def _clear(factorization):
     """A 3 mm tape flying clear of a 15° cylinder (no contact)."""
     return BearingModel(TapeParameters(width=3e-3), AIR, velocity=4.0,
                         wrap_angle=math.radians(15.0), nx=64, ny=16, span=2e-3,
-                        factorization=factorization)
+                        factorization=factorization, contact=HARD)
 
 
 def _touching(factorization):
@@ -49,7 +50,7 @@ def _touching(factorization):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
         return BearingModel(TapeParameters(width=2e-3), AIR, velocity=4.0, head=TWO,
-                            nx=96, ny=16, factorization=factorization)
+                            nx=96, ny=16, factorization=factorization, contact=HARD)
 
 
 @pytest.fixture(scope="module")

@@ -11,17 +11,18 @@ import warnings
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 from convergence import observed_order
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.model import BearingGridWarning
 from gyroshell.bearing.steady import solve_steady
 
 DEG = math.pi / 180.0
 TAPE = TapeParameters()
-AIR = AirParameters()
+AIR = FIRST_ORDER
 FLAT = FlatHead((Module(1e-3),), 2 * DEG, 2 * DEG, transducers=(0.0,))
 #: Two modules, the second raised, unequal wraps: no mirror symmetry.
 TWO = FlatHead((Module(0.8e-3), Module(0.5e-3, height=0.3e-6)), 1.5 * DEG, 3 * DEG,
@@ -35,7 +36,8 @@ DEFAULT_GRID_ERROR = 5e-3
 
 
 def _strip(head=FLAT, velocity=4.0, **kw):
-    return BearingModel(TAPE, AIR, velocity=velocity, head=head, infinitely_wide=True, **kw)
+    return BearingModel(TAPE, AIR, velocity=velocity, head=head, infinitely_wide=True, **kw,
+                        contact=HARD)
 
 
 def _at_transducer(sol) -> np.ndarray:
@@ -122,7 +124,8 @@ def _mirror_pair(head, width=None, **kw):
     wide = width is None
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
-        models = [BearingModel(params, AIR, velocity=v, head=h, infinitely_wide=wide, **kw)
+        models = [BearingModel(params, AIR, velocity=v, head=h, infinitely_wide=wide, **kw,
+                               contact=HARD)
                   for v, h in ((4.0, head), (-4.0, head.mirrored()))]
     return [solve_steady(m) for m in models]
 
@@ -182,7 +185,7 @@ def test_transducer_spacing_converges_at_second_order_2d():
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", BearingGridWarning)
             model = BearingModel(TAPE.replace(width=2e-3), AIR, velocity=4.0, head=FLAT,
-                                 nx=96 * k, ny=16 * k, span=1e-3)
+                                 nx=96 * k, ny=16 * k, span=1e-3, contact=HARD)
         sols.append(solve_steady(model))
     lines = [_at_transducer(s) for s in sols]
     for j in (lambda ny: ny // 2, lambda ny: ny // 4):

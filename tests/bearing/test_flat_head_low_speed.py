@@ -12,26 +12,27 @@ import warnings
 
 import numpy as np
 import pytest
-from bearing_cases import flux_spread_1d
+from bearing_cases import FIRST_ORDER, HARD, flux_spread_1d
 from closed_forms import tensioned_plate_on_two_supports
 from convergence import observed_order
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.model import BearingGridWarning
 from gyroshell.bearing.steady import solve_steady
 
 DEG = math.pi / 180.0
 TAPE = TapeParameters()
-AIR = AirParameters()
+AIR = FIRST_ORDER
 LAND = 3e-3
 WRAP = 4 * DEG
 HEAD = FlatHead((Module(LAND),), WRAP, WRAP, transducers=(0.0,))
 
 
 def _strip(velocity, **kw):
-    return BearingModel(TAPE, AIR, velocity=velocity, head=HEAD, infinitely_wide=True, **kw)
+    return BearingModel(TAPE, AIR, velocity=velocity, head=HEAD, infinitely_wide=True, **kw,
+                        contact=HARD)
 
 
 def _centre(sol) -> float:
@@ -49,7 +50,7 @@ def _dry_height(model):
     a, b = -LAND / 2, LAND / 2
     s = float(model.x_head[-1]) - b
     evaluate, _ = tensioned_plate_on_two_supports(
-        (a - s, b + s), (a, b), lam, (-WRAP * s, -WRAP * s), (AIR.roughness,) * 2, t_eff)
+        (a - s, b + s), (a, b), lam, (-WRAP * s, -WRAP * s), (HARD.roughness,) * 2, t_eff)
     return evaluate(model.x_head, 0)
 
 
@@ -161,7 +162,7 @@ def test_a_contact_set_tied_by_round_off_does_not_stall_newton():
     from gyroshell.bearing import steady
 
     model = _strip(0.3)
-    assert model.flying_start_spacing < AIR.roughness
+    assert model.flying_start_spacing < HARD.roughness
     z = model.initial_state()
     transit = model.film_length / abs(model.velocity)
     for s in (0.1, 0.4):
@@ -169,7 +170,7 @@ def test_a_contact_set_tied_by_round_off_does_not_stall_newton():
             model, z, transient=steady._PseudoTime(model, z, s, transit),
             tol=steady.PSEUDO_TOLERANCE, max_iterations=steady.PSEUDO_NEWTON)
     h = z[:model.n_u] + model.dry_field[1:-1, 0]
-    sigma = AIR.roughness
+    sigma = HARD.roughness
     assert active.sum() > 800                       # the land lies on the head
     assert np.all(h >= sigma * (1 - 1e-12))
     assert np.all(lam >= -1e-6 * np.abs(lam).max())
@@ -187,7 +188,7 @@ def test_two_d_tape_at_one_metre_per_second_is_reached_from_the_dry_side():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
         model = BearingModel(TAPE.replace(width=2e-3), AIR, velocity=1.0, head=HEAD,
-                             nx=400, ny=8)
+                             nx=400, ny=8, contact=HARD)
     sol = solve_steady(model)
     assert sol.info.continuation[-1] == 1.0
     assert sol.pressure.min() > 0.0
@@ -199,4 +200,4 @@ def test_two_d_tape_at_one_metre_per_second_is_reached_from_the_dry_side():
     middle = sol.spacing[i0, model.ny // 2]
     strip = solve_steady(model.rebuilt(infinitely_wide=True, ny=None))
     assert middle < 0.5 * strip.spacing[i0, 0]
-    assert middle > 10 * AIR.roughness
+    assert middle > 10 * HARD.roughness

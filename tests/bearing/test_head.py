@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import ParameterError
 from gyroshell.bearing.head import (
@@ -289,14 +290,14 @@ def test_bearing_grid_stepping_over_an_asperity_warns_with_its_size_and_place():
     import warnings
 
     from gyroshell import TapeParameters
-    from gyroshell.bearing import AirParameters, BearingModel
+    from gyroshell.bearing import BearingModel
     from gyroshell.bearing.model import BearingGridWarning
 
     def build(profile, nx=None):
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=profile,
-                         infinitely_wide=True, nx=nx)
+            BearingModel(TapeParameters(), FIRST_ORDER, velocity=4.0, head=profile,
+                         infinitely_wide=True, nx=nx, contact=HARD)
         return [str(w.message) for w in caught if w.category is BearingGridWarning]
 
     (line,) = build(_asperity_profile())

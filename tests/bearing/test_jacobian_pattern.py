@@ -12,18 +12,19 @@ import math
 import numpy as np
 import pytest
 import scipy.sparse as sp
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel, problem, steady
+from gyroshell.bearing import BearingModel, problem, steady
 from gyroshell.bearing.jacobian import JacobianPattern
 from gyroshell.linalg import factorization as fz
 
 
 def _model(factorization="auto", infinitely_wide=False):
-    return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
+    return BearingModel(TapeParameters(width=3e-3), FIRST_ORDER, velocity=4.0,
                         wrap_angle=math.radians(15.0), nx=48, span=2e-3,
                         ny=None if infinitely_wide else 16, factorization=factorization,
-                        infinitely_wide=infinitely_wide)
+                        infinitely_wide=infinitely_wide, contact=HARD)
 
 
 def _state(model, rng):

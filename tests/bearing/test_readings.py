@@ -17,7 +17,7 @@ from gyroshell.bearing.film import face_fluxes
 from gyroshell.bearing.mesh import LineGrading, line_nodes, symmetric_line_nodes
 
 MU, V, PA = 1.81e-5, 4.0, 101325.0
-NO_SLIP = AirParameters(mean_free_path=0.0, compressible=False)
+NO_SLIP = AirParameters(mean_free_path=0.0, compressible=False, rarefaction="first-order")
 WIDTH = 3e-3
 
 
@@ -52,11 +52,11 @@ def test_slip_lowers_the_couette_shear_by_the_local_mean_free_path():
     # compressible: λ_e = λ p_a / p; at p = 2 p_a the wall slip is λ/2 at each wall
     x = np.linspace(0.0, 1e-3, 11)
     h0, lam = 0.1e-6, 64e-9
-    air = AirParameters(mean_free_path=lam)
+    air = AirParameters(mean_free_path=lam, rarefaction="first-order")
     H, P = np.full((11, 1), h0), np.full((11, 1), 2 * PA)
     tau = readings.shear_stress(x, H, P, V, air)
     assert np.allclose(tau, MU * V / (h0 + lam), rtol=1e-14, atol=0)
-    inc = AirParameters(mean_free_path=lam, compressible=False)
+    inc = AirParameters(mean_free_path=lam, compressible=False, rarefaction="first-order")
     tau_inc = readings.shear_stress(x, H, P, V, inc)
     assert np.allclose(tau_inc, MU * V / (h0 + 2 * lam), rtol=1e-14, atol=0)
 
@@ -76,7 +76,7 @@ def _slip_profile(h, gradient, lam, velocity):
 @pytest.mark.parametrize("gradient", [-3e9, 0.0, 5e9])   # Pa/m
 def test_shear_and_film_flux_come_from_one_slip_velocity_profile(gradient):
     h, lam, dx = 0.15e-6, 64e-9, 1e-6
-    air = AirParameters(mean_free_path=lam, compressible=False)
+    air = AirParameters(mean_free_path=lam, compressible=False, rarefaction="first-order")
     flux, wall_shear = _slip_profile(h, gradient, lam, V)
     f = face_fluxes(np.array([PA]), np.array([PA + gradient * dx]), np.array([h]),
                     np.array([h]), dx, V, air)
@@ -92,7 +92,7 @@ def test_shear_resists_a_reversed_tape_from_the_same_slip_profile(gradient):
     """A tape running towards −x (V < 0): the air pushes it towards +x with −μ u'(h),
     and that is the stress against its motion; in a Couette film it is μ|V|/(h + 2λ)."""
     h, lam = 0.15e-6, 64e-9
-    air = AirParameters(mean_free_path=lam, compressible=False)
+    air = AirParameters(mean_free_path=lam, compressible=False, rarefaction="first-order")
     _, wall_shear = _slip_profile(h, gradient, lam, -V)
     x = np.linspace(0.0, 4e-6, 5)
     P = (PA + gradient * x)[:, None]
@@ -100,6 +100,25 @@ def test_shear_resists_a_reversed_tape_from_the_same_slip_profile(gradient):
     assert np.allclose(tau, -wall_shear, rtol=1e-10, atol=0)
     if gradient == 0.0:
         assert np.allclose(tau, MU * V / (h + 2 * lam), rtol=1e-12, atol=0)
+
+
+@pytest.mark.parametrize("rarefaction", ["none", "first-order", "second-order",
+                                         "fukui-kaneko"])
+def test_couette_shear_slips_by_the_rarefaction_models_own_slip_length(rarefaction):
+    """The Couette shear μV/(h + 2ζλ) takes the slip length ζλ whose Poiseuille flow is
+    the model's first-order term: ζ = (Q − 1)/(6 Kn) as Kn → 0, read off the model's Q
+    (Richardson-extrapolated from Kn = 1e-4, 2e-4): 0 without slip, 1 for Maxwell's slip,
+    1.147 for the Boltzmann flow rate."""
+    from gyroshell.bearing.rarefaction import poiseuille_flow_factor
+
+    slope = [(poiseuille_flow_factor(rarefaction, kn)[0] - 1.0) / (6.0 * kn)
+             for kn in (1e-4, 2e-4)]
+    zeta = float(2.0 * slope[0] - slope[1])
+    h, lam = 0.15e-6, 64e-9
+    air = AirParameters(mean_free_path=lam, compressible=False, rarefaction=rarefaction)
+    x = np.linspace(0.0, 4e-6, 5)
+    tau = readings.shear_stress(x, np.full((5, 1), h), np.full((5, 1), PA), V, air)
+    assert np.allclose(tau, MU * V / (h + 2.0 * zeta * lam), rtol=1e-6, atol=0)
 
 
 def test_plane_poiseuille_part_with_a_linear_pressure():

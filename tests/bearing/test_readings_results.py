@@ -10,9 +10,10 @@ import warnings
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import Cylinder, FlatHead, Module
 from gyroshell.bearing.model import BearingGridWarning
 from gyroshell.bearing.steady import solve_steady
@@ -24,8 +25,9 @@ READING_KEYS = ("transducer_lines", "tents", "corner_forces", "land_forces", "vi
 def _cylinder(nx=None, *, wide=True, velocity=4.0, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
-        return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=velocity,
-                            wrap_angle=math.radians(15), infinitely_wide=wide, nx=nx, **kw)
+        return BearingModel(TapeParameters(width=3e-3), FIRST_ORDER, velocity=velocity,
+                            wrap_angle=math.radians(15), infinitely_wide=wide, nx=nx, **kw,
+                            contact=HARD)
 
 
 def _plain(value) -> bool:
@@ -62,8 +64,9 @@ def test_transducer_line_spacing_converges_at_second_order_off_the_nodes():
     head = Cylinder(math.radians(15), transducers=(x_t,))
     values = []
     for nx in (100, 200, 400, 800):
-        sol = solve_steady(BearingModel(TapeParameters(), AirParameters(), velocity=4.0,
-                                        head=head, infinitely_wide=True, nx=nx, span=4e-3))
+        sol = solve_steady(BearingModel(TapeParameters(), FIRST_ORDER, velocity=4.0,
+                                        head=head, infinitely_wide=True, nx=nx, span=4e-3,
+                                        contact=HARD))
         (line,) = sol.transducer_lines
         assert not np.any(np.isclose(sol.x, x_t, rtol=0, atol=1e-9))
         values.append(line.centre)
@@ -78,8 +81,9 @@ TAPE = TapeParameters()
 def _dry_flat(friction, *, span, t_in=2 * DEG, t_out=2 * DEG, nx=None):
     """Dry (no air, V = 0, k = 0) infinitely wide tape over one 1 mm flat land."""
     head = FlatHead((Module(1e-3),), t_in, t_out, friction=friction)
-    return solve_steady(BearingModel(TAPE, AirParameters(), velocity=0.0, head=head,
-                                     infinitely_wide=True, dry=True, span=span, nx=nx))
+    return solve_steady(BearingModel(TAPE, FIRST_ORDER, velocity=0.0, head=head,
+                                     infinitely_wide=True, dry=True, span=span, nx=nx,
+                                     contact=HARD))
 
 
 @pytest.mark.parametrize("t_in, t_out", [(2 * DEG, 2 * DEG), (1 * DEG, 3 * DEG)])
@@ -136,8 +140,8 @@ def test_flying_flat_head_readings_keep_their_books():
     transducer's spacing, with nothing on the span side (the flanks fall away)."""
     mu_f = 0.2
     head = FlatHead((Module(1e-3),), 2 * DEG, 2 * DEG, transducers=(0.0,), friction=mu_f)
-    sol = solve_steady(BearingModel(TAPE, AirParameters(), velocity=4.0, head=head,
-                                    infinitely_wide=True, nx=320, span=1e-3))
+    sol = solve_steady(BearingModel(TAPE, FIRST_ORDER, velocity=4.0, head=head,
+                                    infinitely_wide=True, nx=320, span=1e-3, contact=HARD))
     shares = sol.corner_forces + sol.land_forces
     assert sum(s.force for s in shares) == pytest.approx(sol.contact_force, rel=1e-14)
     assert sol.contact_force > 0 and sol.land_forces[0].force == 0.0
@@ -165,8 +169,8 @@ def test_a_reversed_tape_reads_as_the_mirrored_head_run_forward():
     the capstan law 1 + μ_f θ (T − ρV²)/T to first order."""
     def flat(t_in, t_out, velocity, **kw):
         head = FlatHead((Module(1e-3),), t_in, t_out, transducers=(0.0,), friction=0.3)
-        return solve_steady(BearingModel(TAPE, AirParameters(), velocity=velocity,
-                                         head=head, infinitely_wide=True, **kw))
+        return solve_steady(BearingModel(TAPE, FIRST_ORDER, velocity=velocity,
+                                         head=head, infinitely_wide=True, **kw, contact=HARD))
     reversed_, mirrored = flat(1 * DEG, 3 * DEG, -4.0), flat(3 * DEG, 1 * DEG, 4.0)
     assert mirrored.viscous_drag > 0 and mirrored.friction_drag > 0
     for name in ("viscous_drag", "friction_drag", "drag", "tension_ratio"):
@@ -193,8 +197,9 @@ def test_transducer_line_across_the_width_converges_at_second_order():
     head = Cylinder(math.radians(15), transducers=(1.2345e-3,))
     values = []
     for nx, ny in ((96, 24), (192, 48), (384, 96)):
-        sol = solve_steady(BearingModel(TapeParameters(width=3e-3), AirParameters(),
-                                        velocity=4.0, head=head, nx=nx, ny=ny, span=2e-3))
+        sol = solve_steady(BearingModel(TapeParameters(width=3e-3), FIRST_ORDER,
+                                        velocity=4.0, head=head, nx=nx, ny=ny, span=2e-3,
+                                        contact=HARD))
         (line,) = sol.transducer_lines
         values.append((line.centre, line.minimum, line.mean))
     centre, minimum, mean = _line_orders(values)[0]
@@ -215,7 +220,7 @@ def test_cylinder_below_its_smallest_valid_wrap_warns_where_the_model_stops_hold
         foil_length_scales,
     )
 
-    air = AirParameters()
+    air = FIRST_ORDER
     t_eff = TAPE.tension - TAPE.density * 16.0
     _, l_film, _ = foil_length_scales(TAPE, air, 4.0)
     l_k = math.sqrt(t_eff / TAPE.k)
@@ -226,7 +231,7 @@ def test_cylinder_below_its_smallest_valid_wrap_warns_where_the_model_stops_hold
     for deg in (0.01, 0.1):
         with pytest.warns(BearingModelWarning) as caught:
             model = BearingModel(TAPE, air, velocity=4.0, wrap_angle=deg * DEG,
-                                 infinitely_wide=True)
+                                 infinitely_wide=True, contact=HARD)
         (line,) = [str(w.message) for w in caught]
         assert f"a wrap of {deg:g} deg is below 6.24 deg, where this model stops" in line
         assert model.smallest_valid_wrap() == pytest.approx(limit, rel=1e-12)
@@ -235,4 +240,5 @@ def test_cylinder_below_its_smallest_valid_wrap_warns_where_the_model_stops_hold
         assert support / 3 < spans < support
     with warnings.catch_warnings():
         warnings.simplefilter("error", BearingModelWarning)
-        BearingModel(TAPE, air, velocity=4.0, wrap_angle=15 * DEG, infinitely_wide=True)
+        BearingModel(TAPE, air, velocity=4.0, wrap_angle=15 * DEG, infinitely_wide=True,
+                     contact=HARD)

@@ -16,18 +16,18 @@ import math
 
 import numpy as np
 import pytest
-from bearing_cases import flux_spread_1d
+from bearing_cases import FIRST_ORDER, HARD, flux_spread_1d
 from closed_forms import plate_over_rounded_land
 from convergence import observed_order
 
 from gyroshell import ParameterError, TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.steady import solve_steady
 
 DEG = math.pi / 180.0
 TAPE = TapeParameters(foundation_stiffness=0.0)
-AIR = AirParameters()
+AIR = FIRST_ORDER
 LAND = 1e-3
 SPAN = 1e-3
 RADIUS = 100e-6
@@ -37,7 +37,7 @@ FLANK = 20 * DEG
 def _dry(nx, t_in=2 * DEG, t_out=2 * DEG, r=RADIUS, **kw):
     head = FlatHead((Module(LAND, corner_radius=r),), t_in, t_out, flank_angle=FLANK)
     return BearingModel(TAPE, AIR, velocity=0.0, head=head, span=SPAN, nx=nx, dry=True,
-                        grading="uniform", infinitely_wide=True, **kw)
+                        grading="uniform", infinitely_wide=True, **kw, contact=HARD)
 
 
 def test_closed_form_touches_each_arc_tangentially_inside_its_wrapped_part():
@@ -66,7 +66,7 @@ def test_dry_tape_over_rounded_corners_matches_the_plate_and_converges(t_in, t_o
     node per corner (at the adapted contact point), second order."""
     lam = math.sqrt(TAPE.D / TAPE.tension)
     w, forces, contacts = plate_over_rounded_land(LAND, SPAN, t_in, t_out, lam,
-                                                  AIR.roughness, RADIUS, FLANK,
+                                                  HARD.roughness, RADIUS, FLANK,
                                                   TAPE.tension)
     steps, errs, ferrs, xerrs = [], [], [], []
     for nx in (96, 192, 384):
@@ -95,7 +95,7 @@ FILM_RADIUS = 5e-6
 def _flying(r=FILM_RADIUS, velocity=4.0, **kw):
     head = FlatHead((Module(LAND, corner_radius=r),), 2 * DEG, 2 * DEG)
     return BearingModel(TapeParameters(), AIR, velocity=velocity, head=head,
-                        infinitely_wide=True, **kw)
+                        infinitely_wide=True, **kw, contact=HARD)
 
 
 def _h0(sol) -> float:
@@ -195,7 +195,7 @@ def test_two_d_tape_over_rounded_corners_touches_along_the_contact_lines():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
         model = BearingModel(TapeParameters(width=2e-3), AIR, velocity=4.0, head=head,
-                             nx=96, ny=16, span=1e-3)
+                             nx=96, ny=16, span=1e-3, contact=HARD)
     sol = solve_steady(model)
     m = sol.model
     touching = np.flatnonzero(sol.contact.reshape(m.nx - 1, m.nc).sum(axis=1))
@@ -228,7 +228,8 @@ def _two_d(width=2e-3, **kw):
                     transducers=(0.0,))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", BearingGridWarning)
-        return BearingModel(TapeParameters(width=width), AIR, velocity=4.0, head=head, **kw)
+        return BearingModel(TapeParameters(width=width), AIR, velocity=4.0, head=head, **kw,
+                            contact=HARD)
 
 
 @pytest.mark.parametrize("wide", [False, True])
@@ -339,10 +340,10 @@ def test_a_large_point_contact_corner_at_speed_converges_with_floating_point_err
     head = FlatHead((Module(1e-3, corner_radius=1.2e-3),), 2 * DEG, 2 * DEG,
                     transducers=(0.0,))
     model = BearingModel(TapeParameters(), AIR, velocity=4.0, head=head,
-                         infinitely_wide=True, arc_contact="point")
+                         infinitely_wide=True, arc_contact="point", contact=HARD)
     with np.errstate(all="raise"):
         sol = solve_steady(model)
-    assert sol.transducer_lines[0].minimum >= AIR.roughness
+    assert sol.transducer_lines[0].minimum >= HARD.roughness
     assert np.all(sol.pressure > 0.0)
     spread, terms, _ = flux_spread_1d(sol)
     assert spread < 1e-9 * terms
@@ -359,7 +360,7 @@ def test_the_contact_on_a_large_rounded_corner_is_read_as_that_corners():
     head = FlatHead((Module(1e-3, corner_radius=1.4e-3),), 2 * DEG, 2 * DEG,
                     transducers=(0.0,))
     model = BearingModel(TapeParameters(), AIR, velocity=4.0, head=head,
-                         infinitely_wide=True)
+                         infinitely_wide=True, contact=HARD)
     assert model.wrapped_corners == ()
     sol = solve_steady(model)
     corners = [c.force for c in sol.corner_forces]

@@ -16,16 +16,17 @@ import math
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.steady import BearingSolution, solve_steady
 from gyroshell.bearing.transient import march, tension_step
 from gyroshell.core.errors import ConvergenceError
 
 DEG = math.pi / 180.0
-AIR = AirParameters()
+AIR = FIRST_ORDER
 #: Newmark with numerical damping of the grid-scale ringing (unconditionally stable).
 DAMPED = {"beta": 0.3025, "gamma": 0.6}
 HEADS = {
@@ -41,7 +42,7 @@ CASES = [pytest.param("sharp"), pytest.param("rounded"),
 
 def _model(kind, velocity=4.0, **kw):
     return BearingModel(TapeParameters(), AIR, velocity=velocity, head=HEADS[kind],
-                        infinitely_wide=True, **kw)
+                        infinitely_wide=True, **kw, contact=HARD)
 
 
 _STEADY: dict = {}
@@ -104,7 +105,7 @@ def test_a_start_lifted_off_the_corners_settles_back(kind):
     x = steady.model.x_head[1:-1]
     lift = 0.3 * steady.central_spacing * np.exp(-(x / 3e-4) ** 2)
     corners = steady.contact > 0
-    assert np.all(lift[corners] > 0.02 * AIR.roughness)
+    assert np.all(lift[corners] > 0.02 * HARD.roughness)
     start = BearingSolution(steady.model, steady.u + lift, steady.p, steady.contact,
                             steady.info)
     run = march(start, dt=1e-5, steps=150, record_every=50, **DAMPED)
@@ -185,7 +186,7 @@ def test_a_state_cutting_into_a_rounded_arc_is_refused_naming_when():
     check_point_contacts(m, steady.u, " at t = 0 s")
     free = np.flatnonzero(m.contact_floor < 0.0)
     u = steady.u.copy()
-    u[free[np.argmin(np.abs(free - (m.contact_nodes[0] - 1)))]] -= 2.0 * AIR.roughness
+    u[free[np.argmin(np.abs(free - (m.contact_nodes[0] - 1)))]] -= 2.0 * HARD.roughness
     with pytest.raises(ConvergenceError, match=r"cuts 3\.99e-08 m into an arc .* at t = 1e-05 "
                        r"s, .*arc_contact='wrapped'") as info:
         check_point_contacts(m, u, " at t = 1e-05 s")

@@ -21,19 +21,19 @@ import warnings
 
 import numpy as np
 import pytest
-from bearing_cases import flux_spread_1d
+from bearing_cases import FIRST_ORDER, HARD, flux_spread_1d
 from closed_forms import plate_over_rounded_land, tensioned_plate_wrapping_two_arcs
 from convergence import observed_order
 
 from gyroshell import ParameterError, TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.model import WRAPPED_ARC_BENDING_LENGTHS, BearingGridWarning
 from gyroshell.bearing.steady import solve_steady
 
 DEG = math.pi / 180.0
 TAPE = TapeParameters(foundation_stiffness=0.0)
-AIR = AirParameters()
+AIR = FIRST_ORDER
 LAM = math.sqrt(TAPE.D / TAPE.tension)
 #: A long land (4 mm) with 10 mm corner arcs on 8° flanks (each arc reaches 0.70 mm either
 #: side of its corner point), spans of 1 mm: r_c θ_c = 3.9 λ at 4°.
@@ -46,7 +46,7 @@ def _head(t_in, t_out, land=LAND, r=RADIUS, flank=FLANK, **kw):
 
 def _dry(nx, t_in=4 * DEG, t_out=4 * DEG, **kw):
     return BearingModel(TAPE, AIR, velocity=0.0, head=_head(t_in, t_out), span=SPAN, nx=nx,
-                        dry=True, grading="uniform", infinitely_wide=True, **kw)
+                        dry=True, grading="uniform", infinitely_wide=True, **kw, contact=HARD)
 
 
 def wrapped_plate(t_in, t_out, land=LAND, r=RADIUS, flank=FLANK, span=SPAN):
@@ -68,7 +68,7 @@ def wrapped_plate(t_in, t_out, land=LAND, r=RADIUS, flank=FLANK, span=SPAN):
     z_right = -r * t_out**2 / 2 - t_out * ((b + span) - (trail + r * t_out))
     start = (lead - (r * t_in - LAM), lead - LAM, trail + LAM, trail + r * t_out - LAM)
     return tensioned_plate_wrapping_two_arcs((a - span, b + span), (z_left, z_right),
-                                             (lead_arc, trail_arc), LAM, AIR.roughness,
+                                             (lead_arc, trail_arc), LAM, HARD.roughness,
                                              TAPE.tension, start)
 
 
@@ -98,7 +98,7 @@ def test_closed_form_wraps_each_arc_but_a_bending_length_at_each_end(t_in, t_out
     assert totals == pytest.approx((TAPE.tension * s_in, TAPE.tension * s_out), rel=2e-3)
     x = np.linspace(-LAND / 2 - SPAN, LAND / 2 + SPAN, 20001)
     free = ~(((x > a1) & (x < b1)) | ((x > a2) & (x < b2)))
-    gap = height(x) - _head(t_in, t_out).surface(x) - AIR.roughness
+    gap = height(x) - _head(t_in, t_out).surface(x) - HARD.roughness
     assert gap[free].min() > -1e-15 and np.abs(gap[~free]).max() < 1e-15
 
 
@@ -156,11 +156,11 @@ def test_point_and_wrapped_models_agree_across_the_handover(radius):
     model's error."""
     t = 2 * DEG
     assert (radius * t > WRAPPED_ARC_BENDING_LENGTHS * LAM) == (radius > 1.5e-3)
-    w, forces, _ = plate_over_rounded_land(SHORT_LAND, 1e-3, t, t, LAM, AIR.roughness,
+    w, forces, _ = plate_over_rounded_land(SHORT_LAND, 1e-3, t, t, LAM, HARD.roughness,
                                            radius, SHORT_FLANK, TAPE.tension)
     head = _head(t, t, SHORT_LAND, radius, SHORT_FLANK)
     auto = BearingModel(TAPE, AIR, velocity=0.0, head=head, span=1e-3, dry=True,
-                        infinitely_wide=True)
+                        infinitely_wide=True, contact=HARD)
     assert (auto.wrapped_corners == (0, 1)) == (radius > 1.5e-3)
     assert (len(auto.corner_contacts) == 2) == (radius < 1.5e-3)
     for mode, tol in (("point", 2e-4), ("wrapped", 2e-3)):
@@ -197,7 +197,7 @@ def test_wrapped_arcs_at_speed_match_point_contacts_at_the_handover():
     arcs' geometric corner points, as before, 1.9 %, 2.2 %) and its h(0) within 0.1 %."""
     head = _handover_head(1.4e-3)
     point, wrapped = (BearingModel(TapeParameters(), AIR, velocity=4.0, head=head,
-                                   infinitely_wide=True, arc_contact=mode)
+                                   infinitely_wide=True, arc_contact=mode, contact=HARD)
                       for mode in ("point", "wrapped"))     # each on its own default grid
     assert wrapped.wrapped_corners == (0, 1) and point.corner_contacts
     ref = solve_steady(point.rebuilt(nx=4 * point.nx))
@@ -214,7 +214,7 @@ def test_wrapped_arcs_at_speed_match_point_contacts_at_the_handover():
 # ----- at speed -----------------------------------------------------------------------
 def _flying(velocity=4.0, **kw):
     return BearingModel(TapeParameters(), AIR, velocity=velocity, head=_head(
-        4 * DEG, 4 * DEG, transducers=(0.0,)), infinitely_wide=True, **kw)
+        4 * DEG, 4 * DEG, transducers=(0.0,)), infinitely_wide=True, **kw, contact=HARD)
 
 
 @pytest.mark.slow
@@ -246,15 +246,15 @@ def test_a_corner_radius_once_refused_now_solves_dry_and_at_speed():
     head = FlatHead((Module(1e-3, corner_radius=2.5e-3),), 2 * DEG, 2 * DEG,
                     transducers=(0.0,))
     dry = solve_steady(BearingModel(TapeParameters(), AIR, velocity=0.0, dry=True,
-                                    head=head, infinitely_wide=True))
+                                    head=head, infinitely_wide=True, contact=HARD))
     assert dry.model.wrapped_corners == (0, 1)
     left = dry.contact[dry.model.x_head[1:-1] < 0].sum()
     assert left == pytest.approx(TapeParameters().tension * 2 * DEG, rel=0.06)
     flying = solve_steady(BearingModel(TapeParameters(), AIR, velocity=4.0, head=head,
-                                       infinitely_wide=True))
+                                       infinitely_wide=True, contact=HARD))
     spread, terms, flux = flux_spread_1d(flying)
     assert spread < 1e-12 * terms and spread < 1e-4 * flux
-    assert flying.central_spacing > AIR.roughness
+    assert flying.central_spacing > HARD.roughness
 
 
 def test_arcs_touched_at_speed_solve_by_newton_in_few_iterations():
@@ -269,7 +269,7 @@ def test_arcs_touched_at_speed_solve_by_newton_in_few_iterations():
     head = FlatHead((Module(1e-3, corner_radius=2.5e-3),), 2 * DEG, 2 * DEG,
                     transducers=(0.0,))
     model = BearingModel(TapeParameters(), AIR, velocity=0.5, head=head,
-                         infinitely_wide=True)
+                         infinitely_wide=True, contact=HARD)
     sol = solve_steady(model)
     assert model.wrapped_corners == (0, 1) and model.touching_arcs == (0, 1)
     assert sol.info.iterations <= 40
@@ -299,7 +299,7 @@ def test_two_d_tape_wrapped_over_arcs_matches_the_strip_in_the_middle():
         warnings.simplefilter("ignore", BearingGridWarning)
         model = BearingModel(TapeParameters(width=2e-3, foundation_stiffness=0.0), AIR,
                              velocity=0.0, dry=True, head=_head(4 * DEG, 4 * DEG), nx=400,
-                             ny=16, span=SPAN)
+                             ny=16, span=SPAN, contact=HARD)
     sol = solve_steady(model)
     m = sol.model
     C = sol.contact.reshape(m.nx - 1, m.nc)
@@ -349,8 +349,8 @@ def test_a_speed_change_across_the_handover_drops_the_carried_point_contacts():
     radius = WRAPPED_ARC_BENDING_LENGTHS * l_bend(4.0) * (1 - 5e-4) / turn
     assert radius * turn > WRAPPED_ARC_BENDING_LENGTHS * l_bend(0.4)   # wrapped at 0.4
     head = FlatHead((Module(1e-3, corner_radius=radius),), turn, turn)
-    fast = BearingModel(tape, AirParameters(), velocity=4.0, head=head,
-                        infinitely_wide=True)
+    fast = BearingModel(tape, FIRST_ORDER, velocity=4.0, head=head,
+                        infinitely_wide=True, contact=HARD)
     assert fast.wrapped_corners == () and len(fast.corner_contacts) == 2
     slow = fast.at_velocity(0.4)
     assert slow.wrapped_corners == (0, 1)

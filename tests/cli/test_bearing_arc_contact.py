@@ -11,9 +11,10 @@ import json
 import math
 
 import pytest
+from bearing_cases import FIRST_ORDER, HARD, LEGACY_CLI
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.model import WRAPPED_ARC_BENDING_LENGTHS
 from gyroshell.bearing.steady import solve_steady
@@ -23,7 +24,8 @@ VELOCITY, NX = 8.0, 200
 
 
 def _argv(land=1e-3, radius=2.5e-3, wrap=2, nx=NX):
-    return ["bearing", "--head", "flat", "--land-length", land, "--corner-radius", radius,
+    return ["bearing", *LEGACY_CLI, "--head", "flat", "--land-length", land,
+            "--corner-radius", radius,
             "--wrap-in", wrap, "--wrap-out", wrap, "--transducers", "0", "--velocity",
             VELOCITY, "--infinitely-wide", "--nx", nx, "--quiet"]
 
@@ -31,8 +33,9 @@ def _argv(land=1e-3, radius=2.5e-3, wrap=2, nx=NX):
 def _model(land=1e-3, radius=2.5e-3, wrap=2, nx=NX, **kw):
     head = FlatHead((Module(land, corner_radius=radius),), math.radians(wrap),
                     math.radians(wrap), transducers=(0.0,))
-    return BearingModel(TapeParameters(), AirParameters(), velocity=VELOCITY, head=head,
-                        infinitely_wide=True, nx=nx, **kw)
+    return BearingModel(TapeParameters(), FIRST_ORDER,
+                        velocity=VELOCITY, head=head,
+                        infinitely_wide=True, nx=nx, **kw, contact=HARD)
 
 
 def _json(cli, argv) -> dict:
@@ -117,13 +120,14 @@ def test_the_toml_key_flies_as_the_option(cli, tmp_path):
     path.write_text(f'[tape]\nvelocity = "{VELOCITY} m/s"\n\n[head]\nkind = "flat"\n'
                     'land_length = "1 mm"\ncorner_radius = "1 mm"\nwrap_in = "2 deg"\n'
                     'wrap_out = "2 deg"\ntransducers = ["0 mm"]\narc_contact = "wrapped"\n')
-    from_file = _json(cli, ["bearing", "--config", path, "--infinitely-wide", "--nx", NX,
+    from_file = _json(cli, ["bearing", *LEGACY_CLI, "--config", path, "--infinitely-wide",
+                            "--nx", NX,
                             "--quiet"])
     from_options = _json(cli, [*_argv(radius=1e-3), "--arc-contact", "wrapped"])
     assert from_file["corner_arc_models"] == ["wrapped", "wrapped"]
     assert from_file["central_spacing"] == from_options["central_spacing"]
     # the option typed beside the file wins
-    point = _json(cli, ["bearing", "--config", path, "--infinitely-wide", "--nx", NX,
+    point = _json(cli, ["bearing", *LEGACY_CLI, "--config", path, "--infinitely-wide", "--nx", NX,
                         "--quiet", "--arc-contact", "point"])
     assert point["corner_arc_models"] == ["point", "point"]
 
@@ -139,7 +143,7 @@ def test_a_head_study_solves_with_the_designs_arc_model():
     wrap = math.radians(2)
     design = HeadDesign(kind="flat", land_length=1e-3, corner_radius=1e-3, wrap_in=wrap,
                         wrap_out=wrap, transducers=(0.0,), arc_contact="wrapped")
-    setup = BearingStudy(head=design, infinitely_wide=True, nx=NX)
+    setup = BearingStudy(head=design, infinitely_wide=True, nx=NX, air=FIRST_ORDER, contact=HARD)
     study = run_study(TapeParameters(), vary={"tension": [90.0]}, compute="bearing",
                       velocity=VELOCITY, workers=1, bearing=setup, progress=False)
     assert study.failed.empty, study.failed.error.tolist()

@@ -7,6 +7,7 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
+from bearing_cases import LEGACY_CLI
 
 from gyroshell.cli import main
 
@@ -29,7 +30,8 @@ def test_infinitely_wide_json(capsys):
 def test_touch_down_reported_in_json(capsys):
     """A slow 3 mm tape touches down: the JSON reports the contact force and nodes, the
     minimum at the roughness height, and that Newton reached it directly."""
-    out = _json(capsys, ["bearing", "--velocity", "0.2", "--wrap-angle", "15", "--width",
+    out = _json(capsys, ["bearing", *LEGACY_CLI, "--velocity", "0.2", "--wrap-angle", "15",
+                         "--width",
                          "3e-3", "--nx", "160", "--ny", "48", "--json"])
     assert out["contact_force"] > 0.0 and out["contact_nodes"] > 0
     assert out["minimum_spacing"] == pytest.approx(out["roughness"], rel=1e-9)
@@ -56,7 +58,7 @@ def test_two_dimensional_json_files_and_plot(capsys, tmp_path):
 
 
 def test_uniform_grid_option(capsys):
-    out = _json(capsys, ["bearing", "--velocity", "4", "--nx", "80", "--ny", "10",
+    out = _json(capsys, ["bearing", *LEGACY_CLI, "--velocity", "4", "--nx", "80", "--ny", "10",
                          "--uniform", "--json"])
     assert not out["graded"]
     assert out["finest_y_spacing"] == pytest.approx(6.35e-3 / 10, rel=1e-12)
@@ -127,7 +129,7 @@ def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
         raise ConvergenceError("Newton did not converge in 60 iterations")
 
     monkeypatch.setattr(steady, "newton", failing)
-    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40",
+    assert main(["bearing", *LEGACY_CLI, "--velocity", "4", "--infinitely-wide", "--nx", "40",
                  "--quiet"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "no steady flying state" in err[0]
@@ -143,7 +145,7 @@ def test_unreachable_state_reports_each_stage_before_the_error(capsys, monkeypat
         raise ConvergenceError("Newton did not converge in 60 iterations")
 
     monkeypatch.setattr(steady, "newton", failing)
-    assert main(["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
+    assert main(["bearing", *LEGACY_CLI, "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert all(line.startswith("gyroshell bearing: ") for line in err[:-1])
     assert "unknowns; estimated" in err[0]

@@ -10,13 +10,14 @@ import re
 import stat
 
 import pytest
+from bearing_cases import LEGACY_CLI
 
 from gyroshell.cli import bearing as bearing_cli
 
 #: A 1-D bearing that solves in a few hundredths of a second.
 TINY_1D = ["bearing", "--velocity", "4", "--infinitely-wide", "--nx", "40"]
 #: A 2-D bearing that solves in a few tenths of a second.
-TINY_2D = ["bearing", "--velocity", "4", "--nx", "40", "--ny", "8"]
+TINY_2D = ["bearing", *LEGACY_CLI, "--velocity", "4", "--nx", "40", "--ny", "8"]
 
 
 def _one_error_line(run) -> str:
@@ -83,7 +84,8 @@ def test_plate_keys_of_a_config_file_do_not_apply(cli, tmp_path):
     tape = tmp_path / "tape.toml"
     tape.write_text('[tape]\nwidth = "6.35 mm"\nspacing = "0.5 mm"\nlength_ratio = 19\n'
                     'load = "900 Pa"\nload_x = "0.1 m"\nvelocity = "4 m/s"\n')
-    run = cli(["bearing", "--config", tape, "--nx", "40", "--ny", "8", "--json", "--quiet"])
+    run = cli(["bearing", *LEGACY_CLI, "--config", tape, "--nx", "40", "--ny", "8", "--json",
+               "--quiet"])
     assert run.code == 0, run.err
     assert json.loads(run.out)["width"] == 6.35e-3
 
@@ -335,7 +337,8 @@ def test_time_estimate_grows_with_the_model():
 def test_coarse_free_edges_are_one_warning_line_and_the_run_goes_on(cli):
     """ny = 8 on the 6.35 mm tape leaves 0.8 mm at the edges: flown, with the estimated
     error in one `gyroshell: warning:` line (no Python warning text)."""
-    run = cli(["bearing", "--velocity", "4", "--nx", "40", "--ny", "8", "--json", "--quiet"])
+    run = cli(["bearing", *LEGACY_CLI, "--velocity", "4", "--nx", "40", "--ny", "8", "--json",
+               "--quiet"])
     assert run.code == 0, run.err
     lines = _without_range_warnings(run.err)
     assert len(lines) == 1 and lines[0].startswith("gyroshell: warning: ny = 8 leaves")

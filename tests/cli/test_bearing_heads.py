@@ -8,6 +8,7 @@ import json
 import math
 
 import pytest
+from bearing_cases import LEGACY_CLI
 
 from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
@@ -93,7 +94,8 @@ def test_error_estimate_is_the_difference_from_half_the_intervals(cli):
 def test_error_estimate_says_in_one_line_when_it_cannot_halve_the_width(cli):
     """ny = 8 is already the fewest intervals across: the coarse grid keeps it, and the
     one warning line says so, naming ny and the coarse grid; nx = 64 halves silently."""
-    run = cli(["bearing", "--velocity", "4", "--width", "3e-3", "--nx", "64", "--ny", "8",
+    run = cli(["bearing", *LEGACY_CLI, "--velocity", "4", "--width", "3e-3", "--nx", "64",
+               "--ny", "8",
                "--error-estimate", "--quiet", "--json"])
     assert run.code == 0, run.err
     error = json.loads(run.out)["grid_error"]

@@ -10,6 +10,7 @@ import math
 from pathlib import Path
 
 import pytest
+from bearing_cases import LEGACY_CLI
 
 import gyroshell as g
 from gyroshell.cli import build_parser, main
@@ -109,7 +110,8 @@ def test_pen_tape_critical_speed_modes_and_flying_height_in_one_command_each(cap
     modes = run_json(capsys, ["modes", *PEN_COARSE, "--count", "2"])
     # above the cut-on frequency sqrt(k/rho) of the shell foundation, k = A11/R^2
     assert modes["omega"][0] > math.sqrt(params.lamination.A[0] / 0.02**2 / params.density)
-    fly = run_json(capsys, ["bearing", "--config", PEN, "--velocity", "4", "--nx", "30",
+    fly = run_json(capsys, ["bearing", *LEGACY_CLI, "--config", PEN, "--velocity", "4", "--nx",
+                            "30",
                             "--ny", "12", "--quiet"])
     assert fly["width"] == 12.65e-3 and fly["tension"] == 63.0
     assert 1e-6 < fly["central_spacing"] < 1e-5  # microns, as the foil law says at 4 m/s

@@ -24,18 +24,27 @@ TIME_STEP = 1e-5
 STEPS = 3
 
 
-def _model(infinitely_wide: bool = True) -> BearingModel:
+def _model(infinitely_wide: bool = True, **kw) -> BearingModel:
     nx, ny = (INTERVALS, None) if infinitely_wide else INTERVALS_2D
     with warnings.catch_warnings():  # coarse on purpose: the file, not the answer, is tested
         warnings.simplefilter("ignore", BearingGridWarning)
-        return BearingModel(TapeParameters(width=3e-3), AirParameters(), velocity=4.0,
-                            wrap_angle=math.radians(15.0), infinitely_wide=infinitely_wide,
-                            nx=nx, ny=ny)
+        return BearingModel(TapeParameters(width=3e-3), kw.pop("air", AirParameters()),
+                            velocity=4.0, wrap_angle=math.radians(15.0),
+                            infinitely_wide=infinitely_wide, nx=nx, ny=ny, **kw)
 
 
 def steady() -> Result:
     """A steady flying state of the infinitely wide tape."""
     return solve_steady(_model())
+
+
+def steady_legacy() -> Result:
+    """:func:`steady` with the interface of the releases before contact laws: first-order
+    slip and the hard wall at 20 nm (what their files hold)."""
+    from gyroshell.bearing.contact import ContactParameters
+
+    return solve_steady(_model(air=AirParameters(rarefaction="first-order"),
+                               contact=ContactParameters(law="hard")))
 
 
 def steady_2d() -> Result:

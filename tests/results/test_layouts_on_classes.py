@@ -14,10 +14,12 @@ import pytest
 h5py = pytest.importorskip("h5py")
 pytest.importorskip("xarray")
 
+from bearing_cases import FIRST_ORDER, HARD  # noqa: E402
+
 import gyroshell  # noqa: E402
 import gyroshell.kinds  # noqa: E402
 from gyroshell import TapeParameters  # noqa: E402
-from gyroshell.bearing import AirParameters, BearingModel  # noqa: E402
+from gyroshell.bearing import BearingModel  # noqa: E402
 from gyroshell.bearing.head import FlatHead, Module  # noqa: E402
 from gyroshell.bearing.head_config import HeadDesign  # noqa: E402
 from gyroshell.bearing.steady import solve_steady  # noqa: E402
@@ -41,8 +43,8 @@ def test_every_kind_declares_its_file_on_its_class():
 def rounded(request):
     """A steady state over rounded corners (their contact points are model settings),
     with ``arc_contact`` as given."""
-    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=ROUNDED,
-                         infinitely_wide=True, nx=160, arc_contact=request.param)
+    model = BearingModel(TapeParameters(), FIRST_ORDER, velocity=4.0, head=ROUNDED,
+                         infinitely_wide=True, nx=160, arc_contact=request.param, contact=HARD)
     return solve_steady(model)
 
 

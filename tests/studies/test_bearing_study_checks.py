@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import pytest
+from bearing_cases import FIRST_ORDER, HARD
 
 from gyroshell import ParameterError, TapeParameters, run_study
 from gyroshell.bearing import AirParameters, BearingModel
@@ -111,15 +112,16 @@ def test_a_failed_row_carries_the_single_commands_hint(cli):
     the arcs, the solve fails as the Python solve fails, and the row says what to try."""
     head = FlatHead((Module(4e-3, corner_radius=10e-3),), math.radians(4), math.radians(4),
                     transducers=(0.0,))
-    model = BearingModel(TapeParameters(), AirParameters(), velocity=8.0, head=head,
-                         infinitely_wide=True, nx=200, arc_contact="point")
+    model = BearingModel(TapeParameters(), FIRST_ORDER, velocity=8.0, head=head,
+                         infinitely_wide=True, nx=200, arc_contact="point", contact=HARD)
     with pytest.raises(ConvergenceError) as direct:
         solve_steady(model)
     design = HeadDesign(kind="flat", land_length=4e-3, corner_radius=10e-3,
                         wrap_in=math.radians(4), wrap_out=math.radians(4), transducers=(0.0,),
                         arc_contact="point")
     study = run_study(vary={"tension": [90.0]}, velocity=8.0, compute="bearing",
-                      bearing=BearingStudy(head=design, infinitely_wide=True, nx=200),
+                      bearing=BearingStudy(head=design, infinitely_wide=True, nx=200,
+                                           air=FIRST_ORDER, contact=HARD),
                       workers=1, progress=False)
     error = study.table["error"][0]
     assert error.startswith(f"bearing: ConvergenceError: {direct.value} (--arc-contact "

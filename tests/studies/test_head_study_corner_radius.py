@@ -10,10 +10,11 @@ import math
 
 import numpy as np
 import pytest
+from bearing_cases import FIRST_ORDER, HARD, LEGACY_CLI
 from convergence import observed_order
 
 from gyroshell import TapeParameters
-from gyroshell.bearing import AirParameters, BearingModel
+from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.head_config import HeadDesign
 from gyroshell.bearing.steady import solve_steady
@@ -25,7 +26,9 @@ WRAP = math.radians(2.0)
 VELOCITY = 4.0
 DESIGN = HeadDesign(kind="flat", land_length=1e-3, wrap_in=WRAP, wrap_out=WRAP,
                     transducers=(0.0,))
-SETUP = BearingStudy(head=DESIGN, infinitely_wide=True)
+#: The hard wall with first-order slip: the sharp corner's point contacts, whose forces
+#: carry the wrap load exactly, and the rounded ones' tending to them.
+SETUP = BearingStudy(head=DESIGN, infinitely_wide=True, air=FIRST_ORDER, contact=HARD)
 #: Sharp, three radii far below the film's constriction at the flank σ/α (57 nm: the
 #: arc r_c θ_c, θ_c the 20° flank's turn, must be shorter for the corner to look sharp),
 #: and a rounded corner (its arc 17 µm) ...
@@ -49,8 +52,8 @@ def study():
 def _single(radius: float):
     """The point's state solved directly, its head built from the head's own classes."""
     head = FlatHead((Module(1e-3, corner_radius=radius),), WRAP, WRAP, transducers=(0.0,))
-    model = BearingModel(TapeParameters(), AirParameters(), velocity=VELOCITY, head=head,
-                         infinitely_wide=True)
+    model = BearingModel(TapeParameters(), FIRST_ORDER, velocity=VELOCITY, head=head,
+                         infinitely_wide=True, contact=HARD)
     return solve_steady(model)
 
 
@@ -117,7 +120,8 @@ def test_rounded_corners_tend_to_the_sharp_corner_as_the_radius_vanishes(study):
 @pytest.mark.slow
 def test_the_command_line_study_gives_the_same_rows(cli, tmp_path, study):
     out = tmp_path / "radii.csv"
-    run = cli(["study", "--compute", "bearing", "--head", "flat", "--land-length", "1e-3",
+    run = cli(["study", "--compute", "bearing", *LEGACY_CLI, "--head", "flat", "--land-length",
+               "1e-3",
                "--wrap-in", "2", "--wrap-out", "2", "--transducers", "0",
                "--infinitely-wide", "--vary", "corner_radius=" + ",".join(map(str, RADII)),
                "--velocity", VELOCITY, "--workers", "1", "--out", out, "--quiet"])
