@@ -10,7 +10,8 @@ import re
 import sys
 
 sys.path.insert(0, os.path.abspath(".."))
-# cli_reference: the CLI parser with its help texts escaped for reStructuredText (cli.rst).
+# cli_reference: the CLI parser with its help texts escaped for reStructuredText, and the
+# table of each sub-command's options (cli.rst).
 sys.path.insert(0, os.path.abspath("_ext"))
 
 import gyroshell  # noqa: E402
@@ -28,6 +29,7 @@ extensions = [
     "numpydoc",
     "myst_parser",
     "sphinxarg.ext",
+    "cli_reference",  # the gyroshell-options directive: each sub-command's options (cli.rst)
     "sphinx_gallery.gen_gallery",
     "sphinx-mathjax-offline",  # MathJax served from _static: the maths renders offline (CI)
 ]
