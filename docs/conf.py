@@ -121,7 +121,24 @@ def _skip_file_layouts(app, what, name, obj, skip, options):
     return None
 
 
+def _commands_by_name(app, env):
+    """Each command of the CLI reference under its name in the search index.
+
+    sphinx-argparse records a command's description as its display name; the search index
+    HTML-escapes that name and the search page escapes it again, so a result read
+    ``Benson&#x27;s 111 m/s`` (with the reStructuredText escapes of :mod:`cli_reference`
+    too). The name (``gyroshell critical``) is what a reader looks for.
+    """
+    domain = env.get_domain("commands")
+    domain.data["commands"] = [(name, name, *rest)
+                               for name, _description, *rest in domain.data["commands"]]
+    for group, entries in domain.data["commands-by-group"].items():
+        domain.data["commands-by-group"][group] = [(name, name, *rest)
+                                                   for name, _description, *rest in entries]
+
+
 def setup(app):
+    app.connect("env-updated", _commands_by_name)
     # before numpydoc (priority 500) turns the sections into reStructuredText
     app.connect("autodoc-process-docstring", _absolute_values, priority=400)
     app.connect("autodoc-skip-member", _skip_file_layouts)
