@@ -57,7 +57,8 @@ WRITES = {
                               "preview/fig4_wireframes.png", "preview/fig5_waterfall.png",
                               "preview/fig6_waterfall.png", "paper/critical_speeds.md",
                               "paper/observations.csv", "paper/period_vs_velocity.csv"],
-    "flat_head": ["head.toml", "wrap_speed.csv", "wrap_speed.png", "head_sketch.png"],
+    "flat_head": ["head.toml", "head_sketch.png", "single/summary.json", "single.png",
+                  "wrap_speed.csv", "wrap_speed.png", "wrap_speed_python.png"],
 }
 
 
