@@ -48,8 +48,9 @@ for k, (language, caption, code) in enumerate(blocks):
 #: Seconds a tutorial may take here before the test counts it as hung (each takes about a
 #: minute or less; see each page's "Time:").
 TIMEOUT = 600
-#: Tutorials longer than a minute: run with the slow tests.
-SLOW: set[str] = set()
+#: Tutorials longer than a minute here: run with the slow tests (reproducing the paper runs
+#: three full-size studies: 50-70 s on 2 shared cores).
+SLOW = {"reproducing_the_paper"}
 #: The files each tutorial's commands must have written.
 WRITES = {
     "your_own_tape": ["mytape.toml", "campbell.csv", "campbell.png", "campbell_python.png"],
