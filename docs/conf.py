@@ -14,6 +14,8 @@ sys.path.insert(0, os.path.abspath(".."))
 # table of each sub-command's options (cli.rst).
 sys.path.insert(0, os.path.abspath("_ext"))
 
+from sphinx_gallery.sorting import ExplicitOrder  # noqa: E402
+
 import gyroshell  # noqa: E402
 
 project = "gyroshell"
@@ -65,8 +67,11 @@ autodoc_typehints = "none"
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 
-# The gallery: every docs/examples/plot_*.py runs when the site is built.
+# The gallery: every docs/examples/<group>/plot_*.py runs when the site is built; the groups
+# (one folder per kind of physics, each with its README.txt) from the tape to the heads.
 sphinx_gallery_conf = {
+    "subsection_order": ExplicitOrder(["examples/eigen_stability", "examples/transients",
+                                       "examples/bearing_heads"]),
     "examples_dirs": "examples",
     "gallery_dirs": "auto_examples",
     "filename_pattern": r"/plot_",
