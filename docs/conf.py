@@ -10,8 +10,11 @@ import re
 import sys
 
 sys.path.insert(0, os.path.abspath(".."))
-# cli_reference: the CLI parser with its help texts escaped for reStructuredText (cli.rst).
+# cli_reference: the CLI parser with its help texts escaped for reStructuredText, and the
+# table of each sub-command's options (cli.rst).
 sys.path.insert(0, os.path.abspath("_ext"))
+
+from sphinx_gallery.sorting import ExplicitOrder  # noqa: E402
 
 import gyroshell  # noqa: E402
 
@@ -28,6 +31,7 @@ extensions = [
     "numpydoc",
     "myst_parser",
     "sphinxarg.ext",
+    "cli_reference",  # the gyroshell-options directive: each sub-command's options (cli.rst)
     "sphinx_gallery.gen_gallery",
     "sphinx-mathjax-offline",  # MathJax served from _static: the maths renders offline (CI)
 ]
@@ -63,8 +67,11 @@ autodoc_typehints = "none"
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 
-# The gallery: every docs/examples/plot_*.py runs when the site is built.
+# The gallery: every docs/examples/<group>/plot_*.py runs when the site is built; the groups
+# (one folder per kind of physics, each with its README.txt) from the tape to the heads.
 sphinx_gallery_conf = {
+    "subsection_order": ExplicitOrder(["examples/eigen_stability", "examples/transients",
+                                       "examples/bearing_heads"]),
     "examples_dirs": "examples",
     "gallery_dirs": "auto_examples",
     "filename_pattern": r"/plot_",
@@ -119,7 +126,24 @@ def _skip_file_layouts(app, what, name, obj, skip, options):
     return None
 
 
+def _commands_by_name(app, env):
+    """Each command of the CLI reference under its name in the search index.
+
+    sphinx-argparse records a command's description as its display name; the search index
+    HTML-escapes that name and the search page escapes it again, so a result read
+    ``Benson&#x27;s 111 m/s`` (with the reStructuredText escapes of :mod:`cli_reference`
+    too). The name (``gyroshell critical``) is what a reader looks for.
+    """
+    domain = env.get_domain("commands")
+    domain.data["commands"] = [(name, name, *rest)
+                               for name, _description, *rest in domain.data["commands"]]
+    for group, entries in domain.data["commands-by-group"].items():
+        domain.data["commands-by-group"][group] = [(name, name, *rest)
+                                                   for name, _description, *rest in entries]
+
+
 def setup(app):
+    app.connect("env-updated", _commands_by_name)
     # before numpydoc (priority 500) turns the sections into reStructuredText
     app.connect("autodoc-process-docstring", _absolute_values, priority=400)
     app.connect("autodoc-skip-member", _skip_file_layouts)

@@ -144,11 +144,16 @@ def pytest_addoption(parser):
 
 def pytest_collection_modifyitems(config, items):
     """Skip `slow` tests unless asked for with --runslow or a -m expression naming slow, and
-    `docs` tests likewise (--rundocs or -m docs)."""
+    `docs` tests likewise (--rundocs or -m docs).
+
+    A test is skipped for the marker it carries, never for a keyword: ``item.keywords`` also
+    holds the names of the test's folders, so every test under ``tests/docs/`` would count as
+    marked ``docs`` (and the gallery's and references' checks never ran).
+    """
     for marker in ["slow", "docs"]:
         if config.getoption(f"--run{marker}") or marker in (config.getoption("-m") or ""):
             continue
         skip = pytest.mark.skip(reason=f"{marker}: run with --run{marker} or -m {marker}")
         for item in items:
-            if marker in item.keywords:
+            if item.get_closest_marker(marker) is not None:
                 item.add_marker(skip)

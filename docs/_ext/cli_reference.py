@@ -53,3 +53,45 @@ def build_parser() -> argparse.ArgumentParser:
     parser = _gyroshell_parser()
     _escape_parser(parser, set())
     return parser
+
+
+def subcommands(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
+    """``{name: parser}`` of the command's sub-commands, in ``--help``'s order."""
+    action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return dict(action.choices)
+
+
+def option_strings(parser: argparse.ArgumentParser) -> list[str]:
+    """Every option string of ``parser`` (``--help`` and ``-h`` left out), in its order."""
+    return [option for action in parser._actions
+            if not isinstance(action, argparse._HelpAction)
+            for option in action.option_strings]
+
+
+def option_table() -> str:
+    """A reStructuredText list-table: each sub-command and exactly its own options."""
+    rows = [".. list-table::", "   :header-rows: 1", "   :widths: 15 85", "",
+            "   * - sub-command", "     - its options (each explained in its section below)"]
+    for name, sub in subcommands(_gyroshell_parser()).items():
+        options = ", ".join(f"``{option}``" for option in option_strings(sub))
+        rows += [f"   * - ``{name}``", f"     - {options or '(none)'}"]
+    return "\n".join(rows) + "\n"
+
+
+def setup(app):
+    """The ``gyroshell-options`` directive: :func:`option_table`, from the parser itself."""
+    from docutils import nodes
+    from docutils.statemachine import StringList
+    from sphinx.util.docutils import SphinxDirective
+
+    class OptionTable(SphinxDirective):
+        has_content = False
+
+        def run(self):
+            container = nodes.container()
+            self.state.nested_parse(StringList(option_table().splitlines(), "cli_reference"),
+                                    self.content_offset, container)
+            return container.children
+
+    app.add_directive("gyroshell-options", OptionTable)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -810,7 +810,9 @@ class ContactParameters:
     @classmethod
     def from_table(cls, table: Mapping, base_dir: str | os.PathLike[str] | None = None, *,
                    where: str = "") -> ContactParameters:
-        """The parameters of a ``[contact]`` table of a TOML file::
+        """The parameters of a ``[contact]`` table of a TOML file.
+
+        The table reads, for example::
 
             [contact]
             law = "asperity"            # "asperity" (default), "hard" or "compliance"

@@ -1,6 +1,6 @@
-"""The gallery's example scripts (docs/examples/plot_*.py) are well-formed sphinx-gallery
-files, and each runs as a user would run it: in a fresh process, the Agg back-end, an empty
-working folder, and draws its figures."""
+"""The gallery's example scripts (docs/examples/<group>/plot_*.py, one folder per kind of
+physics) are well-formed sphinx-gallery files, and each runs as a user would run it: in a
+fresh process, the Agg back-end, an empty working folder, and draws its figures."""
 
 from __future__ import annotations
 
@@ -16,7 +16,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "docs" / "examples"
-SCRIPTS = sorted(EXAMPLES.glob("plot_*.py"))
+#: Every example, in the order of its number (the folders group them by physics).
+SCRIPTS = sorted(EXAMPLES.glob("*/plot_*.py"), key=lambda path: path.name)
 #: How each script says where its full-size case is: a sentence starting "Full-size:".
 FULL_SIZE = re.compile(r"^#\s*Full-size:", re.MULTILINE)
 #: Seconds one quick example may take in a subprocess before it counts as hung (they take
@@ -51,6 +52,9 @@ def test_the_gallery_has_its_examples_in_order():
     assert SCRIPTS and all(numbers), "examples are named plot_<NN>_<topic>.py"
     assert len({m.group(1) for m in numbers}) == len(SCRIPTS), "each number once"
     assert (EXAMPLES / "README.txt").is_file(), "sphinx-gallery needs the gallery header"
+    assert not list(EXAMPLES.glob("plot_*.py")), "each example sits in its physics' folder"
+    for group in {path.parent for path in SCRIPTS}:
+        assert (group / "README.txt").is_file(), f"{group.name}/ needs its section header"
 
 
 @pytest.mark.parametrize("script", SCRIPTS, ids=_ids)

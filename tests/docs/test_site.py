@@ -39,13 +39,15 @@ def _has_image(html: str) -> bool:
 
 #: The pages opened in the browser, by role: how each is found in the built site (the
 #: user guide's first page with an image, else its first page, else the skeleton's bearing
-#: page; a gallery example with a figure; the API reference's TapeParameters, else its
-#: first generated page).
+#: page; the flat-head tutorial, else the first tutorial; a gallery example with a figure;
+#: the API reference's TapeParameters, else its first generated page).
 PAGES = {
     "front-page": lambda site: "index.html",
     "user-guide": lambda site: (page_of(site, "user_guide/**/*.html", prefer=_has_image)
                                 or page_of(site, "user-guide/**/*.html", prefer=_has_image)
                                 or page_of(site, "bearing.html")),
+    "tutorial": lambda site: (page_of(site, "tutorials/flat_head.html")
+                              or page_of(site, "tutorials/*.html")),
     "gallery-index": lambda site: page_of(site, "auto_examples/index.html"),
     "gallery-example": lambda site: page_of(site, "auto_examples/**/plot_*.html",
                                             prefer=_has_figure),
@@ -68,9 +70,11 @@ _IMAGES = """() => [...document.images].map(img => ({
 
 
 def test_the_site_builds_with_warnings_as_errors(site):
-    """The README's build command (-W) succeeded and wrote the front page and the three
-    generated parts: the gallery, the API reference and the CLI reference."""
-    for page in ["index.html", "auto_examples/index.html", "api/index.html", "cli.html"]:
+    """The README's build command (-W) succeeded and wrote the front page, the three
+    generated parts (the gallery, the API reference and the CLI reference), the tutorials,
+    the page on which answer to trust and the changelog."""
+    for page in ["index.html", "auto_examples/index.html", "api/index.html", "cli.html",
+                 "tutorials/index.html", "explanation/trust.html", "changelog.html"]:
         assert (site / page).is_file(), f"{page} was not built"
 
 
@@ -159,3 +163,28 @@ def test_no_internal_link_is_broken(site, server, new_context):
     assert checked > len(list(site.glob("*.html"))), f"the crawl reached only {checked} URLs"
     assert not broken, f"{len(broken)} broken of {checked} internal URLs:\n" + "\n".join(
         sorted(set(broken)))
+
+
+#: Escapes that must never reach a reader: HTML entities shown as text (an index entry
+#: escaped twice) and the reStructuredText escapes of the CLI reference's help texts.
+_ESCAPES = ("&#x27;", "&amp;", "&quot;", "&lt;", "&gt;", "\\_", "\\*")
+
+
+@pytest.mark.parametrize("query", ["critical", "Benson", "reproduce"])
+def test_search_results_read_as_plain_text(query, site, open_page, screenshots):
+    """The site's search page finds the query, and no result's title or summary shows an
+    escape (``&#x27;`` for an apostrophe was the symptom: the CLI's commands entered the
+    index under their HTML-escaped descriptions, which the search page escaped again)."""
+    visit = open_page(f"search.html?q={query}")
+    page = visit.page
+    page.wait_for_function(
+        "() => document.querySelectorAll('#search-results li').length > 0"
+        " || /found 0|did not match/i.test(document.body.innerText)", timeout=30_000)
+    page.screenshot(path=str(screenshots / f"search-{query}.png"), full_page=True)
+    results = page.locator("#search-results li").all_inner_texts()
+    assert results, f"searching {query!r} found nothing"
+    shown = [text for text in results if any(escape in text for escape in _ESCAPES)]
+    assert not shown, f"search results for {query!r} show escapes: {shown[:5]}"
+    if query == "critical":
+        assert any(text.startswith("gyroshell critical") for text in results), results[:10]
+    assert not visit.errors, visit.errors
