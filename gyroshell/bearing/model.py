@@ -1023,13 +1023,16 @@ class BearingModel:
         turns = dict(zip(self.head.corners(self.head_radius),
                          self.head.corner_turns(self.head_radius), strict=True))
         all_turns = self.head.corner_turns(self.head_radius)
-        for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
-            turns[c] = all_turns[k]
-        radii = dict(zip(self.head.corners(self.head_radius),
-                         self.head.corner_radii(self.head_radius), strict=True))
-        for k, c in zip(self.rounded_corners, self.corner_contacts, strict=True):
-            radii[c] = self.head.corner_radii(self.head_radius)[k]
-        for c in self.head.sharp_corners(self.head_radius) + self.corner_contacts:
+        all_radii = self.head.corner_radii(self.head_radius)
+        radii = dict(zip(self.head.corners(self.head_radius), all_radii, strict=True))
+        # the points the tape touches the rounded corners at: the point contacts' and,
+        # under a smooth law, the touching wrapped arcs' (:meth:`wrapped_centres`)
+        touches = (tuple(zip(self.rounded_corners, self.corner_contacts, strict=True))
+                   + (tuple(zip(self.touching_arcs, self.wrapped_centres(), strict=True))
+                      if self.smooth_contact else ()))
+        for k, c in touches:
+            turns[c], radii[c] = all_turns[k], all_radii[k]
+        for c in self.head.sharp_corners(self.head_radius) + tuple(c for _, c in touches):
             turn = turns.get(c, self.wrap_angle)
             if not dry and turn < CORNER_FRACTION * self.wrap_angle:
                 continue     # its point load is small: the film carries it (measured)
@@ -1350,7 +1353,10 @@ class BearingModel:
         the wrap pressure (T − ρV²) κ + p_a. :func:`gyroshell.bearing.steady.solve_steady`
         starts a 2-D tape from a better (solved) state, :func:`~gyroshell.bearing.steady.
         initial_state`."""
-        if self.dry or not (self.cylindrical or self._all_corners_wrapped()):
+        # a smooth law's touching arcs are started as point contacts (:meth:`_corner_start`)
+        flies = self.cylindrical or (self._all_corners_wrapped()
+                                     and not (self.smooth_contact and self.touching_arcs))
+        if self.dry or not flies:
             return self.dry_start(self._corner_start())   # the corners' point loads
         u = np.full(self.n_u, self.h_guess)
         kappa = np.repeat(self.kappa[:, None], self.nc, axis=1)

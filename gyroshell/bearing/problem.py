@@ -582,17 +582,23 @@ class SteadyProblem:
                                                 / dp[shrink])))
         return max(alpha, 1e-12)
 
-    def noise(self, z: np.ndarray) -> float:
-        """The scaled residual's round-off floor at z (:meth:`.steady._Residual._noise`):
-        on a grid refined far below the bending length the plate's rows alone can hold a
-        converged state's residual above the step's tolerance."""
+    def noise(self, z: np.ndarray) -> np.ndarray:
+        """The round-off floor of each scaled residual row at z (:meth:`._Residual._noise`,
+        the tape rows with the smooth law's force): on a grid refined far below the
+        bending length the plate's rows alone can hold a converged state's residual, and
+        its steps in the nodes the tape barely holds (a span microns above a corner's fine
+        cells), above the step's tolerance."""
         F = self.F
         u, p = self.split(z)
         if F._abs_film_pp is None:
             _, J_pp, _ = self.model.film_residual(u, p, jacobian=True, **F.film_kw)
             F._abs_film_pp = abs(J_pp)
         F._noise(u, p, F._abs_film_pp)
-        return float(np.linalg.norm(F.noise_rows * self.row_scale))
+        rows = F.noise_rows
+        if F.smooth:
+            rows = rows.copy()
+            rows[:u.size] += np.finfo(float).eps * np.abs(self.model.asperity_force(u)[0])
+        return rows * self.row_scale
 
     def contact_forces(self, z: np.ndarray, active: np.ndarray) -> np.ndarray:
         """The head's force on each tape node at the unknowns z, N (N/m per unit width)."""
