@@ -80,15 +80,19 @@ def _step_limit(h: np.ndarray, du: np.ndarray, active: np.ndarray, sigma: float,
 CONTACT_STEP = 2.0
 
 
-def _smooth_step_limit(h: np.ndarray, du: np.ndarray, sigma: float) -> float:
+def _smooth_step_limit(h: np.ndarray, du: np.ndarray, sigma: float, film: bool = True
+                       ) -> float:
     """Largest α <= 1 keeping every spacing above the larger drop of h/5 and h −
-    CONTACT_STEP σ_s, and below 5 h + σ_s (a smooth contact law: the film's
-    coefficients vary like h³, the asperity pressure like exp(−h²/2σ_s²))."""
+    CONTACT_STEP σ_s (the asperity pressure varies like exp(−h²/2σ_s²)), and, with a
+    ``film``, below 5 h + σ_s (the film's coefficients vary like h³; without one a
+    spacing may rise freely: the law only falls)."""
     alpha = 1.0
     drop = np.maximum((1 - SPACING_KEEP) * np.maximum(h, 0.0), CONTACT_STEP * sigma)
     down = du < -drop
     if down.any():
         alpha = min(alpha, float(np.min(-drop[down] / du[down])))
+    if not film:
+        return alpha
     rise = SPACING_GROWTH * np.maximum(h, 0.0) + sigma
     up = du > rise
     if up.any():
@@ -565,22 +569,32 @@ class SteadyProblem:
         du, dp = dz[:n_u], dz[n_u:]
         h = u + m.dry_field[1:-1, :].ravel()
         if m.smooth_contact:
-            alpha = _smooth_step_limit(h, du, F.sigma)
+            alpha = _smooth_step_limit(h, du, F.sigma, film=not m.dry)
         elif m.dry:
             alpha = 1.0
         else:
             at_wall = h <= F.floor
             alpha = _step_limit(h, du, at_wall, F.sigma, F.floor)
-        if self.log_pressure:
-            big = np.abs(dp) > LOG_PRESSURE_STEP
-            if big.any():
-                alpha = min(alpha, float(np.min(LOG_PRESSURE_STEP / np.abs(dp[big]))))
-        elif m.air.compressible and not m.dry:
+        if not self.log_pressure and m.air.compressible and not m.dry:
             shrink = (dp < -(1 - PRESSURE_KEEP) * p) & (p > 0.0)
             if shrink.any():
                 alpha = min(alpha, float(np.min(-(1 - PRESSURE_KEEP) * p[shrink]
                                                 / dp[shrink])))
         return max(alpha, 1e-12)
+
+    def clip_step(self, z: np.ndarray, dz: np.ndarray) -> np.ndarray:
+        """The Newton step with each ln(p/p_a) change clipped to ±LOG_PRESSURE_STEP (with
+        :attr:`log_pressure`; else dz): where a pressed corner or land chokes the film,
+        its nodes' pressures barely enter their rows (fluxes through a mean gap of pm)
+        and Newton asks them for changes of e^100 and more; cut per node (as a circuit
+        simulator limits a junction's exponential), that node no longer shortens the
+        step of every other unknown, which a common α did (stagnation at α ~ 1e-5)."""
+        if not self.log_pressure:
+            return dz
+        n_u = self.model.n_u
+        out = dz.copy()
+        out[n_u:] = np.clip(dz[n_u:], -LOG_PRESSURE_STEP, LOG_PRESSURE_STEP)
+        return out
 
     def noise(self, z: np.ndarray) -> np.ndarray:
         """The round-off floor of each scaled residual row at z (:meth:`._Residual._noise`,

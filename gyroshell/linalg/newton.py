@@ -202,6 +202,10 @@ class NewtonProblem(Protocol):
 
     Optional hooks (looked up with ``getattr``):
 
+    clip_step(z, dz)
+        The Newton step dz with some unknowns' changes limited one by one (e.g. a
+        logarithmic unknown's change per iteration, as a circuit simulator limits a
+        junction's exponential), before ``step_limit`` and the line search. Absent: dz.
     step_limit(z, dz)
         The largest admissible α in (0, 1] along dz (e.g. one that keeps a spacing
         positive); the line search starts there. Absent: 1.
@@ -412,6 +416,9 @@ def _direction(setup: _Setup, it: _Iterate, report: NewtonReport):
                        "is singular or not finite there; check the problem's linearize, or "
                        "start elsewhere", report, it.z, "non-finite")
     dz[it.active] = 0.0
+    clip = getattr(setup.problem, "clip_step", None)
+    if clip is not None:
+        dz = np.asarray(clip(it.z, dz), dtype=float)
     return dz, solve
 
 
