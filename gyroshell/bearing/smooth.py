@@ -75,8 +75,8 @@ class SolverOptions:
     """
 
     tol: float = 1e-8
-    max_iterations: int = 40
-    resting_iterations: int = 60
+    max_iterations: int = 200
+    resting_iterations: int = 200
     stage_iterations: int = 25
     budget: int = 500
     law_scale: float = 100.0
