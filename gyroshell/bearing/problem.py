@@ -21,7 +21,6 @@ import scipy.sparse as sp
 
 from ..core.errors import ConvergenceError, ParameterError
 from ..linalg.factorization import (
-    BandedFactor,
     DiagonalPivotLU,
     PardisoFactor,
     SuperLUFactor,
@@ -520,12 +519,6 @@ class SteadyProblem:
             film = model.film
             gap = np.maximum(model.dry_field[film.interior], 0.0) + self.F.h_scale
             self.row_scale[n_u:] *= self.F.h_scale / gap
-        #: the interleaving [u_0, p_0, u_1, p_1, ...] of an infinitely wide tape's
-        #: unknowns that makes its Jacobian banded (:meth:`_banded`), or None
-        self._band_order = self._band_inverse = None
-        if model.infinitely_wide and n_u == n_p and model.factorization == "auto":
-            self._band_order = np.column_stack([np.arange(n_u), n_u + np.arange(n_p)]).ravel()
-            self._band_inverse = np.argsort(self._band_order)
         self.variable_scale = np.concatenate([np.full(n_u, self.F.h_scale),
                                               np.full(n_p, 1.0 if self.log_pressure
                                                       else self.F.t_scale)])
@@ -563,36 +556,8 @@ class SteadyProblem:
         nodes at the wall) replaced by the identity (their right-hand side is 0)."""
         u, p = self.split(z)
         lin = self.F.linearize(np.concatenate([u, p]), active[:self.model.n_u])
-        scale = p if self.log_pressure else None
-        if self._band_order is not None:
-            return self._banded(lin, scale)
-        solve = self.F.factor(lin, scale)   # res ↦ −J⁻¹ res
+        solve = self.F.factor(lin, p if self.log_pressure else None)   # res ↦ −J⁻¹ res
         return lambda rhs: -solve(rhs)
-
-    def _banded(self, lin, pressure_scale):
-        """rhs ↦ J⁻¹ rhs by LAPACK's banded LU with partial pivoting, the unknowns of each
-        node interleaved ([u_0, p_0, u_1, p_1, ...]): the infinitely wide tape's Jacobian
-        is then a band of half-width 3-4 (the plate's five points, the film's three), which
-        gbtrf factors in O(n) without an ordering (SuperLU's COLAMD took 10 ms at 7,000
-        unknowns, most of a Newton iteration)."""
-        m = self.model
-        J = self.F.jacobian(lin, format="csr")
-        if pressure_scale is not None:
-            J = J @ sp.diags(np.concatenate([np.ones(m.n_u), pressure_scale]))
-        order = self._band_order
-        J = sp.csr_matrix(J)[order][:, order]
-        # rows equilibrated (by their largest entry) so that the pivots are chosen by the
-        # rows' coupling, not by their units (the plate's D/Δx⁴ against the film's fluxes)
-        rows = 1.0 / np.maximum(abs(J).max(axis=1).toarray().ravel(), np.finfo(float).tiny)
-        try:
-            lu = BandedFactor(sp.diags(rows) @ J)
-        except np.linalg.LinAlgError as exc:  # exactly singular
-            raise ConvergenceError(f"Newton: singular Jacobian ({exc})") from None
-        back = self._band_inverse
-
-        def solve(rhs):
-            return lu.solve(rows * rhs[order])[back]
-        return solve
 
     def step_limit(self, z: np.ndarray, dz: np.ndarray) -> float:
         """The largest α <= 1 keeping each spacing within reach of its value (a factor 5

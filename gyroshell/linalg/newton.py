@@ -215,11 +215,16 @@ class NewtonProblem(Protocol):
         |D_i r_i(z)|, a vector of shape (n,). Near it the merit cannot guide a line
         search: steps are taken whole, and a small whole step there has converged
         (:class:`NewtonOptions` ``round_off_multiple``, ``round_off_step``). Given per
-        row, a whole step there also converges when it is within ``noise_step_multiple``
-        of the step the rows' round-off alone produces (with fixed pseudo-random signs,
-        through the step's factorization): on a badly conditioned system (a fourth-order
-        operator on cells far finer than its length scale) round-off alone makes steps
-        far above ``round_off_step`` in the unknowns the rows barely hold.
+        row, a whole step there also converges when every free row lies within
+        ``round_off_multiple`` of its own floor (the norm alone can hide a residual far
+        above the floor of most rows under the round-off of a few) and the step is within
+        ``noise_step_multiple`` of the step the rows' round-off alone produces (with
+        fixed pseudo-random signs, through the step's factorization) and below one
+        variable scale (a step as large as an unknown's own scale has not converged,
+        whatever the noise): on a badly
+        conditioned system (a fourth-order operator on cells far finer than its length
+        scale) round-off alone makes steps far above ``round_off_step`` in the unknowns
+        the rows barely hold.
     """
 
     lower: np.ndarray | None
@@ -280,8 +285,10 @@ class _Iterate:
     active: np.ndarray
     norm: float
     at_floor: bool = False
-    #: the rows' round-off floors (unscaled, shape (n,)) of a per-row ``noise`` hook
+    #: the rows' round-off floors (unscaled, shape (n,)) of a per-row ``noise`` hook, and
+    #: whether every free row lies within ``round_off_multiple`` of its own
     floor_rows: np.ndarray | None = None
+    rows_at_floor: bool = False
 
 
 class _Setup:
@@ -325,10 +332,13 @@ class _Setup:
         ``noise`` hook, called once per iteration, not per trial)."""
         if self.noise is not None:
             floor = np.asarray(self.noise(it.z), dtype=float)
+            multiple = self.options.round_off_multiple
             if floor.ndim:
                 it.floor_rows = floor / self.row_scale
+                phi = np.where(it.active, 0.0, it.r) * self.row_scale
+                it.rows_at_floor = bool(np.all(np.abs(phi) <= multiple * floor))
                 floor = np.linalg.norm(floor)
-            it.at_floor = it.norm <= self.options.round_off_multiple * float(floor)
+            it.at_floor = it.norm <= multiple * float(floor)
         return it
 
     def noise_step(self, it: _Iterate, solve) -> float:
@@ -478,7 +488,8 @@ def _converged(setup: _Setup, alpha: float, step: float, it: _Iterate, solve) ->
         return "residual"
     if alpha == 1.0 and it.at_floor and (
             step <= options.round_off_step
-            or step <= options.noise_step_multiple * setup.noise_step(it, solve)):
+            or (it.rows_at_floor and step <= min(
+                1.0, options.noise_step_multiple * setup.noise_step(it, solve)))):
         return "round-off"
     return ""
 
