@@ -82,8 +82,22 @@ def child(design: dict, physics: str) -> dict:
     except ConvergenceError as exc:
         return {"outcome": "failed", "seconds": time.perf_counter() - start,
                 "why": str(exc)[:160]}
-    return {"outcome": "solved", "seconds": time.perf_counter() - start,
-            "iterations": sol.info.iterations, "h": sol.central_spacing}
+    seconds = time.perf_counter() - start
+    return {"outcome": "solved", "seconds": seconds, "iterations": sol.info.iterations,
+            "h": sol.central_spacing, "balance": force_balance(model, sol)}
+
+
+def force_balance(model, sol) -> float:
+    """(air + contact force) / ((T − ρV²)(s_in − s_out)), s the tape's end slopes: the
+    vertical balance of the whole tape pinned at its straight ends, 1 at a solution (a
+    check the solver does not know; the air force by the trapezoidal rule)."""
+    pa = model.air.ambient_pressure
+    p = np.concatenate([[pa], sol.p, [pa]])
+    air = float(np.sum(0.5 * (p[1:] + p[:-1] - 2.0 * pa) * np.diff(model.x)))
+    w = model.head.dry_tape(model.x_head) + np.concatenate([[0.0], sol.u, [0.0]])
+    slopes = np.diff(w) / np.diff(model.x)
+    tension = model.params.tension - model.params.density * model.velocity ** 2
+    return (air + sol.contact_force) / (tension * (slopes[0] - slopes[-1]))
 
 
 def run(design: dict, physics: str, cap: float, tree: str | None) -> dict:
@@ -134,8 +148,10 @@ def main() -> None:
         for k in kinds:
             r = run(design, k, args.cap, args.baseline if k == "old" else None)
             results[k].append(r)
+            balance = f"balance {r['balance']:.6f}" if "balance" in r else ""
             print(f"{i:3d} {k}: {r['outcome']:12s} {r.get('seconds', math.nan):7.2f} s "
-                  f"{r.get('iterations', '')!s:>5} {r.get('why', '')[:100]}", flush=True)
+                  f"{r.get('iterations', '')!s:>5} {balance}{r.get('why', '')[:100]}",
+                  flush=True)
     for k in kinds:
         print(summary(k, results[k]))
 

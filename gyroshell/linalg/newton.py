@@ -449,7 +449,9 @@ def _line_search(setup: _Setup, it: _Iterate, dz: np.ndarray, step: float,
     it is small or the iterate is at its round-off floor. Returns (α, new iterate)."""
     options = setup.options
     alpha = _first_alpha(setup, it, dz)
-    whole = step <= options.full_step or it.at_floor
+    # at the floor the merit cannot judge a step, but a step of more than one variable
+    # scale is no round-off: the line search judges it
+    whole = step <= options.full_step or (it.at_floor and step <= 1.0)
     while True:
         trial = setup.iterate(setup.project(it.z + alpha * dz, it.active))
         finite = math.isfinite(trial.norm)
