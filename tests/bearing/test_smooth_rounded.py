@@ -49,7 +49,8 @@ UNSOLVED = {
 
 
 def design_model(lands, radii, gaps, wraps, velocity, tension) -> BearingModel:
-    head = FlatHead(tuple(Module(land, corner_radius=r) for land, r in zip(lands, radii)),
+    head = FlatHead(tuple(Module(land, corner_radius=r) for land, r in
+                          zip(lands, radii, strict=True)),
                     wraps[0] * DEG, wraps[1] * DEG, gaps=gaps)
     return BearingModel(TapeParameters(tension=tension), NEW_AIR, velocity=velocity,
                         head=head, infinitely_wide=True, contact=ASPERITY)
