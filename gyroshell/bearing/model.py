@@ -1314,13 +1314,21 @@ class BearingModel:
         Zero for the hard wall."""
         if not self.smooth_contact:
             return np.zeros(self.n_u), np.zeros(self.n_u)
+        # Newton asks for the force at the same state for its residual, its Jacobian and
+        # its round-off floor: the law's quadrature is kept for the last state and law
+        last = self.__dict__.get("_asperity_last")
+        key = (self.contact_law, self.W, self.dry_field)
+        if (last is not None and all(a is b for a, b in zip(last[0], key, strict=True))
+                and last[1].shape == u.shape and np.array_equal(last[1], u)):
+            return last[2].copy(), last[3].copy()
         h = u + self.dry_field[1:-1, :].ravel()
         near = h < CONTACT_REACH * self.air.roughness
         f, df = np.zeros(self.n_u), np.zeros(self.n_u)
         if near.any():
             p, dp = self.contact_law.pressure(h[near])
             f[near], df[near] = self.W[near] * p, self.W[near] * dp
-        return f, df
+        self.__dict__["_asperity_last"] = (key, np.array(u, dtype=float), f, df)
+        return f.copy(), df.copy()
 
     def film_residual_fields(self, P, H, **kw):
         return self.film.residual(P, H, **kw)
