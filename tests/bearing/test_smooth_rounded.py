@@ -27,11 +27,13 @@ DEG = math.pi / 180.0
 ASPERITY = ContactParameters()
 NEW_AIR = AirParameters(rarefaction="fukui-kaneko", flow_factors="patir-cheng")
 
-#: Designs 7, 8, 11, 15, 16 and 19 of the set (seed 1): lands, corner radii and gaps (m),
+#: Designs 8, 11, 15 and 19 of the set (seed 1): lands, corner radii and gaps (m),
 #: wraps in and out (deg), V (m/s), T (N/m).
 DESIGNS = {
     8: ((2.5151e-3, 2.6795e-3), (1.3224e-3, 0.4949e-3), (0.1453e-3,), (4.2069917, 0.5947742),
         8.3421342, 58.0957993),
+    11: ((2.3368e-3, 2.1541e-3, 0.5603e-3), (0.0, 0.0, 0.9146e-3), (0.3139e-3, 0.4279e-3),
+         (3.714426, 2.0155341), 4.7597649, 80.4469527),
     15: ((1.9507e-3, 2.1421e-3, 1.6603e-3), (0.6214e-3, 0.7941e-3, 0.4064e-3),
          (0.4947e-3, 0.3912e-3), (1.9909986, 3.3151139), 4.1193246, 81.9642226),
     19: ((1.0053e-3, 2.3917e-3), (0.5063e-3, 0.0), (0.293e-3,), (3.9373032, 2.7873472),
@@ -41,8 +43,6 @@ DESIGNS = {
 UNSOLVED = {
     7: ((1.9901e-3, 2.4542e-3), (1.9275e-3, 0.0), (0.4526e-3,), (2.2867695, 3.0706597),
         0.7326614, 114.0805876),
-    11: ((2.3368e-3, 2.1541e-3, 0.5603e-3), (0.0, 0.0, 0.9146e-3), (0.3139e-3, 0.4279e-3),
-         (3.714426, 2.0155341), 4.7597649, 80.4469527),
     16: ((0.2468e-3, 1.582e-3, 2.9205e-3), (0.5745e-3, 1.4977e-3, 0.0),
          (0.4573e-3, 0.0576e-3), (1.726492, 4.9954216), 2.9903946, 133.3948974),
 }
@@ -74,7 +74,7 @@ def force_balance(model: BearingModel, solution) -> float:
 def test_rounded_corner_designs_solve_and_balance_the_tape(key):
     """Solved within the budget, every iteration counted; the head's air and asperity
     forces carry the tension's turn between the tape's ends to 1e-3 (measured: 4e-5 to
-    6e-5), and the spans at their ends slope as the wraps to within 10 % (the plate's
+    9e-4), and the spans at their ends slope as the wraps to within 10 % (the plate's
     bending lifts the tape off the string near the corners)."""
     model = design_model(*DESIGNS[key])
     solution = solve_steady(model)
