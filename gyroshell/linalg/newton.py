@@ -285,10 +285,8 @@ class _Iterate:
     active: np.ndarray
     norm: float
     at_floor: bool = False
-    #: the rows' round-off floors (unscaled, shape (n,)) of a per-row ``noise`` hook, and
-    #: whether every free row lies within ``round_off_multiple`` of its own
+    #: the rows' round-off floors (unscaled, shape (n,)) of a per-row ``noise`` hook
     floor_rows: np.ndarray | None = None
-    rows_at_floor: bool = False
 
 
 class _Setup:
@@ -335,22 +333,34 @@ class _Setup:
             multiple = self.options.round_off_multiple
             if floor.ndim:
                 it.floor_rows = floor / self.row_scale
-                phi = np.where(it.active, 0.0, it.r) * self.row_scale
-                it.rows_at_floor = bool(np.all(np.abs(phi) <= multiple * floor))
                 floor = np.linalg.norm(floor)
             it.at_floor = it.norm <= multiple * float(floor)
         return it
 
-    def noise_step(self, it: _Iterate, solve) -> float:
-        """The relative size of the step that the rows' round-off at ``it`` alone produces
-        through ``solve`` (fixed pseudo-random signs); 0 without per-row floors."""
+    def noise_step(self, it: _Iterate, solve) -> tuple[float, bool]:
+        """The step that the rows' round-off at ``it`` alone produces through ``solve``
+        (fixed pseudo-random signs): its relative size, and whether every free row's
+        scaled residual lies within ``round_off_multiple`` of its own floor plus
+        ``noise_step_multiple`` times the change that step makes in it (the round-off a
+        badly conditioned solve spreads from a few rows to all: a row the step moves by
+        more than its own floor cannot be brought below that). (0, False) without
+        per-row floors."""
         if it.floor_rows is None:
-            return 0.0
+            return 0.0, False
         signs = np.random.default_rng(0).choice((-1.0, 1.0), size=self.n)
         rhs = np.where(it.active, 0.0, signs * it.floor_rows)
         with np.errstate(all="ignore"):
-            step = self.relative(np.asarray(solve(rhs), dtype=float))
-        return step if math.isfinite(step) else 0.0
+            dz = np.asarray(solve(rhs), dtype=float)
+            step = self.relative(dz)
+            if not math.isfinite(step):
+                return 0.0, False
+            moved = np.abs(self.residual(self.project(it.z + dz, it.active)) - it.r)
+        options = self.options
+        free = ~it.active
+        allowed = (options.round_off_multiple * it.floor_rows
+                   + options.noise_step_multiple * moved)
+        rows = bool(np.all(np.abs(it.r[free]) <= allowed[free]))
+        return step, rows
 
     def project(self, z: np.ndarray, active: np.ndarray) -> np.ndarray:
         """z onto z >= l, the unknowns of ``active`` exactly at their bound."""
@@ -488,11 +498,12 @@ def _converged(setup: _Setup, alpha: float, step: float, it: _Iterate, solve) ->
         return "step"
     if options.residual_tol is not None and it.norm <= options.residual_tol:
         return "residual"
-    if alpha == 1.0 and it.at_floor and (
-            step <= options.round_off_step
-            or (it.rows_at_floor and step <= min(
-                1.0, options.noise_step_multiple * setup.noise_step(it, solve)))):
-        return "round-off"
+    if alpha == 1.0 and it.at_floor:
+        if step <= options.round_off_step:
+            return "round-off"
+        noise, rows = setup.noise_step(it, solve)
+        if rows and step <= min(1.0, options.noise_step_multiple * noise):
+            return "round-off"
     return ""
 
 
