@@ -56,30 +56,37 @@ def design_model(lands, radii, gaps, wraps, velocity, tension) -> BearingModel:
                         head=head, infinitely_wide=True, contact=ASPERITY)
 
 
-def force_balance(model: BearingModel, solution) -> float:
-    """(air force + contact force) / ((T − ρV²)(s_in − s_out)), the tape's end slopes s
-    measured on the solution's first and last intervals: the vertical balance of the
-    whole tensioned tape pinned at its ends (its spans are straight there, so no
-    bending shear). The air force by the trapezoidal rule over the nodes."""
+def force_balance(model: BearingModel, solution) -> tuple[float, float]:
+    """(imbalance, gross), N/m: the air force plus the contact force less the tension's
+    turn (T − ρV²)(s_in − s_out) between the tape's ends (slopes s on the solution's first
+    and last intervals), the vertical balance of the whole tensioned tape pinned at its
+    ends (its spans are straight there: no bending shear); and the sum of the three
+    forces' magnitudes, the scale its round-off is relative to (under a pressed corner
+    the air's suction and the summits' push are 60 times their net). The air force by
+    the trapezoidal rule over the nodes."""
     pa = model.air.ambient_pressure
     p = np.concatenate([[pa], solution.p, [pa]])
     air = float(np.sum(0.5 * (p[1:] + p[:-1] - 2.0 * pa) * np.diff(model.x)))
     w = model.head.dry_tape(model.x_head) + np.concatenate([[0.0], solution.u, [0.0]])
     slopes = np.diff(w) / np.diff(model.x)
     tension = model.params.tension - model.params.density * model.velocity ** 2
-    return (air + solution.contact_force) / (tension * (slopes[0] - slopes[-1]))
+    turn = tension * (slopes[0] - slopes[-1])
+    contact = solution.contact_force
+    return air + contact - turn, abs(air) + abs(contact) + abs(turn)
 
 
 @pytest.mark.parametrize("key", sorted(DESIGNS))
 def test_rounded_corner_designs_solve_and_balance_the_tape(key):
     """Solved within the budget, every iteration counted; the head's air and asperity
-    forces carry the tension's turn between the tape's ends to 1e-3 (measured: 4e-5 to
-    9e-4), and the spans at their ends slope as the wraps to within 10 % (the plate's
-    bending lifts the tape off the string near the corners)."""
+    forces carry the tension's turn between the tape's ends to 1e-4 of the forces'
+    magnitudes (measured: 3e-6 to 2.4e-5), and the spans at their ends slope as the
+    wraps to within 10 % (the plate's bending lifts the tape off the string near the
+    corners)."""
     model = design_model(*DESIGNS[key])
     solution = solve_steady(model)
     assert solution.info.iterations <= 500
-    assert force_balance(model, solution) == pytest.approx(1.0, abs=1e-3)
+    imbalance, gross = force_balance(model, solution)
+    assert abs(imbalance) <= 1e-4 * gross
     w = model.head.dry_tape(model.x_head) + np.concatenate([[0.0], solution.u, [0.0]])
     slopes = np.diff(w) / np.diff(model.x)
     wrap_in, wrap_out = (a * DEG for a in DESIGNS[key][3])
@@ -97,7 +104,8 @@ def test_unsolved_rounded_corner_designs_stop_within_the_budget(key):
     day one is solved, and it then belongs with the designs above)."""
     model = design_model(*UNSOLVED[key])
     solution = solve_steady(model)
-    assert force_balance(model, solution) == pytest.approx(1.0, abs=1e-3)
+    imbalance, gross = force_balance(model, solution)
+    assert abs(imbalance) <= 1e-4 * gross
 
 
 def gw_pressure(d: float, contact: ContactParameters) -> float:
