@@ -162,7 +162,9 @@ class _Envelope:
     and s_right far right: the upper hull of the points between the tangent spans."""
 
     def __init__(self, t: np.ndarray, z: np.ndarray, s_left: float, s_right: float) -> None:
-        vx, vz = _upper_hull(np.asarray(t, float), np.asarray(z, float))
+        # sorted by t: a module's flank samples may reach past the next module's start
+        order = np.argsort(np.asarray(t, float), kind="stable")
+        vx, vz = _upper_hull(np.asarray(t, float)[order], np.asarray(z, float)[order])
         slopes = np.diff(vz) / np.diff(vx)
         first = int(np.searchsorted(-slopes, -s_left, side="left"))    # slope <= s_left
         last = len(vx) - 1 - int(np.searchsorted(slopes[::-1], s_right, side="left"))

@@ -87,6 +87,9 @@ STAGNATION_ALPHA = 0.5
 #: at most ROUND_OFF_STEP has converged.
 ROUND_OFF_MULTIPLE = 100.0
 ROUND_OFF_STEP = 1e-4
+#: With a per-row ``noise`` hook: a whole step at the floor within NOISE_STEP_MULTIPLE of
+#: the step the rows' round-off alone produces has converged, whatever its size.
+NOISE_STEP_MULTIPLE = 10.0
 
 
 @dataclass(frozen=True)
@@ -126,6 +129,10 @@ class NewtonOptions:
         round-off floor is at the floor.
     round_off_step : float
         ... and a whole step there of relative size at most this (> 0) has converged.
+    noise_step_multiple : float
+        With a per-row ``noise`` hook: a whole step at the floor of relative size at most
+        this multiple (>= 1) of the noise step (the step that the rows' round-off alone
+        produces, through the same factorization) has converged.
     """
 
     tol: float = STEP_TOLERANCE
@@ -141,6 +148,7 @@ class NewtonOptions:
     stagnation_alpha: float = STAGNATION_ALPHA
     round_off_multiple: float = ROUND_OFF_MULTIPLE
     round_off_step: float = ROUND_OFF_STEP
+    noise_step_multiple: float = NOISE_STEP_MULTIPLE
 
     def __post_init__(self) -> None:
         put, real = object.__setattr__, validation.real
@@ -161,6 +169,8 @@ class NewtonOptions:
         put(self, "round_off_multiple", real("round_off_multiple", self.round_off_multiple,
                                              low=1.0))
         put(self, "round_off_step", validation.positive("round_off_step", self.round_off_step))
+        put(self, "noise_step_multiple", real("noise_step_multiple",
+                                              self.noise_step_multiple, low=1.0))
 
 
 class NewtonProblem(Protocol):
@@ -192,14 +202,29 @@ class NewtonProblem(Protocol):
 
     Optional hooks (looked up with ``getattr``):
 
+    clip_step(z, dz)
+        The Newton step dz with some unknowns' changes limited one by one (e.g. a
+        logarithmic unknown's change per iteration, as a circuit simulator limits a
+        junction's exponential), before ``step_limit`` and the line search. Absent: dz.
     step_limit(z, dz)
         The largest admissible α in (0, 1] along dz (e.g. one that keeps a spacing
         positive); the line search starts there. Absent: 1.
     noise(z)
         The round-off floor of the scaled residual ‖D r(z)‖ at z (e.g. machine ε times the
-        scaled magnitudes of the terms each row sums). Near it the merit cannot guide a line
+        scaled magnitudes of the terms each row sums), a number, or of each scaled row,
+        |D_i r_i(z)|, a vector of shape (n,). Near it the merit cannot guide a line
         search: steps are taken whole, and a small whole step there has converged
-        (:class:`NewtonOptions` ``round_off_multiple``, ``round_off_step``).
+        (:class:`NewtonOptions` ``round_off_multiple``, ``round_off_step``). Given per
+        row, a whole step there also converges when every free row lies within
+        ``round_off_multiple`` of its own floor (the norm alone can hide a residual far
+        above the floor of most rows under the round-off of a few) and the step is within
+        ``noise_step_multiple`` of the step the rows' round-off alone produces (with
+        fixed pseudo-random signs, through the step's factorization) and below one
+        variable scale (a step as large as an unknown's own scale has not converged,
+        whatever the noise): on a badly
+        conditioned system (a fourth-order operator on cells far finer than its length
+        scale) round-off alone makes steps far above ``round_off_step`` in the unknowns
+        the rows barely hold.
     """
 
     lower: np.ndarray | None
@@ -260,6 +285,8 @@ class _Iterate:
     active: np.ndarray
     norm: float
     at_floor: bool = False
+    #: the rows' round-off floors (unscaled, shape (n,)) of a per-row ``noise`` hook
+    floor_rows: np.ndarray | None = None
 
 
 class _Setup:
@@ -302,8 +329,38 @@ class _Setup:
         """The iterate taken, marked if it lies at the problem's round-off floor (the
         ``noise`` hook, called once per iteration, not per trial)."""
         if self.noise is not None:
-            it.at_floor = it.norm <= self.options.round_off_multiple * float(self.noise(it.z))
+            floor = np.asarray(self.noise(it.z), dtype=float)
+            multiple = self.options.round_off_multiple
+            if floor.ndim:
+                it.floor_rows = floor / self.row_scale
+                floor = np.linalg.norm(floor)
+            it.at_floor = it.norm <= multiple * float(floor)
         return it
+
+    def noise_step(self, it: _Iterate, solve) -> tuple[float, bool]:
+        """The step that the rows' round-off at ``it`` alone produces through ``solve``
+        (fixed pseudo-random signs): its relative size, and whether every free row's
+        scaled residual lies within ``round_off_multiple`` of its own floor plus
+        ``noise_step_multiple`` times the change that step makes in it (the round-off a
+        badly conditioned solve spreads from a few rows to all: a row the step moves by
+        more than its own floor cannot be brought below that). (0, False) without
+        per-row floors."""
+        if it.floor_rows is None:
+            return 0.0, False
+        signs = np.random.default_rng(0).choice((-1.0, 1.0), size=self.n)
+        rhs = np.where(it.active, 0.0, signs * it.floor_rows)
+        with np.errstate(all="ignore"):
+            dz = np.asarray(solve(rhs), dtype=float)
+            step = self.relative(dz)
+            if not math.isfinite(step):
+                return 0.0, False
+            moved = np.abs(self.residual(self.project(it.z + dz, it.active)) - it.r)
+        options = self.options
+        free = ~it.active
+        allowed = (options.round_off_multiple * it.floor_rows
+                   + options.noise_step_multiple * moved)
+        rows = bool(np.all(np.abs(it.r[free]) <= allowed[free]))
+        return step, rows
 
     def project(self, z: np.ndarray, active: np.ndarray) -> np.ndarray:
         """z onto z >= l, the unknowns of ``active`` exactly at their bound."""
@@ -361,8 +418,9 @@ def _reached(report: NewtonReport, it: _Iterate) -> str:
             f"{int(it.active.sum())} of {it.z.size} unknowns at their bound")
 
 
-def _direction(setup: _Setup, it: _Iterate, report: NewtonReport) -> np.ndarray:
-    """The reduced-space Newton step: J_FF δz_F = −r_F, δz = 0 on the active set."""
+def _direction(setup: _Setup, it: _Iterate, report: NewtonReport):
+    """The reduced-space Newton step, J_FF δz_F = −r_F, δz = 0 on the active set, and the
+    solver of its factorization."""
     report.factorizations += 1
     rhs = np.where(it.active, 0.0, -it.r)
     with np.errstate(all="ignore"):
@@ -378,7 +436,10 @@ def _direction(setup: _Setup, it: _Iterate, report: NewtonReport) -> np.ndarray:
                        "is singular or not finite there; check the problem's linearize, or "
                        "start elsewhere", report, it.z, "non-finite")
     dz[it.active] = 0.0
-    return dz
+    clip = getattr(setup.problem, "clip_step", None)
+    if clip is not None:
+        dz = np.asarray(clip(it.z, dz), dtype=float)
+    return dz, solve
 
 
 def _first_alpha(setup: _Setup, it: _Iterate, dz: np.ndarray) -> float:
@@ -398,7 +459,9 @@ def _line_search(setup: _Setup, it: _Iterate, dz: np.ndarray, step: float,
     it is small or the iterate is at its round-off floor. Returns (α, new iterate)."""
     options = setup.options
     alpha = _first_alpha(setup, it, dz)
-    whole = step <= options.full_step or it.at_floor
+    # at the floor the merit cannot judge a step, but a step of more than one variable
+    # scale is no round-off: the line search judges it
+    whole = step <= options.full_step or (it.at_floor and step <= 1.0)
     while True:
         trial = setup.iterate(setup.project(it.z + alpha * dz, it.active))
         finite = math.isfinite(trial.norm)
@@ -427,14 +490,20 @@ def _record(report: NewtonReport, alpha: float, step: float, it: _Iterate,
             f"scaled residual {it.norm:.2e}, {active_count} at their bound")
 
 
-def _converged(options: NewtonOptions, alpha: float, step: float, it: _Iterate) -> str:
-    """Why the iterate after a step of relative size ``step`` has converged, or ""."""
+def _converged(setup: _Setup, alpha: float, step: float, it: _Iterate, solve) -> str:
+    """Why the iterate after a step of relative size ``step`` (by the factorization
+    ``solve``) has converged, or ""."""
+    options = setup.options
     if alpha == 1.0 and step <= options.tol:
         return "step"
     if options.residual_tol is not None and it.norm <= options.residual_tol:
         return "residual"
-    if alpha == 1.0 and it.at_floor and step <= options.round_off_step:
-        return "round-off"
+    if alpha == 1.0 and it.at_floor:
+        if step <= options.round_off_step:
+            return "round-off"
+        noise, rows = setup.noise_step(it, solve)
+        if rows and step <= min(1.0, options.noise_step_multiple * noise):
+            return "round-off"
     return ""
 
 
@@ -468,13 +537,13 @@ def _solve(setup: _Setup, it: _Iterate, report: NewtonReport, log) -> np.ndarray
         return it.z
     norms, alphas = [it.norm], []
     for _ in range(options.max_iterations):
-        dz = _direction(setup, it, report)
+        dz, solve = _direction(setup, it, report)
         step = setup.relative(dz)
         reference = max(norms[-options.memory:])
         alpha, new = _line_search(setup, it, dz, step, report, reference)
         _record(report, alpha, step, new, int(it.active.sum()), log)
         it = setup.accept(new)
-        reason = _converged(options, alpha, step, it)
+        reason = _converged(setup, alpha, step, it, solve)
         if reason:
             report.converged, report.reason = True, reason
             return it.z

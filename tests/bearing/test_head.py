@@ -126,6 +126,22 @@ def test_modules_at_different_heights_are_bridged_by_the_concave_envelope():
     assert a == pytest.approx(-b) and b - a == pytest.approx(2.6e-3 + 0.5e-3)
 
 
+def test_rounded_modules_whose_flank_samples_overlap_the_next_module_keep_a_concave_string():
+    """Two rounded modules 145 µm apart (the first's 20° flank reaches past the second's
+    start): the string is still concave over both, on or above the head, and leaves at
+    the second module's trailing corner, the corners' turns summing to the wrap."""
+    mods = (Module(2.515e-3, corner_radius=1.322e-3), Module(2.679e-3, corner_radius=0.495e-3))
+    head = FlatHead(mods, 4.207 * DEG, 0.595 * DEG, gaps=(0.145e-3,))
+    x = np.linspace(-3.5e-3, 3.5e-3, 14001)
+    z0, zh = head.dry_tape(x), head.surface(x)
+    assert np.all(z0 >= zh - 1e-18)
+    slopes = np.diff(z0) / np.diff(x)
+    assert np.all(np.diff(slopes) <= 1e-9)                          # concave
+    turns = head.corner_turns()
+    assert sum(turns) == pytest.approx(4.802 * DEG, rel=1e-6)
+    assert turns[3] == pytest.approx(0.595 * DEG, rel=1e-6) and turns[1] == 0.0
+
+
 def test_mirrored_head_reflects_the_contour_and_swaps_the_wraps():
     mods = (Module(1e-3, (0.0, 1e-3)), Module(0.5e-3, height=1e-6, tilt=0.1 * DEG))
     head = FlatHead(mods, 1.5 * DEG, 3 * DEG, gaps=(0.25e-3,), transducers=(-0.3e-3,))

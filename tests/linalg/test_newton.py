@@ -263,6 +263,43 @@ class TestStopping:
         z, report = newton(Noisy(residual, lambda z: np.eye(z.size)), np.zeros(3), options)
         assert report.reason == "round-off" and np.max(np.abs(z - 1.0)) <= 2 * amplitude
 
+    def test_per_row_noise_ends_a_solve_whose_weak_unknown_only_noise_moves(self):
+        """diag(1, s) z = (1, s) with s = 1e-9 and round-off-like noise of 1e-12 in each
+        row: the second unknown's steps stay near 1e-12 / s = 1e-3, above round_off_step,
+        so a scalar floor never ends the solve; the rows' floors (their noise step) do,
+        and the well-held unknown is exact to the noise."""
+        amplitude, s = 1e-12, 1e-9
+        A = np.diag([1.0, s])
+
+        def residual(z):
+            return A @ z - np.array([1.0, s]) + amplitude * np.sin(1e15 * z)
+
+        class Scalar(Problem):
+            def noise(self, z):
+                return amplitude * math.sqrt(2.0)
+
+        class Rows(Problem):
+            def noise(self, z):
+                return np.full(2, amplitude)
+
+        options = NewtonOptions(tol=1e-13, max_iterations=20)
+        with pytest.raises(ConvergenceError, match="did not converge in 20"):
+            newton(Scalar(residual, lambda z: A), np.zeros(2), options)
+        z, report = newton(Rows(residual, lambda z: A), np.zeros(2), options)
+        assert report.reason == "round-off"
+        assert abs(z[0] - 1.0) <= 2 * amplitude and abs(z[1] - 1.0) <= 10 * amplitude / s
+
+    def test_clip_step_limits_each_unknown_before_the_line_search(self):
+        """arctan(z) = 0 from 3 with every change clipped to 1: the first step is 1
+        (plain Newton's is −12.5), and the root is still found."""
+        class Clipped(Problem):
+            def clip_step(self, z, dz):
+                return np.clip(dz, -1.0, 1.0)
+
+        z, report = newton(Clipped(np.arctan, lambda z: np.diag(1.0 / (1.0 + z**2))), [3.0])
+        assert report.converged and abs(z[0]) < 1e-12
+        assert report.step_norms[0] <= 1.0 + 1e-15
+
     def test_a_report_passed_in_adds_the_iterations_up(self):
         report = NewtonReport()
         _, report = newton(arctan_problem(), [3.0], report=report)
