@@ -10,7 +10,7 @@ import numpy as np
 
 #: Attributes that hold caches or live solver state, not data a result carries (values of
 #: ``functools.cached_property`` are caches too: they are computed again on use).
-TRANSIENT_ATTRIBUTES = ("_cache", "_factor", "_lu", "_solver")
+TRANSIENT_ATTRIBUTES = ("_cache", "_factor", "_lu", "_solver", "_asperity_last")
 
 
 def _arrays_equal(a: np.ndarray, b: np.ndarray, where: str) -> None:

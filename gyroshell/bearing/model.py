@@ -1066,8 +1066,12 @@ class BearingModel:
             self._hold_wrapped_arcs(U, held)
         if not dry or not held.any():
             return U.ravel()
-        # dry: the tape with its sharp corners held at σ (the exact state when only they
-        # touch; the active set of a 4th-order operator otherwise moves a node per step)
+        return self._held_dry_tape(U, held)
+
+    def _held_dry_tape(self, U: np.ndarray, held: np.ndarray) -> np.ndarray:
+        """u of the dry tape with the nodes ``held`` at their values in ``U`` (m): the
+        exact state when only they touch (the active set of a 4th-order operator
+        otherwise moves a node per step)."""
         held = held.ravel()
         scale = np.where(held, self.stiffness_diagonal, 0.0)   # rows scaled like K's
         rhs = np.where(held, scale * U.ravel(), self.f_kappa
