@@ -469,8 +469,10 @@ def _solve(model, progress):
                 "for Newton's starting state")
     try:
         # rounded corners start inside their contacts' adaptation (from the coarse grid
-        # with its contacts adapted there: steady.coarse_solution)
-        z0 = None if model.adapt_contacts and model.corner_contacts else initial_state(model)
+        # with its contacts adapted there: steady.coarse_solution); a smooth contact law
+        # inside its own solve (smooth.coarse_start, smooth.flying_start)
+        z0 = (None if model.smooth_contact or (model.adapt_contacts and model.corner_contacts)
+              else initial_state(model))
         if log is not None and not model.infinitely_wide and z0 is not None:
             log("start: ready")
         sol = solve_steady(model, z0=z0, progress=log, iteration_log=log)
@@ -479,7 +481,9 @@ def _solve(model, progress):
                         f"{arc_contact_hint(model)}") from None
     sol.info.seconds = time.perf_counter() - start     # the starting state included
     if log is not None:
-        log(f"done: {sol.info.iterations} Newton iterations")
+        extra = sol.info.start_iterations
+        log(f"done: {sol.info.iterations} Newton iterations"
+            + (f" ({extra} more on the start's coarser grids)" if extra else ""))
     return sol
 
 
