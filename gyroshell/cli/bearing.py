@@ -70,6 +70,20 @@ SECONDS_2D = (6e-6, 6e-8)
 #: changing costs one each, 22 at 0.01 m/s); more when pseudo-time or the continuation in
 #: V are needed.
 USUAL_FACTORIZATIONS = (2, 15)
+#: Under a smooth contact law (asperities or a measured curve) a usual solve costs about
+#: this many times :func:`iteration_seconds` (infinitely wide, 2-D): the infinitely wide
+#: tape takes 5-20 Newton iterations whose residuals (the Boltzmann flow factor, the
+#: asperity law) cost about as much as its banded LU; a 2-D tape takes its coarse grids'
+#: start (about one fine factorization's worth) and 3-4 iterations on its own grid, of
+#: which chord steps factor 1-2. Measured (benchmarks/bench_heads_2d.py, load 1-8): 1-D
+#: 3-15 times, 2-D 1.4-5 times.
+SMOOTH_FACTORIZATIONS = (8.0, 3.5)
+#: ... plus, infinitely wide, this much for the first solve in a fresh process (the
+#: imports and caches its first iteration fills), s.
+SMOOTH_FIRST_SECONDS = 0.1
+#: The band printed around the central estimate of a smooth law's solve: divided and
+#: multiplied by this (the time estimates hold within a factor of 3).
+SMOOTH_BAND = 3.0
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
@@ -433,6 +447,22 @@ def iteration_seconds(model) -> float:
     return (per_unknown + per_interval * model.ny) * model.unknowns
 
 
+def solve_seconds(model) -> tuple[float, float, float]:
+    """(low, central, high) estimate of the seconds of ``model``'s steady solve, its start
+    included: under a smooth contact law :data:`SMOOTH_FACTORIZATIONS` times
+    :func:`iteration_seconds` (and :data:`SMOOTH_FIRST_SECONDS` infinitely wide), within a
+    factor :data:`SMOOTH_BAND` either way; under the hard wall :data:`USUAL_FACTORIZATIONS`
+    (the central estimate their geometric mean)."""
+    each = iteration_seconds(model)
+    if model.smooth_contact:
+        one_d, two_d = SMOOTH_FACTORIZATIONS
+        central = (one_d * each + SMOOTH_FIRST_SECONDS if model.infinitely_wide
+                   else two_d * each)
+        return central / SMOOTH_BAND, central, central * SMOOTH_BAND
+    low, high = USUAL_FACTORIZATIONS
+    return low * each, math.sqrt(low * high) * each, high * each
+
+
 def size_line(model) -> str:
     """The first progress line: the grid, the unknowns and the estimated time."""
     from ..core.progress import duration
@@ -443,10 +473,12 @@ def size_line(model) -> str:
         grid = (f"{model.params.width:g} m wide tape, {model.nx} x {model.ny} intervals "
                 f"({'graded' if model.graded else 'uniform'})")
     each = iteration_seconds(model)
-    low, high = USUAL_FACTORIZATIONS
-    return (f"{grid}, {model.unknowns} unknowns; estimated {duration(low * each)} to "
-            f"{duration(high * each)} (about {duration(each)} per Newton iteration that "
-            "factors afresh; longer if Newton needs pseudo-time or continuation in V)")
+    low, central, high = solve_seconds(model)
+    longer = ("the direct path fails and a continuation is needed" if model.smooth_contact
+              else "Newton needs pseudo-time or continuation in V")
+    return (f"{grid}, {model.unknowns} unknowns; estimated {duration(low)} to "
+            f"{duration(high)}, about {duration(central)} (about {duration(each)} per "
+            f"Newton iteration that factors afresh; longer if {longer})")
 
 
 def _solve(model, progress):
