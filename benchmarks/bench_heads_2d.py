@@ -2,7 +2,7 @@
 
     PYTHONPATH=. python benchmarks/bench_heads_2d.py
         [--cases flat1d,cyl1d,flat1,cyl,cyl12,flat2,flat3,map] [--repeats 3]
-        [--cap 300] [--baseline DIR]
+        [--cap 300] [--baseline DIR [--baseline-physics old|new]]
 
 The Table 1 tape at 4 m/s, air at 20 °C, the Boltzmann film over Greenwood-Williamson
 asperities given explicitly (``--rarefaction fukui-kaneko --contact asperity``, whatever
@@ -29,7 +29,8 @@ Newton iterations on the model's grid and on the start's coarser grids, the peak
 size against the memory estimate, the ratio actual / centre and whether the target is
 met. ``--baseline DIR`` runs the same
 cases with DIR's tree (``git archive main | tar -x -C DIR``) on the physics before the
-change (``--rarefaction first-order --contact hard``) and prints the ratios. Timings on a
+change (``--rarefaction first-order --contact hard``; ``--baseline-physics new``: the
+same physics as this tree's, to time a solver change alone) and prints the ratios. Timings on a
 shared machine vary: the load is printed with each table.
 """
 
@@ -183,6 +184,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--baseline", type=Path, default=None,
                    help="a tree to run the same cases on with first-order slip and the hard "
                         "wall (the physics before the change)")
+    p.add_argument("--baseline-physics", choices=("old", "new"), default="old",
+                   help="the baseline's physics: first-order slip and the hard wall (old, "
+                        "the default) or the same as this tree's (new)")
     args = p.parse_args(argv)
     names = [n for n in args.cases.split(",") if n]
     unknown = [n for n in names if n not in CASES]
@@ -190,7 +194,9 @@ def main(argv: list[str] | None = None) -> int:
         p.error(f"unknown case(s) {unknown}; choose among {list(CASES)}")
     trees = [("new physics, this tree", NEW, ROOT)]
     if args.baseline is not None:
-        trees.append((f"old physics, {args.baseline}", OLD, args.baseline))
+        physics = OLD if args.baseline_physics == "old" else NEW
+        trees.append((f"{args.baseline_physics} physics, {args.baseline}", physics,
+                      args.baseline))
     results: dict[str, dict] = {}
     for label, physics, tree in trees:
         print(f"\n{label} ({' '.join(physics)}); load {os.getloadavg()[0]:.1f}", flush=True)
