@@ -8,7 +8,8 @@ iterations (:class:`SolverOptions`), every iteration counted in the solution's
 :class:`~.results.NewtonInfo`:
 
 1. **Direct**: Newton from the flying start (:func:`flying_start`: the flexible-foil or
-   corner start, tapered to the pinned ends), then from the tape resting on its summits
+   corner start, tapered to the pinned ends; a 2-D tape from its state on coarser grids,
+   :func:`coarse_start`), then from the tape resting on its summits
    (:func:`resting_start`: over rounded corners, whose arcs the tape lies on, the flying
    start's film is far from the state).
 2. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
