@@ -95,7 +95,8 @@ def run(command: tuple, physics: tuple, cap: float, tree: Path) -> dict:
             argv += ["--out", str(Path(tmp) / "map.csv")]
         start = time.perf_counter()
         try:
-            done = subprocess.run(argv, capture_output=True, text=True, timeout=cap, env=env)
+            done = subprocess.run(argv, capture_output=True, text=True, timeout=cap, env=env,
+                                  cwd=tmp)     # not the caller's folder: its tree first
         except subprocess.TimeoutExpired:
             return {"outcome": f"over the {cap:g} s cap", "wall": time.perf_counter() - start}
         wall = time.perf_counter() - start
