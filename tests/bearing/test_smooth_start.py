@@ -59,3 +59,18 @@ def test_below_the_threshold_the_start_is_the_infinitely_wide_state_on_every_lin
     inner = p[1:-1, 1:-1]
     np.testing.assert_array_equal(inner, np.repeat(strip.p[:, None], model.ny - 1, axis=1))
     assert np.all(np.isfinite(inner))
+
+
+def test_the_dry_tape_of_a_2d_model_already_solved_with_its_film():
+    """The speed path's first state (:func:`smooth.dry_state`, the model without its film)
+    after a solve with the film on the same grid, whose Jacobian patterns it must not
+    take: the tape at rest on its asperities, as the dry model solves it."""
+    model = two_modules(nx=200, ny=20)
+    smooth.solve_smooth(model, smooth.resting_start(model), None, None, None,
+                        interpolate=interpolated_state)
+    budget = smooth._Budget(smooth.SolverOptions(), smooth.NewtonInfo(), None)
+    z = smooth.dry_state(model, budget)
+    dry = smooth.solve_smooth(model.rebuilt(dry=True), None, None, None, None,
+                              interpolate=interpolated_state)
+    np.testing.assert_allclose(z[:model.n_u], dry.u, rtol=0,
+                               atol=0.05 * model.air.roughness)
