@@ -225,7 +225,7 @@ def extruded_strip(model: BearingModel, interpolate, tension=None, progress=None
     try:
         sol = solve_smooth(strip, None, tension, progress, iteration_log, options,
                            interpolate=interpolate)
-    except ConvergenceError as exc:
+    except (ConvergenceError, ParameterError) as exc:
         if progress is not None:
             progress(f"start: the infinitely wide tape not reached ({exc}): the flying "
                      "start")
@@ -267,8 +267,8 @@ def coarse_start(model: BearingModel, interpolate, tension=None, progress=None,
     try:
         sol = solve_smooth(coarse, z, tension, progress, iteration_log, options,
                            interpolate=interpolate)
-    except ConvergenceError as exc:
-        if progress is not None:
+    except (ConvergenceError, ParameterError) as exc:   # ParameterError: a continuation
+        if progress is not None:                         # stage's grid too coarse for it
             progress(f"start: the coarse grid not reached ({exc})")
         z, more = extruded_strip(model, interpolate, tension, progress, iteration_log,
                                  options)
