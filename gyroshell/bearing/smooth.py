@@ -280,9 +280,6 @@ def without_film(model: BearingModel) -> BearingModel:
     """``model`` on the same grid with no film (p = p_a): the tape resting on the head's
     asperities at the model's T − ρV² (a shallow copy sharing grid and operators)."""
     out = copy.copy(model)
-    # its own Jacobian patterns: the filmed model's, found by the tape rows' pattern the
-    # two share, hold film blocks the dry film does not have
-    out.__dict__.pop("jacobian_patterns", None)
     out.film = DryFilm(model.nx, model.nc, np.diff(model.x),
                        None if model.infinitely_wide else np.diff(model.y), model.air,
                        model.velocity, roughness=model.air.roughness)
