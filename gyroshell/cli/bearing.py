@@ -501,10 +501,11 @@ def _solve(model, progress):
                 "for Newton's starting state")
     try:
         # rounded corners start inside their contacts' adaptation (from the coarse grid
-        # with its contacts adapted there: steady.coarse_solution); a smooth contact law
-        # inside its own solve (smooth.coarse_start, smooth.flying_start)
-        z0 = (None if model.smooth_contact or (model.adapt_contacts and model.corner_contacts)
-              else initial_state(model))
+        # with its contacts adapted there: steady.coarse_solution); a 2-D tape under a
+        # smooth contact law inside its own solve (smooth.coarse_start)
+        own_start = (model.adapt_contacts and model.corner_contacts) or (
+            model.smooth_contact and not model.infinitely_wide)
+        z0 = None if own_start else initial_state(model)
         if log is not None and not model.infinitely_wide and z0 is not None:
             log("start: ready")
         sol = solve_steady(model, z0=z0, progress=log, iteration_log=log)
