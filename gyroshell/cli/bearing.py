@@ -74,13 +74,16 @@ USUAL_FACTORIZATIONS = (2, 15)
 #: this many times :func:`iteration_seconds` (infinitely wide, 2-D): the infinitely wide
 #: tape takes 5-20 Newton iterations whose residuals (the Boltzmann flow factor, the
 #: asperity law) cost about as much as its banded LU; a 2-D tape takes its coarse grids'
-#: start (about one fine factorization's worth) and 3-4 iterations on its own grid, of
-#: which chord steps factor 1-2. Measured (benchmarks/bench_heads_2d.py, load 1-8): 1-D
-#: 3-15 times, 2-D 1.4-5 times.
-SMOOTH_FACTORIZATIONS = (8.0, 3.5)
+#: start (about one fine factorization's worth) and 3-5 iterations on its own grid, of
+#: which chord steps factor 1-2. Measured (benchmarks/bench_heads_2d.py, fresh processes,
+#: the 2-core machine shared): 2-D, 0.93-2.2 times at load 3.5-4 (the cylinder and 1-3
+#: flat modules, 114,552-383,600 unknowns) and 1.9-7.7 times at load 6-10; the centre is
+#: their geometric middle, so that both ends lie within the band.
+SMOOTH_FACTORIZATIONS = (6.0, 2.7)
 #: ... plus, infinitely wide, this much for the first solve in a fresh process (the
-#: imports and caches its first iteration fills), s.
-SMOOTH_FIRST_SECONDS = 0.1
+#: imports and caches its first iteration fills), s: measured, the default flat module's
+#: and cylinder's 1-D solves took 0.07-0.09 s at load 3.5 and up to 0.36 s at load 12.
+SMOOTH_FIRST_SECONDS = 0.07
 #: The band printed around the central estimate of a smooth law's solve: divided and
 #: multiplied by this (the time estimates hold within a factor of 3).
 SMOOTH_BAND = 3.0
