@@ -64,6 +64,9 @@ class NewtonInfo:
     #: the smooth contact law's scales s of the continuation from the hard wall
     #: (:mod:`.smooth`; empty if none was needed)
     law_scales: list = field(default_factory=list)
+    #: Newton iterations of a 2-D tape's start on coarser grids and of the infinitely wide
+    #: tape (:func:`.smooth.coarse_start`), not in ``iterations`` (the model's own grid's)
+    start_iterations: int = 0
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,8 @@ iterations (:class:`SolverOptions`), every iteration counted in the solution's
 :class:`~.results.NewtonInfo`:
 
 1. **Direct**: Newton from the flying start (:func:`flying_start`: the flexible-foil or
-   corner start, tapered to the pinned ends), then from the tape resting on its summits
+   corner start, tapered to the pinned ends; a 2-D tape from its state on coarser grids,
+   :func:`coarse_start`), then from the tape resting on its summits
    (:func:`resting_start`: over rounded corners, whose arcs the tape lies on, the flying
    start's film is far from the state).
 2. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
@@ -29,16 +30,18 @@ from __future__ import annotations
 
 import copy
 import time
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..core import validation
-from ..core.errors import ConvergenceError
+from ..core.errors import ConvergenceError, ParameterError
 from ..linalg.continuation import StepController, continuation
 from ..linalg.newton import NewtonOptions, NewtonReport, newton
+from ..tape.parameters import MIN_INTERVALS_ACROSS
 from .film import DryFilm
-from .model import BearingModel
+from .model import MIN_INTERVALS_ALONG, BearingGridWarning, BearingModel
 from .problem import SteadyProblem, check_cavitation
 from .results import BearingSolution, NewtonInfo
 
@@ -48,6 +51,13 @@ from .results import BearingSolution, NewtonInfo
 #: corners' fine cells turn round-off into steps of 1e-3 σ_s and more (measured on the dry
 #: tape over a 2.9 mm land: steps of 2e-4 to 1e-2 σ_s at a residual of 0.2 of its floor).
 ROUND_OFF_STEP = 1e-2
+
+#: A 2-D grid's Newton reuses its factorization (chord steps) after whole steps below
+#: this relative size while each chord step shrinks the step 4x: its LU costs tens of
+#: residuals (the 12.65 mm tape's cylinder: 3 factorizations of 114,552 unknowns at 0.7 s
+#: each against a residual's 0.05 s). The infinitely wide tape's banded LU costs less
+#: than its residual: it factors every iteration.
+CHORD_STEP_2D = 0.5
 
 
 @dataclass(frozen=True)
@@ -122,7 +132,8 @@ class _Budget:
                                    "is spent")
         report = NewtonReport()
         options = NewtonOptions(tol=self.options.tol, max_iterations=limit,
-                                round_off_step=ROUND_OFF_STEP)
+                                round_off_step=ROUND_OFF_STEP,
+                                chord_step=0.0 if model.infinitely_wide else CHORD_STEP_2D)
         problem = SteadyProblem(model, tension=tension)
         try:
             z, report = newton(problem, problem.unknowns(z0), options, report=report,
@@ -187,6 +198,91 @@ def flying_start(model: BearingModel) -> np.ndarray:
     t = np.clip(np.minimum(x, model.length - x) / (0.5 * model.span), 0.0, 1.0)
     z[:model.n_u] *= np.repeat(t * t * (3.0 - 2.0 * t), model.nc)
     return z
+
+
+#: A 2-D tape of at least this many unknowns starts from its steady state on the grid
+#: twice as coarse each way (:func:`coarse_start`, recursively), interpolated; a smaller
+#: one (the coarsest grid) from the infinitely wide tape's state extruded across the width.
+COARSE_MIN_UNKNOWNS = 20_000
+
+
+def _coarser(model: BearingModel) -> BearingModel | None:
+    """``model`` on the grid twice as coarse each way (even counts, the same mapping), or
+    None if that grid is below the fewest intervals or refused (a graded grid too coarse
+    for its refinements)."""
+    nx = model.nx // 2 + (model.nx // 2) % 2
+    ny = model.ny // 2 + (model.ny // 2) % 2
+    if nx < MIN_INTERVALS_ALONG or ny < MIN_INTERVALS_ACROSS:
+        return None
+    with warnings.catch_warnings():     # a start leads Newton; it need not be accurate
+        warnings.simplefilter("ignore", BearingGridWarning)
+        try:
+            return model.rebuilt(nx=nx, ny=ny)
+        except ParameterError:
+            return None
+
+
+def extruded_strip(model: BearingModel, interpolate, tension=None, progress=None,
+                   iteration_log=None, options=None) -> tuple[np.ndarray, int]:
+    """(start [u (m), p (Pa)] of a 2-D ``model``, Newton iterations it took): the
+    infinitely wide tape's steady state on the same x-grid (:func:`solve_smooth`),
+    repeated across the width; the 2-D :func:`flying_start` if that solve fails."""
+    strip = model.rebuilt(infinitely_wide=True, ny=None)
+    if progress is not None:
+        progress(f"start: solving the infinitely wide tape on the same x-grid "
+                 f"({strip.unknowns} unknowns)")
+    try:
+        sol = solve_smooth(strip, None, tension, progress, iteration_log, options,
+                           interpolate=interpolate)
+    except (ConvergenceError, ParameterError) as exc:
+        if progress is not None:
+            progress(f"start: the infinitely wide tape not reached ({exc}): the flying "
+                     "start")
+        return flying_start(model), _taken(exc)
+    u = np.repeat(sol.u, model.nc)
+    P = np.repeat(strip.pressure_field(sol.p), model.nc, axis=1)
+    return (np.concatenate([u, P[model.film.interior]]),
+            sol.info.iterations + sol.info.start_iterations)
+
+
+def _taken(exc: ConvergenceError) -> int:
+    """The Newton iterations of a failed :func:`solve_smooth` (its start's included)."""
+    info = getattr(exc, "info", None)
+    return 0 if info is None else info.iterations + info.start_iterations
+
+
+def coarse_start(model: BearingModel, interpolate, tension=None, progress=None,
+                 iteration_log=None, options=None) -> tuple[np.ndarray, int]:
+    """(start [u (m), p (Pa)] of a 2-D ``model``, Newton iterations it took on the coarser
+    grids): the steady state on the grid twice as coarse each way (:func:`solve_smooth`,
+    itself started by this function), interpolated by ``interpolate``
+    (:func:`.steady.interpolated_state`); below :data:`COARSE_MIN_UNKNOWNS` unknowns, or if
+    that grid is refused or not solved, :func:`extruded_strip`.
+
+    The coarse grids carry the 2-D state's edges and the film's leak across the width
+    into the start. The strip alone is a poor start for Newton on a fine grid: its land's
+    sub-ambient film (1 % of ambient between two modules) against ambient edges leaves
+    Newton a step in ln p of thousands, cut to nothing by the step limit (measured: two
+    1 mm modules on a 12.65 mm tape, 262,000 unknowns, stagnated at α 1e-4 to 1e-9; from
+    the coarse grids it converged in 4 iterations). On the coarsest grid a failed direct
+    path costs a few tenths of a second."""
+    coarse = None if model.unknowns < COARSE_MIN_UNKNOWNS else _coarser(model)
+    if coarse is None:
+        return extruded_strip(model, interpolate, tension, progress, iteration_log, options)
+    z, taken = coarse_start(coarse, interpolate, tension, progress, iteration_log, options)
+    if progress is not None:
+        progress(f"start: solving the coarse grid {coarse.nx} x {coarse.ny} "
+                 f"({coarse.unknowns} unknowns)")
+    try:
+        sol = solve_smooth(coarse, z, tension, progress, iteration_log, options,
+                           interpolate=interpolate)
+    except (ConvergenceError, ParameterError) as exc:   # ParameterError: a continuation
+        if progress is not None:                         # stage's grid too coarse for it
+            progress(f"start: the coarse grid not reached ({exc})")
+        z, more = extruded_strip(model, interpolate, tension, progress, iteration_log,
+                                 options)
+        return z, taken + _taken(exc) + more
+    return interpolate(model, sol), taken + sol.info.iterations + sol.info.start_iterations
 
 
 def without_film(model: BearingModel) -> BearingModel:
@@ -310,6 +406,9 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
     options = SolverOptions() if options is None else options
     start = time.perf_counter()
     info = NewtonInfo()
+    if z0 is None and not model.infinitely_wide:
+        z0, info.start_iterations = coarse_start(model, interpolate, tension, progress,
+                                                 iteration_log, options)
     budget = _Budget(options, info, iteration_log)
     failures = []
     z = None
@@ -334,11 +433,13 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
             if progress is not None:
                 progress(f"{name} did not reach the state ({exc})")
     if z is None:
-        raise ConvergenceError(
+        exc = ConvergenceError(
             f"no steady state reached within {options.budget} Newton iterations "
             f"({info.iterations} taken): " + "; ".join(failures)
             + "; try a finer grid (nx), a start (z0) from a neighbouring state, or "
               "contact='hard'")
+        exc.info = info
+        raise exc
     info.seconds = time.perf_counter() - start
     check_cavitation(model, z[model.n_u:])
     lam = SteadyProblem(model, tension=tension).F.contact_forces(

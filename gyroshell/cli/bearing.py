@@ -70,6 +70,23 @@ SECONDS_2D = (6e-6, 6e-8)
 #: changing costs one each, 22 at 0.01 m/s); more when pseudo-time or the continuation in
 #: V are needed.
 USUAL_FACTORIZATIONS = (2, 15)
+#: Under a smooth contact law (asperities or a measured curve) a usual solve costs about
+#: this many times :func:`iteration_seconds` (infinitely wide, 2-D): the infinitely wide
+#: tape takes 5-20 Newton iterations whose residuals (the Boltzmann flow factor, the
+#: asperity law) cost about as much as its banded LU; a 2-D tape takes its coarse grids'
+#: start (about one fine factorization's worth) and 3-5 iterations on its own grid, of
+#: which chord steps factor 1-2. Measured (benchmarks/bench_heads_2d.py, fresh processes,
+#: the 2-core machine shared): 2-D, 0.93-2.2 times at load 3.5-4 (the cylinder and 1-3
+#: flat modules, 114,552-383,600 unknowns) and 1.9-7.7 times at load 6-10; the centre is
+#: their geometric middle, so that both ends lie within the band.
+SMOOTH_FACTORIZATIONS = (6.0, 2.7)
+#: ... plus, infinitely wide, this much for the first solve in a fresh process (the
+#: imports and caches its first iteration fills), s: measured, the default flat module's
+#: and cylinder's 1-D solves took 0.07-0.09 s at load 3.5 and up to 0.36 s at load 12.
+SMOOTH_FIRST_SECONDS = 0.07
+#: The band printed around the central estimate of a smooth law's solve: divided and
+#: multiplied by this (the time estimates hold within a factor of 3).
+SMOOTH_BAND = 3.0
 
 
 def register(sub, common: argparse.ArgumentParser) -> None:
@@ -433,6 +450,22 @@ def iteration_seconds(model) -> float:
     return (per_unknown + per_interval * model.ny) * model.unknowns
 
 
+def solve_seconds(model) -> tuple[float, float, float]:
+    """(low, central, high) estimate of the seconds of ``model``'s steady solve, its start
+    included: under a smooth contact law :data:`SMOOTH_FACTORIZATIONS` times
+    :func:`iteration_seconds` (and :data:`SMOOTH_FIRST_SECONDS` infinitely wide), within a
+    factor :data:`SMOOTH_BAND` either way; under the hard wall :data:`USUAL_FACTORIZATIONS`
+    (the central estimate their geometric mean)."""
+    each = iteration_seconds(model)
+    if model.smooth_contact:
+        one_d, two_d = SMOOTH_FACTORIZATIONS
+        central = (one_d * each + SMOOTH_FIRST_SECONDS if model.infinitely_wide
+                   else two_d * each)
+        return central / SMOOTH_BAND, central, central * SMOOTH_BAND
+    low, high = USUAL_FACTORIZATIONS
+    return low * each, math.sqrt(low * high) * each, high * each
+
+
 def size_line(model) -> str:
     """The first progress line: the grid, the unknowns and the estimated time."""
     from ..core.progress import duration
@@ -443,10 +476,12 @@ def size_line(model) -> str:
         grid = (f"{model.params.width:g} m wide tape, {model.nx} x {model.ny} intervals "
                 f"({'graded' if model.graded else 'uniform'})")
     each = iteration_seconds(model)
-    low, high = USUAL_FACTORIZATIONS
-    return (f"{grid}, {model.unknowns} unknowns; estimated {duration(low * each)} to "
-            f"{duration(high * each)} (about {duration(each)} per Newton iteration that "
-            "factors afresh; longer if Newton needs pseudo-time or continuation in V)")
+    low, central, high = solve_seconds(model)
+    longer = ("the direct path fails and a continuation is needed" if model.smooth_contact
+              else "Newton needs pseudo-time or continuation in V")
+    return (f"{grid}, {model.unknowns} unknowns; estimated {duration(low)} to "
+            f"{duration(high)}, about {duration(central)} (about {duration(each)} per "
+            f"Newton iteration that factors afresh; longer if {longer})")
 
 
 def _solve(model, progress):
@@ -469,8 +504,11 @@ def _solve(model, progress):
                 "for Newton's starting state")
     try:
         # rounded corners start inside their contacts' adaptation (from the coarse grid
-        # with its contacts adapted there: steady.coarse_solution)
-        z0 = None if model.adapt_contacts and model.corner_contacts else initial_state(model)
+        # with its contacts adapted there: steady.coarse_solution); a 2-D tape under a
+        # smooth contact law inside its own solve (smooth.coarse_start)
+        own_start = (model.adapt_contacts and model.corner_contacts) or (
+            model.smooth_contact and not model.infinitely_wide)
+        z0 = None if own_start else initial_state(model)
         if log is not None and not model.infinitely_wide and z0 is not None:
             log("start: ready")
         sol = solve_steady(model, z0=z0, progress=log, iteration_log=log)
@@ -479,7 +517,9 @@ def _solve(model, progress):
                         f"{arc_contact_hint(model)}") from None
     sol.info.seconds = time.perf_counter() - start     # the starting state included
     if log is not None:
-        log(f"done: {sol.info.iterations} Newton iterations")
+        extra = sol.info.start_iterations
+        log(f"done: {sol.info.iterations} Newton iterations"
+            + (f" ({extra} more on the start's coarser grids)" if extra else ""))
     return sol
 
 

@@ -90,6 +90,9 @@ ROUND_OFF_STEP = 1e-4
 #: With a per-row ``noise`` hook: a whole step at the floor within NOISE_STEP_MULTIPLE of
 #: the step the rows' round-off alone produces has converged, whatever its size.
 NOISE_STEP_MULTIPLE = 10.0
+#: Chord steps (off by default, ``chord_step=0``): a chord step must shrink the step at
+#: least by this factor, or the Jacobian is factored afresh.
+CHORD_CONTRACTION = 0.25
 
 
 @dataclass(frozen=True)
@@ -133,6 +136,14 @@ class NewtonOptions:
         With a per-row ``noise`` hook: a whole step at the floor of relative size at most
         this multiple (>= 1) of the noise step (the step that the rows' round-off alone
         produces, through the same factorization) has converged.
+    chord_step : float
+        Chord steps: after a whole step of relative size below this (>= 0), with the
+        active set unchanged, the last factorization is reused (no ``linearize``) as long
+        as the chord step is at most ``chord_contraction`` times that step; else the
+        Jacobian is factored afresh. 0 (the default): every iteration factors. Worth it
+        where a factorization costs many residuals (a 2-D grid).
+    chord_contraction : float
+        The factor in (0, 1) by which a chord step must shrink the last step.
     """
 
     tol: float = STEP_TOLERANCE
@@ -149,6 +160,8 @@ class NewtonOptions:
     round_off_multiple: float = ROUND_OFF_MULTIPLE
     round_off_step: float = ROUND_OFF_STEP
     noise_step_multiple: float = NOISE_STEP_MULTIPLE
+    chord_step: float = 0.0
+    chord_contraction: float = CHORD_CONTRACTION
 
     def __post_init__(self) -> None:
         put, real = object.__setattr__, validation.real
@@ -171,6 +184,10 @@ class NewtonOptions:
         put(self, "round_off_step", validation.positive("round_off_step", self.round_off_step))
         put(self, "noise_step_multiple", real("noise_step_multiple",
                                               self.noise_step_multiple, low=1.0))
+        put(self, "chord_step", validation.nonnegative("chord_step", self.chord_step))
+        put(self, "chord_contraction", real("chord_contraction", self.chord_contraction,
+                                            low=0.0, high=1.0, low_open=True,
+                                            high_open=True))
 
 
 class NewtonProblem(Protocol):
@@ -196,7 +213,8 @@ class NewtonProblem(Protocol):
         A function ``solve(rhs)`` returning J⁻¹ rhs for the Jacobian J of r at z with the
         rows of the boolean mask ``active`` (unknowns at their bound) replaced by the
         identity: solve returns rhs at those entries (the caller passes 0 there) and solves
-        the free rows J_FF δz_F = rhs_F. Called once per iteration (one factorization). A
+        the free rows J_FF δz_F = rhs_F. Called once per iteration (one factorization;
+        chord steps, :class:`NewtonOptions` ``chord_step``, reuse the last solve). A
         singular J may give non-finite values or raise (numpy's LinAlgError, SuperLU's
         RuntimeError, an ArithmeticError): Newton's step is then not finite.
 
@@ -255,7 +273,7 @@ class NewtonReport:
     alphas : list of float
         Line-search factor α of each step (1: the whole Newton step).
     factorizations : int
-        Calls of the problem's ``linearize``.
+        Calls of the problem's ``linearize`` (fewer than the iterations with chord steps).
     seconds : float
         Wall time, s.
     converged : bool
@@ -418,28 +436,73 @@ def _reached(report: NewtonReport, it: _Iterate) -> str:
             f"{int(it.active.sum())} of {it.z.size} unknowns at their bound")
 
 
-def _direction(setup: _Setup, it: _Iterate, report: NewtonReport):
-    """The reduced-space Newton step, J_FF δz_F = −r_F, δz = 0 on the active set, and the
-    solver of its factorization."""
-    report.factorizations += 1
+def _substituted(setup: _Setup, it: _Iterate, solve) -> np.ndarray | None:
+    """``solve`` applied to the reduced right-hand side −r_F (0 on the active set), or
+    None if it is singular or not finite."""
     rhs = np.where(it.active, 0.0, -it.r)
     with np.errstate(all="ignore"):
         try:
-            solve = setup.problem.linearize(it.z, it.active)
             dz = np.asarray(solve(rhs), dtype=float)
         except ConvergenceError:
             raise
         except (ArithmeticError, np.linalg.LinAlgError, RuntimeError):  # singular: SuperLU's
-            dz = np.full(setup.n, np.nan)                                # is a RuntimeError
+            return None                                                  # is a RuntimeError
     if dz.shape != (setup.n,) or not np.all(np.isfinite(dz)):
+        return None
+    dz[it.active] = 0.0
+    return dz
+
+
+def _direction(setup: _Setup, it: _Iterate, report: NewtonReport):
+    """(the reduced-space Newton step: J_FF δz_F = −r_F, δz = 0 on the active set; the
+    factorization's solve, for chord steps)."""
+    report.factorizations += 1
+    with np.errstate(all="ignore"):
+        try:
+            solve = setup.problem.linearize(it.z, it.active)
+        except ConvergenceError:
+            raise
+        except (ArithmeticError, np.linalg.LinAlgError, RuntimeError):
+            solve = None
+    dz = None if solve is None else _substituted(setup, it, solve)
+    if dz is None:
         raise _failure(f"Newton's step is not finite ({_reached(report, it)}): the Jacobian "
                        "is singular or not finite there; check the problem's linearize, or "
                        "start elsewhere", report, it.z, "non-finite")
-    dz[it.active] = 0.0
     clip = getattr(setup.problem, "clip_step", None)
     if clip is not None:
         dz = np.asarray(clip(it.z, dz), dtype=float)
     return dz, solve
+
+
+class _Chord:
+    """The last factorization, reused for chord steps (:class:`NewtonOptions`
+    ``chord_step``) while the last whole step was small and a chord step contracts."""
+
+    def __init__(self, options: NewtonOptions) -> None:
+        self.options = options
+        self.solve, self.active, self.last = None, None, math.inf
+
+    def direction(self, setup: _Setup, it: _Iterate, report: NewtonReport):
+        """(a chord step if it qualifies, else a Newton step, which factors; the
+        factorization's solve)."""
+        options = self.options
+        if (self.solve is not None and self.last < options.chord_step
+                and np.array_equal(it.active, self.active)):
+            dz = _substituted(setup, it, self.solve)
+            if dz is not None and setup.relative(dz) <= options.chord_contraction * self.last:
+                clip = getattr(setup.problem, "clip_step", None)
+                if clip is not None:
+                    dz = np.asarray(clip(it.z, dz), dtype=float)
+                return dz, self.solve
+        self.solve = None                   # freed before the next factorization
+        dz, self.solve = _direction(setup, it, report)
+        self.active = it.active.copy()
+        return dz, self.solve
+
+    def taken(self, alpha: float, step: float) -> None:
+        """Record the step taken: only a whole one qualifies the next for a chord step."""
+        self.last = step if alpha == 1.0 else math.inf
 
 
 def _first_alpha(setup: _Setup, it: _Iterate, dz: np.ndarray) -> float:
@@ -536,11 +599,13 @@ def _solve(setup: _Setup, it: _Iterate, report: NewtonReport, log) -> np.ndarray
         report.converged, report.reason = True, "residual"
         return it.z
     norms, alphas = [it.norm], []
+    chord = _Chord(options)
     for _ in range(options.max_iterations):
-        dz, solve = _direction(setup, it, report)
+        dz, solve = chord.direction(setup, it, report)
         step = setup.relative(dz)
         reference = max(norms[-options.memory:])
         alpha, new = _line_search(setup, it, dz, step, report, reference)
+        chord.taken(alpha, step)
         _record(report, alpha, step, new, int(it.active.sum()), log)
         it = setup.accept(new)
         reason = _converged(setup, alpha, step, it, solve)

@@ -308,6 +308,57 @@ class TestStopping:
         assert report.iterations > first and len(report.alphas) == report.iterations
 
 
+class TestChord:
+    """Chord steps (``chord_step`` > 0) reuse the last factorization near the solution."""
+
+    OPTIONS = NewtonOptions(chord_step=0.5)
+
+    class Counted(Problem):
+        """A problem that records the iteration of each ``linearize`` call."""
+
+        def __init__(self, problem: Problem) -> None:
+            super().__init__(problem._r, problem._J, lower=problem.lower)
+            self.calls = 0
+
+        def linearize(self, z, active):
+            self.calls += 1
+            return super().linearize(z, active)
+
+    def test_chord_steps_reach_the_planted_solution_with_fewer_factorizations(self):
+        problem, z_star, mu = TestComplementarity().planted()
+        counted = self.Counted(problem)
+        z, report = newton(counted, np.ones(z_star.size), self.OPTIONS)
+        # chord steps converge linearly, each at least chord_contraction (1/4) of the last:
+        # the error after a last step below tol is below tol / 3
+        tol = self.OPTIONS.tol
+        np.testing.assert_allclose(z, z_star, rtol=0, atol=tol / 3.0)
+        np.testing.assert_allclose(problem.residual(z), mu, rtol=0, atol=10.0 * tol)
+        assert counted.calls == report.factorizations < report.iterations
+        _, plain = newton(problem, np.ones(z_star.size))
+        assert plain.factorizations == plain.iterations
+
+    @pytest.mark.parametrize("case", ["arctan", "planted"])
+    def test_every_chord_step_follows_a_small_whole_step_and_contracts(self, case):
+        """An iteration without a factorization is a chord step: the step before it was
+        whole and below chord_step, and it shrinks the step by chord_contraction."""
+        if case == "arctan":
+            problem, z0, exact = arctan_problem(), np.array([3.0]), np.zeros(1)
+        else:
+            problem, exact, _ = TestComplementarity().planted()
+            z0 = np.ones(exact.size)
+        counted = self.Counted(problem)
+        calls = []
+        z, report = newton(counted, z0, self.OPTIONS,
+                           log=lambda line: calls.append(counted.calls))
+        np.testing.assert_allclose(z, exact, rtol=0, atol=self.OPTIONS.tol / 3.0)
+        steps, alphas = report.step_norms, report.alphas
+        chord = [k for k in range(1, len(calls)) if calls[k] == calls[k - 1]]
+        assert chord, "no chord step taken"
+        for k in chord:
+            assert alphas[k - 1] == 1.0 and steps[k - 1] < self.OPTIONS.chord_step
+            assert steps[k] <= self.OPTIONS.chord_contraction * steps[k - 1]
+
+
 class TestFailure:
     def test_no_root_raises_with_the_report_and_state(self):
         problem = Problem(lambda z: z**2 + 1.0, lambda z: np.diag(2.0 * z))
@@ -337,6 +388,8 @@ class TestValidation:
         ("memory", 0, "memory must be an integer >= 1"),
         ("max_iterations", 2.5, "max_iterations must be an integer"),
         ("residual_tol", -1.0, "residual_tol must be >= 0"),
+        ("chord_step", -0.1, "chord_step must be >= 0"),
+        ("chord_contraction", 1.0, r"chord_contraction must be in \(0, 1\)"),
     ])
     def test_options(self, field, value, message):
         with pytest.raises(ParameterError, match=message):
