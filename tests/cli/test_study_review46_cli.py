@@ -29,7 +29,7 @@ def documented_study(page: str) -> list[str]:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("page", ["README.md", "docs/user_guide/studies.md"])
+@pytest.mark.parametrize("page", ["README.md", "docs/user_guide/bearing_studies.md"])
 def test_the_documented_wrap_study_runs(cli, tmp_path, monkeypatch, page):
     argv = documented_study(page)
     assert "wrap_in=0.5:4:8" in argv and "wrap_out=1,2,4" in argv
