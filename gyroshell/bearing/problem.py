@@ -28,6 +28,7 @@ from ..linalg.factorization import (
     resolve_pattern_lu,
 )
 from ..linalg.grid_ordering import grid_nested_dissection
+from ..linalg.newton import BOUND_TOLERANCE
 from .jacobian import JacobianPattern
 from .model import BearingModel, wrapped_corners
 
@@ -597,3 +598,16 @@ class SteadyProblem:
     def contact_forces(self, z: np.ndarray, active: np.ndarray) -> np.ndarray:
         """The head's force on each tape node at the unknowns z, N (N/m per unit width)."""
         return self.F.contact_forces(self.state(z), active[:self.model.n_u])
+
+    def forces(self, state: np.ndarray) -> np.ndarray:
+        """The head's force on each tape node at a solved state [u (m), p (Pa)], N (N/m
+        per unit width): the smooth law's, or at the wall the tape's residual on the
+        nodes held at their bound by it (the generic Newton's active set), 0 elsewhere."""
+        n_u = self.model.n_u
+        if self.lower is None:
+            return self.F.contact_forces(state, np.zeros(n_u, dtype=bool))
+        u = state[:n_u]
+        r_u = self.F.tape(u, state[n_u:])
+        band = BOUND_TOLERANCE * self.F.h_scale
+        at_wall = (u <= self.lower[:n_u] + band) & (r_u > 0.0)
+        return np.where(at_wall, r_u, 0.0)

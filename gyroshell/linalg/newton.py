@@ -41,6 +41,12 @@ few unknowns per iteration: the iterations then grow with the grid (the obstacle
 from u = 0: 16 iterations on 640 cells, 25 on 2,560). A start from a coarser grid or a
 continuation keeps them few.
 
+Where a factorization costs many residuals (a large 2-D grid), ``chord_switch`` lets
+an iteration near the solution reuse the last one (a chord step, PETSc's lagged
+Jacobian): once the last step was taken whole, below ``chord_switch`` in relative size and
+with the active set unchanged, the old factorization's step is taken if it contracts to
+at most ``chord_contraction`` of the last step; otherwise J is factored afresh.
+
 Steps of relative size at most ``full_step`` are taken whole (in the quadratic regime the
 merit changes by less than its round-off), as are steps from an iterate at the problem's
 round-off floor (``noise``). A step whose trial has a non-finite residual is cut like one
@@ -87,6 +93,10 @@ STAGNATION_ALPHA = 0.5
 #: at most ROUND_OFF_STEP has converged.
 ROUND_OFF_MULTIPLE = 100.0
 ROUND_OFF_STEP = 1e-4
+#: Chord steps (the last factorization reused): off unless asked for; a chord step must
+#: contract the step at least by this factor.
+CHORD_SWITCH = 0.0
+CHORD_CONTRACTION = 0.25
 
 
 @dataclass(frozen=True)
@@ -126,6 +136,11 @@ class NewtonOptions:
         round-off floor is at the floor.
     round_off_step : float
         ... and a whole step there of relative size at most this (> 0) has converged.
+    chord_switch : float
+        After a whole step of relative size below this (>= 0; 0: never), with the active
+        set unchanged, the last factorization is reused (a chord step) ...
+    chord_contraction : float
+        ... if its step is at most this fraction, in (0, 1), of the last step.
     """
 
     tol: float = STEP_TOLERANCE
@@ -141,6 +156,8 @@ class NewtonOptions:
     stagnation_alpha: float = STAGNATION_ALPHA
     round_off_multiple: float = ROUND_OFF_MULTIPLE
     round_off_step: float = ROUND_OFF_STEP
+    chord_switch: float = CHORD_SWITCH
+    chord_contraction: float = CHORD_CONTRACTION
 
     def __post_init__(self) -> None:
         put, real = object.__setattr__, validation.real
@@ -161,6 +178,9 @@ class NewtonOptions:
         put(self, "round_off_multiple", real("round_off_multiple", self.round_off_multiple,
                                              low=1.0))
         put(self, "round_off_step", validation.positive("round_off_step", self.round_off_step))
+        put(self, "chord_switch", validation.nonnegative("chord_switch", self.chord_switch))
+        put(self, "chord_contraction", real("chord_contraction", self.chord_contraction,
+                                            low=0.0, high=1.0, low_open=True, high_open=True))
 
 
 class NewtonProblem(Protocol):
@@ -361,13 +381,48 @@ def _reached(report: NewtonReport, it: _Iterate) -> str:
             f"{int(it.active.sum())} of {it.z.size} unknowns at their bound")
 
 
-def _direction(setup: _Setup, it: _Iterate, report: NewtonReport) -> np.ndarray:
-    """The reduced-space Newton step: J_FF δz_F = −r_F, δz = 0 on the active set."""
+class _Chord:
+    """The last factorization (``solve``), its active set and the last step taken
+    (relative size, whole or not): whether a chord step may be tried."""
+
+    def __init__(self) -> None:
+        self.solve, self.active, self.step, self.whole = None, None, math.inf, False
+
+    def usable(self, options: NewtonOptions, it: _Iterate) -> bool:
+        return (self.solve is not None and self.whole and self.step < options.chord_switch
+                and np.array_equal(self.active, it.active))
+
+
+def _chord_step(setup: _Setup, it: _Iterate, chord: _Chord) -> np.ndarray | None:
+    """The chord step (the last factorization's) if it contracts enough, else None."""
+    rhs = np.where(it.active, 0.0, -it.r)
+    with np.errstate(all="ignore"):
+        try:
+            dz = np.asarray(chord.solve(rhs), dtype=float)
+        except (ArithmeticError, np.linalg.LinAlgError, RuntimeError):
+            return None
+    if dz.shape != (setup.n,) or not np.all(np.isfinite(dz)):
+        return None
+    dz[it.active] = 0.0
+    if setup.relative(dz) > setup.options.chord_contraction * chord.step:
+        return None
+    return dz
+
+
+def _direction(setup: _Setup, it: _Iterate, report: NewtonReport,
+               chord: _Chord) -> np.ndarray:
+    """The reduced-space Newton step: J_FF δz_F = −r_F, δz = 0 on the active set; a
+    chord step where it is allowed and contracts (:class:`_Chord`)."""
+    if chord.usable(setup.options, it):
+        dz = _chord_step(setup, it, chord)
+        if dz is not None:
+            return dz
     report.factorizations += 1
     rhs = np.where(it.active, 0.0, -it.r)
     with np.errstate(all="ignore"):
         try:
             solve = setup.problem.linearize(it.z, it.active)
+            chord.solve, chord.active = solve, it.active.copy()
             dz = np.asarray(solve(rhs), dtype=float)
         except ConvergenceError:
             raise
@@ -467,11 +522,13 @@ def _solve(setup: _Setup, it: _Iterate, report: NewtonReport, log) -> np.ndarray
         report.converged, report.reason = True, "residual"
         return it.z
     norms, alphas = [it.norm], []
+    chord = _Chord()
     for _ in range(options.max_iterations):
-        dz = _direction(setup, it, report)
+        dz = _direction(setup, it, report, chord)
         step = setup.relative(dz)
         reference = max(norms[-options.memory:])
         alpha, new = _line_search(setup, it, dz, step, report, reference)
+        chord.step, chord.whole = step, alpha == 1.0
         _record(report, alpha, step, new, int(it.active.sum()), log)
         it = setup.accept(new)
         reason = _converged(options, alpha, step, it)
