@@ -550,11 +550,17 @@ class SteadyProblem:
 
     def linearize(self, z: np.ndarray, active: np.ndarray):
         """A solver rhs ↦ J⁻¹ rhs of the Jacobian at z with the rows of ``active`` (tape
-        nodes at the wall) replaced by the identity (their right-hand side is 0)."""
+        nodes held at the wall) replaced by the identity."""
         u, p = self.split(z)
-        lin = self.F.linearize(np.concatenate([u, p]), active[:self.model.n_u])
+        held = active[:self.model.n_u]
+        lin = self.F.linearize(np.concatenate([u, p]), held)
         solve = self.F.factor(lin, p if self.log_pressure else None)   # res ↦ −J⁻¹ res
-        return lambda rhs: -solve(rhs)
+        if not held.any():
+            return lambda rhs: -solve(rhs)
+        # the factored rows of ``active`` are c e_i (c = diag K): their rhs times c
+        scale = np.ones(active.size)
+        scale[:held.size][held] = self.F.c[held]
+        return lambda rhs: -solve(rhs * scale)
 
     def step_limit(self, z: np.ndarray, dz: np.ndarray) -> float:
         """The largest α <= 1 keeping each spacing within reach of its value (a factor 5

@@ -97,6 +97,8 @@ ROUND_OFF_STEP = 1e-4
 #: contract the step at least by this factor.
 CHORD_SWITCH = 0.0
 CHORD_CONTRACTION = 0.25
+#: Most active sets tried per iteration on the linearized problem (each a factorization).
+MAX_SET_UPDATES = 10
 
 
 @dataclass(frozen=True)
@@ -141,6 +143,9 @@ class NewtonOptions:
         set unchanged, the last factorization is reused (a chord step) ...
     chord_contraction : float
         ... if its step is at most this fraction, in (0, 1), of the last step.
+    max_set_updates : int
+        Most further active sets (>= 0, each a factorization) tried on the linearized
+        problem per iteration when the reduced step crosses bounds; 0: the reduced step.
     """
 
     tol: float = STEP_TOLERANCE
@@ -158,12 +163,15 @@ class NewtonOptions:
     round_off_step: float = ROUND_OFF_STEP
     chord_switch: float = CHORD_SWITCH
     chord_contraction: float = CHORD_CONTRACTION
+    max_set_updates: int = MAX_SET_UPDATES
 
     def __post_init__(self) -> None:
         put, real = object.__setattr__, validation.real
         put(self, "tol", validation.positive("tol", self.tol))
         if self.residual_tol is not None:
             put(self, "residual_tol", validation.nonnegative("residual_tol", self.residual_tol))
+        put(self, "max_set_updates", validation.integer("max_set_updates",
+                                                        self.max_set_updates, low=0))
         for name in ("max_iterations", "memory", "stagnation_window"):
             put(self, name, validation.integer(name, getattr(self, name), low=1))
         put(self, "armijo", real("armijo", self.armijo, low=0.0, high=0.5, low_open=True,
@@ -409,20 +417,68 @@ def _chord_step(setup: _Setup, it: _Iterate, chord: _Chord) -> np.ndarray | None
     return dz
 
 
-def _direction(setup: _Setup, it: _Iterate, report: NewtonReport,
-               chord: _Chord) -> np.ndarray:
-    """The reduced-space Newton step: J_FF δz_F = −r_F, δz = 0 on the active set; a
-    chord step where it is allowed and contracts (:class:`_Chord`)."""
+def _directions(setup: _Setup, it: _Iterate, report: NewtonReport,
+                chord: _Chord) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The Newton steps to try, each with its active set: the reduced-space step
+    (J_FF δz_F = −r_F, δz = 0 on the active set), or a chord step where it is allowed and
+    contracts (:class:`_Chord`); where the reduced step takes free unknowns through
+    their bounds, also the step of the linearized problem's own active set
+    (:func:`_set_step`)."""
     if chord.usable(setup.options, it):
         dz = _chord_step(setup, it, chord)
         if dz is not None:
-            return dz
+            return [(dz, it.active)]
+    dz = _factored_step(setup, it, it.active, report, chord)
+    if setup.lower is None or setup.options.max_set_updates == 0:
+        return [(dz, it.active)]
+    solve = chord.solve, chord.active
+    other = _set_step(setup, it, dz, report, chord)
+    if other is None:
+        return [(dz, it.active)]
+    chord.solve, chord.active = solve             # the reduced step's, for chord steps
+    return [other, (dz, it.active)]
+
+
+def _set_step(setup: _Setup, it: _Iterate, dz: np.ndarray, report: NewtonReport,
+              chord: _Chord) -> tuple[np.ndarray, np.ndarray]:
+    """The step whose active set is consistent with its own linearization, if the
+    reduced step ``dz`` takes free unknowns through their bounds: the primal–dual
+    active-set method on the linearized problem (Hintermüller, Ito and Kunisch 2002).
+    With the set A, δz_A = l_A − z_A and J_FF δz_F = −r_F − J_FA δz_A; the next set holds
+    the free unknowns the step takes below their bounds and the unknowns of A whose
+    residual at z + δz (their bound's force, exact where those rows are linear) stays
+    positive. Repeated until the set repeats: a contact zone then grows or shrinks by many
+    unknowns per iteration, where the projected path alone moves it by the few a damped
+    step reaches. At most ``max_set_updates`` factorizations (the rule may shrink an
+    overshooting zone by one unknown per end and update: the last set's step is then
+    taken). Returns (δz, its set), or None if the reduced step crosses no bound."""
+    lower, active = setup.lower, it.active
+    if not np.any(~active & (it.z + dz < lower)):
+        return None
+    for _ in range(setup.options.max_set_updates):
+        z1 = it.z + dz
+        with np.errstate(all="ignore"):
+            r1 = setup.residual(z1)
+        if not np.all(np.isfinite(r1[active])):
+            break
+        nxt = (active & (r1 > 0.0)) | (~active & (z1 < lower))
+        if np.array_equal(nxt, active):
+            break
+        active = nxt
+        dz = _factored_step(setup, it, active, report, chord)
+    return None if active is it.active else (dz, active)
+
+
+def _factored_step(setup: _Setup, it: _Iterate, active: np.ndarray, report: NewtonReport,
+                   chord: _Chord) -> np.ndarray:
+    """The Newton step with the active set ``active`` (its unknowns moved to their
+    bounds), by a new factorization."""
     report.factorizations += 1
-    rhs = np.where(it.active, 0.0, -it.r)
+    rhs = np.where(active, 0.0 if setup.lower is None else setup.lower - it.z, -it.r)
     with np.errstate(all="ignore"):
         try:
-            solve = setup.problem.linearize(it.z, it.active)
-            chord.solve, chord.active = solve, it.active.copy()
+            solve = setup.problem.linearize(it.z, active)
+            chord.solve, chord.active = solve, active.copy()
             dz = np.asarray(solve(rhs), dtype=float)
         except ConvergenceError:
             raise
@@ -432,7 +488,7 @@ def _direction(setup: _Setup, it: _Iterate, report: NewtonReport,
         raise _failure(f"Newton's step is not finite ({_reached(report, it)}): the Jacobian "
                        "is singular or not finite there; check the problem's linearize, or "
                        "start elsewhere", report, it.z, "non-finite")
-    dz[it.active] = 0.0
+    dz[active] = rhs[active]
     return dz
 
 
@@ -447,15 +503,18 @@ def _first_alpha(setup: _Setup, it: _Iterate, dz: np.ndarray) -> float:
 
 
 def _line_search(setup: _Setup, it: _Iterate, dz: np.ndarray, step: float,
-                 report: NewtonReport, reference: float) -> tuple[float, _Iterate]:
+                 report: NewtonReport, reference: float,
+                 active: np.ndarray) -> tuple[float, _Iterate]:
     """Backtracking from the largest admissible α along the projected path, against the
     scaled residual ``reference`` (the largest of the last ``memory``); the whole step when
-    it is small or the iterate is at its round-off floor. Returns (α, new iterate)."""
+    it is small or the iterate is at its round-off floor. ``active``: the step's active
+    set (the iterate's unknowns in it stay at their bounds). Returns (α, new iterate)."""
     options = setup.options
     alpha = _first_alpha(setup, it, dz)
     whole = step <= options.full_step or it.at_floor
+    held = it.active & active
     while True:
-        trial = setup.iterate(setup.project(it.z + alpha * dz, it.active))
+        trial = setup.iterate(setup.project(it.z + alpha * dz, held))
         finite = math.isfinite(trial.norm)
         decrease = trial.norm**2 <= reference**2 - 2.0 * options.armijo * alpha * it.norm**2
         last = alpha * options.backtrack < options.min_step
@@ -524,12 +583,15 @@ def _solve(setup: _Setup, it: _Iterate, report: NewtonReport, log) -> np.ndarray
     norms, alphas = [it.norm], []
     chord = _Chord()
     for _ in range(options.max_iterations):
-        dz = _direction(setup, it, report, chord)
-        step = setup.relative(dz)
         reference = max(norms[-options.memory:])
-        alpha, new = _line_search(setup, it, dz, step, report, reference)
-        chord.step, chord.whole = step, alpha == 1.0
-        _record(report, alpha, step, new, int(it.active.sum()), log)
+        tried = []
+        for dz, active in _directions(setup, it, report, chord):
+            step = setup.relative(dz)
+            tried.append((*_line_search(setup, it, dz, step, report, reference, active),
+                          step, active))
+        alpha, new, step, active = min(tried, key=lambda t: t[1].norm)
+        chord.step, chord.whole = step, alpha == 1.0 and active is it.active
+        _record(report, alpha, step, new, int(active.sum()), log)
         it = setup.accept(new)
         reason = _converged(options, alpha, step, it)
         if reason:
