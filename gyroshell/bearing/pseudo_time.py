@@ -19,11 +19,15 @@ from .model import BearingModel
 
 #: The first pseudo-time step (the pseudo-time terms are 1/s of each row's diagonal) ...
 START = 0.1
-#: ... and the last, after which the steady equations are solved.
-FINISH = 1e4
-#: The steps grow by this ratio per stage (cut by its square root after a failure) ...
+#: ... and the last, where the steady equations themselves are solved (the pseudo-time
+#: terms there would be 1e-8 of each row's diagonal).
+FINISH = 1e8
+#: The steps start at this ratio per stage, squared after an easy stage (at most
+#: EASY_ITERATIONS Newton iterations) up to MAXIMUM_RATIO, and cut to its square root
+#: after a failed one, down to MINIMUM_RATIO.
 RATIO = 4.0
-#: ... down to this ratio.
+EASY_ITERATIONS = 4
+MAXIMUM_RATIO = 100.0
 MINIMUM_RATIO = 1.05
 #: Newton iterations of one pseudo-time stage (a stage that needs more is retried with a
 #: smaller step).
@@ -76,7 +80,7 @@ def pseudo_time_path(model: BearingModel, z0: np.ndarray, solve, progress=None):
         return solve(PseudoTime(model, state, s), state, STAGE_ITERATIONS)
 
     z, stages = continuation(at, START, FINISH, z0, controller=StepController(
-        initial=RATIO, growth=1.0, cut=0.5, minimum=MINIMUM_RATIO,
-        easy_iterations=STAGE_ITERATIONS // 2))
+        initial=RATIO, growth=2.0, cut=0.5, minimum=MINIMUM_RATIO, maximum=MAXIMUM_RATIO,
+        easy_iterations=EASY_ITERATIONS))
     return z, [s for s, report in stages if report is not None and s != FINISH
                and report.converged]

@@ -244,12 +244,14 @@ def scaled_law(model: BearingModel, scale: float) -> BearingModel:
 def dry_state(model: BearingModel, budget: _Budget, tension=None) -> np.ndarray:
     """[u, p_a]: the tape at rest on its asperities on ``model``'s grid, by Newton from
     the dry start with the sharp corners held at σ_s (:meth:`BearingModel.dry_start`),
-    else from :func:`resting_start`."""
+    else (a smooth law) from :func:`resting_start`."""
     dry = without_film(model)
     try:
         return budget.solve(dry, dry.dry_start(), budget.options.max_iterations,
                             tension=tension)
     except ConvergenceError:
+        if not model.smooth_contact:     # the wall has no resting spacing
+            raise
         return budget.solve(dry, resting_start(dry), budget.options.max_iterations,
                             tension=tension)
 
