@@ -7,9 +7,9 @@ iteration in the grid's fixed pattern (:mod:`.jacobian`), the scales of the rows
 merit) and of the unknowns (the step's size), the largest step that keeps the film's
 coefficients within reach, the residual's round-off floor, and, for the hard wall only,
 the bounds h >= σ on the tape's nodes (a smooth contact law has none: its force is in
-r_u). The residual's pieces (:class:`_Residual`: the tape and film rows, the contact
-rows of the hard wall, the scales, the assembly and factorization in the grid's fixed
-pattern) serve this problem and the hard wall's own Newton in :mod:`.steady`.
+r_u). The residual's pieces (:class:`_Residual`: the tape and film rows, the wall's
+semismooth contact rows (its Jacobian's checks), the scales, the assembly and
+factorization in the grid's fixed pattern) serve this problem.
 """
 
 from __future__ import annotations
@@ -443,15 +443,8 @@ def _wrapped_at_speed(model: BearingModel) -> bool:
     """Whether ``model`` is an infinitely wide tape at speed over wrapped arcs
     (:attr:`BearingModel.wrapped_corners`) that it touches at about one point
     (:attr:`BearingModel.touching_arcs`: the grid refined to 25 nm there), each past the
-    handover (those ``arc_contact="auto"`` wraps): its Newton solves take the feasible
-    contact step and the merit's quadrature weights (:class:`_Residual`). Other wrapped
-    arcs keep the primal–dual rule: forced wrapped below the handover, the feasible
-    step's path (up to MAX_FEASIBLE_UPDATES factorizations per iteration) took fewer
-    Newton iterations but more time (measured, 1 mm land at 2°/2°, 4 m/s: r_c = 1.2 mm
-    391 iterations, 24.9 s, against 345, 6.3 s; 1.4 mm 195, 7.4 s, against 335, 7.9 s);
-    over the long 10 mm arcs of a 4 mm land at 4°/4° (no corner refinement) at 0.5 m/s it
-    reached another steady state (h(0) = 1.53 µm instead of 0.356 µm, both converged:
-    the head has two)."""
+    handover (those ``arc_contact="auto"`` wraps): its merit takes the quadrature weights
+    (:class:`_Residual`)."""
     if not (model.infinitely_wide and model.wrapped_corners) or model.dry \
             or model.smooth_contact:
         return False
@@ -491,7 +484,7 @@ class SteadyProblem:
         (m), −inf elsewhere; None under a smooth contact law.
     row_scale, variable_scale : numpy.ndarray
         The merit's row weights (1/N and the film rows' inverse Couette flux) and the
-        unknowns' scales (m, Pa): see :class:`.steady._Residual`.
+        unknowns' scales (m, Pa): see :class:`_Residual`.
     """
 
     def __init__(self, model: BearingModel, *, tension: float | None = None,
@@ -590,7 +583,7 @@ class SteadyProblem:
         return max(alpha, 1e-12)
 
     def noise(self, z: np.ndarray) -> float:
-        """The scaled residual's round-off floor at z (:meth:`.steady._Residual._noise`):
+        """The scaled residual's round-off floor at z (:meth:`_Residual._noise`):
         on a grid refined far below the bending length the plate's rows alone can hold a
         converged state's residual above the step's tolerance."""
         F = self.F

@@ -36,10 +36,18 @@ monotone search then accepts only steps too short to change the active set, and 
 converges in 25 iterations). The increase is undone in the next iterations, once the active
 set has followed; the stagnation test still ends a run that does not make progress.
 
-An active set far too large (a start through the wall) is released at its edges only, a
-few unknowns per iteration: the iterations then grow with the grid (the obstacle problem
-from u = 0: 16 iterations on 640 cells, 25 on 2,560). A start from a coarser grid or a
-continuation keeps them few.
+The projected path changes the active set by the unknowns a damped step reaches, a few
+per iteration: a contact zone that a step crosses wholesale (a tape coming down onto a
+land, its steps cut by the problem's ``step_limit``) can stall it. Where the path stalls
+(this step and the last damped below ``stagnation_alpha``) and the reduced step takes
+free unknowns through their bounds, the step of the linearized problem's own active set
+is formed too (:func:`_set_step`: the primal–dual active-set rule of Hintermüller, Ito
+and Kunisch 2002 on the linearization, at most ``max_set_updates`` factorizations) and
+line-searched, and the one reaching the lower merit is taken. (Tried at every damped
+step it also took sets far too large, and the iterates left the basin.) An active set far
+too large (a start through the wall) is released at its edges only: the iterations then
+grow with the grid (the obstacle problem from u = 0: 16 iterations on 640 cells, 26 on
+2,560). A start from a coarser grid or a continuation keeps them few.
 
 Where a factorization costs many residuals (a large 2-D grid), ``chord_switch`` lets
 an iteration near the solution reuse the last one (a chord step, PETSc's lagged
@@ -395,6 +403,8 @@ class _Chord:
 
     def __init__(self) -> None:
         self.solve, self.active, self.step, self.whole = None, None, math.inf, False
+        #: whether the last step was a chord step (its error contracts linearly only)
+        self.used = False
 
     def usable(self, options: NewtonOptions, it: _Iterate) -> bool:
         return (self.solve is not None and self.whole and self.step < options.chord_switch
@@ -417,26 +427,46 @@ def _chord_step(setup: _Setup, it: _Iterate, chord: _Chord) -> np.ndarray | None
     return dz
 
 
-def _directions(setup: _Setup, it: _Iterate, report: NewtonReport,
-                chord: _Chord) -> list[tuple[np.ndarray, np.ndarray]]:
-    """The Newton steps to try, each with its active set: the reduced-space step
-    (J_FF δz_F = −r_F, δz = 0 on the active set), or a chord step where it is allowed and
-    contracts (:class:`_Chord`); where the reduced step takes free unknowns through
-    their bounds, also the step of the linearized problem's own active set
-    (:func:`_set_step`)."""
+def _direction(setup: _Setup, it: _Iterate, report: NewtonReport,
+               chord: _Chord) -> np.ndarray:
+    """The reduced-space Newton step (J_FF δz_F = −r_F, δz = 0 on the active set), or a
+    chord step where it is allowed and contracts (:class:`_Chord`)."""
+    chord.used = False
     if chord.usable(setup.options, it):
         dz = _chord_step(setup, it, chord)
         if dz is not None:
-            return [(dz, it.active)]
-    dz = _factored_step(setup, it, it.active, report, chord)
-    if setup.lower is None or setup.options.max_set_updates == 0:
-        return [(dz, it.active)]
+            chord.used = True
+            return dz
+    return _factored_step(setup, it, it.active, report, chord)
+
+
+def _step(setup: _Setup, it: _Iterate, report: NewtonReport, chord: _Chord,
+          reference: float, stalling: bool) -> tuple[float, _Iterate, float, np.ndarray]:
+    """One iteration's step: the reduced step (:func:`_direction`) line-searched; if the
+    projected path stalls (this step and the last damped below ``stagnation_alpha``:
+    ``stalling`` for the last) and the step takes free unknowns through their bounds,
+    also the step of the linearized problem's own active set (:func:`_set_step`),
+    line-searched, the one reaching the lower merit taken. Returns (α, new iterate,
+    relative step, the step's active set)."""
+    options = setup.options
+    dz = _direction(setup, it, report, chord)
+    step = setup.relative(dz)
+    alpha, new = _line_search(setup, it, dz, step, report, reference, it.active)
+    stalled = stalling and alpha < options.stagnation_alpha
+    if not stalled or chord.used or setup.lower is None or options.max_set_updates == 0:
+        return alpha, new, step, it.active
     solve = chord.solve, chord.active
     other = _set_step(setup, it, dz, report, chord)
-    if other is None:
-        return [(dz, it.active)]
     chord.solve, chord.active = solve             # the reduced step's, for chord steps
-    return [other, (dz, it.active)]
+    if other is None:
+        return alpha, new, step, it.active
+    dz_set, active = other
+    step_set = setup.relative(dz_set)
+    alpha_set, new_set = _line_search(setup, it, dz_set, step_set, report, reference,
+                                      active)
+    if new_set.norm < new.norm:
+        return alpha_set, new_set, step_set, active
+    return alpha, new, step, it.active
 
 
 def _set_step(setup: _Setup, it: _Iterate, dz: np.ndarray, report: NewtonReport,
@@ -541,13 +571,16 @@ def _record(report: NewtonReport, alpha: float, step: float, it: _Iterate,
             f"scaled residual {it.norm:.2e}, {active_count} at their bound")
 
 
-def _converged(options: NewtonOptions, alpha: float, step: float, it: _Iterate) -> str:
-    """Why the iterate after a step of relative size ``step`` has converged, or ""."""
+def _converged(options: NewtonOptions, alpha: float, step: float, it: _Iterate,
+               chord: bool = False) -> str:
+    """Why the iterate after a step of relative size ``step`` has converged, or "".
+    A chord step (``chord``) converges by the tolerance alone: its error contracts only
+    linearly, so a step at the round-off floor leaves an error of its own size."""
     if alpha == 1.0 and step <= options.tol:
         return "step"
     if options.residual_tol is not None and it.norm <= options.residual_tol:
         return "residual"
-    if alpha == 1.0 and it.at_floor and step <= options.round_off_step:
+    if alpha == 1.0 and it.at_floor and step <= options.round_off_step and not chord:
         return "round-off"
     return ""
 
@@ -584,16 +617,12 @@ def _solve(setup: _Setup, it: _Iterate, report: NewtonReport, log) -> np.ndarray
     chord = _Chord()
     for _ in range(options.max_iterations):
         reference = max(norms[-options.memory:])
-        tried = []
-        for dz, active in _directions(setup, it, report, chord):
-            step = setup.relative(dz)
-            tried.append((*_line_search(setup, it, dz, step, report, reference, active),
-                          step, active))
-        alpha, new, step, active = min(tried, key=lambda t: t[1].norm)
+        stalling = bool(alphas) and alphas[-1] < options.stagnation_alpha
+        alpha, new, step, active = _step(setup, it, report, chord, reference, stalling)
         chord.step, chord.whole = step, alpha == 1.0 and active is it.active
         _record(report, alpha, step, new, int(active.sum()), log)
         it = setup.accept(new)
-        reason = _converged(options, alpha, step, it)
+        reason = _converged(options, alpha, step, it, chord.used)
         if reason:
             report.converged, report.reason = True, reason
             return it.z

@@ -135,21 +135,25 @@ class TestObstacle:
         assert np.max(np.abs(z - obstacle_exact(x, self.DEPTH)[0])) <= 2560.0**-2
         assert max(np.diff(report.residual_norms)) > 0.0      # the merit did rise
 
-    def test_the_linearized_problems_active_set_solves_a_linear_obstacle_at_once(self):
+    def test_the_linearized_problems_own_active_set_solves_a_linear_obstacle(self):
         """The obstacle problem is linear: the step whose active set is consistent with
-        its own linearization is its solution. On 40 cells the first step lands on the
-        closed form's contact set (one iteration, then a vanishing step); the reduced
-        step alone (max_set_updates=0) enters the contact set a few unknowns per
-        damped, projected step."""
+        its own linearization (the primal–dual rule on the linearization, the step that
+        Newton adds where its projected path stalls) is its solution. From u = 0 on 40
+        cells it lands on the closed form, contact set and all."""
+        from gyroshell.linalg.newton import _Chord, _factored_step, _set_step, _Setup
+
         problem, x = obstacle(40, self.DEPTH)
-        z, report = newton(problem, np.zeros(x.size))
+        setup = _Setup(problem, x.size, NewtonOptions())
+        it = setup.iterate(np.zeros(x.size))
+        report, chord = NewtonReport(), _Chord()
+        reduced = _factored_step(setup, it, it.active, report, chord)
+        dz, active = _set_step(setup, it, reduced, report, chord)
         exact, _ = obstacle_exact(x, self.DEPTH)
-        assert report.iterations == 2 and report.step_norms[-1] < 1e-12
-        assert report.active_counts[0] == np.count_nonzero(z == -self.DEPTH)
-        assert np.max(np.abs(z - exact)) <= 40.0**-2
-        _, reduced = newton(problem, np.zeros(x.size), NewtonOptions(max_set_updates=0))
-        assert reduced.iterations > report.iterations
-        assert reduced.factorizations == reduced.iterations
+        np.testing.assert_allclose(it.z + dz, exact, rtol=0, atol=40.0**-2)
+        solved, _ = newton(problem, np.zeros(x.size))
+        assert np.array_equal(active, solved == -self.DEPTH)      # the discrete contact set
+        np.testing.assert_allclose(it.z + dz, solved, rtol=0, atol=1e-12)
+        assert 2 <= report.factorizations <= 1 + NewtonOptions().max_set_updates
 
     def test_log_gets_one_line_per_iteration(self):
         problem, x = obstacle(40, self.DEPTH)
