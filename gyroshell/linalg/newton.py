@@ -39,9 +39,9 @@ set has followed; the stagnation test still ends a run that does not make progre
 The projected path changes the active set by the unknowns a damped step reaches, a few
 per iteration: a contact zone that a step crosses wholesale (a tape coming down onto a
 land, its steps cut by the problem's ``step_limit``) can stall it. Where the path stalls
-(this step and the last damped below ``stagnation_alpha``) and the reduced step takes
-free unknowns through their bounds, the step of the linearized problem's own active set
-is formed too (:func:`_set_step`: the primal–dual active-set rule of Hintermüller, Ito
+(this step and the last, if any, damped below ``stagnation_alpha``) and the reduced
+step takes free unknowns through their bounds, the step of the linearized problem's own
+active set is formed too (:func:`_set_step`: the primal–dual active-set rule of Hintermüller, Ito
 and Kunisch 2002 on the linearization, at most ``max_set_updates`` factorizations) and
 line-searched, and the one reaching the lower merit is taken. (Tried at every damped
 step it also took sets far too large, and the iterates left the basin.) An active set far
@@ -443,11 +443,11 @@ def _direction(setup: _Setup, it: _Iterate, report: NewtonReport,
 def _step(setup: _Setup, it: _Iterate, report: NewtonReport, chord: _Chord,
           reference: float, stalling: bool) -> tuple[float, _Iterate, float, np.ndarray]:
     """One iteration's step: the reduced step (:func:`_direction`) line-searched; if the
-    projected path stalls (this step and the last damped below ``stagnation_alpha``:
-    ``stalling`` for the last) and the step takes free unknowns through their bounds,
-    also the step of the linearized problem's own active set (:func:`_set_step`),
-    line-searched, the one reaching the lower merit taken. Returns (α, new iterate,
-    relative step, the step's active set)."""
+    projected path stalls (this step and the last, if any, damped below
+    ``stagnation_alpha``: ``stalling`` for the last) and the step takes free unknowns
+    through their bounds, also the step of the linearized problem's own active set
+    (:func:`_set_step`), line-searched, the one reaching the lower merit taken. Returns
+    (α, new iterate, relative step, the step's active set)."""
     options = setup.options
     dz = _direction(setup, it, report, chord)
     step = setup.relative(dz)
@@ -617,7 +617,7 @@ def _solve(setup: _Setup, it: _Iterate, report: NewtonReport, log) -> np.ndarray
     chord = _Chord()
     for _ in range(options.max_iterations):
         reference = max(norms[-options.memory:])
-        stalling = bool(alphas) and alphas[-1] < options.stagnation_alpha
+        stalling = not alphas or alphas[-1] < options.stagnation_alpha
         alpha, new, step, active = _step(setup, it, report, chord, reference, stalling)
         chord.step, chord.whole = step, alpha == 1.0 and active is it.active
         _record(report, alpha, step, new, int(active.sum()), log)

@@ -177,11 +177,11 @@ def test_a_land_lying_on_the_wall_with_no_force_does_not_stall_newton():
 
 
 @pytest.mark.slow
-def test_two_d_tape_at_one_metre_per_second_is_reached_from_the_dry_side():
+def test_two_d_tape_at_one_metre_per_second_is_reached():
     """A 2 mm tape over the 3 mm land at 1 m/s (a coarse 400 × 8 grid, 6384 unknowns;
-    ~8 s): Newton from the extruded infinitely wide state stagnates, the continuation in
-    V up from the slow tape (its first stage from the extruded infinitely wide state)
-    reaches it. The film stays positive, only the corner lines touch, and the middle of
+    ~8 s), started from the extruded infinitely wide state (where the legacy contact-set
+    Newton stagnated and needed the continuation in V up from the slow tape). The film
+    stays positive, only the corner lines touch, and the middle of
     the transducer line flies far below the infinitely wide tape on the same x-grid (the
     air escapes at the free edges: 1.10 µm against 9.70 µm measured; 1.19 µm on 800 × 16)."""
     with warnings.catch_warnings():
@@ -189,7 +189,6 @@ def test_two_d_tape_at_one_metre_per_second_is_reached_from_the_dry_side():
         model = BearingModel(TAPE.replace(width=2e-3), AIR, velocity=1.0, head=HEAD,
                              nx=400, ny=8)
     sol = solve_steady(model)
-    assert sol.info.continuation[-1] == 1.0
     assert sol.pressure.min() > 0.0
     inner = model.x_head[1:-1]
     lines = sol.contact.reshape(model.nx - 1, model.nc).sum(axis=1)
