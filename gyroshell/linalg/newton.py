@@ -39,8 +39,8 @@ set has followed; the stagnation test still ends a run that does not make progre
 The projected path changes the active set by the unknowns a damped step reaches, a few
 per iteration: a contact zone that a step crosses wholesale (a tape coming down onto a
 land, its steps cut by the problem's ``step_limit``) can stall it. Where the path stalls
-(this step and the last, if any, damped below ``stagnation_alpha`` or not halving the
-scaled residual) and the reduced
+(this step and the last, if any, damped below ``stagnation_alpha``, or whole without
+halving the scaled residual) and the reduced
 step takes free unknowns through their bounds, the step of the linearized problem's own
 active set is formed too (:func:`_set_step`: the primal–dual active-set rule of Hintermüller, Ito
 and Kunisch 2002 on the linearization, at most ``max_set_updates`` factorizations) and
@@ -445,7 +445,8 @@ def _step(setup: _Setup, it: _Iterate, report: NewtonReport, chord: _Chord,
           reference: float, stalling: bool) -> tuple[float, _Iterate, float, np.ndarray]:
     """One iteration's step: the reduced step (:func:`_direction`) line-searched; if the
     projected path stalls (this step and the last, if any, damped below
-    ``stagnation_alpha`` or not halving the scaled residual: ``stalling`` for the last)
+    ``stagnation_alpha``, or whole without halving the scaled residual: ``stalling``
+    for the last)
     and the step takes free unknowns
     through their bounds, also the step of the linearized problem's own active set
     (:func:`_set_step`), line-searched, the one reaching the lower merit taken. Returns
@@ -454,7 +455,7 @@ def _step(setup: _Setup, it: _Iterate, report: NewtonReport, chord: _Chord,
     dz = _direction(setup, it, report, chord)
     step = setup.relative(dz)
     alpha, new = _line_search(setup, it, dz, step, report, reference, it.active)
-    stalled = stalling and (alpha < options.stagnation_alpha or new.norm > 0.5 * it.norm)
+    stalled = stalling and _slow(options, alpha, new.norm, it.norm)
     if not stalled or chord.used or setup.lower is None or options.max_set_updates == 0:
         return alpha, new, step, it.active
     solve = chord.solve, chord.active
@@ -469,6 +470,12 @@ def _step(setup: _Setup, it: _Iterate, report: NewtonReport, chord: _Chord,
     if new_set.norm < new.norm:
         return alpha_set, new_set, step_set, active
     return alpha, new, step, it.active
+
+
+def _slow(options: NewtonOptions, alpha: float, norm: float, before: float) -> bool:
+    """Whether a step made slow progress: damped below ``stagnation_alpha``, or whole
+    without halving the scaled residual (``before`` → ``norm``)."""
+    return alpha < options.stagnation_alpha or (alpha == 1.0 and norm > 0.5 * before)
 
 
 def _set_step(setup: _Setup, it: _Iterate, dz: np.ndarray, report: NewtonReport,
@@ -619,8 +626,7 @@ def _solve(setup: _Setup, it: _Iterate, report: NewtonReport, log) -> np.ndarray
     chord = _Chord()
     for _ in range(options.max_iterations):
         reference = max(norms[-options.memory:])
-        stalling = (not alphas or alphas[-1] < options.stagnation_alpha
-                    or norms[-1] > 0.5 * norms[-2])
+        stalling = not alphas or _slow(options, alphas[-1], norms[-1], norms[-2])
         alpha, new, step, active = _step(setup, it, report, chord, reference, stalling)
         chord.step, chord.whole = step, alpha == 1.0 and active is it.active
         _record(report, alpha, step, new, int(active.sum()), log)
