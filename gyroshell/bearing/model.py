@@ -554,7 +554,7 @@ class BearingModel:
     def jacobian_patterns(self) -> dict:
         """Newton's folded Jacobian patterns' digests on this grid by factorization kind,
         with the tape rows' pattern each was formed from
-        (:func:`gyroshell.bearing.steady._model_pattern`): a cache, formed again on use
+        (:func:`gyroshell.bearing.problem._model_pattern`): a cache, formed again on use
         (not part of the model's state: a loaded model starts it empty)."""
         return {}
 

@@ -7,9 +7,9 @@ iteration in the grid's fixed pattern (:mod:`.jacobian`), the scales of the rows
 merit) and of the unknowns (the step's size), the largest step that keeps the film's
 coefficients within reach, the residual's round-off floor, and, for the hard wall only,
 the bounds h >= σ on the tape's nodes (a smooth contact law has none: its force is in
-r_u). The residual's pieces (:class:`_Residual`: the tape and film rows, the contact
-rows of the hard wall, the scales, the assembly and factorization in the grid's fixed
-pattern) serve this problem and the hard wall's own Newton in :mod:`.steady`.
+r_u). The residual's pieces (:class:`_Residual`: the tape and film rows, the wall's
+semismooth contact rows (its Jacobian's checks), the scales, the assembly and
+factorization in the grid's fixed pattern) serve this problem.
 """
 
 from __future__ import annotations
@@ -28,6 +28,7 @@ from ..linalg.factorization import (
     resolve_pattern_lu,
 )
 from ..linalg.grid_ordering import grid_nested_dissection
+from ..linalg.newton import BOUND_TOLERANCE
 from .jacobian import JacobianPattern
 from .model import BearingModel, wrapped_corners
 
@@ -446,15 +447,8 @@ def _wrapped_at_speed(model: BearingModel) -> bool:
     """Whether ``model`` is an infinitely wide tape at speed over wrapped arcs
     (:attr:`BearingModel.wrapped_corners`) that it touches at about one point
     (:attr:`BearingModel.touching_arcs`: the grid refined to 25 nm there), each past the
-    handover (those ``arc_contact="auto"`` wraps): its Newton solves take the feasible
-    contact step and the merit's quadrature weights (:class:`_Residual`). Other wrapped
-    arcs keep the primal–dual rule: forced wrapped below the handover, the feasible
-    step's path (up to MAX_FEASIBLE_UPDATES factorizations per iteration) took fewer
-    Newton iterations but more time (measured, 1 mm land at 2°/2°, 4 m/s: r_c = 1.2 mm
-    391 iterations, 24.9 s, against 345, 6.3 s; 1.4 mm 195, 7.4 s, against 335, 7.9 s);
-    over the long 10 mm arcs of a 4 mm land at 4°/4° (no corner refinement) at 0.5 m/s it
-    reached another steady state (h(0) = 1.53 µm instead of 0.356 µm, both converged:
-    the head has two)."""
+    handover (those ``arc_contact="auto"`` wraps): its merit takes the quadrature weights
+    (:class:`_Residual`)."""
     if not (model.infinitely_wide and model.wrapped_corners) or model.dry \
             or model.smooth_contact:
         return False
@@ -494,7 +488,7 @@ class SteadyProblem:
         (m), −inf elsewhere; None under a smooth contact law.
     row_scale, variable_scale : numpy.ndarray
         The merit's row weights (1/N and the film rows' inverse Couette flux) and the
-        unknowns' scales (m, Pa): see :class:`.steady._Residual`.
+        unknowns' scales (m, Pa): see :class:`_Residual`.
     """
 
     def __init__(self, model: BearingModel, *, tension: float | None = None,
@@ -553,14 +547,22 @@ class SteadyProblem:
 
     def linearize(self, z: np.ndarray, active: np.ndarray):
         """A solver rhs ↦ J⁻¹ rhs of the Jacobian at z with the rows of ``active`` (tape
-        nodes at the wall) replaced by the identity (their right-hand side is 0)."""
+        nodes held at the wall) replaced by the identity."""
         u, p = self.split(z)
-        lin = self.F.linearize(np.concatenate([u, p]), active[:self.model.n_u])
+        held = active[:self.model.n_u]
+        lin = self.F.linearize(np.concatenate([u, p]), held)
         m = self.model
         if _jacobian_lu(m) == "colamd" and m.mirror is None:
-            return self._scaled_solver(lin, p)
-        solve = self.F.factor(lin, p if self.log_pressure else None)   # res ↦ −J⁻¹ res
-        return lambda rhs: -solve(rhs)
+            solve = self._scaled_solver(lin, p)                      # rhs ↦ J⁻¹ rhs
+        else:
+            factored = self.F.factor(lin, p if self.log_pressure else None)  # ↦ −J⁻¹ res
+            solve = lambda rhs: -factored(rhs)                       # noqa: E731
+        if not held.any():
+            return solve
+        # the factored rows of ``active`` are c e_i (c = diag K): their rhs times c
+        scale = np.ones(active.size)
+        scale[:held.size][held] = self.F.c[held]
+        return lambda rhs: solve(rhs * scale)
 
     def _scaled_solver(self, lin, p: np.ndarray):
         """rhs ↦ J⁻¹ rhs by SuperLU (COLAMD, partial pivoting) on D J S, D the merit's row
@@ -640,3 +642,16 @@ class SteadyProblem:
     def contact_forces(self, z: np.ndarray, active: np.ndarray) -> np.ndarray:
         """The head's force on each tape node at the unknowns z, N (N/m per unit width)."""
         return self.F.contact_forces(self.state(z), active[:self.model.n_u])
+
+    def forces(self, state: np.ndarray) -> np.ndarray:
+        """The head's force on each tape node at a solved state [u (m), p (Pa)], N (N/m
+        per unit width): the smooth law's, or at the wall the tape's residual on the
+        nodes held at their bound by it (the generic Newton's active set), 0 elsewhere."""
+        n_u = self.model.n_u
+        if self.lower is None:
+            return self.F.contact_forces(state, np.zeros(n_u, dtype=bool))
+        u = state[:n_u]
+        r_u = self.F.tape(u, state[n_u:])
+        band = BOUND_TOLERANCE * self.F.h_scale
+        at_wall = (u <= self.lower[:n_u] + band) & (r_u > 0.0)
+        return np.where(at_wall, r_u, 0.0)

@@ -45,7 +45,7 @@ class NewtonInfo:
     """What a Newton solve did: iterations, step and residual norms per iteration, and more.
 
     The number of nodes in contact per iteration, the wall time (s), the pseudo-time steps
-    taken (dimensionless, :func:`pseudo_transient`; empty if Newton reached the state
+    taken (dimensionless, :mod:`.pseudo_time`; empty if Newton reached the state
     directly), the continuation path (speeds in m/s, empty if none was needed), over
     rounded corners touched at a point
     (:func:`gyroshell.bearing.corners.solve_adapting_contacts`) the passes that adapted

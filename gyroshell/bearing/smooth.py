@@ -51,6 +51,15 @@ from .results import BearingSolution, NewtonInfo
 #: corners' fine cells turn round-off into steps of 1e-3 σ_s and more (measured on the dry
 #: tape over a 2.9 mm land: steps of 2e-4 to 1e-2 σ_s at a residual of 0.2 of its floor).
 ROUND_OFF_STEP = 1e-2
+#: The hard wall's: its grid is not refined to the roughness, and a step of 1e-2 of the
+#: spacing scale there is a state 1e-6 off (the flux of a 1-D film balanced to 1e-5
+#: instead of 1e-8).
+WALL_ROUND_OFF_STEP = 1e-4
+
+
+def round_off_step(model: BearingModel) -> float:
+    """The relative step at the residual's round-off floor that has converged."""
+    return ROUND_OFF_STEP if model.smooth_contact else WALL_ROUND_OFF_STEP
 
 #: A 2-D grid's Newton reuses its factorization (chord steps) after whole steps below
 #: this relative size while each chord step shrinks the step 4x: its LU costs tens of
@@ -83,6 +92,13 @@ class SolverOptions:
         that has not converged within it stops with a ConvergenceError.
     law_scale : float
         The law's scale at the first stage of the law's continuation (> 1).
+    pseudo_time_tol : float
+        The tolerance of a pseudo-time stage (:mod:`.pseudo_time`), in (0, 1).
+    chord_step : float
+        A 2-D tape, whose factorization costs many residuals, reuses its last one (a
+        chord step, :class:`gyroshell.linalg.newton.NewtonOptions`) after a whole step
+        below this relative size (>= 0; 0: never; :data:`CHORD_STEP_2D`); the infinitely
+        wide tape factors every iteration.
     speed_fraction : float
         The first speed of the continuation in V, as a fraction of V, in (0, 1).
     """
@@ -94,6 +110,8 @@ class SolverOptions:
     budget: int = 500
     law_scale: float = 100.0
     speed_fraction: float = 1e-3
+    pseudo_time_tol: float = 1e-4
+    chord_step: float = CHORD_STEP_2D
 
     def __post_init__(self) -> None:
         put = object.__setattr__
@@ -102,6 +120,10 @@ class SolverOptions:
             put(self, name, validation.integer(name, getattr(self, name), low=1))
         put(self, "law_scale", validation.real("law_scale", self.law_scale, low=1.0,
                                                low_open=True))
+        put(self, "chord_step", validation.nonnegative("chord_step", self.chord_step))
+        put(self, "pseudo_time_tol", validation.real(
+            "pseudo_time_tol", self.pseudo_time_tol, low=0.0, high=1.0, low_open=True,
+            high_open=True))
         put(self, "speed_fraction", validation.real(
             "speed_fraction", self.speed_fraction, low=0.0, high=1.0, low_open=True,
             high_open=True))
@@ -124,17 +146,21 @@ class _Budget:
         return self.solve_reporting(model, z0, limit, tension=tension)[0]
 
     def solve_reporting(self, model: BearingModel, z0: np.ndarray, limit: int, *,
-                        tension=None) -> tuple[np.ndarray, NewtonReport]:
-        """:meth:`solve` and its Newton report (a continuation stage's)."""
+                        tension=None, transient=None, tol=None
+                        ) -> tuple[np.ndarray, NewtonReport]:
+        """:meth:`solve` and its Newton report (a continuation stage's); ``transient``:
+        a (pseudo-)time step's terms, ``tol``: in place of the options' tolerance."""
         limit = min(limit, self.left)
         if limit < 1:
             raise ConvergenceError(f"the budget of {self.options.budget} Newton iterations "
                                    "is spent")
         report = NewtonReport()
-        options = NewtonOptions(tol=self.options.tol, max_iterations=limit,
-                                round_off_step=ROUND_OFF_STEP,
-                                chord_step=0.0 if model.infinitely_wide else CHORD_STEP_2D)
-        problem = SteadyProblem(model, tension=tension)
+        options = NewtonOptions(tol=self.options.tol if tol is None else tol,
+                                max_iterations=limit,
+                                round_off_step=round_off_step(model),
+                                chord_step=0.0 if model.infinitely_wide
+                                else self.options.chord_step)
+        problem = SteadyProblem(model, tension=tension, transient=transient)
         try:
             z, report = newton(problem, problem.unknowns(z0), options, report=report,
                                log=self.log)
@@ -151,7 +177,7 @@ class _Budget:
         info.iterations += report.iterations
         info.step_norms += report.step_norms
         info.residual_norms += report.residual_norms
-        info.contact_nodes += [0] * report.iterations
+        info.contact_nodes += report.active_counts
 
 
 def newton_step(model: BearingModel, z0: np.ndarray, *, tension=None, transient=None,
@@ -160,10 +186,11 @@ def newton_step(model: BearingModel, z0: np.ndarray, *, tension=None, transient=
     ([u (m), p (Pa)]), with a time step's ``transient`` terms (a march's step):
     (state, contact forces in N or N/m, iterations). Raises ConvergenceError."""
     problem = SteadyProblem(model, tension=tension, transient=transient)
-    options = NewtonOptions(max_iterations=max_iterations, round_off_step=ROUND_OFF_STEP)
+    options = NewtonOptions(max_iterations=max_iterations,
+                            round_off_step=round_off_step(model))
     z, report = newton(problem, problem.unknowns(z0), options)
     z = problem.state(z)
-    return z, problem.F.contact_forces(z, np.zeros(model.n_u, dtype=bool)), report.iterations
+    return z, problem.forces(z), report.iterations
 
 
 def resting_start(model: BearingModel) -> np.ndarray:
@@ -320,12 +347,14 @@ def scaled_law(model: BearingModel, scale: float) -> BearingModel:
 def dry_state(model: BearingModel, budget: _Budget, tension=None) -> np.ndarray:
     """[u, p_a]: the tape at rest on its asperities on ``model``'s grid, by Newton from
     the dry start with the sharp corners held at σ_s (:meth:`BearingModel.dry_start`),
-    else from :func:`resting_start`."""
+    else (a smooth law) from :func:`resting_start`."""
     dry = without_film(model)
     try:
         return budget.solve(dry, dry.dry_start(), budget.options.max_iterations,
                             tension=tension)
     except ConvergenceError:
+        if not model.smooth_contact:     # the wall has no resting spacing
+            raise
         return budget.solve(dry, resting_start(dry), budget.options.max_iterations,
                             tension=tension)
 
@@ -378,7 +407,10 @@ def _speed_path(model, budget, tension, progress) -> np.ndarray:
     def at(v, state):
         if progress is not None:
             progress(f"continuation in V: {v:.4g} m/s")
-        stage = model if v == model.velocity else model.at_velocity(v)
+        try:
+            stage = model if v == model.velocity else model.at_velocity(v)
+        except ParameterError as exc:    # e.g. a grid too coarse for the slower film
+            raise ConvergenceError(f"no model at {v:.4g} m/s: {exc}") from None
         return budget.solve_reporting(stage, state, budget.options.stage_iterations,
                                       tension=tension)
 
@@ -390,13 +422,52 @@ def _speed_path(model, budget, tension, progress) -> np.ndarray:
     return z
 
 
+def _pseudo_time_path(model, z0, budget, tension, progress) -> np.ndarray:
+    """Pseudo-transient continuation from z0 (:mod:`.pseudo_time`)."""
+    from .pseudo_time import pseudo_time_path
+
+    def solve(transient, state, limit):
+        return budget.solve_reporting(
+            model, state, budget.options.max_iterations if limit is None else limit,
+            tension=tension, transient=transient,
+            tol=None if transient is None else budget.options.pseudo_time_tol)
+
+    z, steps = pseudo_time_path(model, z0, solve, progress)
+    budget.info.pseudo_time += steps
+    return z
+
+
+def _paths(model: BearingModel, first, budget: _Budget, tension, progress, interpolate):
+    """(name, path) of the paths tried in turn from the first state ``first``: each a
+    callable returning the state or raising ConvergenceError. A smooth law: direct, the
+    resting start, the speed, the law's scale; the wall: direct, pseudo-time, the speed."""
+    options = budget.options
+    direct = ("direct", lambda: budget.solve(model, first, options.max_iterations,
+                                             tension=tension))
+    speed = ("the speed from the dry tape",
+             lambda: _speed_path(model, budget, tension, progress))
+    if not model.smooth_contact:     # the wall: its own first state, no law to scale
+        return (direct, ("pseudo-time from the start", lambda: _pseudo_time_path(
+            model, first, budget, tension, progress)), speed)
+    return (direct,
+            ("Newton from the tape resting on its summits",
+             lambda: budget.solve(model, resting_start(model), options.resting_iterations,
+                                  tension=tension)),
+            speed,
+            ("the law's scale from the hard wall",
+             lambda: _law_path(model, budget, tension, progress, interpolate)))
+
+
 def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
                  options: SolverOptions | None = None, *,
-                 interpolate) -> BearingSolution:
-    """The steady state under the model's smooth contact law (see the module notes):
-    Newton from ``z0`` (default :func:`flying_start`), then the law's and the speed's
-    continuations, within ``options.budget`` Newton iterations. ``interpolate``: the
-    interpolation of a state onto another grid (:func:`.steady.interpolated_state`).
+                 interpolate, start=None) -> BearingSolution:
+    """The steady state under the model's contact law (see the module notes): Newton
+    from ``z0`` (default ``start(info)`` if given, else :func:`flying_start`), then the
+    law's and the speed's continuations, within ``options.budget`` Newton iterations.
+    ``interpolate``: the interpolation of a state onto another grid
+    (:func:`.steady.interpolated_state`). The hard wall (bounds h >= σ on the same Newton)
+    takes the direct path and the speed's: the resting start and the law's scale belong
+    to a smooth law.
 
     Raises
     ------
@@ -404,25 +475,17 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
         Naming each path's failure and what to try.
     """
     options = SolverOptions() if options is None else options
-    start = time.perf_counter()
+    clock = time.perf_counter()
     info = NewtonInfo()
-    if z0 is None and not model.infinitely_wide:
+    if z0 is None and not model.infinitely_wide and model.smooth_contact:
         z0, info.start_iterations = coarse_start(model, interpolate, tension, progress,
                                                  iteration_log, options)
     budget = _Budget(options, info, iteration_log)
     failures = []
     z = None
-    paths = (("direct", lambda: budget.solve(model, flying_start(model) if z0 is None
-                                             else z0, options.max_iterations,
-                                             tension=tension)),
-             ("Newton from the tape resting on its summits",
-              lambda: budget.solve(model, resting_start(model),
-                                   options.resting_iterations, tension=tension)),
-             ("the speed from the dry tape",
-              lambda: _speed_path(model, budget, tension, progress)),
-             ("the law's scale from the hard wall",
-              lambda: _law_path(model, budget, tension, progress, interpolate)))
-    for name, path in paths:
+    first = (z0 if z0 is not None else flying_start(model) if start is None
+             else start(info))
+    for name, path in _paths(model, first, budget, tension, progress, interpolate):
         if budget.left < 1:
             break
         try:
@@ -436,12 +499,11 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
         exc = ConvergenceError(
             f"no steady state reached within {options.budget} Newton iterations "
             f"({info.iterations} taken): " + "; ".join(failures)
-            + "; try a finer grid (nx), a start (z0) from a neighbouring state, or "
-              "contact='hard'")
+            + "; try a finer grid (nx), a start (z0) from a neighbouring state"
+            + (", or contact='hard'" if model.smooth_contact else ""))
         exc.info = info
         raise exc
-    info.seconds = time.perf_counter() - start
+    info.seconds = time.perf_counter() - clock
     check_cavitation(model, z[model.n_u:])
-    lam = SteadyProblem(model, tension=tension).F.contact_forces(
-        z, np.zeros(model.n_u, dtype=bool))
+    lam = SteadyProblem(model, tension=tension).forces(z)
     return BearingSolution(model, z[:model.n_u], z[model.n_u:], lam, info)

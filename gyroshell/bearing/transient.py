@@ -7,10 +7,11 @@ Per step the tape's Newmark predictors (paper Eqs. 10-11, as in :mod:`gyroshell.
 
 make aⁿ⁺¹ = (uⁿ⁺¹ − ũ)/(βΔt²) and vⁿ⁺¹ = ṽ + γΔt aⁿ⁺¹ functions of uⁿ⁺¹, and the coupled
 residual gains M aⁿ⁺¹ + G(V) vⁿ⁺¹ on the tape rows and 12μ A (φⁿ⁺¹ − φⁿ)/Δt on the film
-rows. Newton (with the contact set) solves for (uⁿ⁺¹, pⁿ⁺¹) from the previous state, so
-the tape and the film are strongly coupled. A steady state of the march is exactly a
-steady state of :func:`gyroshell.bearing.steady.solve_steady`. A step whose Newton fails is
-retried as two half steps with the linearized active-set rule (:data:`MAX_HALVINGS`). Over
+rows. The steady solve's Newton (:func:`.smooth.newton_step`: the generic Newton, the hard
+wall as bounds) solves for (uⁿ⁺¹, pⁿ⁺¹) from the previous state, so the tape and the film
+are strongly coupled. A steady state of the march is exactly a steady state of
+:func:`gyroshell.bearing.steady.solve_steady`. A step whose Newton fails is retried as two
+half steps (:data:`MAX_HALVINGS`). Over
 rounded corners touched at one point the contact nodes stay where the start put them, and a
 state cutting into an arc off its node is refused (:func:`.corners.check_point_contacts`).
 
@@ -33,8 +34,9 @@ from ..engines.newmark import check_steps
 from . import budget
 from .corners import check_point_contacts
 from .model import BearingModel
+from .problem import check_cavitation
 from .results import BearingSolution, BearingTransient, NewtonInfo
-from .steady import check_cavitation, newton
+from .smooth import newton_step
 
 #: Newmark's default parameters: the trapezoidal rule (no numerical damping).
 NEWMARK_BETA = 0.25
@@ -193,10 +195,9 @@ def march(start: BearingSolution, *, dt: float, steps: int,
 
 
 #: A step whose Newton fails is retried as two half steps, at most this many times
-#: halved (1/128 of Δt). Measured: a start lifting the tape 0.6 nm off a sharp corner's
-#: contact (a disturbance reaching the corners) stalls Newton at Δt = 1e-5 and 1e-6 s;
-#: with the active-set rule from the start it converges from 1e-7 s down.
-MAX_HALVINGS = 7
+#: halved (1/1024 of Δt: a lift of the tape off its corners measured, 0.6 nm, needs steps
+#: of 1e-8 s where the film's pressure jumps to balance it).
+MAX_HALVINGS = 10
 
 
 @dataclass
@@ -217,7 +218,7 @@ class _Stepper:
         self.model, self.G, self.beta, self.gamma = model, G, beta, gamma
         self.T, self.floor, self.moving_load = T, floor, moving_load
 
-    def step(self, s: _State, t: float, dt: float, active_set: bool):
+    def step(self, s: _State, t: float, dt: float):
         """(state at t, contact forces, Newton iterations) from the state at t − dt."""
         model, beta, gamma = self.model, self.beta, self.gamma
         u_tilde = s.u + dt * s.v + (0.5 - beta) * dt * dt * s.a
@@ -225,16 +226,8 @@ class _Stepper:
         force = _moving_force(self.moving_load, t, model.n_u)
         terms = _StepTerms(model, self.G, dt, beta, gamma, u_tilde, v_tilde, s.phi, force)
         tension = _tension_at(self.T, t, self.floor)
-        if model.smooth_contact:        # the same physics and Newton as the steady state
-            from .smooth import newton_step
-
-            z, lam, iterations = newton_step(model, np.concatenate([s.u, s.p]),
-                                             tension=tension, transient=terms)
-        else:
-            z, lam, _, info = newton(model, np.concatenate([s.u, s.p]), tension=tension,
-                                     transient=terms, info=NewtonInfo(),
-                                     active_set=active_set)
-            iterations = info.iterations
+        z, lam, iterations = newton_step(model, np.concatenate([s.u, s.p]),
+                                         tension=tension, transient=terms)
         u, p = z[:model.n_u], z[model.n_u:]
         a, v = terms.kinematics(u)
         phi = model.transported(u, p)
@@ -242,9 +235,9 @@ class _Stepper:
 
     def advance(self, s: _State, t0: float, dt: float, halvings: int = 0):
         """The state at t0 + dt (s): one step, or, if its Newton fails, two half steps
-        with the active-set rule (recursively, at most :data:`MAX_HALVINGS` times)."""
+        (recursively, at most :data:`MAX_HALVINGS` times)."""
         try:
-            return self.step(s, t0 + dt, dt, active_set=halvings > 0)
+            return self.step(s, t0 + dt, dt)
         except ConvergenceError as exc:
             if halvings >= MAX_HALVINGS:
                 raise ConvergenceError(f"{exc} at t = {t0 + dt:g} s, in steps of {dt:g} s "

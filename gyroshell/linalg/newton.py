@@ -36,10 +36,25 @@ monotone search then accepts only steps too short to change the active set, and 
 converges in 25 iterations). The increase is undone in the next iterations, once the active
 set has followed; the stagnation test still ends a run that does not make progress.
 
-An active set far too large (a start through the wall) is released at its edges only, a
-few unknowns per iteration: the iterations then grow with the grid (the obstacle problem
-from u = 0: 16 iterations on 640 cells, 25 on 2,560). A start from a coarser grid or a
-continuation keeps them few.
+The projected path changes the active set by the unknowns a damped step reaches, a few
+per iteration: a contact zone that a step crosses wholesale (a tape coming down onto a
+land, its steps cut by the problem's ``step_limit``) can stall it. Where the path stalls
+(this step and the last, if any, damped below ``stagnation_alpha``, or whole without
+halving the scaled residual) and the reduced step takes free unknowns through their
+bounds, the step of the linearized problem's own active set is formed too
+(:func:`_set_step`: the primal–dual active-set rule of Hintermüller, Ito and Kunisch 2002
+on the linearization, at most ``max_set_updates`` factorizations) and line-searched, and
+the one reaching the lower merit is taken. (Tried at every damped step it also took sets
+far too large, and the iterates left the basin.) An active set far too large (a start
+through the wall) is released at its edges only: the iterations then grow with the grid
+(the obstacle problem from u = 0: 16 iterations on 640 cells, 26 on 2,560). A start from
+a coarser grid or a continuation keeps them few.
+
+Where a factorization costs many residuals (a large 2-D grid), ``chord_step`` lets an
+iteration near the solution reuse the last one (a chord step, PETSc's lagged Jacobian):
+once the last reduced step was taken whole, below ``chord_step`` in relative size and with
+the active set unchanged, the old factorization's step is taken if it contracts to at most
+``chord_contraction`` of the last step; otherwise J is factored afresh.
 
 Steps of relative size at most ``full_step`` are taken whole (in the quadratic regime the
 merit changes by less than its round-off), as are steps from an iterate at the problem's
@@ -93,6 +108,8 @@ NOISE_STEP_MULTIPLE = 10.0
 #: Chord steps (off by default, ``chord_step=0``): a chord step must shrink the step at
 #: least by this factor, or the Jacobian is factored afresh.
 CHORD_CONTRACTION = 0.25
+#: Most active sets tried per iteration on the linearized problem (each a factorization).
+MAX_SET_UPDATES = 10
 
 
 @dataclass(frozen=True)
@@ -144,6 +161,10 @@ class NewtonOptions:
         where a factorization costs many residuals (a 2-D grid).
     chord_contraction : float
         The factor in (0, 1) by which a chord step must shrink the last step.
+    max_set_updates : int
+        Most further active sets (>= 0, each a factorization) tried on the linearized
+        problem per iteration when the projected path stalls and the reduced step crosses
+        bounds (:func:`_set_step`); 0: the reduced step only.
     """
 
     tol: float = STEP_TOLERANCE
@@ -162,6 +183,7 @@ class NewtonOptions:
     noise_step_multiple: float = NOISE_STEP_MULTIPLE
     chord_step: float = 0.0
     chord_contraction: float = CHORD_CONTRACTION
+    max_set_updates: int = MAX_SET_UPDATES
 
     def __post_init__(self) -> None:
         put, real = object.__setattr__, validation.real
@@ -170,6 +192,8 @@ class NewtonOptions:
             put(self, "residual_tol", validation.nonnegative("residual_tol", self.residual_tol))
         for name in ("max_iterations", "memory", "stagnation_window"):
             put(self, name, validation.integer(name, getattr(self, name), low=1))
+        put(self, "max_set_updates", validation.integer("max_set_updates",
+                                                        self.max_set_updates, low=0))
         put(self, "armijo", real("armijo", self.armijo, low=0.0, high=0.5, low_open=True,
                                  high_open=True))
         put(self, "backtrack", real("backtrack", self.backtrack, low=0.0, high=1.0,
@@ -436,10 +460,14 @@ def _reached(report: NewtonReport, it: _Iterate) -> str:
             f"{int(it.active.sum())} of {it.z.size} unknowns at their bound")
 
 
-def _substituted(setup: _Setup, it: _Iterate, solve) -> np.ndarray | None:
-    """``solve`` applied to the reduced right-hand side −r_F (0 on the active set), or
-    None if it is singular or not finite."""
-    rhs = np.where(it.active, 0.0, -it.r)
+def _substituted(setup: _Setup, it: _Iterate, solve, active: np.ndarray | None = None
+                 ) -> np.ndarray | None:
+    """``solve`` applied to the right-hand side of the active set ``active`` (default the
+    iterate's): −r_F on the free rows, l − z on the held ones (0 for the iterate's own set,
+    whose unknowns sit at their bounds); None if it is singular or not finite."""
+    active = it.active if active is None else active
+    held = 0.0 if setup.lower is None else setup.lower - it.z
+    rhs = np.where(active, held, -it.r)
     with np.errstate(all="ignore"):
         try:
             dz = np.asarray(solve(rhs), dtype=float)
@@ -449,30 +477,33 @@ def _substituted(setup: _Setup, it: _Iterate, solve) -> np.ndarray | None:
             return None                                                  # is a RuntimeError
     if dz.shape != (setup.n,) or not np.all(np.isfinite(dz)):
         return None
-    dz[it.active] = 0.0
+    dz[active] = rhs[active]
     return dz
 
 
-def _direction(setup: _Setup, it: _Iterate, report: NewtonReport):
-    """(the reduced-space Newton step: J_FF δz_F = −r_F, δz = 0 on the active set; the
-    factorization's solve, for chord steps)."""
+def _clipped(setup: _Setup, it: _Iterate, dz: np.ndarray) -> np.ndarray:
+    """dz through the problem's ``clip_step`` hook, if it has one."""
+    clip = getattr(setup.problem, "clip_step", None)
+    return dz if clip is None else np.asarray(clip(it.z, dz), dtype=float)
+
+
+def _factored_step(setup: _Setup, it: _Iterate, active: np.ndarray, report: NewtonReport):
+    """(the Newton step with the active set ``active``, its unknowns moved to their
+    bounds, by a new factorization; that factorization's solve)."""
     report.factorizations += 1
     with np.errstate(all="ignore"):
         try:
-            solve = setup.problem.linearize(it.z, it.active)
+            solve = setup.problem.linearize(it.z, active)
         except ConvergenceError:
             raise
         except (ArithmeticError, np.linalg.LinAlgError, RuntimeError):
             solve = None
-    dz = None if solve is None else _substituted(setup, it, solve)
+    dz = None if solve is None else _substituted(setup, it, solve, active)
     if dz is None:
         raise _failure(f"Newton's step is not finite ({_reached(report, it)}): the Jacobian "
                        "is singular or not finite there; check the problem's linearize, or "
                        "start elsewhere", report, it.z, "non-finite")
-    clip = getattr(setup.problem, "clip_step", None)
-    if clip is not None:
-        dz = np.asarray(clip(it.z, dz), dtype=float)
-    return dz, solve
+    return _clipped(setup, it, dz), solve
 
 
 class _Chord:
@@ -482,27 +513,92 @@ class _Chord:
     def __init__(self, options: NewtonOptions) -> None:
         self.options = options
         self.solve, self.active, self.last = None, None, math.inf
+        #: whether the last step was a chord step (its error contracts linearly only)
+        self.used = False
 
     def direction(self, setup: _Setup, it: _Iterate, report: NewtonReport):
-        """(a chord step if it qualifies, else a Newton step, which factors; the
-        factorization's solve)."""
+        """(a chord step if it qualifies, else the reduced Newton step, which factors;
+        the factorization's solve)."""
         options = self.options
+        self.used = False
         if (self.solve is not None and self.last < options.chord_step
                 and np.array_equal(it.active, self.active)):
             dz = _substituted(setup, it, self.solve)
             if dz is not None and setup.relative(dz) <= options.chord_contraction * self.last:
-                clip = getattr(setup.problem, "clip_step", None)
-                if clip is not None:
-                    dz = np.asarray(clip(it.z, dz), dtype=float)
-                return dz, self.solve
+                self.used = True
+                return _clipped(setup, it, dz), self.solve
         self.solve = None                   # freed before the next factorization
-        dz, self.solve = _direction(setup, it, report)
+        dz, self.solve = _factored_step(setup, it, it.active, report)
         self.active = it.active.copy()
         return dz, self.solve
 
-    def taken(self, alpha: float, step: float) -> None:
-        """Record the step taken: only a whole one qualifies the next for a chord step."""
-        self.last = step if alpha == 1.0 else math.inf
+    def taken(self, alpha: float, step: float, reduced: bool) -> None:
+        """Record the step taken: only a whole reduced step qualifies the next for a chord
+        step (``reduced``: the step of the iterate's own active set)."""
+        self.last = step if alpha == 1.0 and reduced else math.inf
+
+
+def _step(setup: _Setup, it: _Iterate, report: NewtonReport, chord: _Chord,
+          reference: float, stalling: bool):
+    """One iteration's step: the reduced step (or a chord step) line-searched; if the
+    projected path stalls (this step and the last, if any, slow: ``stalling`` for the
+    last, :func:`_slow`) and the step takes free unknowns through their bounds, also the
+    step of the linearized problem's own active set (:func:`_set_step`), line-searched,
+    the one reaching the lower merit taken. Returns (α, new iterate, relative step, the
+    step's active set, the factorization's solve)."""
+    options = setup.options
+    dz, solve = chord.direction(setup, it, report)
+    step = setup.relative(dz)
+    alpha, new = _line_search(setup, it, dz, step, report, reference, it.active)
+    stalled = stalling and _slow(options, alpha, new.norm, it.norm)
+    if not stalled or chord.used or setup.lower is None or options.max_set_updates == 0:
+        return alpha, new, step, it.active, solve
+    other = _set_step(setup, it, dz, report)
+    if other is None:
+        return alpha, new, step, it.active, solve
+    dz_set, active, solve_set = other
+    step_set = setup.relative(dz_set)
+    alpha_set, new_set = _line_search(setup, it, dz_set, step_set, report, reference,
+                                      active)
+    if new_set.norm < new.norm:
+        return alpha_set, new_set, step_set, active, solve_set
+    return alpha, new, step, it.active, solve
+
+
+def _slow(options: NewtonOptions, alpha: float, norm: float, before: float) -> bool:
+    """Whether a step made slow progress: damped below ``stagnation_alpha``, or whole
+    without halving the scaled residual (``before`` → ``norm``)."""
+    return alpha < options.stagnation_alpha or (alpha == 1.0 and norm > 0.5 * before)
+
+
+def _set_step(setup: _Setup, it: _Iterate, dz: np.ndarray, report: NewtonReport):
+    """The step whose active set is consistent with its own linearization, if the
+    reduced step ``dz`` takes free unknowns through their bounds: the primal–dual
+    active-set method on the linearized problem (Hintermüller, Ito and Kunisch 2002).
+    With the set A, δz_A = l_A − z_A and J_FF δz_F = −r_F − J_FA δz_A; the next set holds
+    the free unknowns the step takes below their bounds and the unknowns of A whose
+    residual at z + δz (their bound's force, exact where those rows are linear) stays
+    positive. Repeated until the set repeats: a contact zone then grows or shrinks by many
+    unknowns per iteration, where the projected path alone moves it by the few a damped
+    step reaches. At most ``max_set_updates`` factorizations (the rule may shrink an
+    overshooting zone by one unknown per end and update: the last set's step is then
+    taken). Returns (δz, its set, its factorization's solve), or None if the reduced
+    step crosses no bound."""
+    lower, active, solve = setup.lower, it.active, None
+    if not np.any(~active & (it.z + dz < lower)):
+        return None
+    for _ in range(setup.options.max_set_updates):
+        z1 = it.z + dz
+        with np.errstate(all="ignore"):
+            r1 = setup.residual(z1)
+        if not np.all(np.isfinite(r1[active])):
+            break
+        nxt = (active & (r1 > 0.0)) | (~active & (z1 < lower))
+        if np.array_equal(nxt, active):
+            break
+        active = nxt
+        dz, solve = _factored_step(setup, it, active, report)
+    return None if solve is None else (dz, active, solve)
 
 
 def _first_alpha(setup: _Setup, it: _Iterate, dz: np.ndarray) -> float:
@@ -516,17 +612,20 @@ def _first_alpha(setup: _Setup, it: _Iterate, dz: np.ndarray) -> float:
 
 
 def _line_search(setup: _Setup, it: _Iterate, dz: np.ndarray, step: float,
-                 report: NewtonReport, reference: float) -> tuple[float, _Iterate]:
+                 report: NewtonReport, reference: float,
+                 active: np.ndarray) -> tuple[float, _Iterate]:
     """Backtracking from the largest admissible α along the projected path, against the
     scaled residual ``reference`` (the largest of the last ``memory``); the whole step when
-    it is small or the iterate is at its round-off floor. Returns (α, new iterate)."""
+    it is small or the iterate is at its round-off floor. ``active``: the step's active
+    set (the iterate's unknowns in it stay at their bounds). Returns (α, new iterate)."""
     options = setup.options
     alpha = _first_alpha(setup, it, dz)
     # at the floor the merit cannot judge a step, but a step of more than one variable
     # scale is no round-off: the line search judges it
     whole = step <= options.full_step or (it.at_floor and step <= 1.0)
+    held = it.active & active
     while True:
-        trial = setup.iterate(setup.project(it.z + alpha * dz, it.active))
+        trial = setup.iterate(setup.project(it.z + alpha * dz, held))
         finite = math.isfinite(trial.norm)
         decrease = trial.norm**2 <= reference**2 - 2.0 * options.armijo * alpha * it.norm**2
         last = alpha * options.backtrack < options.min_step
@@ -553,15 +652,18 @@ def _record(report: NewtonReport, alpha: float, step: float, it: _Iterate,
             f"scaled residual {it.norm:.2e}, {active_count} at their bound")
 
 
-def _converged(setup: _Setup, alpha: float, step: float, it: _Iterate, solve) -> str:
+def _converged(setup: _Setup, alpha: float, step: float, it: _Iterate, solve,
+               chord: bool = False) -> str:
     """Why the iterate after a step of relative size ``step`` (by the factorization
-    ``solve``) has converged, or ""."""
+    ``solve``) has converged, or "". A chord step (``chord``) converges by the tolerance
+    alone: its error contracts only linearly, so a step at the round-off floor leaves an
+    error of its own size."""
     options = setup.options
     if alpha == 1.0 and step <= options.tol:
         return "step"
     if options.residual_tol is not None and it.norm <= options.residual_tol:
         return "residual"
-    if alpha == 1.0 and it.at_floor:
+    if alpha == 1.0 and it.at_floor and not chord:
         if step <= options.round_off_step:
             return "round-off"
         noise, rows = setup.noise_step(it, solve)
@@ -601,14 +703,14 @@ def _solve(setup: _Setup, it: _Iterate, report: NewtonReport, log) -> np.ndarray
     norms, alphas = [it.norm], []
     chord = _Chord(options)
     for _ in range(options.max_iterations):
-        dz, solve = chord.direction(setup, it, report)
-        step = setup.relative(dz)
         reference = max(norms[-options.memory:])
-        alpha, new = _line_search(setup, it, dz, step, report, reference)
-        chord.taken(alpha, step)
-        _record(report, alpha, step, new, int(it.active.sum()), log)
+        stalling = not alphas or _slow(options, alphas[-1], norms[-1], norms[-2])
+        alpha, new, step, active, solve = _step(setup, it, report, chord, reference,
+                                                stalling)
+        chord.taken(alpha, step, active is it.active)
+        _record(report, alpha, step, new, int(active.sum()), log)
         it = setup.accept(new)
-        reason = _converged(setup, alpha, step, it, solve)
+        reason = _converged(setup, alpha, step, it, solve, chord.used)
         if reason:
             report.converged, report.reason = True, reason
             return it.z

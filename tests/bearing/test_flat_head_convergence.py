@@ -157,7 +157,7 @@ def test_reversed_tape_over_the_mirrored_head_is_the_mirror_image(head, width, k
     are asymmetric: the tape reversed over the same head flies differently."""
     a, b = _mirror_pair(head, width, **kw)
     _assert_mirror_images(a, b, rtol)
-    assert max(a.info.iterations, b.info.iterations) <= 12
+    assert max(a.info.iterations, b.info.iterations) <= 25   # with the start's (measured 15)
     if width is None:
         same_head = solve_steady(_strip(head, velocity=-4.0))
         assert np.abs(same_head.spacing[::-1] - a.spacing).max() > 1e-9     # m
@@ -198,4 +198,4 @@ def test_transducer_spacing_converges_at_second_order_2d():
                                                               rel=0.05)
     for s in sols:
         assert s.pressure.min() > 0.0 and s.contact_force > 0.0
-        assert s.info.iterations <= 12
+        assert s.info.iterations <= 25    # the coarse start's included (measured 13)

@@ -98,8 +98,8 @@ def test_a_lifted_land_settles_back_onto_the_steady_state(kind):
 @pytest.mark.parametrize("kind", ["sharp", "rounded"])
 def test_a_start_lifted_off_the_corners_settles_back(kind):
     """A lift of 0.3 h(0) reaching the corners (0.6 nm there: the corner nodes leave their
-    contact) stalls the first step's Newton at 10 µs; the march retries it in halves with
-    the active-set rule (measured: halved 5 times) and 150 damped steps end on the
+    contact) stalls the first step's Newton at 10 µs; the march retries it in halves
+    (over the rounded corners down to 1e-8 s) and 150 damped steps end on the
     steady state within 1e-5 of h(0), its contact forces within 1e-5."""
     steady = _steady(kind)
     x = steady.model.x_head[1:-1]

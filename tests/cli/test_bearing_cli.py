@@ -122,13 +122,13 @@ def test_bad_input_one_line_exit_2(capsys, tmp_path, argv, message):
 
 def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
     """When neither Newton nor the continuation converges: one line, exit 2."""
-    from gyroshell.bearing import steady
+    from gyroshell.bearing import smooth
     from gyroshell.core.errors import ConvergenceError
 
     def failing(*args, **kwargs):
         raise ConvergenceError("Newton did not converge in 60 iterations")
 
-    monkeypatch.setattr(steady, "newton", failing)
+    monkeypatch.setattr(smooth, "newton", failing)
     assert main(["bearing", *LEGACY_CLI, "--velocity", "4", "--infinitely-wide", "--nx", "40",
                  "--quiet"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
@@ -136,21 +136,22 @@ def test_unreachable_state_is_a_user_error(capsys, monkeypatch):
 
 
 def test_unreachable_state_reports_each_stage_before_the_error(capsys, monkeypatch):
-    """Without --quiet the pseudo-time march and every continuation stage get a progress
-    line on stderr (not a terminal here) before the one error line."""
-    from gyroshell.bearing import steady
+    """Without --quiet every path tried (the pseudo-time march, the speed from the dry
+    tape) gets a progress line on stderr (not a terminal here) before the one error
+    line."""
+    from gyroshell.bearing import smooth
     from gyroshell.core.errors import ConvergenceError
 
     def failing(*args, **kwargs):
         raise ConvergenceError("Newton did not converge in 60 iterations")
 
-    monkeypatch.setattr(steady, "newton", failing)
+    monkeypatch.setattr(smooth, "newton", failing)
     assert main(["bearing", *LEGACY_CLI, "--velocity", "4", "--infinitely-wide", "--nx", "40"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert all(line.startswith("gyroshell bearing: ") for line in err[:-1])
     assert "unknowns; estimated" in err[0]
-    assert any("pseudo-time continuation" in line for line in err)
-    assert any("continuation: V = 16 m/s" in line for line in err)     # 4x the target
+    assert any("pseudo-time from the start did not reach" in line for line in err)
+    assert any("the speed from the dry tape did not reach" in line for line in err)
     assert err[-1].startswith("gyroshell: error: no steady flying state")
 
 
