@@ -28,6 +28,7 @@ import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -61,19 +62,24 @@ def child(design: dict, physics: str) -> dict:
     import scipy.optimize  # noqa: F401
     import scipy.special  # noqa: F401
 
-    import gyroshell.bearing.smooth  # noqa: F401
     from gyroshell import ConvergenceError, ParameterError, TapeParameters
     from gyroshell.bearing import AirParameters, BearingModel
     from gyroshell.bearing.head import FlatHead, Module
     from gyroshell.bearing.steady import solve_steady
 
+    try:      # a tree with contact laws: name each physics (the defaults are the new one)
+        import gyroshell.bearing.smooth  # noqa: F401
+        from gyroshell.bearing.contact import ContactParameters
+    except ImportError:      # a tree before them (the baseline): its defaults are the old
+        ContactParameters = None
     kw = {}
     air = AirParameters()
     if physics == "new":
-        from gyroshell.bearing.contact import ContactParameters
-
         air = AirParameters(rarefaction="fukui-kaneko", flow_factors="patir-cheng")
         kw["contact"] = ContactParameters()
+    elif ContactParameters is not None:
+        air = AirParameters(rarefaction="first-order")
+        kw["contact"] = ContactParameters(law="hard")
     start = time.perf_counter()
     try:
         head = FlatHead(tuple(Module(land, corner_radius=r) for land, r in
@@ -120,8 +126,11 @@ def run(design: dict, physics: str, cap: float, tree: str | None) -> dict:
             "print(json.dumps(b.child(json.loads(sys.argv[1]), sys.argv[2])))")
     start = time.perf_counter()
     try:
+        # from a folder of neither tree: `python -c` puts the working folder first on the
+        # path, before PYTHONPATH (from this tree's folder a baseline run imported it)
         done = subprocess.run([sys.executable, "-c", code, json.dumps(design), physics],
-                              capture_output=True, text=True, timeout=cap, env=env)
+                              capture_output=True, text=True, timeout=cap, env=env,
+                              cwd=tempfile.gettempdir())
     except subprocess.TimeoutExpired:
         return {"outcome": "over the cap", "seconds": time.perf_counter() - start}
     if done.returncode != 0:
