@@ -10,15 +10,15 @@ over the two wrap angles. The paper's Table 1 tape, air at 20 °C.
 (b) ``heads_width``: the spacing along the read line (the middle of a 1 mm module, 2° of
     wrap either side) across the width of the 2-D 6.35 mm tape at 2, 4 and 8 m/s, on half
     the default grids' intervals each way (measured against the default
-    grids: the line's minimum 1.0-1.5 % and its mean 0.2-0.7 % higher; the default grid at
-    2 m/s took 86 s and 13 Newton iterations, half of it 4.7 s).
+    grids: the line's minimum 1.0-1.5 % and its mean 0.2-0.7 % higher, measured with the
+    earlier interface, first-order slip over the hard wall).
 (c) ``heads_wraps``: the read-line spacing and the drag (viscous and friction μ = 0.2)
     over wrap_in × wrap_out (0.5° to 4° each), the infinitely wide tape at 4 m/s on its
     default grid, computed as a head study
     (:func:`gyroshell.studies.parameter_study.run_study`, ``compute="bearing"``).
 
-The full run took 22 s on 2 cores shared with one other job (150 s with (b) on the default
-grids), ``--quick`` about 15 s.
+Under the default interface (the Boltzmann film over asperities) the three parts took
+8.6 s of a worker's time in ``gyroshell reproduce all`` on 2 cores at load 1.8.
 """
 
 from __future__ import annotations
