@@ -48,9 +48,10 @@ for k, (language, caption, code) in enumerate(blocks):
 #: Seconds a tutorial may take here before the test counts it as hung (each takes about a
 #: minute or less; see each page's "Time:").
 TIMEOUT = 600
-#: Tutorials longer than a minute here: run with the slow tests (reproducing the paper runs
-#: three full-size studies: 50-70 s on 2 shared cores).
-SLOW = {"reproducing_the_paper"}
+#: Every tutorial runs with the slow tests (CI runs them on every push): reproducing the
+#: paper runs three full-size studies (50-70 s on 2 shared cores), your own tape and the
+#: flat head 7-30 s each, which would otherwise be a third of the README's test command.
+SLOW = {"reproducing_the_paper", "your_own_tape", "flat_head"}
 #: The files each tutorial's commands must have written.
 WRITES = {
     "your_own_tape": ["mytape.toml", "campbell.csv", "campbell.png", "campbell_python.png"],
