@@ -8,14 +8,17 @@ continuation` (one step controller: a stage that fails is retried with a smaller
 to :data:`FINISH`, where the steady equations themselves are solved. Far from the steady
 state the terms keep each stage inside Newton's basin; as s grows they vanish.
 
-Where the steady solve at :data:`FINISH` fails, the march goes on, with pseudo-time steps
-up to :data:`FINISH_RETRY` times further and the steady solve tried there, until
-:data:`LAST_FINISH`. The tape's terms are each row's own diagonal c = diag K over s, and on
-a grid graded to fine cells (a corner's, 25 nm beside 2 µm) c of those rows, ∝ D/Δ³,
-exceeds the stiffness of the modes still relaxing (the tape's bending over its bending
-length ℓ, the film) by about (ℓ/Δ)⁴: at s = 1e8 the terms still hold those nodes, and the
-steady solve from there stagnates (measured: arcs of r_c = 1.4 mm wrapped on a 1 mm land,
-4 m/s, reached after pseudo-time steps up to 1e14).
+Where the steady solve at :data:`FINISH` fails, the march goes on at once, with
+pseudo-time steps up to :data:`FINISH_RETRY` times further and the steady solve tried
+there, until :data:`LAST_FINISH` (at most :data:`MARCH_STAGES` stages each time). The
+tape's terms are each row's own diagonal c = diag K over s, and on a grid graded to fine
+cells (a corner's, 25 nm beside 2 µm) c of those rows, ∝ D/Δ³, exceeds the stiffness of
+the modes still relaxing (the tape's bending over its bending length ℓ, the film) by about
+(ℓ/Δ)⁴: at s = 1e8 the terms still hold those nodes, and the steady solve from there
+stagnates (measured: arcs of r_c = 1.4 mm wrapped on a 1 mm land, 4 m/s, reached after
+pseudo-time steps up to 1e14). Retried at FINISH after shorter steps below it instead, as
+the step controller would, it failed there again at 2.5e7, 5e7, 7e7 ... 9.2e7, 20 Newton
+iterations each, and a march on from 9.2e7 stopped near 7e11.
 """
 
 from __future__ import annotations
@@ -37,6 +40,12 @@ FINISH = 1e8
 #: round-off of each row's diagonal: a steady solve that fails there fails the path).
 FINISH_RETRY = 100.0
 LAST_FINISH = 1e16
+#: Most stages of each hundredfold march past FINISH: an easy march takes 3-4 (ratios 4,
+#: 16, the cap); one that creeps, its stages failing by turns, is not relaxing slow modes,
+#: and stops with the budget left to the next path (measured: the 1.4 mm wrapped arcs at
+#: 4 m/s took 4, 9 and 4 stages from 1e8 to 1e14; a 3 mm land at 1 m/s crept from 1e8 at
+#: ratios 1.1-1.2, 240 Newton iterations for 16x, where the speed's path takes 88).
+MARCH_STAGES = 12
 #: The steps start at this ratio per stage, squared after an easy stage (at most
 #: EASY_ITERATIONS Newton iterations) up to MAXIMUM_RATIO, and cut to its square root
 #: after a failed one, down to MINIMUM_RATIO.
@@ -107,7 +116,8 @@ def pseudo_time_path(model: BearingModel, z0: np.ndarray, solve, progress=None):
 
         state, stages = continuation(at, start, finish, state, controller=StepController(
             initial=RATIO, growth=2.0, cut=0.5, minimum=MINIMUM_RATIO,
-            maximum=MAXIMUM_RATIO, easy_iterations=EASY_ITERATIONS))
+            maximum=MAXIMUM_RATIO, easy_iterations=EASY_ITERATIONS,
+            **({} if start == START else {"max_stages": MARCH_STAGES})))
         # a later segment's first stage repeats the last one's step at its finish
         steps += [s for s, report in stages[0 if start == START else 1:]
                   if report is not None and report.converged
