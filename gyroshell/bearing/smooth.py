@@ -134,10 +134,12 @@ class _Budget:
 
     def __init__(self, options: SolverOptions, info: NewtonInfo, log) -> None:
         self.options, self.info, self.log = options, info, log
+        #: iterations spent on another grid (:func:`_start_grid_path`), in the budget
+        self.elsewhere = 0
 
     @property
     def left(self) -> int:
-        return self.options.budget - self.info.iterations
+        return self.options.budget - self.info.iterations - self.elsewhere
 
     def solve(self, model: BearingModel, z0: np.ndarray, limit: int, *, tension=None
               ) -> np.ndarray:
@@ -437,7 +439,78 @@ def _pseudo_time_path(model, z0, budget, tension, progress) -> np.ndarray:
     return z
 
 
-def _paths(model: BearingModel, first, budget: _Budget, tension, progress, interpolate):
+def turned_corner_scales(model: BearingModel) -> tuple[float | None, ...] | None:
+    """The corner widths of the start grid of :func:`_start_grid_path` (the grading's
+    ``corner_scales``: multiples of its ``corner_width``), one per corner of a flat head
+    under a smooth law, from the length of the film's constriction where each corner is
+    pressed; None where that grid is the model's own (another head, the hard wall, no
+    corner refinement, or already a start grid):
+
+    * a sharp corner the tape turns over: 1 (σ_s/α, :func:`.model.corner_grading`);
+    * a rounded one: √(2 r_c s)/s, s the grading's spacing scale (``corner_width`` /
+      CORNER_WIDTH, 2 σ_s under a smooth law): the head is smooth there, the gap growing
+      as Δx²/(2 r_c) from its least over √(2 r_c s) (7 µm at r_c = 2 mm), not over s/α;
+    * a corner the tape does not turn over (a module's edge into a gap between coplanar
+      lands, turn 0): none (None). It carries no wrap load; the film may still pull the
+      tape onto it (two coplanar modules at speed), which is why the model's own grid
+      refines it.
+
+    The model's grid resolves every corner to 15 nm whether the tape is near or not;
+    where it hangs microns above (a tent ballooned over a long land, sealed by a pressed
+    corner) those cells carry only round-off (the film's fluxes through 50 µm gaps over
+    15 nm, the plate's rows), in which Newton's first steps wander."""
+    from .head import FlatHead
+    from .model import CORNER_WIDTH
+
+    grading = model.grading
+    if (not isinstance(model.head, FlatHead) or not model.smooth_contact
+            or grading.corner_scales is not None or (grading.corner_ratio or 1.0) == 1.0
+            or not grading.corner_width):
+        return None
+    spacing = grading.corner_width / CORNER_WIDTH
+    radii = model.head.corner_radii()
+    turns = model.head.corner_turns(model.head_radius)
+    scales = tuple(None if t <= 0.0 else 1.0 if r == 0.0
+                   else max(1.0, float(np.sqrt(2.0 * r / spacing)))
+                   for r, t in zip(radii, turns, strict=True))
+    return None if all(c == 1.0 for c in scales) else scales
+
+
+def _start_grid_path(model, budget, tension, progress, iteration_log, interpolate,
+                     scales) -> np.ndarray:
+    """The steady state on the start grid (the corner refinement of
+    :func:`turned_corner_scales`), by every path of :func:`solve_smooth` there within
+    what is left of the budget, interpolated (``interpolate``) and Newton on the model's
+    own grid: the model's grid, and so its answer, is unchanged."""
+    from dataclasses import replace
+
+    if progress is not None:
+        progress("start: the grid refined only at the corners the tape turns over")
+    with warnings.catch_warnings():     # a start leads Newton; it need not be accurate
+        warnings.simplefilter("ignore", BearingGridWarning)
+        try:
+            start = model.rebuilt(grading=replace(model.grading, corner_scales=scales),
+                                  nx=None)
+        except ParameterError as exc:
+            raise ConvergenceError(f"no start grid: {exc}") from None
+    options = budget.options
+    try:
+        sol = solve_smooth(start, None, tension, progress, iteration_log,
+                           replace(options, budget=budget.left), interpolate=interpolate)
+    except ConvergenceError as exc:
+        budget.elsewhere += _taken(exc)
+        budget.info.start_iterations += _taken(exc)
+        raise ConvergenceError(f"not reached on the start grid ({start.nx} intervals)"
+                               ) from None
+    taken = sol.info.iterations + sol.info.start_iterations
+    budget.elsewhere += taken
+    budget.info.start_iterations += taken
+    return budget.solve(model, interpolate(model, sol), options.max_iterations,
+                        tension=tension)
+
+
+def _paths(model: BearingModel, first, budget: _Budget, tension, progress, interpolate,
+           iteration_log=None):
     """(name, path) of the paths tried in turn from the first state ``first``: each a
     callable returning the state or raising ConvergenceError. A smooth law: direct, the
     resting start, the speed, the law's scale; the wall: direct, pseudo-time, the speed."""
@@ -449,13 +522,18 @@ def _paths(model: BearingModel, first, budget: _Budget, tension, progress, inter
     if not model.smooth_contact:     # the wall: its own first state, no law to scale
         return (direct, ("pseudo-time from the start", lambda: _pseudo_time_path(
             model, first, budget, tension, progress)), speed)
-    return (direct,
-            ("Newton from the tape resting on its summits",
-             lambda: budget.solve(model, resting_start(model), options.resting_iterations,
-                                  tension=tension)),
-            speed,
-            ("the law's scale from the hard wall",
-             lambda: _law_path(model, budget, tension, progress, interpolate)))
+    resting = ("Newton from the tape resting on its summits",
+               lambda: budget.solve(model, resting_start(model), options.resting_iterations,
+                                    tension=tension))
+    law = ("the law's scale from the hard wall",
+           lambda: _law_path(model, budget, tension, progress, interpolate))
+    scales = turned_corner_scales(model) if model.infinitely_wide else None
+    if scales is None:
+        return (direct, resting, speed, law)
+    start_grid = ("the grid refined at the corners the tape turns over",
+                  lambda: _start_grid_path(model, budget, tension, progress, iteration_log,
+                                           interpolate, scales))
+    return (direct, resting, start_grid, speed, law)
 
 
 def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
@@ -485,7 +563,8 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
     z = None
     first = (z0 if z0 is not None else flying_start(model) if start is None
              else start(info))
-    for name, path in _paths(model, first, budget, tension, progress, interpolate):
+    for name, path in _paths(model, first, budget, tension, progress, interpolate,
+                             iteration_log):
         if budget.left < 1:
             break
         try:
