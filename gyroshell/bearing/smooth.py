@@ -403,8 +403,18 @@ def _law_path(model, budget, tension, progress, interpolate) -> np.ndarray:
 
 
 def _speed_path(model, budget, tension, progress) -> np.ndarray:
-    """Path 3: the dry tape on its asperities, then V up from ``speed_fraction`` V."""
+    """Path 3: the dry tape on its asperities, then V up from ``speed_fraction`` V.
+
+    The first stage is a solve from the dry state, not a step from a neighbouring
+    solution: it has the direct path's ``max_iterations`` (Newton's stagnation test ends
+    a hopeless one), the later stages ``stage_iterations``. A tent sealed at both ends by
+    pressed corners is lifted by the film's pressure even at a thousandth of the speed
+    (the leaks, not V, meter it): tens of µm from the dry tape's few, which took 26
+    iterations on design 16 of benchmarks/bench_design_set.py (the last four
+    quadratic)."""
     z = dry_state(model, budget, tension)
+    options = budget.options
+    v0 = model.velocity * options.speed_fraction
 
     def at(v, state):
         if progress is not None:
@@ -413,10 +423,9 @@ def _speed_path(model, budget, tension, progress) -> np.ndarray:
             stage = model if v == model.velocity else model.at_velocity(v)
         except ParameterError as exc:    # e.g. a grid too coarse for the slower film
             raise ConvergenceError(f"no model at {v:.4g} m/s: {exc}") from None
-        return budget.solve_reporting(stage, state, budget.options.stage_iterations,
-                                      tension=tension)
+        limit = options.max_iterations if v == v0 else options.stage_iterations
+        return budget.solve_reporting(stage, state, limit, tension=tension)
 
-    v0 = model.velocity * budget.options.speed_fraction
     z, stages = continuation(at, v0, model.velocity, z,
                              controller=StepController(initial=3.0, growth=1.5, cut=0.5,
                                                        minimum=1.01, max_stages=80))
