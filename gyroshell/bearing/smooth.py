@@ -3,7 +3,7 @@
 A smooth law p_c(h) acts on every tape node near the head (:meth:`.model.BearingModel.
 asperity_force`): no contact set, no wall, and one problem (:class:`.problem.
 SteadyProblem`) solved by one generic Newton (:func:`gyroshell.linalg.newton.newton`).
-What remains is the start. Three paths are tried in turn, within one budget of Newton
+What remains is the start. Four paths are tried in turn, within one budget of Newton
 iterations (:class:`SolverOptions`), every iteration counted in the solution's
 :class:`~.results.NewtonInfo`:
 
@@ -12,18 +12,24 @@ iterations (:class:`SolverOptions`), every iteration counted in the solution's
    :func:`coarse_start`), then from the tape resting on its summits
    (:func:`resting_start`: over rounded corners, whose arcs the tape lies on, the flying
    start's film is far from the state).
-2. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
+2. **The start grid** (a flat head, the infinitely wide tape): the steady state on the
+   grid refined only at the corners the tape turns over (:func:`turned_corner_scales`),
+   by these same paths there, interpolated, then Newton on the model's own grid (whose
+   answer it is). The model's grid resolves every corner to 15 nm; under a tent
+   ballooned tens of µm over a long land those cells carry only round-off.
+3. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
    without the film), continued in V up from a thousandth of the speed.
-3. **The law's scale**: the hard wall's state at the roughness σ_s (:func:`hard_wall_state`,
+4. **The law's scale**: the hard wall's state at the roughness σ_s (:func:`hard_wall_state`,
    the law's limit σ_s → 0, solved by the same Newton with the wall as bounds) continued
    along the law scaled by s, s p_c(h), from s = 100 (a stiff wall a few σ_s above) down
    to s = 1 (:func:`gyroshell.linalg.continuation.continuation`).
 
-The first is cheap where it works (tens of iterations); the second follows the tape's own
-path as the film builds up under it, through the collapse of the land's tents onto their
-asperities at low speed (contact recording); the third starts from where the wall puts the
-tape. Every path is bounded by the budget: a design none of them reaches stops with a
-ConvergenceError naming each path's failure.
+The first is cheap where it works (tens of iterations); the second solves a better
+conditioned problem first (designs 7 and 16 of benchmarks/bench_design_set.py, 3-5 s);
+the third follows the tape's own path as the film builds up under it, through the
+collapse of the land's tents onto their asperities at low speed (contact recording); the
+fourth starts from where the wall puts the tape. Every path is bounded by the budget: a
+design none of them reaches stops with a ConvergenceError naming each path's failure.
 """
 
 from __future__ import annotations
@@ -383,7 +389,7 @@ def hard_wall_state(model: BearingModel, budget: _Budget, tension,
 
 
 def _law_path(model, budget, tension, progress, interpolate) -> np.ndarray:
-    """Path 3: the hard wall's state (``interpolate``: a state onto another grid), then
+    """Path 4: the hard wall's state (``interpolate``: a state onto another grid), then
     the law's scale from ``law_scale`` to 1."""
     if progress is not None:
         progress("start: the hard wall at the roughness")
