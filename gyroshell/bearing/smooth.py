@@ -548,7 +548,7 @@ def _paths(model: BearingModel, first, budget: _Budget, tension, progress, inter
     start_grid = ("the grid refined at the corners the tape turns over",
                   lambda: _start_grid_path(model, budget, tension, progress, iteration_log,
                                            interpolate, scales))
-    return (direct, resting, start_grid, speed, law)
+    return (direct, resting, speed, start_grid, law)
 
 
 def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
