@@ -12,23 +12,23 @@ iterations (:class:`SolverOptions`), every iteration counted in the solution's
    :func:`coarse_start`), then from the tape resting on its summits
    (:func:`resting_start`: over rounded corners, whose arcs the tape lies on, the flying
    start's film is far from the state).
-2. **The start grid** (a flat head, the infinitely wide tape): the steady state on the
+2. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
+   without the film), continued in V up from a thousandth of the speed.
+3. **The start grid** (a flat head, the infinitely wide tape): the steady state on the
    grid refined only at the corners the tape turns over (:func:`turned_corner_scales`),
    by these same paths there, interpolated, then Newton on the model's own grid (whose
    answer it is). The model's grid resolves every corner to 15 nm; under a tent
    ballooned tens of µm over a long land those cells carry only round-off.
-3. **The speed**: the dry tape on its asperities (:func:`dry_state`, the same grid
-   without the film), continued in V up from a thousandth of the speed.
 4. **The law's scale**: the hard wall's state at the roughness σ_s (:func:`hard_wall_state`,
    the law's limit σ_s → 0, solved by the same Newton with the wall as bounds) continued
    along the law scaled by s, s p_c(h), from s = 100 (a stiff wall a few σ_s above) down
    to s = 1 (:func:`gyroshell.linalg.continuation.continuation`).
 
-The first is cheap where it works (tens of iterations); the second solves a better
-conditioned problem first (designs 7 and 16 of benchmarks/bench_design_set.py, 3-5 s);
-the third follows the tape's own path as the film builds up under it, through the
-collapse of the land's tents onto their asperities at low speed (contact recording); the
-fourth starts from where the wall puts the tape. Every path is bounded by the budget: a
+The first is cheap where it works (tens of iterations); the second follows the tape's own
+path as the film builds up under it, through the collapse of the land's tents onto their
+asperities at low speed (contact recording); the third solves a better conditioned problem
+first (design 16 of benchmarks/bench_design_set.py, 5 s); the fourth starts from where the
+wall puts the tape. Every path is bounded by the budget: a
 design none of them reaches stops with a ConvergenceError naming each path's failure.
 """
 
@@ -409,7 +409,7 @@ def _law_path(model, budget, tension, progress, interpolate) -> np.ndarray:
 
 
 def _speed_path(model, budget, tension, progress) -> np.ndarray:
-    """Path 3: the dry tape on its asperities, then V up from ``speed_fraction`` V.
+    """Path 2: the dry tape on its asperities, then V up from ``speed_fraction`` V.
 
     The first stage is a solve from the dry state, not a step from a neighbouring
     solution: it has the direct path's ``max_iterations`` (Newton's stagnation test ends
