@@ -108,6 +108,9 @@ NOISE_STEP_MULTIPLE = 10.0
 #: Chord steps (off by default, ``chord_step=0``): a chord step must shrink the step at
 #: least by this factor, or the Jacobian is factored afresh.
 CHORD_CONTRACTION = 0.25
+#: A step that the problem's ``clip_step`` changed and the line search cut below this α is
+#: line-searched unclipped too (:func:`_unclipped`).
+UNCLIPPED_ALPHA = 1.0 / 64.0
 #: Most active sets tried per iteration on the linearized problem (each a factorization).
 MAX_SET_UPDATES = 10
 
@@ -541,8 +544,8 @@ class _Chord:
 def _step(setup: _Setup, it: _Iterate, report: NewtonReport, chord: _Chord,
           reference: float, stalling: bool):
     """One iteration's step: the reduced step (or a chord step) line-searched; if the
-    problem's ``clip_step`` changed it and the search damped it below
-    ``stagnation_alpha``, the unclipped step too (:func:`_unclipped`), the one reaching
+    problem's ``clip_step`` changed it and the search cut it below
+    :data:`UNCLIPPED_ALPHA`, the unclipped step too (:func:`_unclipped`), the one reaching
     the lower merit taken; if the
     projected path stalls (this step and the last, if any, slow: ``stalling`` for the
     last, :func:`_slow`) and the step takes free unknowns through their bounds, also the
@@ -553,7 +556,7 @@ def _step(setup: _Setup, it: _Iterate, report: NewtonReport, chord: _Chord,
     dz, solve = chord.direction(setup, it, report)
     step = setup.relative(dz)
     alpha, new = _line_search(setup, it, dz, step, report, reference, it.active)
-    if alpha < options.stagnation_alpha and not chord.used:
+    if alpha < UNCLIPPED_ALPHA and not chord.used:
         raw = _unclipped(setup, it, solve, dz)
         if raw is not None:
             step_raw = setup.relative(raw)
