@@ -31,7 +31,7 @@ NEW_AIR = AirParameters(rarefaction="fukui-kaneko", flow_factors="patir-cheng")
 #: wraps in and out (deg), V (m/s), T (N/m). 7 and 16 (the tape ballooned 35-50 µm over
 #: a long sharp-cornered land, sealed by its pressed trailing corner, and lifted microns
 #: off the leading arc) are given to the set's full precision: 16 rounded to 5 digits is
-#: not answered (its first speed stage on the start grid stagnates; see SLOW).
+#: not answered (its first speed stage, from the dry tape, stagnates).
 DESIGNS = {
     7: ((0.001990127864186446, 0.0024541535328060273), (0.001927523391325717, 0.0),
         (0.0004526221379882781,), (2.286769462643555, 3.070659691795026),
@@ -49,9 +49,9 @@ DESIGNS = {
     19: ((1.0053e-3, 2.3917e-3), (0.5063e-3, 0.0), (0.293e-3,), (3.9373032, 2.7873472),
          6.3100074, 43.7281476),
 }
-#: The designs that take 3-6 s each (every path on the model's grid, then the start grid
-#: refined only at the corners the tape turns over, :func:`gyroshell.bearing.smooth.
-#: turned_corner_scales`, and its speed path): with the slow tests.
+#: The designs that take 3-5 s each, with the slow tests: 7 by the speed path, 16 on the
+#: start grid refined only at the corners the tape turns over
+#: (:func:`gyroshell.bearing.smooth.turned_corner_scales`), both after the direct paths.
 SLOW = (7, 16)
 
 
