@@ -20,6 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core import validation
+from ..core.errors import ParameterError
 
 
 def _sech(z):
@@ -41,13 +42,27 @@ class LineGrading:
     them, whose spacing grows in proportion to the distance s from the centre beyond
     ``corner_width`` (m): the density term (corner_ratio − 1)/√(1 + (s/corner_width)²),
     analytic, integrating to an asinh (a geometric grid about each centre, so resolving a
-    length scale far below the zone's width costs only a logarithm of their ratio)."""
+    length scale far below the zone's width costs only a logarithm of their ratio).
+    ``corner_widths``: each centre's own corner width (m; None: ``corner_width`` at every
+    centre; an entry None: no algebraic term there), its ratio such that the spacing grows
+    at the same rate beyond it, 1 + (corner_ratio − 1) corner_width / width."""
 
     ratio: float
     width: float
     centres: tuple[float, ...]
     corner_ratio: float = 1.0
     corner_width: float = 0.0
+    corner_widths: tuple[float | None, ...] | None = None
+
+    def _corner_terms(self) -> list[tuple[float, float, float]]:
+        """(centre, ratio, width) of each algebraic corner term."""
+        if self.corner_ratio == 1.0:
+            return []
+        if self.corner_widths is None:
+            return [(c, self.corner_ratio, self.corner_width) for c in self.centres]
+        return [(c, 1.0 + (self.corner_ratio - 1.0) * self.corner_width / w, w)
+                for c, w in zip(self.centres, self.corner_widths, strict=True)
+                if w is not None]
 
     @property
     def graded(self) -> bool:
@@ -60,8 +75,8 @@ class LineGrading:
         for c in self.centres:
             if self.ratio != 1.0:
                 g = g + (self.ratio - 1.0) * _sech((t - c) / self.width)
-            if self.corner_ratio != 1.0:
-                g = g + (self.corner_ratio - 1.0) / np.hypot(1.0, (t - c) / self.corner_width)
+        for c, ratio, w in self._corner_terms():
+            g = g + (ratio - 1.0) / np.hypot(1.0, (t - c) / w)
         return g
 
     def cumulative(self, t: np.ndarray) -> np.ndarray:
@@ -71,10 +86,8 @@ class LineGrading:
             if self.ratio != 1.0:
                 s = s + (self.ratio - 1.0) * self.width * (_gd((t - c) / self.width)
                                                            - _gd(-c / self.width))
-            if self.corner_ratio != 1.0:
-                w = self.corner_width
-                s = s + (self.corner_ratio - 1.0) * w * (np.arcsinh((t - c) / w)
-                                                         - np.arcsinh(-c / w))
+        for c, ratio, w in self._corner_terms():
+            s = s + (ratio - 1.0) * w * (np.arcsinh((t - c) / w) - np.arcsinh(-c / w))
         return s
 
 
@@ -188,6 +201,12 @@ class Grading:
     corner_width : float or None
         Distance from a corner (m) beyond which that spacing grows in proportion to it
         (None: the model's default).
+    corner_scales : tuple of (float or None), optional
+        Each corner's own corner width as a multiple of ``corner_width`` (> 0; an entry
+        None: no corner refinement at that corner), one per corner of the head in order;
+        None (the default): ``corner_width`` at every corner. The spacing beyond each grows
+        at the same rate (:class:`LineGrading` ``corner_widths``). The smooth-law solve's
+        start grid (:func:`gyroshell.bearing.smooth.turned_corner_scales`).
     """
 
     x_ratio: float = 1.0
@@ -196,6 +215,7 @@ class Grading:
     y_width: float = 0.5e-3
     corner_ratio: float | None = None
     corner_width: float | None = None
+    corner_scales: tuple[float | None, ...] | None = None
 
     def __post_init__(self) -> None:
         for name in ("x_ratio", "y_ratio", "corner_ratio"):
@@ -204,18 +224,34 @@ class Grading:
         for name in ("x_width", "y_width", "corner_width"):
             if getattr(self, name) is not None or name == "y_width":
                 validation.positive(name, getattr(self, name), "m")
+        if self.corner_scales is not None:
+            object.__setattr__(self, "corner_scales", tuple(
+                None if c is None else validation.positive(f"corner_scales[{i}]", c)
+                for i, c in enumerate(self.corner_scales)))
 
     @property
     def uniform(self) -> bool:
         return (self.x_ratio == 1.0 and self.y_ratio == 1.0
                 and self.corner_ratio in (None, 1.0))
 
-    def x_line(self, length: float, corners: tuple[float, float]) -> LineGrading | None:
+    def x_line(self, length: float, corners: tuple[float, ...]) -> LineGrading | None:
+        """The x-line's grading about ``corners`` (m along the line; with
+        ``corner_scales``, one per entry)."""
         corner = self.corner_ratio or 1.0
+        scales = self.corner_scales
+        if scales is not None:
+            if len(scales) != len(corners):
+                raise ParameterError(f"grading.corner_scales must hold one entry per corner "
+                                     f"({len(corners)}), got {len(scales)}")
+            if all(c is None for c in scales):
+                corner = 1.0
         if self.x_ratio == 1.0 and corner == 1.0:
             return None
+        width = float(self.corner_width or 0.0)
+        widths = (None if scales is None or corner == 1.0
+                  else tuple(None if c is None else c * width for c in scales))
         return LineGrading(float(self.x_ratio), float(self.x_width or 0.0), tuple(corners),
-                           float(corner), float(self.corner_width or 0.0))
+                           float(corner), width, widths)
 
     def y_line(self, width: float) -> LineGrading | None:
         if self.y_ratio == 1.0:
@@ -223,9 +259,12 @@ class Grading:
         return LineGrading(float(self.y_ratio), self.y_width, (0.0, width))
 
     def as_dict(self) -> dict:
-        return {"x_ratio": self.x_ratio, "x_width": self.x_width, "y_ratio": self.y_ratio,
-                "y_width": self.y_width, "corner_ratio": self.corner_ratio,
-                "corner_width": self.corner_width}
+        out = {"x_ratio": self.x_ratio, "x_width": self.x_width, "y_ratio": self.y_ratio,
+               "y_width": self.y_width, "corner_ratio": self.corner_ratio,
+               "corner_width": self.corner_width}
+        if self.corner_scales is not None:      # a start grid's (not in stored defaults)
+            out["corner_scales"] = list(self.corner_scales)
+        return out
 
 
 #: No grading: uniform spacing each way.

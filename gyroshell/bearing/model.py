@@ -1253,10 +1253,17 @@ class BearingModel:
     # ----- residual and Jacobian -------------------------------------------------------------
     def tape_residual(self, u: np.ndarray, p: np.ndarray, K: sp.spmatrix,
                       tension: float | None = None) -> np.ndarray:
-        """K u − W (p − p_a) + (T − ρV²) W κ − f_κ (no contact force), N."""
+        """K u − W (p − p_a) + (T − ρV²) W κ − f_κ (no contact force), N. The
+        infinitely wide tape's elastic terms are summed as nested differences
+        (:meth:`.tape.StripOperators.elastic_force`: the same rows without the round-off
+        of K u on the corners' fine cells; K, the same matrix, is then not used)."""
         pa = self.air.ambient_pressure
-        return (K @ u - self.pressure_load @ (p - pa)
-                + self.effective_tension(tension) * self.W * self.kappa_nodes - self.f_kappa)
+        t_eff = self.effective_tension(tension)
+        if isinstance(self.tape, StripOperators):
+            elastic = self.tape.elastic_force(u, self.kappa, t_eff)
+        else:
+            elastic = K @ u + t_eff * self.W * self.kappa_nodes - self.f_kappa
+        return elastic - self.pressure_load @ (p - pa)
 
     def film_residual(self, u: np.ndarray, p: np.ndarray, *, phi_old=None, dt=None,
                       jacobian: bool = True):

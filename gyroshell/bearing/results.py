@@ -40,6 +40,10 @@ _COORDS = {"x": layout.X, "y": layout.Variable(("y",))}
 COORDINATE_TOLERANCE = 1e-12
 
 
+#: The keys of a stored grading (:class:`.mesh.Grading`'s fields).
+_GRADING_KEYS = tuple(f.name for f in dataclasses.fields(Grading))
+
+
 @dataclass
 class NewtonInfo:
     """What a Newton solve did: iterations, step and residual norms per iteration, and more.
@@ -686,9 +690,9 @@ def _model_from(ds, prefix: str = "") -> BearingModel:
     _check_stored_sizes(ds, settings["nx"], settings["ny"],
                         [f"{prefix}{k}" for k in ("departure", "pressure", "contact")])
     grading = settings.get("grading", {})   # files written before graded grids: uniform
-    if not isinstance(grading, dict) or not set(grading) <= set(Grading().as_dict()):
+    if not isinstance(grading, dict) or not set(grading) <= set(_GRADING_KEYS):
         raise ParameterError(f"the file's grading must be an object with keys among "
-                             f"{sorted(Grading().as_dict())}, got {grading!r}")
+                             f"{sorted(_GRADING_KEYS)}, got {grading!r}")
     settings["grading"] = Grading(**grading)
     if "head" in settings:      # the head rebuilds the wrap
         settings["head"] = head_from_dict(settings["head"])
@@ -723,9 +727,9 @@ def _check_attrs(ds) -> None:
     _stored_dict(ds.attrs, "info", [f.name for f in dataclasses.fields(NewtonInfo)])
     settings = _stored_dict(ds.attrs, "model", (*_SETTINGS, *_OPTIONAL_SETTINGS), _SETTINGS)
     grading = settings.get("grading", {})
-    if not isinstance(grading, dict) or not set(grading) <= set(Grading().as_dict()):
+    if not isinstance(grading, dict) or not set(grading) <= set(_GRADING_KEYS):
         raise ParameterError(f"the file's grading must be an object with keys among "
-                             f"{sorted(Grading().as_dict())}, got {grading!r}")
+                             f"{sorted(_GRADING_KEYS)}, got {grading!r}")
 
 
 def _info_from(ds) -> NewtonInfo:

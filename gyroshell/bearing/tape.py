@@ -73,6 +73,29 @@ class StripOperators:
         """f_κ = D δ²ᵀ W κ, N/m: the bending force of the reference curvature κ (1/m)."""
         return self.params.D * (self.lxx.T @ (self.W * kappa))
 
+    def elastic_force(self, u: np.ndarray, kappa: np.ndarray, tension: float) -> np.ndarray:
+        """A u + T' B u + T' W κ − f_κ, N/m (T' = ``tension``, N/m; u in m, κ in 1/m):
+        the tape rows' elastic terms, equal to those of the matrices to round-off, summed
+        as nested differences: the slopes s = δ⁺u on the intervals, the net curvature
+        c = δ²u − κ = δ⁻s / W − κ at the nodes (0 at the pinned ends), then
+        D δ⁻(δ⁺c) + k W u − T' W c (A = D δ²ᵀWδ² + k W, B u = −δ⁻s, f_κ = D δ²ᵀWκ).
+
+        The sum K u of the assembled matrix carries a round-off of ε Σ|K_ij||u_j|: on a
+        corner's 15 nm cells, the plate's entries D/Δx³ ~ 1e18 N/m² per m times a tape
+        50 µm above the dry string, 1e-2 N/m per node, random in sign and above the
+        corner's own contact force per node; the tension carries each such force over
+        the span (a point force F lifts a string by F ℓ/T', tens of nm), so Newton's
+        steps on those rows' round-off alone were tens of σ_s (measured on design 7 of
+        benchmarks/bench_design_set.py). Differenced first, each level's round-off is ε
+        times that level's own size (ε|s| in a slope of 0.05, not ε|u|/Δx in one of
+        3,000): about 1e-7 N/m there."""
+        h = np.diff(self.x)
+        s = np.diff(np.concatenate([[0.0], u, [0.0]])) / h
+        c = np.diff(s) / self.W - kappa
+        shear = np.diff(np.concatenate([[0.0], c, [0.0]])) / h
+        return (self.params.D * np.diff(shear) + self.params.k * self.W * u
+                - tension * self.W * c)
+
 
 class PlateOperators:
     """A, B, M, G and W of the free-edged plate on the tensor grid ``x`` × ``y`` (m).

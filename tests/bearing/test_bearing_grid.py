@@ -140,3 +140,111 @@ def test_wrap_load_turns_the_tape_through_the_wrap_angle_on_graded_nodes():
         kappa = dry_curvature(x, L, R, theta)
         assert StripOperators(TapeParameters(), x).W @ kappa == pytest.approx(theta,
                                                                                rel=1e-12)
+
+
+def test_corner_widths_refine_each_corner_to_its_own_constriction():
+    """Per-centre corner widths: the density at a centre is 1 + (corner_ratio − 1)
+    corner_width / width (the spacing growing at the same rate beyond), an entry None
+    adds nothing there, and the cumulative stays the density's integral (trapezoidal
+    quadrature on 200,000 intervals)."""
+    L, ratio, width = 1e-3, 101.0, 1e-6
+    g = LineGrading(1.0, 0.0, (0.2e-3, 0.5e-3, 0.8e-3), ratio, width,
+                    (width, 10.0 * width, None))
+    terms = ((0.2e-3, ratio, width), (0.5e-3, 1.0 + (ratio - 1.0) / 10.0, 10.0 * width))
+    t = np.array([0.2e-3, 0.5e-3, 0.8e-3, 0.9e-3])
+    expected = [1.0 + sum((rk - 1.0) / math.hypot(1.0, (tk - c) / w) for c, rk, w in terms)
+                for tk in t]
+    assert np.allclose(g.density(t), expected, rtol=1e-12, atol=0.0)
+    two = LineGrading(1.0, 0.0, (0.2e-3, 0.5e-3), ratio, width, (width, 10.0 * width))
+    assert np.array_equal(g.density(t), two.density(t))     # nothing at the third centre
+    t = np.linspace(0.0, L, 200001)
+    integral = np.concatenate([[0.0], np.cumsum(0.5 * (g.density(t[1:])
+                                                       + g.density(t[:-1])) * np.diff(t))])
+    assert np.allclose(g.cumulative(t), integral, rtol=1e-6, atol=0.0)
+
+
+def test_start_grid_refines_only_the_corners_the_tape_turns_over():
+    """Two coplanar modules under the smooth law, the first with rounded corners: the
+    smooth solve's start grid (turned_corner_scales) keeps the sharp outer corner's
+    width (1), widens the rounded outer one to √(2 r_c s) (s = corner_width /
+    CORNER_WIDTH) and drops the refinement at the inner edges into the gap (turn 0);
+    the model's own grid refines all four. A scale per corner is checked."""
+    from dataclasses import replace
+
+    from gyroshell import ParameterError
+    from gyroshell.bearing import AirParameters, BearingModel
+    from gyroshell.bearing.contact import ContactParameters
+    from gyroshell.bearing.head import FlatHead, Module
+    from gyroshell.bearing.mesh import Grading
+    from gyroshell.bearing.model import CORNER_WIDTH
+    from gyroshell.bearing.smooth import turned_corner_scales
+
+    r = 1e-3
+    head = FlatHead((Module(1e-3, corner_radius=r), Module(1e-3)), math.radians(2.0),
+                    math.radians(2.0), gaps=(0.2e-3,))
+    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=head,
+                         infinitely_wide=True, contact=ContactParameters())
+    s = model.grading.corner_width / CORNER_WIDTH
+    scales = turned_corner_scales(model)
+    assert scales[0] == pytest.approx(math.sqrt(2.0 * r * s) / s, rel=1e-12)
+    assert scales[1:] == (None, None, 1.0)
+    start = model.rebuilt(grading=replace(model.grading, corner_scales=scales), nx=None)
+    assert turned_corner_scales(start) is None          # a start grid has none of its own
+    width = model.grading.corner_width
+    for m, widths in ((model, (1.0,) * 4), (start, scales)):
+        spacing, x = np.diff(m.x), m.x_head[:-1]
+        for centre, w in zip(m._centres(), widths, strict=True):
+            near = spacing[np.argmin(np.abs(x - centre))]
+            if w is None:
+                assert near > 100.0 * width
+            else:
+                assert near < 2.0 * w * width
+    with pytest.raises(ParameterError, match="one entry per corner"):
+        model.rebuilt(grading=replace(model.grading, corner_scales=(1.0, None)), nx=None)
+    with pytest.raises(ParameterError, match=r"corner_scales\[1\]"):
+        Grading(corner_scales=(1.0, -2.0))
+
+
+def test_strip_elastic_force_is_the_matrices_rows_without_their_round_off():
+    """StripOperators.elastic_force against the exact (rational) value of the same rows,
+    A u + T' B u + T' W κ − f_κ from the same float spacings and widths, on nodes refined
+    to 15 nm about a corner under a tape 50 µm up (smooth u): within a tenth of the
+    matrices' round-off bound ε Σ|K_ij||u_j| + ε|T' W κ| + ε|f_κ| on every row and 1e-5
+    of it on the sub-100 nm cells (plus the result's own rounding), while the assembled
+    K u + T' W κ − f_κ, within that bound, misses the exact rows by 1e4 times the nested
+    form's largest error (the round-off that drove Newton's steps)."""
+    from fractions import Fraction
+
+    params = TapeParameters()
+    L = 0.5e-3
+    x = line_nodes(L, 80, LineGrading(1.0, 0.0, (0.25e-3,), 1.0 + 20e-6 / 15e-9, 15e-9))
+    assert np.diff(x).min() < 30e-9
+    ops = StripOperators(params, x)
+    t_eff = 80.0
+    xi = x[1:-1]
+    u = 50e-6 * np.sin(np.pi * xi / L) * (1.0 + 0.1 * np.sin(3.0 * xi / L))
+    kappa = np.where(np.abs(xi - 0.25e-3) < 20e-6, 1.0 / 2e-3, 0.0)
+    nested = ops.elastic_force(u, kappa, t_eff)
+    fine = (ops.W < 100e-9)
+    K = (ops.A + t_eff * ops.B).tocsr()
+    matrix = K @ u + t_eff * ops.W * kappa - ops.curvature_load(kappa)
+
+    F = Fraction
+    h = [F(v) for v in np.diff(x)]
+    W = [F(v) for v in ops.W]
+    uf = [F(0)] + [F(v) for v in u] + [F(0)]
+    D, k, T = F(params.D), F(ops.params.k), F(t_eff)
+    s = [(uf[j + 1] - uf[j]) / h[j] for j in range(len(h))]
+    c = [(s[i + 1] - s[i]) / W[i] - F(kappa[i]) for i in range(len(W))]
+    cf = [F(0)] + c + [F(0)]
+    shear = [(cf[j + 1] - cf[j]) / h[j] for j in range(len(h))]
+    exact = np.array([float(D * (shear[i + 1] - shear[i]) + k * W[i] * uf[i + 1]
+                            - T * W[i] * c[i]) for i in range(len(W))])
+    eps = np.finfo(float).eps
+    bound = eps * (abs(K) @ np.abs(u) + np.abs(t_eff * ops.W * kappa)
+                   + np.abs(ops.curvature_load(kappa)))
+    err, own = np.abs(nested - exact), 4.0 * eps * np.abs(exact)
+    assert np.all(err <= 0.1 * bound + own)                 # measured 0.03
+    assert np.all(err[fine] <= 1e-5 * bound[fine] + own[fine])   # measured 2.6e-7
+    assert np.all(np.abs(matrix - exact) <= 10.0 * bound)   # the same rows (0.75)
+    assert np.abs(matrix - exact).max() > 1e4 * err.max()   # measured 6.6e6

@@ -158,7 +158,9 @@ def test_a_land_lying_on_the_wall_with_no_force_does_not_stall_newton():
     (s = 0.1, 0.4) reach a state where hundreds of land nodes have h − σ and λ both near
     round-off: an active-set rule decided by round-off cycles there. The bounds' active
     set settles; the state satisfies the complementarity h >= σ, λ >= 0, λ (h − σ) = 0
-    to round-off."""
+    to round-off. (How many of the nodes at σ the active set holds, λ > 0, is the sign
+    of their rows' round-off: 891 of 2,039 with the assembled K u, 36 with the nested
+    elastic rows, which sum a flat land's straight tape to about zero.)"""
     from gyroshell.bearing.problem import SteadyProblem
     from gyroshell.bearing.pseudo_time import STAGE_ITERATIONS, PseudoTime
     from gyroshell.linalg.newton import NewtonOptions, newton
@@ -173,7 +175,8 @@ def test_a_land_lying_on_the_wall_with_no_force_does_not_stall_newton():
     lam = problem.forces(z)
     h = z[:model.n_u] + model.dry_field[1:-1, 0]
     sigma = HARD.roughness
-    assert report.active_counts[-1] > 800            # the land lies on the head
+    assert np.count_nonzero(h <= sigma * (1 + 1e-9)) > 800     # the land lies on the head
+    assert report.active_counts[-1] > 0
     assert np.all(h >= sigma * (1 - 1e-12))
     assert np.all(lam >= 0.0)
     assert np.max(np.abs(lam * (h - sigma))) < 1e-12 * np.abs(lam).max() * sigma

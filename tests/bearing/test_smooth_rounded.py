@@ -17,7 +17,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
 
-from gyroshell import ConvergenceError, TapeParameters
+from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.contact import ContactParameters
 from gyroshell.bearing.head import FlatHead, Module
@@ -27,25 +27,27 @@ DEG = math.pi / 180.0
 ASPERITY = ContactParameters()
 NEW_AIR = AirParameters(rarefaction="fukui-kaneko", flow_factors="patir-cheng")
 
-#: Designs 8, 11, 15 and 19 of the set (seed 1): lands, corner radii and gaps (m),
-#: wraps in and out (deg), V (m/s), T (N/m).
+#: Designs 7, 8, 11, 15, 16 and 19 of the set (seed 1): lands, corner radii and gaps (m),
+#: wraps in and out (deg), V (m/s), T (N/m). 7 and 16 fly a tent ballooned 35-50 µm over
+#: their long sharp-cornered last land, sealed by its pressed trailing corner, and are
+#: lifted microns off the leading arc.
 DESIGNS = {
+    7: ((1.9901e-3, 2.4542e-3), (1.9275e-3, 0.0), (0.4526e-3,), (2.2867695, 3.0706597),
+        0.7326614, 114.0805876),
     8: ((2.5151e-3, 2.6795e-3), (1.3224e-3, 0.4949e-3), (0.1453e-3,), (4.2069917, 0.5947742),
         8.3421342, 58.0957993),
     11: ((2.3368e-3, 2.1541e-3, 0.5603e-3), (0.0, 0.0, 0.9146e-3), (0.3139e-3, 0.4279e-3),
          (3.714426, 2.0155341), 4.7597649, 80.4469527),
     15: ((1.9507e-3, 2.1421e-3, 1.6603e-3), (0.6214e-3, 0.7941e-3, 0.4064e-3),
          (0.4947e-3, 0.3912e-3), (1.9909986, 3.3151139), 4.1193246, 81.9642226),
+    16: ((0.2468e-3, 1.582e-3, 2.9205e-3), (0.5745e-3, 1.4977e-3, 0.0),
+         (0.4573e-3, 0.0576e-3), (1.726492, 4.9954216), 2.9903946, 133.3948974),
     19: ((1.0053e-3, 2.3917e-3), (0.5063e-3, 0.0), (0.293e-3,), (3.9373032, 2.7873472),
          6.3100074, 43.7281476),
 }
-#: The rounded-corner designs the solver does not yet answer within its budget.
-UNSOLVED = {
-    7: ((1.9901e-3, 2.4542e-3), (1.9275e-3, 0.0), (0.4526e-3,), (2.2867695, 3.0706597),
-        0.7326614, 114.0805876),
-    16: ((0.2468e-3, 1.582e-3, 2.9205e-3), (0.5745e-3, 1.4977e-3, 0.0),
-         (0.4573e-3, 0.0576e-3), (1.726492, 4.9954216), 2.9903946, 133.3948974),
-}
+#: The designs that take about 3 s each, with the slow tests: the direct paths fail, the
+#: speed path from the dry tape reaches them (its first stage lifting the sealed tent).
+SLOW = (7, 16)
 
 
 def design_model(lands, radii, gaps, wraps, velocity, tension) -> BearingModel:
@@ -75,37 +77,31 @@ def force_balance(model: BearingModel, solution) -> tuple[float, float]:
     return air + contact - turn, abs(air) + abs(contact) + abs(turn)
 
 
-@pytest.mark.parametrize("key", sorted(DESIGNS))
+@pytest.mark.parametrize("key", [pytest.param(k, marks=pytest.mark.slow) if k in SLOW
+                                 else k for k in sorted(DESIGNS)])
 def test_rounded_corner_designs_solve_and_balance_the_tape(key):
-    """Solved within the budget, every iteration counted; the head's air and asperity
-    forces carry the tension's turn between the tape's ends to 1e-4 of the forces'
-    magnitudes (measured: 3e-6 to 2.4e-5), and the spans at their ends slope as the
-    wraps to within 10 % (the plate's bending lifts the tape off the string near the
-    corners)."""
+    """Solved within the budget, every iteration counted (on the start grid too); the
+    head's air and asperity forces carry the tension's turn between the tape's ends to
+    1e-4 of the forces' magnitudes (measured: 3e-6 to 2.4e-5), and the spans at their ends
+    slope as the wraps to within 10 % (the plate's bending lifts the tape off the string
+    near the corners) plus the tilt of a span lifted off the head's outer corner."""
     model = design_model(*DESIGNS[key])
     solution = solve_steady(model)
-    assert solution.info.iterations <= 500
+    assert solution.info.iterations + solution.info.start_iterations <= 500
     imbalance, gross = force_balance(model, solution)
     assert abs(imbalance) <= 1e-4 * gross
     w = model.head.dry_tape(model.x_head) + np.concatenate([[0.0], solution.u, [0.0]])
     slopes = np.diff(w) / np.diff(model.x)
     wrap_in, wrap_out = (a * DEG for a in DESIGNS[key][3])
-    assert slopes[0] == pytest.approx(math.tan(wrap_in), rel=0.1)
-    assert -slopes[-1] == pytest.approx(math.tan(wrap_out), rel=0.1)
-
-
-@pytest.mark.slow
-@pytest.mark.xfail(raises=ConvergenceError, strict=True,
-                   reason="not yet answered: Newton stagnates on every path (see the report "
-                          "of the robust branch)")
-@pytest.mark.parametrize("key", sorted(UNSOLVED))
-def test_unsolved_rounded_corner_designs_stop_within_the_budget(key):
-    """Each stops with a ConvergenceError within the budget (strict: the test fails the
-    day one is solved, and it then belongs with the designs above)."""
-    model = design_model(*UNSOLVED[key])
-    solution = solve_steady(model)
-    imbalance, gross = force_balance(model, solution)
-    assert abs(imbalance) <= 1e-4 * gross
+    # a span lifted by δ off the string at the head's outer corner, ℓ from its pinned
+    # end, is tilted by δ/ℓ more (7 and 16: the tape microns off the leading arc)
+    u = np.concatenate([[0.0], solution.u, [0.0]])
+    first, last = model.head.corners()[0], model.head.corners()[-1]
+    x = model.x_head
+    tilt_in = max(u[np.argmin(np.abs(x - first))], 0.0) / (first - x[0])
+    tilt_out = max(u[np.argmin(np.abs(x - last))], 0.0) / (x[-1] - last)
+    assert abs(slopes[0] - math.tan(wrap_in)) <= 0.1 * math.tan(wrap_in) + tilt_in
+    assert abs(-slopes[-1] - math.tan(wrap_out)) <= 0.1 * math.tan(wrap_out) + tilt_out
 
 
 def gw_pressure(d: float, contact: ContactParameters) -> float:

@@ -320,6 +320,31 @@ class TestStopping:
         assert report.converged and abs(z[0]) < 1e-12
         assert report.step_norms[0] <= 1.0 + 1e-15
 
+    def test_a_clipped_step_that_does_not_descend_is_searched_unclipped(self,
+                                                                         monkeypatch):
+        """r = A z − b, A = [[1, 1000], [0, 1]], z* = (−9990, 10), from 0 with z₁'s change
+        clipped to 1: the clipped step (−9990, 1) raises r₀ by 8,990 α (the merit's slope
+        along it is +89,890), so every trial is rejected down to the smallest α; searched
+        unclipped, Newton's whole step lands on z* (the first iteration). Without that
+        alternative (UNCLIPPED_ALPHA 0) the run stagnates."""
+        import gyroshell.linalg.newton as module
+
+        A = np.array([[1.0, 1000.0], [0.0, 1.0]])
+        b = A @ np.array([-9990.0, 10.0])
+
+        class Clipped(Problem):
+            def clip_step(self, z, dz):
+                return np.array([dz[0], np.clip(dz[1], -1.0, 1.0)])
+
+        problem = Clipped(lambda z: A @ z - b, lambda z: A)
+        z, report = newton(problem, np.zeros(2))
+        assert report.converged and report.alphas[0] == 1.0
+        assert report.residual_norms[0] < 1e-9 * np.linalg.norm(b)    # z* in one step
+        np.testing.assert_allclose(z, [-9990.0, 10.0], rtol=1e-12)
+        monkeypatch.setattr(module, "UNCLIPPED_ALPHA", 0.0)
+        with pytest.raises(ConvergenceError, match="stagnated"):
+            newton(problem, np.zeros(2))
+
     def test_a_report_passed_in_adds_the_iterations_up(self):
         report = NewtonReport()
         _, report = newton(arctan_problem(), [3.0], report=report)
