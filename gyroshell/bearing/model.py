@@ -613,21 +613,23 @@ class BearingModel:
         return h_foil / l_film * (x_last - x_first)
 
     def _feature_zones(self, l_film: float, l_bend: float, resolution: float) -> Grading:
-        """The default grading with a head's short feature resolved about the head alone.
+        """The default grading of a head one film covers (:attr:`film_over_head`), its
+        short features resolved about the head alone.
 
         A land, gap or wrapped arc shorter than the film or bending length sets the
-        default x-spacing at the corners (:meth:`_resolution`); the spans, sized from the
-        film and bending lengths (:meth:`_checked_span`), need only the spacing those
-        lengths ask for. The zones about the corners are then as wide as
-        :data:`X_GRADING_WIDTH` features (no wider than before) and the spacing beyond
-        them is that of the film and bending lengths: the grading's ratio grows by their
-        resolution length over the feature's. Without it the feature's spacing filled
-        the spans: at 0.01 deg wraps over a 1 mm land (film length 17 mm, spans of
-        0.1 m) 3064 intervals along x, with it a few hundred (see
-        docs/theory/bearing.md)."""
+        default x-spacing at the corners (:meth:`_resolution`). Where the film length
+        R_c ε^(1/3) exceeds the whole head, the film reaches no further than the head
+        (beyond its outer corners the flanks fall away), while the spans, sized from the
+        film length (:meth:`_checked_span`), carry only the tape. The zones about the
+        corners are then as wide as :data:`X_GRADING_WIDTH` features (no wider than
+        before) and the spacing beyond them is that of the film and bending lengths: the
+        grading's ratio grows by their resolution length over the feature's. Without it
+        the feature's spacing filled the spans: at 0.01 deg wraps over a 1 mm land (film
+        length 17 mm, spans of 0.1 m) 3064 intervals along x, with it 336 (the spacings
+        within 0.01 % of those on twice the intervals)."""
         grading = self.grading
         film = l_bend if self.dry else resolution_length(l_film, l_bend)
-        if resolution >= film:
+        if resolution >= film or not self.film_over_head:
             return grading
         feature = resolution / FEATURE_RESOLUTION
         return replace(grading, x_ratio=grading.x_ratio * film / resolution,
