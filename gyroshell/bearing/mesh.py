@@ -88,7 +88,7 @@ def line_nodes(length: float, n: int, grading: LineGrading | None = None) -> np.
     if not _graded(grading):
         return np.linspace(0.0, length, n + 1)
     total = float(grading.cumulative(length))
-    t = _solve_mapping(grading, np.linspace(0.0, total, n + 1), 0.0, length)
+    t = _solve_mapping(grading, np.linspace(0.0, total, n + 1), 0.0, length, table=n)
     t[0], t[-1] = 0.0, length
     return t
 
@@ -115,16 +115,18 @@ def _inverse(grading: LineGrading | None, s: np.ndarray, lo: float, hi: float) -
 _MAPPING_ITERATIONS = 60
 
 
-def _solve_mapping(grading: LineGrading, s: np.ndarray, lo: float, hi: float) -> np.ndarray:
+def _solve_mapping(grading: LineGrading, s: np.ndarray, lo: float, hi: float, *,
+                   table: int | None = None) -> np.ndarray:
     """t in [lo, hi] with S(t) = s (increasing), S the grading's (increasing) cumulative:
     Newton (S' = g >= 1) from a table of S. Where its few steps leave the nodes out of
     order (a corner term refining a 0.1 m span to a few tens of nm curves S far below the
     table's spacing, and bare steps overshoot), the roots are found again by Newton kept
     within the table's bracket about each root, bisecting where a step would leave it.
     (Grids that the few steps order keep their nodes to the bit: stored results
-    compare their nodes with the rebuilt grid's.)"""
+    compare their nodes with the rebuilt grid's.) ``table``: the table has 64 times
+    this many intervals (default: as many as ``s`` has points)."""
     s = np.asarray(s, dtype=float)
-    n = max(len(s), 2)
+    n = max(len(s), 2) if table is None else table
     dense = np.linspace(lo, hi, 64 * n + 1)
     table = grading.cumulative(dense)
     t = np.interp(s, table, dense)                              # start within round-off²
