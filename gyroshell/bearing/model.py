@@ -500,7 +500,6 @@ class BearingModel:
         self.film_length, self.bending_length = l_film, l_bend
         self._warn_small_wrap()
         self._set_arcs(arc_contact, l_bend)
-        self.film_over_head = self._film_covers_head(l_film)
         self.h_guess = _FOIL_GUESS * self._foil_spacing(h_foil, l_film)
         self.span = self._checked_span(span, l_film, l_bend)
         self.adapt_contacts = validation.boolean("adapt_contacts", adapt_contacts)
@@ -511,8 +510,7 @@ class BearingModel:
         self.grading = _resolved_grading(grading, self.infinitely_wide,
                                          X_GRADING_WIDTH * max(l_film, l_bend))
         resolution = self._resolution(l_film, l_bend)
-        if grading is None:
-            self.grading = self._feature_zones(l_film, l_bend, resolution)
+        self.grading = self._feature_zones(grading is None, l_film, l_bend, resolution)
         if self.grading.corner_ratio is None:
             self.grading = replace(self.grading, **self._corner_grading(resolution))
         x_line = self._x_count(nx, l_film, resolution, span is not None)
@@ -607,14 +605,18 @@ class BearingModel:
         tape's curvature T h/ℓ² against the film's 6μV ℓ/h²), and no film forms over more
         than the head. Measured (a 1 mm land at 0.01 deg, 4 m/s, 1-D): the spacing is
         7 µm against this scale's 17 µm and the foil's 290 µm."""
+        #: whether one film covers the whole head (:meth:`_film_covers_head`)
+        self.film_over_head = self._film_covers_head(l_film)
         if not self.film_over_head:
             return h_foil
         x_first, x_last = self.head.extent(self.head_radius)
         return h_foil / l_film * (x_last - x_first)
 
-    def _feature_zones(self, l_film: float, l_bend: float, resolution: float) -> Grading:
-        """The default grading of a head one film covers (:attr:`film_over_head`), its
-        short features resolved about the head alone.
+    def _feature_zones(self, default: bool, l_film: float, l_bend: float,
+                       resolution: float) -> Grading:
+        """The grading (``default``: the constructor's default, else left as given) of a
+        head one film covers (:attr:`film_over_head`), its short features resolved about
+        the head alone.
 
         A land, gap or wrapped arc shorter than the film or bending length sets the
         default x-spacing at the corners (:meth:`_resolution`). Where the film length
@@ -629,7 +631,7 @@ class BearingModel:
         within 0.01 % of those on twice the intervals)."""
         grading = self.grading
         film = l_bend if self.dry else resolution_length(l_film, l_bend)
-        if resolution >= film or not self.film_over_head:
+        if not default or resolution >= film or not self.film_over_head:
             return grading
         feature = resolution / FEATURE_RESOLUTION
         return replace(grading, x_ratio=grading.x_ratio * film / resolution,

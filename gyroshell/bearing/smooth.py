@@ -441,10 +441,20 @@ def _pseudo_time_path(model, z0, budget, tension, progress) -> np.ndarray:
     return z
 
 
-def _paths(model: BearingModel, first, budget: _Budget, tension, progress, interpolate):
+def _paths(model: BearingModel, first, budget: _Budget, tension, progress, interpolate,
+           flown=None, iteration_log=None):
     """(name, path) of the paths tried in turn from the first state ``first``: each a
-    callable returning the state or raising ConvergenceError. A smooth law: direct, the
-    resting start, the speed, the law's scale; the wall: direct, pseudo-time, the speed."""
+    callable returning the state (or a solution on another grid) or raising
+    ConvergenceError. A smooth law: direct, the resting start, the speed, the law's scale;
+    the wall: direct, pseudo-time, the speed. An infinitely wide tape with ``flown``
+    (:meth:`BearingModel.with_flown_corners`) tries that grid second: a tape flying over
+    corners refined to the roughness is not reached (its state is below their rows'
+    round-off), while one pressing onto the head is reached directly (as before)."""
+    if flown is not None and model.infinitely_wide:
+        paths = list(_paths(model, first, budget, tension, progress, interpolate))
+        return [paths[0], ("the tape flying over the head's corners",
+                           lambda: _flown_path(flown, budget, tension, progress,
+                                               iteration_log, interpolate)), *paths[1:]]
     options = budget.options
     direct = ("direct", lambda: budget.solve(model, first, options.max_iterations,
                                              tension=tension))
@@ -516,14 +526,11 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
     from ``z0`` (default ``start(info)`` if given, else :func:`flying_start`), then the
     law's and the speed's continuations, within ``options.budget`` Newton iterations.
     ``interpolate``: the interpolation of a state onto another grid
-    (:func:`.steady.interpolated_state`). Over a head one film covers
-    (:attr:`BearingModel.film_over_head`) the tape may fly over the corners, which the
-    default grid refines to the roughness: the infinitely wide tape then also tries the
-    grid refined for that (:meth:`BearingModel.with_flown_corners`) after the direct
-    path, and a 2-D tape solves its strip first and follows it (``decided``: that choice
-    is made). The hard wall (bounds h >= σ on the same Newton)
-    takes the direct path and the speed's: the resting start and the law's scale belong
-    to a smooth law.
+    (:func:`.steady.interpolated_state`). The hard wall (bounds h >= σ on the same
+    Newton) takes the direct path and the speed's: the resting start and the law's scale
+    belong to a smooth law. Over a head one film covers (:attr:`BearingModel.
+    film_over_head`) the tape may fly over the corners (:func:`_paths`); a 2-D tape then
+    follows its strip (:func:`_flown_if_the_strip_flies`; ``decided``: it has).
 
     Raises
     ------
@@ -546,12 +553,8 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
     z = None
     first = (z0 if z0 is not None else flying_start(model) if start is None
              else start(info))
-    paths = list(_paths(model, first, budget, tension, progress, interpolate))
-    if flown is not None and model.infinitely_wide:    # over a head one film covers
-        paths.insert(1, ("the tape flying over the head's corners",
-                         lambda: _flown_path(flown, budget, tension, progress,
-                                             iteration_log, interpolate)))
-    for name, path in paths:
+    for name, path in _paths(model, first, budget, tension, progress, interpolate,
+                             flown, iteration_log):
         if budget.left < 1:
             break
         try:
