@@ -88,8 +88,9 @@ class SolverOptions:
     stage_iterations : int
         Newton iterations of one continuation stage.
     budget : int
-        Newton iterations of the whole solve, every path and stage together: a solve
-        that has not converged within it stops with a ConvergenceError.
+        Newton iterations of the whole solve, every path and stage together, those of
+        a 2-D tape's start on coarser grids (and of its strip) included: a solve that has
+        not converged within it stops with a ConvergenceError.
     law_scale : float
         The law's scale at the first stage of the law's continuation (> 1).
     pseudo_time_tol : float
@@ -137,7 +138,7 @@ class _Budget:
 
     @property
     def left(self) -> int:
-        return self.options.budget - self.info.iterations
+        return self.options.budget - self.info.iterations - self.info.start_iterations
 
     def solve(self, model: BearingModel, z0: np.ndarray, limit: int, *, tension=None
               ) -> np.ndarray:
@@ -276,6 +277,14 @@ def extruded_strip(model: BearingModel, interpolate, tension=None, progress=None
             sol.info.iterations + sol.info.start_iterations)
 
 
+def _spending(options: SolverOptions | None, taken: int) -> SolverOptions:
+    """``options`` with ``taken`` Newton iterations spent of its budget (at least one
+    left: a solve with none stops at its first): the start's coarser grids and the
+    model's own grid share one budget."""
+    options = SolverOptions() if options is None else options
+    return replace(options, budget=max(options.budget - taken, 1))
+
+
 def _taken(exc: ConvergenceError) -> int:
     """The Newton iterations of a failed :func:`solve_smooth` (its start's included)."""
     info = getattr(exc, "info", None)
@@ -305,14 +314,15 @@ def coarse_start(model: BearingModel, interpolate, tension=None, progress=None,
         progress(f"start: solving the coarse grid {coarse.nx} x {coarse.ny} "
                  f"({coarse.unknowns} unknowns)")
     try:
-        sol = solve_smooth(coarse, z, tension, progress, iteration_log, options,
-                           interpolate=interpolate)
+        sol = solve_smooth(coarse, z, tension, progress, iteration_log,
+                           _spending(options, taken), interpolate=interpolate)
     except (ConvergenceError, ParameterError) as exc:   # ParameterError: a continuation
         if progress is not None:                         # stage's grid too coarse for it
             progress(f"start: the coarse grid not reached ({exc})")
+        taken += _taken(exc)
         z, more = extruded_strip(model, interpolate, tension, progress, iteration_log,
-                                 options)
-        return z, taken + _taken(exc) + more
+                                 _spending(options, taken))
+        return z, taken + more
     return interpolate(model, sol), taken + sol.info.iterations + sol.info.start_iterations
 
 
@@ -480,7 +490,7 @@ def _flown_path(flown: BearingModel, budget: _Budget, tension, progress, iterati
     if progress is not None:
         progress("one film covers the head: its corners refined for the tape flying over "
                  f"them ({flown.nx} intervals along x)")
-    options = replace(budget.options, budget=max(budget.left, 1))
+    options = _spending(budget.options, budget.options.budget - budget.left)
     return solve_smooth(flown, None, tension, progress, iteration_log, options,
                         interpolate=interpolate)
 
@@ -509,7 +519,7 @@ def _flown_if_the_strip_flies(model: BearingModel, flown: BearingModel, tension,
             f"2-D tape has no start ({exc})") from None
     taken = sol.info.iterations + sol.info.start_iterations
     target = flown if sol.model.corners_flown else model
-    options = replace(options, budget=max(options.budget - taken, 1))
+    options = _spending(options, taken)
     if progress is not None and target is flown:
         progress("the infinitely wide tape flies over the head's corners: the 2-D tape "
                  f"on a grid refined for that ({flown.nx} x {flown.ny} intervals)")
@@ -517,6 +527,21 @@ def _flown_if_the_strip_flies(model: BearingModel, flown: BearingModel, tension,
                        interpolate=interpolate, decided=True)
     out.info.start_iterations += taken
     return out
+
+
+def _no_state(model: BearingModel, options: SolverOptions, info: NewtonInfo,
+              failures: list) -> ConvergenceError:
+    """The ConvergenceError of a solve no path completed: each path's failure, the
+    iterations taken (the start's among them) and what to try; ``info`` attached."""
+    start = (f", {info.start_iterations} of them on the start's grids"
+             if info.start_iterations else "")
+    exc = ConvergenceError(
+        f"no steady state reached within {options.budget} Newton iterations "
+        f"({info.iterations + info.start_iterations} taken{start}): " + "; ".join(failures)
+        + "; try a finer grid (nx), a start (z0) from a neighbouring state"
+        + (", or contact='hard'" if model.smooth_contact else ""))
+    exc.info = info
+    return exc
 
 
 def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
@@ -568,13 +593,7 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
             if progress is not None:
                 progress(f"{name} did not reach the state ({exc})")
     if z is None:
-        exc = ConvergenceError(
-            f"no steady state reached within {options.budget} Newton iterations "
-            f"({info.iterations} taken): " + "; ".join(failures)
-            + "; try a finer grid (nx), a start (z0) from a neighbouring state"
-            + (", or contact='hard'" if model.smooth_contact else ""))
-        exc.info = info
-        raise exc
+        raise _no_state(model, options, info, failures)
     info.seconds = time.perf_counter() - clock
     check_cavitation(model, z[model.n_u:])
     lam = SteadyProblem(model, tension=tension).forces(z)
