@@ -565,9 +565,8 @@ def solve_smooth(model: BearingModel, z0, tension, progress, iteration_log,
     options = SolverOptions() if options is None else options
     clock = time.perf_counter()
     info = NewtonInfo()
-    flown = (model.with_flown_corners() if model.smooth_contact and not decided
-             else None)
-    if flown is not None and z0 is None and not model.infinitely_wide:
+    flown = None if decided else model.with_flown_corners()
+    if flown is not None and z0 is None and model.smooth_contact and not model.infinitely_wide:
         return _flown_if_the_strip_flies(model, flown, tension, progress, iteration_log,
                                          options, interpolate)
     if z0 is None and not model.infinitely_wide and model.smooth_contact:
