@@ -101,11 +101,7 @@ def line_nodes(length: float, n: int, grading: LineGrading | None = None) -> np.
     if not _graded(grading):
         return np.linspace(0.0, length, n + 1)
     total = float(grading.cumulative(length))
-    s = np.linspace(0.0, total, n + 1)
-    dense = np.linspace(0.0, length, 64 * n + 1)
-    t = np.interp(s, grading.cumulative(dense), dense)           # start within round-off²
-    for _ in range(4):                                          # Newton: S' = g >= 1
-        t = t - (grading.cumulative(t) - s) / grading.density(t)
+    t = _solve_mapping(grading, np.linspace(0.0, total, n + 1), 0.0, length, table=n)
     t[0], t[-1] = 0.0, length
     return t
 
@@ -125,11 +121,44 @@ def _inverse(grading: LineGrading | None, s: np.ndarray, lo: float, hi: float) -
     """t in [lo, hi] with S(t) = s (S the grading's cumulative; the identity if None)."""
     if not _graded(grading):
         return s.copy()
-    n = max(len(s), 2)
+    return _solve_mapping(grading, s, lo, hi)
+
+
+#: Newton iterations of :func:`_solve_mapping` (each halving its bracket at least).
+_MAPPING_ITERATIONS = 60
+
+
+def _solve_mapping(grading: LineGrading, s: np.ndarray, lo: float, hi: float, *,
+                   table: int | None = None) -> np.ndarray:
+    """t in [lo, hi] with S(t) = s (increasing), S the grading's (increasing) cumulative:
+    Newton (S' = g >= 1) from a table of S. Where its few steps leave the nodes out of
+    order (a corner term refining a 0.1 m span to a few tens of nm curves S far below the
+    table's spacing, and bare steps overshoot), the roots are found again by Newton kept
+    within the table's bracket about each root, bisecting where a step would leave it.
+    (Grids that the few steps order keep their nodes to the bit: stored results
+    compare their nodes with the rebuilt grid's.) ``table``: the table has 64 times
+    this many intervals (default: as many as ``s`` has points)."""
+    s = np.asarray(s, dtype=float)
+    n = max(len(s), 2) if table is None else table
     dense = np.linspace(lo, hi, 64 * n + 1)
-    t = np.interp(s, grading.cumulative(dense), dense)
+    table = grading.cumulative(dense)
+    t = np.interp(s, table, dense)                              # start within round-off²
     for _ in range(4):                                          # Newton: S' = g >= 1
         t = t - (grading.cumulative(t) - s) / grading.density(t)
+    t = np.clip(t, lo, hi)
+    if np.all(np.diff(t) > 0.0):
+        return t
+    k = np.clip(np.searchsorted(table, s, side="right") - 1, 0, len(dense) - 2)
+    a, b = dense[k].copy(), dense[k + 1].copy()
+    t = np.interp(s, table, dense)
+    for _ in range(_MAPPING_ITERATIONS):
+        f = grading.cumulative(t) - s
+        a = np.where(f < 0.0, t, a)
+        b = np.where(f > 0.0, t, b)
+        step = t - f / grading.density(t)
+        t = np.where((step > a) & (step < b), step, 0.5 * (a + b))
+        if np.all(b - a <= 4.0 * np.finfo(float).eps * np.maximum(np.abs(t), 1e-300)):
+            break
     return np.clip(t, lo, hi)
 
 

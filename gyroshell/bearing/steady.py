@@ -309,6 +309,9 @@ def _extruded_strip_state(model: BearingModel, progress=None, iteration_log=None
         u1, p1 = z[:strip.n_u], z[strip.n_u:]
     else:
         u1, p1 = sol.u, sol.p
+        if sol.model.nx != strip.nx or not np.array_equal(sol.model.x, strip.x):
+            z1 = interpolated_state(strip, sol)     # solved on its flown corners' grid
+            u1, p1 = z1[:strip.n_u], z1[strip.n_u:]
     u = np.repeat(u1, model.nc)
     P = np.repeat(strip.pressure_field(p1), model.nc, axis=1)
     return np.concatenate([u, P[model.film.interior]]), sol

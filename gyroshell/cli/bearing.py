@@ -475,13 +475,18 @@ def size_line(model) -> str:
     else:
         grid = (f"{model.params.width:g} m wide tape, {model.nx} x {model.ny} intervals "
                 f"({'graded' if model.graded else 'uniform'})")
+    from ..bearing.smooth import SolverOptions
+
     each = iteration_seconds(model)
     low, central, high = solve_seconds(model)
     longer = ("the direct path fails and a continuation is needed" if model.smooth_contact
               else "Newton needs pseudo-time or continuation in V")
+    budget = SolverOptions().budget
     return (f"{grid}, {model.unknowns} unknowns; estimated {duration(low)} to "
             f"{duration(high)}, about {duration(central)} (about {duration(each)} per "
-            f"Newton iteration that factors afresh; longer if {longer})")
+            f"Newton iteration that factors afresh; longer if {longer}, and stopped "
+            f"within {budget} Newton iterations, at most about "
+            f"{duration(budget * each)})")
 
 
 def _solve(model, progress):

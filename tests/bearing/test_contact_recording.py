@@ -225,15 +225,22 @@ def test_contact_recording_readings_converge_as_the_grid_is_refined():
     assert abs(h[0] / h[2] - 1.0) < 2e-3 and abs(p[0] / p[2] - 1.0) < 3e-2
 
 
-def test_a_graded_grid_whose_nodes_would_not_increase_is_refused():
-    """0.01° wraps over a 1 mm land, the 2-D grading on too few intervals: the graded
-    pieces between the corners overlap. Refused in one line naming nx (before, the model
-    was built on nodes that went backwards along x, and a coarse start on such a grid
-    gave negative control widths)."""
+def test_a_graded_grid_on_few_intervals_keeps_its_nodes_in_order():
+    """0.01° wraps over a 1 mm land, the 2-D grading (corners refined to 30 nm over
+    0.1 m spans) on 764 intervals: the mapping's few Newton steps overshot there and the
+    nodes went backwards along x (refused before, naming nx); found within their
+    brackets, they increase and every corner is a node. Too few intervals between the
+    corners are still refused in one line naming nx."""
     from gyroshell import ParameterError
     from gyroshell.bearing.model import DEFAULT_GRADING
 
     head = FlatHead((Module(1e-3),), 0.01 * DEG, 0.01 * DEG)
-    with pytest.raises(ParameterError, match=r"nx = 764 is too small for the head's graded"):
+    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=head,
+                         infinitely_wide=True, grading=DEFAULT_GRADING, nx=764)
+    dx = np.diff(model.x)
+    assert np.all(dx > 0.0)
+    for corner in head.corners():
+        assert np.min(np.abs(model.x_head - corner)) < 1e-12
+    with pytest.raises(ParameterError, match=r"nx = 100 is too small for the head"):
         BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=head,
-                     infinitely_wide=True, grading=DEFAULT_GRADING, nx=764)
+                     infinitely_wide=True, grading=DEFAULT_GRADING, nx=100)
