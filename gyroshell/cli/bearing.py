@@ -564,7 +564,10 @@ def _print_text(sol, grid_error: dict | None = None, summary_magnetic=None) -> N
                         f"mean {line['mean']:+.3e}" for line in grid_error["transducer_lines"])
         print(f"grid error:       against half the intervals: central "
               f"{grid_error['central_spacing']:+.3e} m{lines}")
-    print(f"Newton:           {sol.info.iterations} iterations, {sol.info.seconds:.2f} s")
+    start = (f" (+{sol.info.start_iterations} on the start's grids)"
+             if sol.info.start_iterations else "")
+    print(f"Newton:           {sol.info.iterations} iterations{start}, "
+          f"{sol.info.seconds:.2f} s")
 
 
 def _write_out(out: Path, sol, summary: dict) -> None:
