@@ -79,7 +79,7 @@ CHEAP = 15.0
 GRID = re.compile(r"(\d+) x (\d+) intervals|(\d+) intervals along x")
 ESTIMATE = re.compile(r"(\d+) unknowns; estimated (\S+ \S+) to (\S+ \S+?)(?:, about (\S+ \S+))? \(")
 DONE = re.compile(r"done: (\d+) Newton iterations(?: \((\d+) more)?")
-SOLVE = re.compile(r"Newton:\s+\d+ iterations, ([\d.]+) s")
+SOLVE = re.compile(r"Newton:\s+\d+ iterations(?: \(\+\d+ on the start's grids\))?, ([\d.]+) s")
 STUDY = re.compile(r"(\d+) points \((\d+) computed.*?(\d+) with errors\) in ([\d.]+) s")
 UNITS = {"s": 1.0, "min": 60.0, "h": 3600.0}
 
