@@ -16,7 +16,7 @@ from gyroshell import TapeParameters
 from gyroshell.bearing import AirParameters, BearingModel
 from gyroshell.bearing.contact import ComplianceCurve, ContactParameters
 from gyroshell.bearing.head import FlatHead, Module
-from gyroshell.bearing.steady import solve_steady
+from gyroshell.bearing.steady import initial_state, solve_steady
 from gyroshell.bearing.transient import march
 
 DEG = math.pi / 180.0
@@ -162,6 +162,38 @@ def test_warnings_name_the_models_used_out_of_their_range(cli):
     line = out["magnetic_spacings"][0]
     assert line["magnetic_spacing"] == pytest.approx(
         out["transducer_lines"][0]["centre"] + 1.5e-8, rel=1e-12)
+
+
+def _gw_real_area(d: float, contact: ContactParameters) -> float:
+    """Greenwood–Williamson's real contact area over the nominal at the separation d (m),
+    π η β σ_s ∫_d^∞ (z − d) φ(z) dz / σ_s by quadrature of its defining integral."""
+    s = contact.roughness
+
+    def integrand(z):
+        return (z - d) * math.exp(-0.5 * (z / s) ** 2) / (s * math.sqrt(2.0 * math.pi))
+
+    mean = quad(integrand, d, max(d, 0.0) + 40.0 * s, epsabs=0.0, epsrel=1e-12,
+                limit=200)[0]
+    return math.pi * contact.asperity_density * contact.asperity_radius * mean
+
+
+@pytest.mark.slow
+def test_asperities_pressed_past_greenwood_williamsons_range_are_named():
+    """30° wraps over 60° flanks press the sharp corners' summits to d = -14 σ_s, where
+    GW's real contact area (quadrature) exceeds the nominal: one warning line names the
+    depth and the place; over 2°/2° (d = -1.3 σ_s, a real area of 0.3) there is none."""
+    head = FlatHead((Module(1e-3),), 30 * DEG, 30 * DEG, transducers=(0.0,),
+                    flank_angle=60 * DEG)
+    model = BearingModel(TapeParameters(), AirParameters(), velocity=4.0, head=head,
+                         infinitely_wide=True, contact=ASPERITY)
+    sol = solve_steady(model, z0=initial_state(model))     # the CLI's start
+    assert _gw_real_area(sol.minimum_spacing, ASPERITY) > 0.5
+    (line,) = sol.range_warnings
+    assert "Greenwood-Williamson" in line and "corner_radius" in line
+    assert f"d = {sol.minimum_spacing / ASPERITY.roughness:.3g} sigma_s" in line
+    mild = solve_steady(_flying_flat())
+    assert _gw_real_area(mild.minimum_spacing, ASPERITY) < 0.5
+    assert mild.range_warnings == []
 
 
 def test_a_march_from_a_steady_state_on_asperities_stays_there():
