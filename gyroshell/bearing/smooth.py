@@ -278,14 +278,25 @@ def extruded_strip(model: BearingModel, interpolate, tension=None, progress=None
             progress(f"start: the infinitely wide tape not reached ({exc}): the flying "
                      "start")
         return flying_start(model), _taken(exc)
-    u1, p1 = sol.u, sol.p
-    if sol.model.nx != strip.nx or not np.array_equal(sol.model.x, strip.x):
-        z1 = interpolate(strip, sol)        # solved on its flown corners' grid
-        u1, p1 = z1[:strip.n_u], z1[strip.n_u:]
-    u = np.repeat(u1, model.nc)
-    P = np.repeat(strip.pressure_field(p1), model.nc, axis=1)
-    return (np.concatenate([u, P[model.film.interior]]),
+    return (extruded(model, strip, strip_state(strip, sol, interpolate)),
             sol.info.iterations + sol.info.start_iterations)
+
+
+def strip_state(strip: BearingModel, sol: BearingSolution, interpolate) -> np.ndarray:
+    """[u (m), p (Pa)] of the infinitely wide ``strip``'s solution ``sol`` on the strip's
+    grid (``interpolate``-d from the grid it was solved on if another: its corners
+    refined for a tape flying over them, :meth:`BearingModel.with_flown_corners`)."""
+    if sol.model.nx == strip.nx and np.array_equal(sol.model.x, strip.x):
+        return np.concatenate([sol.u, sol.p])
+    return interpolate(strip, sol)
+
+
+def extruded(model: BearingModel, strip: BearingModel, z1: np.ndarray) -> np.ndarray:
+    """The state of the 2-D ``model`` with the infinitely wide ``strip``'s state ``z1``
+    (on the same x-grid) repeated across the width."""
+    u = np.repeat(z1[:strip.n_u], model.nc)
+    P = np.repeat(strip.pressure_field(z1[strip.n_u:]), model.nc, axis=1)
+    return np.concatenate([u, P[model.film.interior]])
 
 
 def _spending(options: SolverOptions | None, taken: int) -> SolverOptions:

@@ -301,17 +301,10 @@ def _extruded_strip_state(model: BearingModel, progress=None, iteration_log=None
     if progress is not None:
         progress(f"start: solving the infinitely wide tape on the same x-grid "
                  f"({strip.unknowns} unknowns)")
+    from .smooth import extruded, strip_state
+
     try:
         sol = solve_steady(strip, iteration_log=iteration_log)
     except ConvergenceError:
-        sol = None
-        z = strip.initial_state()
-        u1, p1 = z[:strip.n_u], z[strip.n_u:]
-    else:
-        u1, p1 = sol.u, sol.p
-        if sol.model.nx != strip.nx or not np.array_equal(sol.model.x, strip.x):
-            z1 = interpolated_state(strip, sol)     # solved on its flown corners' grid
-            u1, p1 = z1[:strip.n_u], z1[strip.n_u:]
-    u = np.repeat(u1, model.nc)
-    P = np.repeat(strip.pressure_field(p1), model.nc, axis=1)
-    return np.concatenate([u, P[model.film.interior]]), sol
+        return extruded(model, strip, strip.initial_state()), None
+    return extruded(model, strip, strip_state(strip, sol, interpolated_state)), sol
