@@ -49,7 +49,7 @@ CASES = {
                                          "--ny", "9"],
     "bearing --edges simply-supported": ["bearing", "--velocity", "4", "--edges",
                                          "simply-supported"],
-    "bearing --out missing/dir": ["bearing", "--velocity", "4", "--out", "missing/dir"],
+    "bearing --out-dir missing/dir": ["bearing", "--velocity", "4", "--out-dir", "missing/dir"],
     "bearing --config folder": ["bearing", "--config", "."],
     "bearing --config binary": ["bearing", "--config", "binary.toml"],
     "frf --frequencies 1e300:1e301:3": ["frf", "--frequencies", "1e300:1e301:3"],
