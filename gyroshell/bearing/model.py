@@ -588,15 +588,16 @@ class BearingModel:
                          * self.head.shortest_feature(self.head_radius))
         return length
 
-    def _film_covers_head(self, l_film: float) -> bool:
-        """Whether the film length R_c ε^(1/3) (``l_film``, m) exceeds a flat or profile
-        head's wrapped region (:attr:`film_over_head`): one film then covers the whole
-        head, the tape flies over its corners (at 0.01 deg over a 1 mm land, 4 m/s,
-        6.7-7 µm above them) and the spacing scale is the head's (:meth:`_foil_spacing`)."""
-        if self.cylindrical or l_film == 0.0:
+    @property
+    def film_over_head(self) -> bool:
+        """Whether the film length R_c ε^(1/3) (:attr:`film_length`, m) exceeds a flat or
+        profile head's wrapped region: one film then covers the whole head, the tape flies
+        over its corners (at 0.01 deg over a 1 mm land, 4 m/s, 6.7-7 µm above them) and
+        the spacing scale is the head's (:meth:`_foil_spacing`)."""
+        if self.cylindrical or self.film_length == 0.0:
             return False
         x_first, x_last = self.head.extent(self.head_radius)
-        return l_film > x_last - x_first
+        return self.film_length > x_last - x_first
 
     def _foil_spacing(self, h_foil: float, l_film: float) -> float:
         """The flexible-foil spacing scale, m: R_c ε^(2/3) (``h_foil``), or, where the film
@@ -605,8 +606,6 @@ class BearingModel:
         tape's curvature T h/ℓ² against the film's 6μV ℓ/h²), and no film forms over more
         than the head. Measured (a 1 mm land at 0.01 deg, 4 m/s, 1-D): the spacing is
         7 µm against this scale's 17 µm and the foil's 290 µm."""
-        #: whether one film covers the whole head (:meth:`_film_covers_head`)
-        self.film_over_head = self._film_covers_head(l_film)
         if not self.film_over_head:
             return h_foil
         x_first, x_last = self.head.extent(self.head_radius)
