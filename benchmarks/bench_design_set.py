@@ -103,17 +103,25 @@ def child(design: dict, physics: str) -> dict:
             "h": sol.central_spacing, "balance": force_balance(model, sol)}
 
 
-def force_balance(model, sol) -> float:
-    """(air + contact force) / ((T − ρV²)(s_in − s_out)), s the tape's end slopes: the
-    vertical balance of the whole tape pinned at its straight ends, 1 at a solution (a
-    check the solver does not know; the air force by the trapezoidal rule)."""
+def vertical_forces(model, sol) -> tuple[float, float, float]:
+    """(air, contact, turn), N/m: the head's air force (trapezoidal rule over the nodes)
+    and asperity force on the tape, and the tension's turn (T − ρV²)(s_in − s_out)
+    between its ends (s the slopes of the first and last intervals): the vertical balance
+    of the whole tape pinned at its straight ends (no bending shear there) is air +
+    contact = turn, a check the solver does not know."""
     pa = model.air.ambient_pressure
     p = np.concatenate([[pa], sol.p, [pa]])
     air = float(np.sum(0.5 * (p[1:] + p[:-1] - 2.0 * pa) * np.diff(model.x)))
     w = model.head.dry_tape(model.x_head) + np.concatenate([[0.0], sol.u, [0.0]])
     slopes = np.diff(w) / np.diff(model.x)
     tension = model.params.tension - model.params.density * model.velocity ** 2
-    return (air + sol.contact_force) / (tension * (slopes[0] - slopes[-1]))
+    return air, sol.contact_force, tension * (slopes[0] - slopes[-1])
+
+
+def force_balance(model, sol) -> float:
+    """(air + contact force) / turn (:func:`vertical_forces`): 1 at a solution."""
+    air, contact, turn = vertical_forces(model, sol)
+    return (air + contact) / turn
 
 
 def run(design: dict, physics: str, cap: float, tree: str | None) -> dict:

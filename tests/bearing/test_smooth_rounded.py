@@ -60,22 +60,28 @@ def design_model(lands, radii, gaps, wraps, velocity, tension) -> BearingModel:
                         head=head, infinitely_wide=True, contact=ASPERITY)
 
 
+def _benchmark():
+    """benchmarks/bench_design_set.py: its realistic random design set (1-3 modules of
+    0.2-3 mm lands, sharp or rounded corners, 0.3-5° wraps, 0.5-10 m/s, 40-150 N/m) and
+    the tape's vertical forces (its vertical_forces)."""
+    path = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_design_set.py"
+    spec = importlib.util.spec_from_file_location("bench_design_set", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+BENCHMARK = _benchmark()
+RANDOM_SET = BENCHMARK.designs(20, 1)
+
+
 def force_balance(model: BearingModel, solution) -> tuple[float, float]:
     """(imbalance, gross), N/m: the air force plus the contact force less the tension's
-    turn (T − ρV²)(s_in − s_out) between the tape's ends (slopes s on the solution's first
-    and last intervals), the vertical balance of the whole tensioned tape pinned at its
-    ends (its spans are straight there: no bending shear); and the sum of the three
-    forces' magnitudes, the scale its round-off is relative to (under a pressed corner
-    the air's suction and the summits' push are 60 times their net). The air force by
-    the trapezoidal rule over the nodes."""
-    pa = model.air.ambient_pressure
-    p = np.concatenate([[pa], solution.p, [pa]])
-    air = float(np.sum(0.5 * (p[1:] + p[:-1] - 2.0 * pa) * np.diff(model.x)))
-    w = model.head.dry_tape(model.x_head) + np.concatenate([[0.0], solution.u, [0.0]])
-    slopes = np.diff(w) / np.diff(model.x)
-    tension = model.params.tension - model.params.density * model.velocity ** 2
-    turn = tension * (slopes[0] - slopes[-1])
-    contact = solution.contact_force
+    turn between the tape's ends (the benchmark's vertical_forces: the vertical balance
+    of the whole tensioned tape pinned at its ends), and the sum of the three forces'
+    magnitudes, the scale its round-off is relative to (under a pressed corner the air's
+    suction and the summits' push are 60 times their net)."""
+    air, contact, turn = BENCHMARK.vertical_forces(model, solution)
     return air + contact - turn, abs(air) + abs(contact) + abs(turn)
 
 
@@ -104,20 +110,6 @@ def test_rounded_corner_designs_solve_and_balance_the_tape(key):
     tilt_out = max(u[np.argmin(np.abs(x - last))], 0.0) / (x[-1] - last)
     assert abs(slopes[0] - math.tan(wrap_in)) <= 0.1 * math.tan(wrap_in) + tilt_in
     assert abs(-slopes[-1] - math.tan(wrap_out)) <= 0.1 * math.tan(wrap_out) + tilt_out
-
-
-def _random_design_set(count: int = 20, seed: int = 1) -> list[dict]:
-    """The realistic random design set of benchmarks/bench_design_set.py (its generator:
-    1-3 modules of 0.2-3 mm lands, sharp or rounded corners, 0.3-5° wraps, 0.5-10 m/s,
-    40-150 N/m)."""
-    path = Path(__file__).resolve().parents[2] / "benchmarks" / "bench_design_set.py"
-    spec = importlib.util.spec_from_file_location("bench_design_set", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module.designs(count, seed)
-
-
-RANDOM_SET = _random_design_set()
 
 
 @pytest.mark.slow
